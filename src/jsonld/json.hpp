@@ -1,0 +1,117 @@
+// A JSON document model that remembers where each value was written.
+//
+// JSON-LD processing needs (a) JavaScript number semantics (every number is a
+// double), (b) the source position of each value so diagnostics and quads can
+// point at file:line:col, and (c) stable member order for deterministic output.
+// Objects keep their members in insertion order with unique keys.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "support/diagnostics.hpp"
+
+namespace mospec::json {
+
+class Value;
+using Array = std::vector<Value>;
+
+class Object {
+ public:
+  size_t size() const { return keys_.size(); }
+  bool empty() const { return keys_.empty(); }
+  const Value* find(std::string_view key) const;
+  Value* find(std::string_view key);
+  bool contains(std::string_view key) const { return find(key) != nullptr; }
+  // Inserts or replaces; returns the stored value.
+  Value& set(std::string key, Value v);
+  bool erase(std::string_view key);
+  const std::string& key(size_t i) const { return keys_[i]; }
+  const Value& value(size_t i) const;
+  Value& value(size_t i);
+  // Keys in code-point (byte) order, as the JSON-LD algorithms iterate them.
+  std::vector<std::string_view> sorted_keys() const;
+  // Where the key i was written (its opening quote).
+  SourceLoc key_location(size_t i) const { return key_locs_[i]; }
+  void set_key_location(size_t i, SourceLoc l) { key_locs_[i] = l; }
+
+ private:
+  std::vector<std::string> keys_;
+  std::vector<Value> values_;
+  std::vector<SourceLoc> key_locs_;
+};
+
+enum class Kind : uint8_t { Null, Boolean, Number, String, Array, Object };
+
+class Value {
+ public:
+  Value() = default;  // null
+  Value(std::nullptr_t) {}
+  Value(bool b) : data_(b) {}
+  Value(double d) : data_(d) {}
+  Value(int i) : data_(static_cast<double>(i)) {}
+  Value(std::string s) : data_(std::move(s)) {}
+  Value(std::string_view s) : data_(std::string(s)) {}
+  Value(const char* s) : data_(std::string(s)) {}
+  Value(Array a) : data_(std::move(a)) {}
+  Value(Object o) : data_(std::move(o)) {}
+
+  Kind kind() const { return static_cast<Kind>(data_.index()); }
+  bool is_null() const { return kind() == Kind::Null; }
+  bool is_bool() const { return kind() == Kind::Boolean; }
+  bool is_number() const { return kind() == Kind::Number; }
+  bool is_string() const { return kind() == Kind::String; }
+  bool is_array() const { return kind() == Kind::Array; }
+  bool is_object() const { return kind() == Kind::Object; }
+  bool is_scalar() const { return is_bool() || is_number() || is_string(); }
+
+  bool as_bool() const { return std::get<bool>(data_); }
+  double as_number() const { return std::get<double>(data_); }
+  const std::string& as_string() const { return std::get<std::string>(data_); }
+  std::string& as_string() { return std::get<std::string>(data_); }
+  const Array& as_array() const { return std::get<Array>(data_); }
+  Array& as_array() { return std::get<Array>(data_); }
+  const Object& as_object() const { return std::get<Object>(data_); }
+  Object& as_object() { return std::get<Object>(data_); }
+
+  // Convenience for objects: member lookup (nullptr if not an object or absent).
+  const Value* get(std::string_view key) const {
+    return is_object() ? as_object().find(key) : nullptr;
+  }
+
+  SourceLoc location() const { return loc_; }
+  void set_location(SourceLoc l) { loc_ = l; }
+  // Returns a copy with the location set (handy when building output values).
+  Value located(SourceLoc l) const& { Value v = *this; v.loc_ = l; return v; }
+
+  // Deep structural equality (numbers by value, objects ignoring member order);
+  // locations are ignored.
+  friend bool operator==(const Value& a, const Value& b);
+
+ private:
+  std::variant<std::nullptr_t, bool, double, std::string, Array, Object> data_{nullptr};
+  SourceLoc loc_{};
+};
+
+// Parses RFC 8259 JSON. Errors throw mospec::Error with code "invalid json"
+// (the JSON-LD "loading document failed" family is decided by the caller) and the
+// file name, line and column of the offending character. Duplicate keys: the last
+// wins (as in JavaScript). Records locations with `file_id`.
+Value parse(std::string_view text, uint32_t file_id = 0, std::string_view file_name = "<input>");
+
+// Serialises compactly (no whitespace) or with `indent` spaces per level.
+// Numbers are written as JavaScript does (shortest round-trip form; integers
+// without a fraction).
+std::string dump(const Value& v, int indent = -1);
+
+// RFC 8785 JSON Canonicalization Scheme (used for @json literals): members sorted
+// by UTF-16 code units, ECMAScript number serialisation, minimal escaping.
+std::string canonicalize(const Value& v);
+
+// ECMAScript Number::toString (e.g. 1 -> "1", 0.1 -> "0.1", 1e21 -> "1e+21").
+std::string number_to_string(double d);
+
+}  // namespace mospec::json

@@ -1,0 +1,61 @@
+// Offline document loading for JSON-LD: IRIs map to local directories, the
+// network is never used, and every document is read and parsed once per run.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+
+#include "jsonld/json.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::jsonld {
+
+struct RemoteDocument {
+  std::string document_url;  // the IRI it was loaded as (after any redirect)
+  std::string content_type;  // "application/ld+json" unless known otherwise
+  std::string context_url;   // from an HTTP Link header, if the loader models one
+  std::shared_ptr<const json::Value> document;
+  uint32_t file_id = 0;      // id in the loader's SourceFiles
+};
+
+class DocumentLoader {
+ public:
+  virtual ~DocumentLoader() = default;
+  // Loads `iri` (absolute). `referenced_from` is where the reference was written,
+  // for error messages. Errors throw mospec::Error with code
+  // "loading document failed" (or "loading remote context failed" when
+  // `for_context` is set), naming the IRI and the referencing file:line.
+  virtual RemoteDocument load(std::string_view iri, SourceLoc referenced_from,
+                              bool for_context) = 0;
+  SourceFiles& files() { return files_; }
+  const SourceFiles& files() const { return files_; }
+
+ protected:
+  SourceFiles files_;
+};
+
+// Maps IRI prefixes to local directories (longest prefix wins) and plain file
+// paths to themselves. Parsed documents are cached by absolute path.
+class MappedDocumentLoader : public DocumentLoader {
+ public:
+  // `prefix` is an IRI prefix such as "https://comp-rob2b.github.io/"; `dir` a
+  // local directory (a trailing '/' is optional).
+  void map(std::string prefix, std::string dir);
+  // Local path for an IRI, or empty when no prefix maps it.
+  std::string resolve(std::string_view iri) const;
+  RemoteDocument load(std::string_view iri, SourceLoc referenced_from,
+                      bool for_context) override;
+  // Reads and parses a local file (cached), registering it in files().
+  RemoteDocument load_file(const std::string& path, std::string document_url = {});
+  size_t documents_read() const { return reads_; }
+
+ private:
+  std::map<std::string, std::string, std::greater<>> prefixes_;  // longest first
+  std::unordered_map<std::string, RemoteDocument> cache_;        // by path
+  size_t reads_ = 0;
+};
+
+}  // namespace mospec::jsonld

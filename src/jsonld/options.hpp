@@ -1,0 +1,31 @@
+// Options and the term-drop policy shared by the JSON-LD algorithms.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "jsonld/json.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::jsonld {
+
+class DocumentLoader;
+
+enum class ProcessingMode : uint8_t { JsonLd10, JsonLd11 };
+enum class RdfDirection : uint8_t { None, I18nDatatype, CompoundLiteral };
+
+struct Options {
+  std::string base;  // document base IRI
+  std::optional<json::Value> expand_context;
+  ProcessingMode processing_mode = ProcessingMode::JsonLd11;
+  bool ordered = false;
+  bool produce_generalized_rdf = false;
+  RdfDirection rdf_direction = RdfDirection::None;
+  DocumentLoader* loader = nullptr;  // required for remote contexts
+  // Where silent drops are reported (keys that expand to no IRI, @type values
+  // that are not defined terms and become document-relative IRIs). nullptr: not
+  // reported. The file name in diagnostics comes from the loader's SourceFiles.
+  DiagnosticSink* diagnostics = nullptr;
+};
+
+}  // namespace mospec::jsonld

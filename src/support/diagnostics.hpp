@@ -1,0 +1,81 @@
+// One diagnostic shape for every stage: "file:line:col: severity: message".
+//
+// Stages report through a DiagnosticSink (the caller decides whether a finding is
+// collected, printed or escalated); errors that stop a stage are thrown as
+// mospec::Error, which carries the same location.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mospec {
+
+// Files are named by a small integer so that every JSON value and every quad can
+// carry its origin cheaply. Id 0 means "no file" (generated or unknown).
+class SourceFiles {
+ public:
+  SourceFiles();
+  uint32_t add(std::string path);  // returns the existing id if already present
+  const std::string& path(uint32_t id) const;
+  size_t size() const { return paths_.size(); }
+
+ private:
+  std::vector<std::string> paths_;
+};
+
+// 1-based line and column (columns count bytes); 0 means unknown.
+struct SourceLoc {
+  uint32_t file = 0;
+  uint32_t line = 0;
+  uint32_t column = 0;
+  bool known() const { return line != 0; }
+  friend bool operator==(const SourceLoc&, const SourceLoc&) = default;
+};
+
+enum class Severity : uint8_t { Note, Warning, Error };
+std::string_view to_string(Severity);
+
+struct Diagnostic {
+  Severity severity = Severity::Error;
+  std::string file;  // empty: not located in a file
+  uint32_t line = 0;
+  uint32_t column = 0;
+  std::string code;  // stable machine-readable kind, e.g. "dropped-key"
+  std::string message;
+};
+
+// "file:line:col: warning: message" (omits the parts that are unknown; a
+// diagnostic with no file starts with "mospec:").
+std::string format(const Diagnostic&);
+
+// Collects diagnostics; the caller inspects or prints them.
+class DiagnosticSink {
+ public:
+  void report(Diagnostic d) { diagnostics_.push_back(std::move(d)); }
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  size_t count(Severity) const;
+  void clear() { diagnostics_.clear(); }
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+
+// A fatal error of a stage. `code` is a stable kind; for JSON-LD processing it is
+// the spec's error code (e.g. "invalid context entry") so conformance tests can
+// compare it.
+class Error : public std::runtime_error {
+ public:
+  Error(std::string code, std::string message, std::string file = {}, uint32_t line = 0,
+        uint32_t column = 0);
+  const std::string& code() const { return code_; }
+  const Diagnostic& diagnostic() const { return diagnostic_; }
+
+ private:
+  std::string code_;
+  Diagnostic diagnostic_;
+};
+
+}  // namespace mospec
