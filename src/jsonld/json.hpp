@@ -28,6 +28,9 @@ class Object {
   bool contains(std::string_view key) const { return find(key) != nullptr; }
   // Inserts or replaces; returns the stored value.
   Value& set(std::string key, Value v);
+  // Appends without looking for an existing member: the caller guarantees the
+  // key is new (saves set()'s linear search when building large objects).
+  Value& append_new(std::string key, Value v);
   bool erase(std::string_view key);
   const std::string& key(size_t i) const { return keys_[i]; }
   const Value& value(size_t i) const;
@@ -85,7 +88,11 @@ class Value {
   SourceLoc location() const { return loc_; }
   void set_location(SourceLoc l) { loc_ = l; }
   // Returns a copy with the location set (handy when building output values).
-  Value located(SourceLoc l) const& { Value v = *this; v.loc_ = l; return v; }
+  Value located(SourceLoc l) const& {
+    Value v = *this;
+    v.loc_ = l;
+    return v;
+  }
 
   // Deep structural equality (numbers by value, objects ignoring member order);
   // locations are ignored.
