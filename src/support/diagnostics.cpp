@@ -4,7 +4,9 @@
 
 namespace mospec {
 
-SourceFiles::SourceFiles() { paths_.emplace_back(); }
+SourceFiles::SourceFiles() {
+  paths_.emplace_back();
+}
 
 uint32_t SourceFiles::add(std::string path) {
   auto it = std::find(paths_.begin() + 1, paths_.end(), path);
@@ -19,9 +21,12 @@ const std::string& SourceFiles::path(uint32_t id) const {
 
 std::string_view to_string(Severity s) {
   switch (s) {
-    case Severity::Note: return "note";
-    case Severity::Warning: return "warning";
-    case Severity::Error: return "error";
+    case Severity::Note:
+      return "note";
+    case Severity::Warning:
+      return "warning";
+    case Severity::Error:
+      return "error";
   }
   return "error";
 }
@@ -59,7 +64,7 @@ Error::Error(std::string code, std::string message, std::string file, uint32_t l
              uint32_t column)
     : std::runtime_error(what_of(code, message, file, line, column)),
       code_(code),
-      diagnostic_{Severity::Error, std::move(file), line, column, std::move(code),
-                  std::move(message)} {}
+      diagnostic_{Severity::Error, std::move(file), line,
+                  column,          std::move(code), std::move(message)} {}
 
 }  // namespace mospec

@@ -1,0 +1,209 @@
+#include "app/app.hpp"
+
+#include <filesystem>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "jsonld/expand.hpp"
+#include "jsonld/to_rdf.hpp"
+#include "rdf/iri.hpp"
+
+namespace mospec::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string app_term(std::string_view local) {
+  return std::string(kAppNs) + std::string(local);
+}
+
+// The IRI a local file is known by: the inverse of an IRI mapping when one
+// covers it (so relative references inside it resolve as they would on the
+// web), otherwise its file: URL.
+std::string iri_for_path(const std::vector<std::pair<std::string, std::string>>& maps,
+                         const std::string& path) {
+  std::error_code ec;
+  fs::path abs = fs::weakly_canonical(fs::absolute(path), ec);
+  std::string abs_s = abs.generic_string();
+  for (const auto& [prefix, dir] : maps) {
+    std::string d = fs::weakly_canonical(fs::absolute(dir), ec).generic_string();
+    if (!d.empty() && d.back() != '/') d += '/';
+    if (abs_s.rfind(d, 0) == 0) return prefix + abs_s.substr(d.size());
+  }
+  return "file://" + abs_s;
+}
+
+std::string join_root(const LoadOptions& options, const std::string& path) {
+  if (!options.root || fs::path(path).is_absolute()) return path;
+  return (fs::path(*options.root) / path).generic_string();
+}
+
+class Loader {
+ public:
+  Loader(const LoadOptions& options, jsonld::MappedDocumentLoader& docs, rdf::Dataset& dataset,
+         std::vector<ModelFile>& files, std::vector<AppInfo>& apps, DiagnosticSink& diagnostics)
+      : options_(options),
+        docs_(docs),
+        dataset_(dataset),
+        files_(files),
+        apps_(apps),
+        diagnostics_(diagnostics) {
+    for (const auto& [prefix, dir] : options.maps) {
+      docs_.map(prefix, dir);
+      maps_.emplace_back(prefix, dir);
+    }
+  }
+
+  void load_input(const std::string& path) {
+    std::string iri = iri_for_path(maps_, path);
+    if (!loaded_.insert(iri).second) return;
+    jsonld::RemoteDocument doc = docs_.load_file(path, iri);
+    load_document(doc, path, SourceLoc{});
+  }
+
+ private:
+  void load_import(const std::string& iri, SourceLoc imported_at) {
+    if (!loaded_.insert(iri).second) return;  // duplicates load once
+    jsonld::RemoteDocument doc = docs_.load(iri, imported_at, /*for_context=*/false);
+    load_document(doc, docs_.resolve(iri), imported_at);
+  }
+
+  void load_document(const jsonld::RemoteDocument& doc, const std::string& path,
+                     SourceLoc imported_at) {
+    jsonld::Options opts;
+    opts.base = doc.document_url;
+    opts.loader = &docs_;
+    opts.diagnostics = &diagnostics_;
+    rdf::Dataset local;
+    jsonld::load_into(*doc.document, local, opts);
+
+    ModelFile file{doc.document_url, path, doc.file_id, false, imported_at};
+    const rdf::TermTable& lt = local.terms();
+    rdf::TermId import_p = lt.find_iri(app_term("import"));
+    file.is_app = !import_p.is_any() &&
+                  !local.match(rdf::TermId::any(), import_p, rdf::TermId::any()).empty();
+    copy_into_file_graph(local, doc.document_url);
+    files_.push_back(file);
+    if (file.is_app) load_app(local, path);
+  }
+
+  // Copies quads into the model's dataset: blank nodes renamed fresh (files
+  // never share one), default-graph quads moved to the file's own graph.
+  void copy_into_file_graph(const rdf::Dataset& local, const std::string& file_iri) {
+    rdf::TermTable& t = dataset_.terms();
+    const rdf::TermTable& lt = local.terms();
+    std::unordered_map<uint32_t, rdf::TermId> blanks;
+    rdf::TermId file_graph = t.iri(file_iri);
+    auto copy = [&](rdf::TermId id) -> rdf::TermId {
+      const rdf::Term& term = lt[id];
+      switch (term.kind) {
+        case rdf::TermKind::DefaultGraph:
+          return file_graph;
+        case rdf::TermKind::Iri:
+          return t.iri(term.value);
+        case rdf::TermKind::Blank: {
+          auto [it, fresh] = blanks.try_emplace(id.index);
+          if (fresh) it->second = t.fresh_blank();
+          return it->second;
+        }
+        case rdf::TermKind::Literal:
+          return t.literal(term.value, t.iri(lt[term.datatype].value), term.language,
+                           term.direction);
+      }
+      return file_graph;
+    };
+    auto quads = local.quads();
+    for (size_t i = 0; i < quads.size(); ++i) {
+      const rdf::Quad& q = quads[i];
+      dataset_.add({copy(q.subject), copy(q.predicate), copy(q.object), copy(q.graph)},
+                   local.location(i));
+    }
+  }
+
+  void load_app(const rdf::Dataset& local, const std::string& path) {
+    const rdf::TermTable& lt = local.terms();
+    auto any = rdf::TermId::any();
+    AppInfo app;
+    app.file = path;
+
+    // iri-map first: the imports resolve through it.
+    rdf::TermId map_p = lt.find_iri(app_term("iri-map"));
+    rdf::TermId path_p = lt.find_iri(app_term("path"));
+    if (!map_p.is_any()) {
+      for (uint32_t qi : local.match(any, map_p, any)) {
+        const rdf::Quad& q = local.quads()[qi];
+        const rdf::Term& prefix = lt[q.object];
+        if (prefix.kind != rdf::TermKind::Iri || path_p.is_any()) continue;
+        for (uint32_t pi : local.match(q.object, path_p, any)) {
+          std::string dir = join_root(options_, std::string(lt[local.quads()[pi].object].value));
+          docs_.map(std::string(prefix.value), dir);
+          maps_.emplace_back(std::string(prefix.value), dir);
+          app.iri_map.emplace_back(std::string(prefix.value), dir);
+        }
+      }
+    }
+    auto objects = [&](std::string_view local_name, std::vector<std::string>& into,
+                       std::vector<SourceLoc>* locs) {
+      rdf::TermId p = lt.find_iri(app_term(local_name));
+      if (p.is_any()) return;
+      for (uint32_t qi : local.match(any, p, any)) {
+        const rdf::Term& o = lt[local.quads()[qi].object];
+        into.emplace_back(o.value);
+        if (locs) locs->push_back(local.location(qi));
+      }
+    };
+    std::vector<SourceLoc> import_locs;
+    objects("import", app.imports, &import_locs);
+    objects("constraints", app.constraints, nullptr);
+
+    // Duplicates load once; keep the first mention.
+    std::vector<std::string> unique;
+    std::vector<SourceLoc> unique_locs;
+    std::unordered_set<std::string> seen;
+    for (size_t i = 0; i < app.imports.size(); ++i) {
+      if (seen.insert(app.imports[i]).second) {
+        unique.push_back(app.imports[i]);
+        unique_locs.push_back(import_locs[i]);
+      }
+    }
+    app.imports = unique;
+    apps_.push_back(app);
+    for (size_t i = 0; i < unique.size(); ++i) load_import(unique[i], unique_locs[i]);
+  }
+
+  const LoadOptions& options_;
+  jsonld::MappedDocumentLoader& docs_;
+  rdf::Dataset& dataset_;
+  std::vector<ModelFile>& files_;
+  std::vector<AppInfo>& apps_;
+  DiagnosticSink& diagnostics_;
+  std::vector<std::pair<std::string, std::string>> maps_;
+  std::unordered_set<std::string> loaded_;
+};
+
+}  // namespace
+
+LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& options) {
+  LoadedModel model;
+  Loader loader(options, model.loader_, model.dataset_, model.files_, model.apps_,
+                model.diagnostics_);
+  for (const std::string& input : inputs) loader.load_input(input);
+  return model;
+}
+
+std::optional<SourceLoc> LoadedModel::where(rdf::TermId subject) const {
+  auto hits = dataset_.match(subject, rdf::TermId::any(), rdf::TermId::any());
+  for (uint32_t i : hits) {
+    SourceLoc loc = dataset_.location(i);
+    if (loc.known()) return loc;
+  }
+  return std::nullopt;
+}
+
+std::string LoadedModel::describe(SourceLoc loc) const {
+  std::string out = files().path(loc.file);
+  if (loc.line) out += ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column);
+  return out;
+}
+
+}  // namespace mospec::app
