@@ -149,7 +149,9 @@ class Parser {
   }
 
   [[noreturn]] void fail_at(size_t p, const std::string& message) const {
-    const SourceLoc l = loc_at(p);
+    fail_at(loc_at(p), message);
+  }
+  [[noreturn]] void fail_at(SourceLoc l, const std::string& message) const {
     throw Error("invalid json", message, std::string(file_name_), l.line, l.column);
   }
   [[noreturn]] void fail(const std::string& message) const { fail_at(pos_, message); }
@@ -269,7 +271,7 @@ class Parser {
         return Value(std::move(obj));
       }
       if (c != ',') fail("expected ',' or '}' after object member");
-      const size_t comma = pos_;
+      const SourceLoc comma = here();
       ++pos_;
       skip_ws();
       if (!at_end() && peek() == '}') fail_at(comma, "trailing comma in object");
@@ -295,7 +297,7 @@ class Parser {
         return Value(std::move(arr));
       }
       if (c != ',') fail("expected ',' or ']' after array element");
-      const size_t comma = pos_;
+      const SourceLoc comma = here();
       ++pos_;
       skip_ws();
       if (!at_end() && peek() == ']') fail_at(comma, "trailing comma in array");

@@ -1,0 +1,242 @@
+#include "jsonld/json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace mospec::json {
+namespace {
+
+// Parses `text` expecting failure; returns the located message.
+Diagnostic parse_error(std::string_view text) {
+  try {
+    parse(text, 1, "doc.json");
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "invalid json");
+    return e.diagnostic();
+  }
+  ADD_FAILURE() << "parsed without error: " << text;
+  return {};
+}
+
+void expect_error(std::string_view text, const std::string& message, uint32_t line,
+                  uint32_t column) {
+  const Diagnostic d = parse_error(text);
+  EXPECT_EQ(d.message, message) << text;
+  EXPECT_EQ(d.file, "doc.json") << text;
+  EXPECT_EQ(d.line, line) << text;
+  EXPECT_EQ(d.column, column) << text;
+}
+
+TEST(JsonParse, Scalars) {
+  EXPECT_TRUE(parse("null").is_null());
+  EXPECT_EQ(parse("true"), Value(true));
+  EXPECT_EQ(parse(" false "), Value(false));
+  EXPECT_EQ(parse("12").as_number(), 12);
+  EXPECT_EQ(parse("-0.5e2").as_number(), -50);
+  EXPECT_EQ(parse("1E+2").as_number(), 100);
+  EXPECT_EQ(parse("\"a\"").as_string(), "a");
+  EXPECT_TRUE(std::signbit(parse("-0").as_number()));
+}
+
+TEST(JsonParse, NumbersFollowJavaScript) {
+  EXPECT_EQ(parse("1e400").as_number(), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(parse("-1e400").as_number(), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(parse("1e-400").as_number(), 0.0);
+  EXPECT_EQ(parse("0.1").as_number(), 0.1);
+  EXPECT_EQ(parse("9007199254740993").as_number(), 9007199254740992.0);
+}
+
+TEST(JsonParse, Escapes) {
+  EXPECT_EQ(parse(R"("\"\\\/\b\f\n\r\t")").as_string(), "\"\\/\b\f\n\r\t");
+  EXPECT_EQ(parse(R"("\u0041\u00e9\u20AC")").as_string(), "A\xC3\xA9\xE2\x82\xAC");
+  EXPECT_EQ(parse(R"("\uD83D\uDE00")").as_string(), "\xF0\x9F\x98\x80");
+  EXPECT_EQ(parse(R"("\u0000")").as_string(), std::string(1, '\0'));
+  EXPECT_EQ(parse("\"\xF0\x9F\x98\x80 raw\"").as_string(), "\xF0\x9F\x98\x80 raw");
+}
+
+TEST(JsonParse, StructureAndOrder) {
+  const Value v = parse(R"({"b": [1, {"c": null}], "a": {}, "d": []})");
+  ASSERT_TRUE(v.is_object());
+  const Object& o = v.as_object();
+  ASSERT_EQ(o.size(), 3u);
+  EXPECT_EQ(o.key(0), "b");
+  EXPECT_EQ(o.key(1), "a");
+  EXPECT_EQ(o.key(2), "d");
+  EXPECT_EQ(o.sorted_keys(), (std::vector<std::string_view>{"a", "b", "d"}));
+  EXPECT_TRUE(v.get("b")->as_array()[1].get("c")->is_null());
+  EXPECT_EQ(v.get("zz"), nullptr);
+}
+
+TEST(JsonParse, DuplicateKeysLastWins) {
+  const Value v = parse("{\"a\": 1,\n \"b\": 2,\n  \"a\": 3}", 7);
+  const Object& o = v.as_object();
+  ASSERT_EQ(o.size(), 2u);
+  EXPECT_EQ(o.key(0), "a");
+  EXPECT_EQ(o.value(0).as_number(), 3);
+  // The surviving key is located where it was written last.
+  EXPECT_EQ(o.key_location(0), (SourceLoc{7, 3, 3}));
+}
+
+TEST(JsonParse, Locations) {
+  const std::string text =
+      "{\n"
+      "  \"@context\": \"x\",\n"
+      "  \"list\": [1, true,\n"
+      "\t\"s\"]\n"
+      "}";
+  const Value v = parse(text, 4, "f.json");
+  EXPECT_EQ(v.location(), (SourceLoc{4, 1, 1}));
+  const Object& o = v.as_object();
+  EXPECT_EQ(o.key_location(0), (SourceLoc{4, 2, 3}));
+  EXPECT_EQ(o.value(0).location(), (SourceLoc{4, 2, 15}));
+  EXPECT_EQ(o.key_location(1), (SourceLoc{4, 3, 3}));
+  const Array& a = o.value(1).as_array();
+  EXPECT_EQ(o.value(1).location(), (SourceLoc{4, 3, 11}));
+  EXPECT_EQ(a[0].location(), (SourceLoc{4, 3, 12}));
+  EXPECT_EQ(a[1].location(), (SourceLoc{4, 3, 15}));
+  EXPECT_EQ(a[2].location(), (SourceLoc{4, 4, 2}));
+}
+
+TEST(JsonParse, LocationsCountBytesAndSkipBom) {
+  // "é" is two bytes, so the value after it starts two columns later.
+  const Value v = parse("\xEF\xBB\xBF[\"\xC3\xA9\", 1]");
+  EXPECT_EQ(v.location().column, 1u);
+  EXPECT_EQ(v.as_array()[1].location().column, 8u);
+}
+
+TEST(JsonParseErrors, Messages) {
+  expect_error("", "unexpected end of input; expected a JSON value", 1, 1);
+  expect_error("[1,]", "trailing comma in array", 1, 3);
+  expect_error("{\"a\":1,\n }", "trailing comma in object", 1, 7);
+  expect_error("{\"a\":1 \"b\":2}", "expected ',' or '}' after object member", 1, 8);
+  expect_error("[1 2]", "expected ',' or ']' after array element", 1, 4);
+  expect_error("{\"a\" 1}", "expected ':' after object key", 1, 6);
+  expect_error("{1:2}", "expected a string key in object, found '1'", 1, 2);
+  expect_error("{\"a\":1", "unexpected end of input; expected ',' or '}' after object member", 1,
+               7);
+  expect_error("[1", "unexpected end of input; expected ',' or ']' after array element", 1, 3);
+  expect_error("tru", "invalid literal; expected 'true', 'false' or 'null'", 1, 1);
+  expect_error("[nulls]", "invalid literal; expected 'true', 'false' or 'null'", 1, 2);
+  expect_error("True", "unexpected 'T'; expected a JSON value", 1, 1);
+  expect_error("[01]", "leading zeros are not allowed in numbers", 1, 2);
+  expect_error("-", "expected a digit in number", 1, 2);
+  expect_error("1.", "expected a digit after '.' in number", 1, 3);
+  expect_error("1e", "expected a digit in number exponent", 1, 3);
+  expect_error(".5", "unexpected '.'; expected a JSON value", 1, 1);
+  expect_error("\"a\tb\"", "unescaped control character U+0009 in string", 1, 3);
+  expect_error("\"a\nb\"", "unescaped control character U+000A in string", 1, 3);
+  expect_error("\"abc", "unterminated string", 1, 1);
+  expect_error(R"("\x")", "invalid escape sequence '\\x' in string", 1, 2);
+  expect_error(R"("\u12G4")", "invalid \\u escape: expected 4 hex digits", 1, 2);
+  expect_error(R"(["\uD83D"])",
+               "lone high surrogate \\uD83D in string (expected a following \\uDC00-\\uDFFF "
+               "escape)",
+               1, 3);
+  expect_error(R"("\uD83D\u0041")",
+               "lone high surrogate \\uD83D in string (expected a following \\uDC00-\\uDFFF "
+               "escape)",
+               1, 2);
+  expect_error(R"("\uDE00")", "unpaired low surrogate \\uDE00 in string", 1, 2);
+  expect_error("\"\xC3\x28\"", "invalid UTF-8 in string", 1, 2);
+  expect_error("\"\xED\xA0\x80\"", "invalid UTF-8 in string", 1, 2);  // encoded surrogate
+  expect_error("{} x", "unexpected trailing characters after the JSON value", 1, 4);
+  expect_error("1\n\n  ]", "unexpected trailing characters after the JSON value", 3, 3);
+  expect_error(std::string(600, '['), "nesting deeper than 512 levels", 1, 513);
+}
+
+TEST(JsonParseErrors, WhatNamesFileLineColumn) {
+  try {
+    parse("[1,]", 1, "models/a.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "models/a.json:1:3: error: trailing comma in array");
+  }
+}
+
+TEST(JsonValue, EqualityIgnoresOrderAndLocation) {
+  EXPECT_EQ(parse(R"({"a":1,"b":[1,2]})"), parse("{\"b\" : [1, 2],\n\"a\": 1.0}"));
+  EXPECT_NE(parse(R"({"a":1})"), parse(R"({"a":1,"b":2})"));
+  EXPECT_NE(parse(R"([1,2])"), parse(R"([2,1])"));
+  EXPECT_NE(parse("1"), parse("\"1\""));
+  EXPECT_EQ(parse("0"), parse("-0"));
+}
+
+TEST(JsonValue, SetReplacesAndEraseRemoves) {
+  Object o;
+  o.set("a", 1);
+  o.set("b", 2);
+  o.set("a", 3);
+  ASSERT_EQ(o.size(), 2u);
+  EXPECT_EQ(o.find("a")->as_number(), 3);
+  EXPECT_TRUE(o.erase("a"));
+  EXPECT_FALSE(o.erase("a"));
+  EXPECT_EQ(o.size(), 1u);
+  EXPECT_EQ(o.key(0), "b");
+}
+
+TEST(JsonDump, CompactAndIndented) {
+  const Value v = parse(R"({"a":[1,2.5,"x\"y"],"b":{},"c":[],"d":null,"e":true})");
+  EXPECT_EQ(dump(v), R"({"a":[1,2.5,"x\"y"],"b":{},"c":[],"d":null,"e":true})");
+  EXPECT_EQ(dump(parse(R"({"a":[1,{"b":2}]})"), 2),
+            "{\n  \"a\": [\n    1,\n    {\n      \"b\": 2\n    }\n  ]\n}");
+  EXPECT_EQ(dump(Value(std::numeric_limits<double>::infinity())), "null");
+}
+
+TEST(JsonNumberToString, EcmaScriptVectors) {
+  EXPECT_EQ(number_to_string(0), "0");
+  EXPECT_EQ(number_to_string(-0.0), "0");
+  EXPECT_EQ(number_to_string(1), "1");
+  EXPECT_EQ(number_to_string(-1.5), "-1.5");
+  EXPECT_EQ(number_to_string(100), "100");
+  EXPECT_EQ(number_to_string(1e21), "1e+21");
+  EXPECT_EQ(number_to_string(1e20), "100000000000000000000");
+  EXPECT_EQ(number_to_string(123456789012345680000.0), "123456789012345680000");
+  EXPECT_EQ(number_to_string(1e-7), "1e-7");
+  EXPECT_EQ(number_to_string(1.5e-7), "1.5e-7");
+  EXPECT_EQ(number_to_string(1e-6), "0.000001");
+  EXPECT_EQ(number_to_string(0.000123), "0.000123");
+  EXPECT_EQ(number_to_string(5e-324), "5e-324");
+  EXPECT_EQ(number_to_string(0.1 + 0.2), "0.30000000000000004");
+  EXPECT_EQ(number_to_string(1.7976931348623157e308), "1.7976931348623157e+308");
+  EXPECT_EQ(number_to_string(4.35), "4.35");
+  EXPECT_EQ(number_to_string(333333333.33333329), "333333333.3333333");
+  EXPECT_EQ(number_to_string(9007199254740992.0), "9007199254740992");
+  EXPECT_EQ(number_to_string(1.2345e22), "1.2345e+22");
+  EXPECT_EQ(number_to_string(std::numeric_limits<double>::infinity()), "Infinity");
+  EXPECT_EQ(number_to_string(-std::numeric_limits<double>::infinity()), "-Infinity");
+  EXPECT_EQ(number_to_string(std::nan("")), "NaN");
+}
+
+TEST(JsonCanonicalize, SortsByUtf16AndEscapesMinimally) {
+  // U+20AC (one UTF-16 unit 0x20AC), U+FB33 (0xFB33) and U+1F600 (0xD83D 0xDE00):
+  // UTF-16 order puts the astral character before U+FB33, unlike code-point order.
+  const std::string euro = "\xE2\x82\xAC";
+  const std::string fb33 = "\xEF\xAC\xB3";
+  const std::string smile = "\xF0\x9F\x98\x80";
+  Object o;
+  o.set(fb33, 1);
+  o.set(smile, 2);
+  o.set(euro, 3);
+  o.set("b", 4);
+  o.set("a\x7F", 5);
+  EXPECT_EQ(canonicalize(Value(o)),
+            "{\"a\x7F\":5,\"b\":4,\"" + euro + "\":3,\"" + smile + "\":2,\"" + fb33 + "\":1}");
+  EXPECT_EQ(canonicalize(parse(R"("\u0001\u001f\b\t\n\f\r\"\\/\u00e9")")),
+            "\"\\u0001\\u001f\\b\\t\\n\\f\\r\\\"\\\\/\xC3\xA9\"");
+}
+
+TEST(JsonCanonicalize, NumbersAndNesting) {
+  const Value v = parse(
+      R"({"numbers":[333333333.33333329,1E30,4.50,2e-3,0.000000000000000000000000001],
+          "literals":[null,true,false], "z":{"b":1,"a":[{"d":1,"c":2}]}})");
+  EXPECT_EQ(canonicalize(v),
+            R"({"literals":[null,true,false],"numbers":[333333333.3333333,1e+30,4.5,0.002,)"
+            R"(1e-27],"z":{"a":[{"c":2,"d":1}],"b":1}})");
+  EXPECT_THROW(canonicalize(Value(std::numeric_limits<double>::infinity())), Error);
+}
+
+}  // namespace
+}  // namespace mospec::json
