@@ -1,1 +1,192 @@
-// placeholder: implemented in progress
+#include "jsonld/loader.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+
+namespace mospec::jsonld {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::string_view kContextFailed = "loading remote context failed";
+constexpr std::string_view kDocumentFailed = "loading document failed";
+
+bool is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+
+// RFC 3986 scheme: ALPHA *( ALPHA / DIGIT / "+" / "-" / "." ) ":". Anything
+// else is taken as a local path, so "models/a.json" and "/abs/a.json" load as is.
+bool has_scheme(std::string_view s) {
+  if (s.empty() || !is_alpha(s[0])) return false;
+  for (size_t i = 1; i < s.size(); ++i) {
+    char c = s[i];
+    if (c == ':') return true;
+    if (!is_alpha(c) && !(c >= '0' && c <= '9') && c != '+' && c != '-' && c != '.') return false;
+  }
+  return false;
+}
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+// IRIs percent-encode characters that file names may contain literally (spaces).
+std::string percent_decode(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size()) {
+      int hi = hex_value(s[i + 1]);
+      int lo = hex_value(s[i + 2]);
+      if (hi >= 0 && lo >= 0) {
+        out += static_cast<char>(hi * 16 + lo);
+        i += 2;
+        continue;
+      }
+    }
+    out += s[i];
+  }
+  return out;
+}
+
+// Query and fragment name parts of a web resource, never of the file behind it.
+std::string_view strip_query_fragment(std::string_view iri) {
+  size_t cut = iri.find_first_of("?#");
+  return cut == std::string_view::npos ? iri : iri.substr(0, cut);
+}
+
+std::string canonical_key(const std::string& path) {
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  return ec ? path : p.generic_string();
+}
+
+std::string file_url(const std::string& canonical) {
+  static constexpr std::string_view kUnsafe = " %\"<>\\^`{|}#?";
+  std::string out = "file://";
+  for (char c : canonical) {
+    auto u = static_cast<unsigned char>(c);
+    if (u < 0x21 || kUnsafe.find(c) != std::string_view::npos) {
+      static constexpr char kHex[] = "0123456789ABCDEF";
+      out += '%';
+      out += kHex[u >> 4];
+      out += kHex[u & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+// Reads the whole file; returns an errno value on failure (0 on success).
+int read_whole_file(const std::string& path, std::string& out) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return EISDIR;
+  errno = 0;
+  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) return errno != 0 ? errno : ENOENT;
+  char buffer[65536];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) out.append(buffer, n);
+  if (std::ferror(f.get())) return errno != 0 ? errno : EIO;
+  return 0;
+}
+
+}  // namespace
+
+void MappedDocumentLoader::map(std::string prefix, std::string dir) {
+  while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  prefixes_[std::move(prefix)] = std::move(dir);
+}
+
+std::string MappedDocumentLoader::resolve(std::string_view iri) const {
+  // Longest prefix wins, so a mapping for a sub-tree overrides its parent's.
+  const std::pair<const std::string, std::string>* best = nullptr;
+  for (const auto& entry : prefixes_) {
+    if (iri.substr(0, entry.first.size()) == entry.first &&
+        (best == nullptr || entry.first.size() > best->first.size())) {
+      best = &entry;
+    }
+  }
+  if (best != nullptr) {
+    std::string rest = percent_decode(strip_query_fragment(iri.substr(best->first.size())));
+    while (!rest.empty() && rest.front() == '/') rest.erase(rest.begin());
+    if (best->second.empty()) return rest;
+    if (best->second == "/") return "/" + rest;
+    return rest.empty() ? best->second : best->second + "/" + rest;
+  }
+  if (iri.starts_with("file://")) {
+    std::string_view rest = strip_query_fragment(iri.substr(7));
+    // file://host/path: only the local host is meaningful offline.
+    if (rest.starts_with("localhost/")) rest.remove_prefix(9);
+    if (!rest.starts_with("/")) return {};
+    return percent_decode(rest);
+  }
+  if (!has_scheme(iri)) return std::string(iri);
+  return {};
+}
+
+RemoteDocument MappedDocumentLoader::load(std::string_view iri, SourceLoc referenced_from,
+                                          bool for_context) {
+  std::string_view code = for_context ? kContextFailed : kDocumentFailed;
+  std::string_view what = for_context ? "remote context" : "document";
+  const std::string& ref_file = files_.path(referenced_from.file);
+  std::string path = resolve(iri);
+  if (path.empty()) {
+    std::string known;
+    for (const auto& entry : prefixes_) {
+      if (!known.empty()) known += ", ";
+      known += entry.first;
+    }
+    if (known.empty()) known = "none";
+    throw Error(std::string(code),
+                "cannot load " + std::string(what) + " <" + std::string(iri) +
+                    ">: no --map or iri-map entry maps this IRI (known prefixes: " + known + ")",
+                ref_file, referenced_from.line, referenced_from.column);
+  }
+  try {
+    return load_file(path, std::string(iri));
+  } catch (const Error& e) {
+    if (e.code() != kDocumentFailed) throw;  // JSON syntax errors keep their own location
+    // Re-issue at the reference, with the code the caller asked for.
+    throw Error(std::string(code),
+                "cannot load " + std::string(what) + " <" + std::string(iri) +
+                    ">: " + e.diagnostic().message,
+                ref_file, referenced_from.line, referenced_from.column);
+  }
+}
+
+RemoteDocument MappedDocumentLoader::load_file(const std::string& path,
+                                               std::string document_url) {
+  std::string key = canonical_key(path);
+  auto it = cache_.find(key);
+  if (it == cache_.end()) {
+    std::string text;
+    if (int err = read_whole_file(path, text); err != 0) {
+      throw Error(std::string(kDocumentFailed),
+                  "cannot read '" + path + "': " + std::string(std::strerror(err)), path);
+    }
+    ++reads_;
+    RemoteDocument doc;
+    doc.file_id = files_.add(path);
+    doc.content_type = "application/ld+json";
+    doc.document = std::make_shared<const json::Value>(json::parse(text, doc.file_id, path));
+    doc.document_url = file_url(key);
+    it = cache_.emplace(key, std::move(doc)).first;
+  }
+  RemoteDocument result = it->second;
+  if (!document_url.empty()) result.document_url = std::move(document_url);
+  return result;
+}
+
+}  // namespace mospec::jsonld
