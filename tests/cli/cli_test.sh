@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# Black-box tests of the mospec CLI: exit codes, located one-line errors, and no
+# partial outputs. Usage: cli_test.sh MOSPEC_BINARY
+set -u
+mospec=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+passed=0
+
+# expect NAME CODE PATTERN -- COMMAND...: exit code must be CODE and stderr must
+# match the extended regex PATTERN (empty: anything).
+expect() {
+  local name=$1 code=$2 pattern=$3
+  shift 4
+  "$@" > stdout.txt 2> stderr.txt
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    echo "FAIL $name: exit $got, expected $code"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
+  fi
+  if [ -n "$pattern" ] && ! grep -Eq -- "$pattern" stderr.txt; then
+    echo "FAIL $name: stderr does not match /$pattern/"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
+  fi
+  if grep -q -i -E 'terminate called|Segmentation|AddressSanitizer|runtime error' stderr.txt; then
+    echo "FAIL $name: crashed"; cat stderr.txt; failures=$((failures+1)); return
+  fi
+  passed=$((passed+1))
+}
+
+mkdir -p ctx
+cat > good.json <<'J'
+{ "@context": { "ex": "https://ex.org/", "name": "ex:name" },
+  "@id": "https://ex.org/a", "name": "A" }
+J
+cat > bad.json <<'J'
+{ "@context": { "ex": "https://ex.org/" },
+  "@id": "https://ex.org/a",
+  "ex:name" "A" }
+J
+cat > dropped.json <<'J'
+{ "@context": { "ex": "https://ex.org/" },
+  "@id": "https://ex.org/a",
+  "ex:name": "A",
+  "nickname": "B" }
+J
+cat > unmapped.json <<'J'
+{ "@context": "https://nowhere.example/context.jsonld",
+  "@id": "https://ex.org/a" }
+J
+cat > cycle.json <<'J'
+{ "@context": "https://ctx.example/a.jsonld", "@id": "https://ex.org/a" }
+J
+echo '{ "@context": "https://ctx.example/b.jsonld" }' > ctx/a.jsonld
+echo '{ "@context": "https://ctx.example/a.jsonld" }' > ctx/b.jsonld
+cat > import-cycle.json <<'J'
+{ "@context": "https://ctx.example/i1.jsonld", "@id": "https://ex.org/a" }
+J
+echo '{ "@context": { "@version": 1.1, "@import": "https://ctx.example/i2.jsonld" } }' > ctx/i1.jsonld
+echo '{ "@context": { "@version": 1.1, "@import": "https://ctx.example/i1.jsonld" } }' > ctx/i2.jsonld
+cat > bad-context.json <<'J'
+{ "@context": { "ex": { "@id": 42 } }, "@id": "https://ex.org/a" }
+J
+
+expect help 0 '' -- "$mospec" --help
+expect rdf-help 0 '' -- "$mospec" rdf --help
+expect no-command 2 'mospec:' -- "$mospec"
+expect no-input 2 'mospec:' -- "$mospec" rdf
+expect bad-format 2 'mospec:' -- "$mospec" rdf --format turtle good.json
+expect bad-map 2 'mospec: .*--map expects IRI=DIR' -- "$mospec" rdf --map nodir good.json
+expect good 0 '' -- "$mospec" rdf good.json
+grep -q '<https://ex.org/a> <https://ex.org/name> "A"' stdout.txt || { echo "FAIL good: output"; failures=$((failures+1)); }
+expect malformed-json 2 '^bad\.json:3:[0-9]+: error: ' -- "$mospec" rdf bad.json -o out1.nt
+[ ! -e out1.nt ] || { echo "FAIL malformed-json: partial output left"; failures=$((failures+1)); }
+expect missing-file 2 'nonexistent\.json' -- "$mospec" rdf nonexistent.json
+expect directory-input 2 'ctx' -- "$mospec" rdf ctx
+expect unmapped-iri 2 'unmapped\.json:1:[0-9]+: error: .*https://nowhere\.example/context\.jsonld' -- "$mospec" rdf unmapped.json
+expect context-cycle 2 'error: .*(recursive|cycle|overflow)' -- "$mospec" rdf --map https://ctx.example/=ctx cycle.json
+expect import-cycle 2 'error: ' -- "$mospec" rdf --map https://ctx.example/=ctx import-cycle.json
+expect invalid-context 2 'bad-context\.json:1:[0-9]+: error: ' -- "$mospec" rdf bad-context.json
+expect dropped-warns 0 'dropped\.json:4:[0-9]+: warning: .*nickname' -- "$mospec" rdf dropped.json
+expect dropped-strict 1 'dropped\.json:4:[0-9]+: warning: .*nickname' -- "$mospec" rdf --strict dropped.json -o out2.nt
+[ ! -e out2.nt ] || { echo "FAIL dropped-strict: output written despite findings"; failures=$((failures+1)); }
+if [ -w /dev/full ]; then
+  expect dev-full 2 "cannot write '/dev/full'" -- "$mospec" rdf good.json -o /dev/full
+fi
+expect output-file 0 '' -- "$mospec" rdf good.json --format ntriples -o out3.nt
+grep -q 'https://ex.org/name' out3.nt || { echo "FAIL output-file: content"; failures=$((failures+1)); }
+ls | grep -q '\.tmp\.' && { echo "FAIL: temporary file left behind"; failures=$((failures+1)); }
+
+echo "cli: $passed passed, $failures failed"
+[ "$failures" -eq 0 ]
