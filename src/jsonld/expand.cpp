@@ -1,1 +1,921 @@
-// placeholder: implemented in progress
+// JSON-LD 1.1 Expansion Algorithm (API spec 5.1.2), Value Expansion (5.3.2) and
+// the expand() API method (9.x, JsonLdProcessor.expand). Step numbers in the
+// comments refer to those sections.
+#include "jsonld/expand.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "jsonld/context.hpp"
+#include "jsonld/loader.hpp"
+
+namespace mospec::jsonld {
+namespace {
+
+using json::Array;
+using json::Object;
+using json::Value;
+
+// The active property: nullopt is the spec's null.
+using ActiveProperty = std::optional<std::string_view>;
+
+constexpr std::string_view kGraph = "@graph";
+constexpr std::string_view kReverse = "@reverse";
+
+std::string_view kind_name(const Value& v) {
+  switch (v.kind()) {
+    case json::Kind::Null:
+      return "null";
+    case json::Kind::Boolean:
+      return "a boolean";
+    case json::Kind::Number:
+      return "a number";
+    case json::Kind::String:
+      return "a string";
+    case json::Kind::Array:
+      return "an array";
+    case json::Kind::Object:
+      return "an object";
+  }
+  return "a value";
+}
+
+bool has_key(const Value& v, std::string_view key) {
+  return v.get(key) != nullptr;
+}
+bool is_value_object(const Value& v) {
+  return has_key(v, "@value");
+}
+bool is_list_object(const Value& v) {
+  return has_key(v, "@list");
+}
+
+// A graph object has @graph and otherwise at most @id and @index (@context is
+// gone after expansion).
+bool is_graph_object(const Value& v) {
+  if (!v.is_object() || !has_key(v, "@graph")) return false;
+  const Object& o = v.as_object();
+  for (size_t i = 0; i < o.size(); ++i) {
+    const std::string& k = o.key(i);
+    if (k != "@graph" && k != "@id" && k != "@index") return false;
+  }
+  return true;
+}
+
+bool is_node_object(const Value& v) {
+  return v.is_object() && !has_key(v, "@value") && !has_key(v, "@list") && !has_key(v, "@set");
+}
+
+// Moves `v` into an array (null becomes the empty array), keeping the location.
+Value to_array(Value v) {
+  if (v.is_array()) return v;
+  SourceLoc loc = v.location();
+  Array a;
+  if (!v.is_null()) a.push_back(std::move(v));
+  Value out(std::move(a));
+  out.set_location(loc);
+  return out;
+}
+
+// Inserts `v` under `key` (new or replaced) and records where the key was written.
+Value& put(Object& obj, std::string key, Value v, SourceLoc key_loc) {
+  const size_t before = obj.size();
+  Value& slot = obj.set(std::move(key), std::move(v));
+  if (obj.size() > before) obj.set_key_location(obj.size() - 1, key_loc);
+  return slot;
+}
+
+// The spec's "add value" with `as array` true: values of an array are appended
+// one by one.
+void add_value(Object& obj, std::string_view key, Value v, SourceLoc key_loc) {
+  Value* slot = obj.find(key);
+  if (slot == nullptr) {
+    SourceLoc loc = v.location();
+    slot = &put(obj, std::string(key), Value(Array{}), key_loc);
+    slot->set_location(loc);
+  } else if (!slot->is_array()) {
+    *slot = to_array(std::move(*slot));
+  }
+  Array& arr = slot->as_array();
+  if (v.is_array()) {
+    for (Value& item : v.as_array()) arr.push_back(std::move(item));
+  } else {
+    arr.push_back(std::move(v));
+  }
+}
+
+// Concatenates `existing` (made an array) followed by `added` (made an array).
+Value concat(Value existing, Value added) {
+  Value out = to_array(std::move(existing));
+  Value tail = to_array(std::move(added));
+  for (Value& item : tail.as_array()) out.as_array().push_back(std::move(item));
+  return out;
+}
+
+Value string_at(std::string s, SourceLoc loc) {
+  Value v(std::move(s));
+  v.set_location(loc);
+  return v;
+}
+
+// Visiting order of an object's members: insertion order, or code-point order
+// when `sorted`.
+std::vector<size_t> member_order(const Object& o, bool sorted) {
+  std::vector<size_t> idx(o.size());
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  if (sorted) {
+    std::sort(idx.begin(), idx.end(), [&o](size_t a, size_t b) { return o.key(a) < o.key(b); });
+  }
+  return idx;
+}
+
+class Expander {
+ public:
+  explicit Expander(const Options& options) : opts_(options) {}
+
+  // The Expansion Algorithm (5.1.2).
+  Value expand(ContextPtr active, ActiveProperty ap, const Value& element,
+               const std::string& base_url, bool from_map);
+
+ private:
+  // A finding reported after the node's @id is known.
+  struct Pending {
+    SourceLoc loc;
+    std::string code;
+    std::string message;  // "(node ...)" is appended when reported
+  };
+
+  // Shared state of steps 13 and 14 for one element (nested values included).
+  struct ObjectState {
+    ContextPtr type_scoped;
+    std::optional<std::string> input_type;
+    Object result;
+    std::vector<Pending> pending;
+  };
+
+  Value expand_object(ContextPtr active, ActiveProperty ap, const Value& element,
+                      const std::string& base_url, bool from_map);
+  void expand_entries(const ContextPtr& active, ActiveProperty ap, const Object& element,
+                      const std::string& base_url, ObjectState& st);
+  void expand_keyword(const ContextPtr& active, ActiveProperty ap, const std::string& key,
+                      SourceLoc key_loc, const std::string& expanded_property, const Value& value,
+                      const std::string& base_url, ObjectState& st,
+                      std::vector<std::pair<std::string, SourceLoc>>& nests);
+  Value expand_language_map(const ActiveContext& active, const TermDefinition* def,
+                            const Value& value);
+  Value expand_index_map(const ContextPtr& active, const std::string& key,
+                         const TermDefinition& def, const Value& value, const std::string& base_url,
+                         ObjectState& st);
+  Value expand_value(const ActiveContext& active, ActiveProperty ap, const Value& value);
+  Value finish_object(ActiveProperty ap, ObjectState& st, SourceLoc element_loc);
+
+  std::optional<std::string> expand_type_iri(const ActiveContext& type_scoped, const Value& v,
+                                             ObjectState& st);
+  void note_dropped_key(const std::string& key, SourceLoc loc, ObjectState& st);
+
+  std::string file_name(SourceLoc loc) const;
+  [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
+  void flush(ObjectState& st, const Object& result) const;
+
+  const Options& opts_;
+};
+
+std::string Expander::file_name(SourceLoc loc) const {
+  if (!loc.known()) return {};
+  if (opts_.loader != nullptr) {
+    const std::string& p = opts_.loader->files().path(loc.file);
+    if (!p.empty()) return p;
+  }
+  return "<input>";
+}
+
+void Expander::fail(std::string code, std::string message, SourceLoc loc) const {
+  throw Error(std::move(code), std::move(message), file_name(loc), loc.line, loc.column);
+}
+
+void Expander::note_dropped_key(const std::string& key, SourceLoc loc, ObjectState& st) {
+  if (opts_.diagnostics == nullptr) return;
+  st.pending.push_back(
+      {loc, "dropped-key", "key \"" + key + "\" expands to no IRI and is dropped"});
+}
+
+// IRI-expands an @type value against the type-scoped context (13.4.4.4). A value
+// that is no term, no compact/absolute IRI and not caught by @vocab silently
+// becomes a document-relative IRI; that is reported as "undefined-type".
+std::optional<std::string> Expander::expand_type_iri(const ActiveContext& type_scoped,
+                                                     const Value& v, ObjectState& st) {
+  const std::string& s = v.as_string();
+  std::optional<std::string> iri = expand_iri(type_scoped, s, true, true);
+  if (!iri) return iri;
+  if (opts_.diagnostics != nullptr && s.find(':') == std::string::npos && !is_keyword(s) &&
+      type_scoped.find(s) == nullptr && !type_scoped.vocab()) {
+    st.pending.push_back({v.location(), "undefined-type",
+                          "@type value \"" + s +
+                              "\" is not a defined term and resolves against the base to <" + *iri +
+                              ">"});
+  }
+  return iri;
+}
+
+void Expander::flush(ObjectState& st, const Object& result) const {
+  if (st.pending.empty()) return;
+  std::string node;
+  const Value* id = result.find("@id");
+  if (id != nullptr && id->is_string()) {
+    node = " (node <" + id->as_string() + ">)";
+  } else if (result.contains("@value")) {
+    node = " (value object)";
+  } else {
+    node = " (node without @id)";
+  }
+  for (Pending& p : st.pending) {
+    opts_.diagnostics->report(Diagnostic{Severity::Warning, file_name(p.loc), p.loc.line,
+                                         p.loc.column, std::move(p.code), p.message + node});
+  }
+  st.pending.clear();
+}
+
+Value Expander::expand(ContextPtr active, ActiveProperty ap, const Value& element,
+                       const std::string& base_url, bool from_map) {
+  // 1
+  if (element.is_null()) return Value();
+  // 3 (2 concerns frame expansion only)
+  const TermDefinition* ap_def = ap ? active->find(*ap) : nullptr;
+  // 4
+  if (element.is_scalar()) {
+    if (!ap || *ap == kGraph) return Value();  // 4.1 free-floating scalar
+    if (ap_def != nullptr && ap_def->local_context) {
+      active = process_context(active, *ap_def->local_context, ap_def->base_url, opts_);  // 4.2
+    }
+    return expand_value(*active, ap, element);  // 4.3
+  }
+  // 5
+  if (element.is_array()) {
+    const bool list_container = ap_def != nullptr && ap_def->container.count("@list") != 0;
+    Value out{Array{}};
+    out.set_location(element.location());
+    Array& result = out.as_array();
+    for (const Value& item : element.as_array()) {
+      Value expanded = expand(active, ap, item, base_url, from_map);  // 5.2.1
+      if (list_container && expanded.is_array()) {                    // 5.2.2
+        SourceLoc loc = expanded.location();
+        Object list;
+        list.set("@list", std::move(expanded));
+        expanded = Value(std::move(list));
+        expanded.set_location(loc);
+      }
+      if (expanded.is_array()) {  // 5.2.3
+        for (Value& v : expanded.as_array()) result.push_back(std::move(v));
+      } else if (!expanded.is_null()) {
+        result.push_back(std::move(expanded));
+      }
+    }
+    return out;
+  }
+  // 6
+  return expand_object(std::move(active), ap, element, base_url, from_map);
+}
+
+Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const Value& element,
+                              const std::string& base_url, bool from_map) {
+  const Object& obj = element.as_object();
+  // 3: the property-scoped context comes from the context we were called with.
+  const TermDefinition* ap_def = ap ? active->find(*ap) : nullptr;
+  std::optional<json::Value> property_scoped;
+  std::string property_base;
+  if (ap_def != nullptr && ap_def->local_context) {
+    property_scoped = ap_def->local_context;
+    property_base = ap_def->base_url;
+  }
+
+  // 7: a type-scoped context does not propagate into new node objects.
+  if (active->previous() && !from_map) {
+    bool has_value = false;
+    bool only_id = obj.size() == 1;
+    for (size_t i = 0; i < obj.size(); ++i) {
+      std::optional<std::string> k = expand_iri(*active, obj.key(i));
+      if (k && *k == "@value") has_value = true;
+      if (!k || *k != "@id") only_id = false;
+    }
+    if (!has_value && !only_id) active = active->previous();
+  }
+  // 8
+  if (property_scoped) {
+    active =
+        process_context(active, *property_scoped, property_base, opts_, nullptr, true, true, true);
+  }
+  // 9
+  if (const Value* ctx = obj.find("@context")) {
+    active = process_context(active, *ctx, base_url, opts_);
+  }
+
+  ObjectState st;
+  // 10
+  st.type_scoped = active;
+  // 11, 12: keys are visited in code-point order; every @type entry applies the
+  // type-scoped contexts of its values, in code-point order of the values.
+  const std::vector<size_t> sorted = member_order(obj, true);
+  bool input_type_seen = false;
+  const ContextPtr tsc = st.type_scoped;
+  for (size_t i : sorted) {
+    std::optional<std::string> k = expand_iri(*tsc, obj.key(i));
+    if (!k || *k != "@type") continue;
+    const Value& v = obj.value(i);
+    std::vector<const std::string*> terms;
+    if (v.is_string()) {
+      terms.push_back(&v.as_string());
+    } else if (v.is_array()) {
+      for (const Value& t : v.as_array()) {
+        if (t.is_string()) terms.push_back(&t.as_string());
+      }
+    }
+    std::sort(terms.begin(), terms.end(),
+              [](const std::string* a, const std::string* b) { return *a < *b; });
+    for (const std::string* term : terms) {
+      const TermDefinition* def = tsc->find(*term);
+      if (def != nullptr && def->local_context) {
+        active = process_context(active, *def->local_context, def->base_url, opts_, nullptr, false,
+                                 false, true);
+      }
+    }
+    // 12: the last value of the first @type entry.
+    if (!input_type_seen) {
+      input_type_seen = true;
+      const Value* last =
+          v.is_array() ? (v.as_array().empty() ? nullptr : &v.as_array().back()) : &v;
+      if (last != nullptr && last->is_string()) {
+        st.input_type = expand_iri(*active, last->as_string(), true, true);
+      }
+    }
+  }
+
+  // 13, 14
+  expand_entries(active, ap, obj, base_url, st);
+  return finish_object(ap, st, element.location());
+}
+
+void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const Object& element,
+                              const std::string& base_url, ObjectState& st) {
+  std::vector<std::pair<std::string, SourceLoc>> nests;
+  Object& result = st.result;
+  // 13
+  for (size_t i : member_order(element, opts_.ordered)) {
+    const std::string& key = element.key(i);
+    const Value& value = element.value(i);
+    const SourceLoc key_loc = element.key_location(i);
+    if (key == "@context") continue;  // 13.1
+    // 13.2
+    std::optional<std::string> expanded_property = expand_iri(*active, key);
+    // 13.3
+    if (!expanded_property ||
+        (expanded_property->find(':') == std::string::npos && !is_keyword(*expanded_property))) {
+      note_dropped_key(key, key_loc, st);
+      continue;
+    }
+    // 13.4
+    if (is_keyword(*expanded_property)) {
+      expand_keyword(active, ap, key, key_loc, *expanded_property, value, base_url, st, nests);
+      continue;
+    }
+    // 13.5
+    const TermDefinition* def = active->find(key);
+    static const std::set<std::string> kNoContainer;
+    const std::set<std::string>& container = def != nullptr ? def->container : kNoContainer;
+    auto has = [&container](const char* c) { return container.count(c) != 0; };
+    Value expanded_value;
+    if (def != nullptr && def->type && *def->type == "@json") {  // 13.6
+      Object lit;
+      lit.set("@value", value);
+      lit.set("@type", Value("@json"));
+      expanded_value = Value(std::move(lit));
+      expanded_value.set_location(value.location());
+    } else if (has("@language") && value.is_object()) {  // 13.7
+      expanded_value = expand_language_map(*active, def, value);
+    } else if ((has("@index") || has("@type") || has("@id")) && value.is_object()) {  // 13.8
+      expanded_value = expand_index_map(active, key, *def, value, base_url, st);
+    } else {  // 13.9
+      expanded_value = expand(active, std::string_view(key), value, base_url, false);
+    }
+    // 13.10
+    if (expanded_value.is_null()) continue;
+    // 13.11
+    if (has("@list") && !is_list_object(expanded_value)) {
+      SourceLoc loc = expanded_value.location();
+      Object list;
+      list.set("@list", to_array(std::move(expanded_value)));
+      expanded_value = Value(std::move(list));
+      expanded_value.set_location(loc);
+    }
+    // 13.12
+    if (has("@graph") && !has("@id") && !has("@index")) {
+      expanded_value = to_array(std::move(expanded_value));
+      for (Value& ev : expanded_value.as_array()) {
+        SourceLoc loc = ev.location();
+        Object g;
+        g.set("@graph", to_array(std::move(ev)));
+        ev = Value(std::move(g));
+        ev.set_location(loc);
+      }
+    }
+    // 13.13
+    if (def != nullptr && def->reverse) {
+      Value* rm = result.find("@reverse");
+      if (rm == nullptr) rm = &put(result, "@reverse", Value(Object{}), key_loc);
+      expanded_value = to_array(std::move(expanded_value));
+      for (Value& item : expanded_value.as_array()) {
+        if (is_value_object(item) || is_list_object(item)) {
+          fail("invalid reverse property value",
+               "reverse property \"" + key + "\" cannot take a value or list object",
+               item.location());
+        }
+        add_value(rm->as_object(), *expanded_property, std::move(item), key_loc);
+      }
+    } else {  // 13.14
+      add_value(result, *expanded_property, std::move(expanded_value), key_loc);
+    }
+  }
+
+  // 14
+  if (opts_.ordered) {
+    std::sort(nests.begin(), nests.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
+  for (const auto& [nesting_key, nest_loc] : nests) {
+    const Value* nv = element.find(nesting_key);
+    std::vector<const Value*> nested_values;
+    if (nv->is_array()) {
+      for (const Value& v : nv->as_array()) nested_values.push_back(&v);
+    } else {
+      nested_values.push_back(nv);
+    }
+    for (const Value* nested : nested_values) {
+      // 14.2.1
+      bool bad = !nested->is_object();
+      if (!bad) {
+        const Object& no = nested->as_object();
+        for (size_t i = 0; i < no.size() && !bad; ++i) {
+          std::optional<std::string> k = expand_iri(*active, no.key(i));
+          bad = k && *k == "@value";
+        }
+      }
+      if (bad) {
+        fail("invalid @nest value",
+             "\"" + nesting_key + "\" (@nest) must hold node objects, found " +
+                 std::string(kind_name(*nested)) + (nested->is_object() ? " with @value" : ""),
+             nested->location().known() ? nested->location() : nest_loc);
+      }
+      // 14.2.2: steps 3 and 8 for the nesting key, then 13 and 14.
+      ContextPtr nested_active = active;
+      const TermDefinition* nk_def = active->find(nesting_key);
+      if (nk_def != nullptr && nk_def->local_context) {
+        nested_active = process_context(active, *nk_def->local_context, nk_def->base_url, opts_,
+                                        nullptr, true, true, true);
+      }
+      expand_entries(nested_active, std::string_view(nesting_key), nested->as_object(), base_url,
+                     st);
+    }
+  }
+}
+
+void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const std::string& key,
+                              SourceLoc key_loc, const std::string& expanded_property,
+                              const Value& value, const std::string& base_url, ObjectState& st,
+                              std::vector<std::pair<std::string, SourceLoc>>& nests) {
+  Object& result = st.result;
+  const bool v10 = opts_.processing_mode == ProcessingMode::JsonLd10;
+  const std::string& ep = expanded_property;
+  // 13.4.1
+  if (ap && *ap == kReverse) {
+    fail("invalid reverse property map",
+         "keyword \"" + key + "\" (" + ep + ") is not allowed inside @reverse", key_loc);
+  }
+  // 13.4.2
+  if (result.contains(ep) && ep != "@included" && (ep != "@type" || v10)) {
+    fail("colliding keywords", "key \"" + key + "\" expands to " + ep + ", which is already set",
+         key_loc);
+  }
+  Value expanded_value;
+  if (ep == "@id") {  // 13.4.3
+    if (!value.is_string()) {
+      fail("invalid @id value",
+           "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
+           value.location());
+    }
+    std::optional<std::string> iri = expand_iri(*active, value.as_string(), true, false);
+    if (iri) expanded_value = string_at(std::move(*iri), value.location());
+  } else if (ep == "@type") {  // 13.4.4
+    bool ok = value.is_string();
+    if (value.is_array()) {
+      ok = std::all_of(value.as_array().begin(), value.as_array().end(),
+                       [](const Value& v) { return v.is_string(); });
+    }
+    if (!ok) {
+      fail("invalid type value",
+           "\"" + key + "\" must be a string or an array of strings, found " +
+               std::string(kind_name(value)),
+           value.location());
+    }
+    const ActiveContext& tsc = *st.type_scoped;
+    if (value.is_string()) {
+      std::optional<std::string> iri = expand_type_iri(tsc, value, st);
+      if (iri) expanded_value = string_at(std::move(*iri), value.location());
+    } else {
+      Array types;
+      types.reserve(value.as_array().size());
+      for (const Value& t : value.as_array()) {
+        std::optional<std::string> iri = expand_type_iri(tsc, t, st);
+        if (iri) types.push_back(string_at(std::move(*iri), t.location()));
+      }
+      expanded_value = Value(std::move(types));
+      expanded_value.set_location(value.location());
+    }
+    if (Value* existing = result.find("@type")) {  // 13.4.4.5
+      expanded_value = concat(std::move(*existing), std::move(expanded_value));
+    }
+  } else if (ep == "@graph") {  // 13.4.5
+    expanded_value = to_array(expand(active, kGraph, value, base_url, false));
+  } else if (ep == "@included") {  // 13.4.6
+    if (v10) return;
+    expanded_value = to_array(expand(active, std::nullopt, value, base_url, false));
+    for (const Value& item : expanded_value.as_array()) {
+      if (!is_node_object(item)) {
+        fail("invalid @included value",
+             "\"" + key + "\" must hold node objects, found " +
+                 (item.is_object() ? std::string("a value, list or set object")
+                                   : std::string(kind_name(item))),
+             item.location().known() ? item.location() : value.location());
+      }
+    }
+    if (Value* existing = result.find("@included")) {
+      expanded_value = concat(std::move(*existing), std::move(expanded_value));
+    }
+  } else if (ep == "@value") {  // 13.4.7
+    if (st.input_type && *st.input_type == "@json") {
+      if (v10) {
+        fail("invalid value object value", "@json literals need processing mode json-ld-1.1",
+             value.location());
+      }
+      expanded_value = value;
+    } else if (!value.is_null() && !value.is_scalar()) {
+      fail("invalid value object value",
+           "\"" + key + "\" must be a string, number, boolean or null, found " +
+               std::string(kind_name(value)),
+           value.location());
+    } else {
+      expanded_value = value;
+    }
+    if (expanded_value.is_null()) {  // 13.4.7.4
+      put(result, "@value", std::move(expanded_value), key_loc);
+      return;
+    }
+  } else if (ep == "@language") {  // 13.4.8
+    if (!value.is_string()) {
+      fail("invalid language-tagged string",
+           "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
+           value.location());
+    }
+    expanded_value = value;
+  } else if (ep == "@direction") {  // 13.4.9
+    if (v10) return;
+    if (!value.is_string() || (value.as_string() != "ltr" && value.as_string() != "rtl")) {
+      fail(
+          "invalid base direction",
+          "\"" + key + "\" must be \"ltr\" or \"rtl\", found " +
+              (value.is_string() ? "\"" + value.as_string() + "\"" : std::string(kind_name(value))),
+          value.location());
+    }
+    expanded_value = value;
+  } else if (ep == "@index") {  // 13.4.10
+    if (!value.is_string()) {
+      fail("invalid @index value",
+           "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
+           value.location());
+    }
+    expanded_value = value;
+  } else if (ep == "@list") {          // 13.4.11
+    if (!ap || *ap == kGraph) return;  // free-floating list
+    expanded_value = to_array(expand(active, ap, value, base_url, false));
+  } else if (ep == "@set") {  // 13.4.12
+    expanded_value = expand(active, ap, value, base_url, false);
+  } else if (ep == "@reverse") {  // 13.4.13
+    if (!value.is_object()) {
+      fail("invalid @reverse value",
+           "\"" + key + "\" must be an object, found " + std::string(kind_name(value)),
+           value.location());
+    }
+    Value ev = expand(active, kReverse, value, base_url, false);  // 13.4.13.2
+    if (!ev.is_object()) return;
+    Object& eo = ev.as_object();
+    // 13.4.13.3: reversed twice is forward.
+    if (Value* twice = eo.find("@reverse")) {
+      Object& tw = twice->as_object();
+      for (size_t i = 0; i < tw.size(); ++i) {
+        add_value(result, tw.key(i), std::move(tw.value(i)), tw.key_location(i));
+      }
+    }
+    // 13.4.13.4
+    bool has_other = false;
+    for (size_t i = 0; i < eo.size(); ++i) has_other = has_other || eo.key(i) != "@reverse";
+    if (has_other) {
+      Value* rm = result.find("@reverse");
+      if (rm == nullptr) rm = &put(result, "@reverse", Value(Object{}), key_loc);
+      for (size_t i = 0; i < eo.size(); ++i) {
+        if (eo.key(i) == "@reverse") continue;
+        Value items = to_array(std::move(eo.value(i)));
+        for (Value& item : items.as_array()) {
+          if (is_value_object(item) || is_list_object(item)) {
+            fail("invalid reverse property value",
+                 "reverse property \"" + eo.key(i) + "\" cannot take a value or list object",
+                 item.location());
+          }
+          add_value(rm->as_object(), eo.key(i), std::move(item), eo.key_location(i));
+        }
+      }
+    }
+    return;                    // 13.4.13.5
+  } else if (ep == "@nest") {  // 13.4.14
+    if (std::none_of(nests.begin(), nests.end(),
+                     [&key](const auto& n) { return n.first == key; })) {
+      nests.emplace_back(key, key_loc);
+    }
+    return;
+  } else {
+    // Other keywords (@context handled earlier; framing keywords are not
+    // supported) are ignored, as frame expansion is off.
+    return;
+  }
+  // 13.4.16
+  if (expanded_value.is_null()) return;
+  put(result, ep, std::move(expanded_value), key_loc);
+}
+
+// 13.7: a language map.
+Value Expander::expand_language_map(const ActiveContext& active, const TermDefinition* def,
+                                    const Value& value) {
+  Value out{Array{}};
+  out.set_location(value.location());
+  // 13.7.2
+  std::optional<std::string> direction = active.default_direction();
+  if (def != nullptr && def->direction) {
+    direction = def->direction->is_string()
+                    ? std::optional<std::string>(def->direction->as_string())
+                    : std::nullopt;
+  }
+  const Object& map = value.as_object();
+  for (size_t i : member_order(map, opts_.ordered)) {  // 13.7.4
+    const std::string& language = map.key(i);
+    const Value& lv = map.value(i);
+    std::vector<const Value*> items;
+    if (lv.is_array()) {
+      for (const Value& it : lv.as_array()) items.push_back(&it);
+    } else {
+      items.push_back(&lv);
+    }
+    bool none = language == "@none";
+    if (!none) {
+      std::optional<std::string> e = expand_iri(active, language);
+      none = e && *e == "@none";
+    }
+    for (const Value* item : items) {
+      if (item->is_null()) continue;  // 13.7.4.2.1
+      if (!item->is_string()) {       // 13.7.4.2.2
+        fail("invalid language map value",
+             "language map entry \"" + language + "\" must hold strings, found " +
+                 std::string(kind_name(*item)),
+             item->location());
+      }
+      Object v;  // 13.7.4.2.3
+      v.set("@value", *item);
+      if (!none) v.set("@language", string_at(language, map.key_location(i)));
+      if (direction) v.set("@direction", Value(*direction));
+      Value vv(std::move(v));
+      vv.set_location(item->location());
+      out.as_array().push_back(std::move(vv));
+    }
+  }
+  return out;
+}
+
+// 13.8: an index, id or type map.
+Value Expander::expand_index_map(const ContextPtr& active, const std::string& key,
+                                 const TermDefinition& def, const Value& value,
+                                 const std::string& base_url, ObjectState& st) {
+  Value out{Array{}};
+  out.set_location(value.location());
+  const std::set<std::string>& container = def.container;
+  auto has = [&container](const char* c) { return container.count(c) != 0; };
+  const bool id_or_type = has("@id") || has("@type");
+  const std::string index_key = def.index ? *def.index : std::string("@index");  // 13.8.2
+  const Object& map = value.as_object();
+  for (size_t i : member_order(map, opts_.ordered)) {  // 13.8.3
+    const std::string& index = map.key(i);
+    const SourceLoc index_loc = map.key_location(i);
+    const Value& index_value = map.value(i);
+    // 13.8.3.1
+    ContextPtr map_context = active;
+    if (id_or_type) {
+      if (active->previous()) map_context = active->previous();
+      if (has("@type")) {
+        const TermDefinition* idef = map_context->find(index);
+        if (idef != nullptr && idef->local_context) {
+          map_context = process_context(map_context, *idef->local_context, idef->base_url, opts_);
+        }
+      }
+    }
+    // 13.8.3.4
+    std::optional<std::string> expanded_index = expand_iri(*active, index);
+    const bool none = expanded_index && *expanded_index == "@none";
+    // 13.8.3.5, 13.8.3.6
+    Value items =
+        to_array(expand(map_context, std::string_view(key), to_array(index_value), base_url, true));
+    for (Value& item : items.as_array()) {            // 13.8.3.7
+      if (has("@graph") && !is_graph_object(item)) {  // 13.8.3.7.1
+        SourceLoc loc = item.location();
+        Object g;
+        g.set("@graph", to_array(std::move(item)));
+        item = Value(std::move(g));
+        item.set_location(loc);
+      }
+      if (has("@index") && index_key != "@index" && !none) {  // 13.8.3.7.2
+        Value reexpanded =
+            expand_value(*active, std::string_view(index_key), string_at(index, index_loc));
+        std::optional<std::string> eik = expand_iri(*active, index_key);
+        if (!eik) continue;
+        if (!item.is_object()) continue;
+        Object& io = item.as_object();
+        Value values = to_array(std::move(reexpanded));
+        if (Value* existing = io.find(*eik)) {
+          values = concat(std::move(values), std::move(*existing));
+        }
+        put(io, *eik, std::move(values), index_loc);
+        if (is_value_object(item)) {
+          fail("invalid value object",
+               "value in property-valued index \"" + key + "\" under \"" + index +
+                   "\" must not be a value object",
+               item.location());
+        }
+      } else if (has("@index") && !has_key(item, "@index") && !none) {  // 13.8.3.7.3
+        put(item.as_object(), "@index", string_at(index, index_loc), index_loc);
+      } else if (has("@id") && !has_key(item, "@id") && !none) {  // 13.8.3.7.4
+        std::optional<std::string> id = expand_iri(*active, index, true, false);
+        put(item.as_object(), "@id", id ? string_at(std::move(*id), index_loc) : Value(),
+            index_loc);
+      } else if (has("@type") && !none) {  // 13.8.3.7.5
+        Value types{Array{}};
+        std::optional<std::string> t = expand_type_iri(*active, string_at(index, index_loc), st);
+        if (t) types.as_array().push_back(string_at(std::move(*t), index_loc));
+        if (Value* existing = item.as_object().find("@type")) {
+          types = concat(std::move(types), std::move(*existing));
+        }
+        put(item.as_object(), "@type", std::move(types), index_loc);
+      }
+      out.as_array().push_back(std::move(item));  // 13.8.3.7.6
+    }
+  }
+  return out;
+}
+
+// Value Expansion (5.3.2).
+Value Expander::expand_value(const ActiveContext& active, ActiveProperty ap, const Value& value) {
+  const TermDefinition* def = ap ? active.find(*ap) : nullptr;
+  const std::optional<std::string>* type = def != nullptr ? &def->type : nullptr;
+  if (type != nullptr && *type && value.is_string()) {
+    // 1, 2
+    if (**type == "@id" || **type == "@vocab") {
+      std::optional<std::string> iri =
+          expand_iri(active, value.as_string(), true, **type == "@vocab");
+      Object o;
+      o.set("@id", iri ? string_at(std::move(*iri), value.location()) : Value());
+      Value out(std::move(o));
+      out.set_location(value.location());
+      return out;
+    }
+  }
+  // 3
+  Object result;
+  result.set("@value", value);
+  if (type != nullptr && *type && **type != "@id" && **type != "@vocab" && **type != "@none") {
+    result.set("@type", string_at(**type, value.location()));  // 4
+  } else if (value.is_string()) {                              // 5
+    // 5.1, 5.2: a term's own mapping (even null) wins over the defaults.
+    const Value* language = nullptr;
+    std::optional<std::string> language_default;
+    if (def != nullptr && def->language) {
+      language = &*def->language;
+    } else {
+      language_default = active.default_language();
+    }
+    std::optional<std::string> direction;
+    if (def != nullptr && def->direction) {
+      if (def->direction->is_string()) direction = def->direction->as_string();
+    } else {
+      direction = active.default_direction();
+    }
+    if (language != nullptr && language->is_string()) {
+      result.set("@language", *language);
+    } else if (language == nullptr && language_default) {
+      result.set("@language", Value(*language_default));
+    }
+    if (direction) result.set("@direction", Value(*direction));
+  }
+  Value out(std::move(result));
+  out.set_location(value.location());
+  return out;
+}
+
+// Steps 15 to 20.
+Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc element_loc) {
+  Object& result = st.result;
+  if (opts_.diagnostics != nullptr) flush(st, result);
+  if (Value* v = result.find("@value")) {  // 15
+    // 15.1
+    const Value* type = result.find("@type");
+    const bool lang_or_dir = result.contains("@language") || result.contains("@direction");
+    for (size_t i = 0; i < result.size(); ++i) {
+      const std::string& k = result.key(i);
+      if (k != "@direction" && k != "@index" && k != "@language" && k != "@type" && k != "@value") {
+        fail("invalid value object", "value object must not contain \"" + k + "\"",
+             result.key_location(i).known() ? result.key_location(i) : element_loc);
+      }
+    }
+    if (type != nullptr && lang_or_dir) {
+      fail("invalid value object",
+           "value object must not have both @type and @language or @direction",
+           type->location().known() ? type->location() : element_loc);
+    }
+    const bool json_literal = type != nullptr && type->is_string() && type->as_string() == "@json";
+    if (json_literal) {
+      // 15.2: any JSON value is a JSON literal.
+    } else if (v->is_null() || (v->is_array() && v->as_array().empty())) {  // 15.3
+      return Value();
+    } else if (!v->is_string() && result.contains("@language")) {  // 15.4
+      fail("invalid language-tagged value",
+           "only strings can be language-tagged, found " + std::string(kind_name(*v)),
+           v->location().known() ? v->location() : element_loc);
+    } else if (type != nullptr) {  // 15.5
+      const bool iri = type->is_string() && type->as_string().find(':') != std::string::npos &&
+                       type->as_string().rfind("_:", 0) != 0;
+      if (!iri) {
+        fail("invalid typed value",
+             "@type of a value object must be an IRI, found " +
+                 (type->is_string() ? "\"" + type->as_string() + "\""
+                                    : std::string(kind_name(*type))),
+             type->location().known() ? type->location() : element_loc);
+      }
+    }
+  } else if (Value* t = result.find("@type")) {  // 16
+    if (!t->is_array()) *t = to_array(std::move(*t));
+  } else if (result.contains("@set") || result.contains("@list")) {  // 17
+    if (result.size() > 2 || (result.size() == 2 && !result.contains("@index"))) {
+      fail("invalid set or list object",
+           "@set/@list object may only contain @index besides @set or @list", element_loc);
+    }
+    if (Value* s = result.find("@set")) {  // 17.2
+      Value set = std::move(*s);
+      return set;
+    }
+  }
+  // 18
+  if (result.size() == 1 && result.contains("@language")) return Value();
+  // 19
+  if (!ap || *ap == kGraph) {
+    if (result.empty() || result.contains("@value") || result.contains("@list")) return Value();
+    if (result.size() == 1 && result.contains("@id")) return Value();
+  }
+  Value out(std::move(result));
+  out.set_location(element_loc);
+  return out;
+}
+
+}  // namespace
+
+json::Value expand(const json::Value& input, const Options& options) {
+  // The active context starts with the base option as base IRI and original base.
+  ContextPtr active = ActiveContext::initial(options.base, options);
+  // expandContext: an object with @context contributes that entry's value.
+  if (options.expand_context) {
+    const Value& ec = *options.expand_context;
+    const Value* local = ec.get("@context");
+    active = process_context(active, local != nullptr ? *local : ec, options.base, options);
+  }
+  Expander expander(options);
+  Value out = expander.expand(active, std::nullopt, input, options.base, false);
+  // Post-processing: a lone @graph is unwrapped; null becomes []; always an array.
+  if (out.is_object() && out.as_object().size() == 1) {
+    if (Value* g = out.as_object().find("@graph")) {
+      Value graph = std::move(*g);
+      out = std::move(graph);
+    }
+  }
+  SourceLoc loc = input.location();
+  out = to_array(std::move(out));
+  if (!out.location().known()) out.set_location(loc);
+  return out;
+}
+
+}  // namespace mospec::jsonld
