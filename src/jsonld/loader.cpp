@@ -15,7 +15,9 @@ namespace {
 constexpr std::string_view kContextFailed = "loading remote context failed";
 constexpr std::string_view kDocumentFailed = "loading document failed";
 
-bool is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+bool is_alpha(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
 
 // RFC 3986 scheme: ALPHA *( ALPHA / DIGIT / "+" / "-" / "." ) ":". Anything
 // else is taken as a local path, so "models/a.json" and "/abs/a.json" load as is.
@@ -166,8 +168,7 @@ RemoteDocument MappedDocumentLoader::load(std::string_view iri, SourceLoc refere
   }
 }
 
-RemoteDocument MappedDocumentLoader::load_file(const std::string& path,
-                                               std::string document_url) {
+RemoteDocument MappedDocumentLoader::load_file(const std::string& path, std::string document_url) {
   std::string key = canonical_key(path);
   auto it = cache_.find(key);
   if (it == cache_.end()) {
