@@ -1,1 +1,126 @@
-// placeholder: implemented in progress
+#include "rdf/dataset.hpp"
+
+#include <algorithm>
+
+namespace mospec::rdf {
+
+namespace {
+// Below this many recent quads the hash-map tail is cheap enough; above it the
+// tail is folded into the compact arrays once it reaches half the frozen part,
+// which keeps the total folding work linear in the number of quads added.
+constexpr size_t kMinTail = 512;
+}  // namespace
+
+uint64_t Dataset::hash_quad(const Quad& q) {
+  uint64_t h = detail::mix64(q.subject.index);
+  h = detail::combine(h, q.predicate.index);
+  h = detail::combine(h, q.object.index);
+  return detail::combine(h, q.graph.index);
+}
+
+uint32_t Dataset::find(const Quad& q) const {
+  return position_.find(hash_quad(q), [&](uint32_t i) { return quads_[i] == q; });
+}
+
+bool Dataset::contains(const Quad& q) const {
+  return find(q) != UINT32_MAX;
+}
+
+bool Dataset::add(const Quad& q, SourceLoc where) {
+  const uint64_t h = hash_quad(q);
+  if (position_.find(h, [&](uint32_t i) { return quads_[i] == q; }) != UINT32_MAX) return false;
+  const auto id = static_cast<uint32_t>(quads_.size());
+  quads_.push_back(q);
+  locations_.push_back(where);
+  position_.insert(h, id);
+  for (int pos = 0; pos < 4; ++pos) index_[pos].tail[at(q, pos).index].push_back(id);
+  const size_t tail = quads_.size() - frozen_;
+  if (tail > kMinTail && tail * 2 > frozen_) rebuild_indexes();
+  return true;
+}
+
+void Dataset::compact() {
+  if (frozen_ != quads_.size()) rebuild_indexes();
+}
+
+void Dataset::rebuild_indexes() {
+  const size_t n_terms = terms_.size();
+  for (int pos = 0; pos < 4; ++pos) {
+    PostingIndex& index = index_[pos];
+    // Counting sort by term id; filling in quad order keeps each list in
+    // insertion order.
+    std::vector<uint32_t> offsets(n_terms + 1, 0);
+    for (const Quad& q : quads_) ++offsets[at(q, pos).index + 1];
+    for (size_t t = 0; t < n_terms; ++t) offsets[t + 1] += offsets[t];
+    std::vector<uint32_t> entries(quads_.size());
+    std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+    for (uint32_t i = 0; i < quads_.size(); ++i) entries[fill[at(quads_[i], pos).index]++] = i;
+    index.offsets = std::move(offsets);
+    index.entries = std::move(entries);
+    index.tail = {};
+  }
+  frozen_ = static_cast<uint32_t>(quads_.size());
+}
+
+std::vector<uint32_t> Dataset::match(TermId s, TermId p, TermId o, TermId g) const {
+  std::vector<uint32_t> out;
+  scan(s, p, o, g, [&](const Quad&, uint32_t i) {
+    out.push_back(i);
+    return true;
+  });
+  return out;
+}
+
+void Dataset::for_each(TermId s, TermId p, TermId o, TermId g,
+                       const std::function<bool(const Quad&, uint32_t index)>& visit) const {
+  scan(s, p, o, g, visit);
+}
+
+size_t Dataset::count(TermId s, TermId p, TermId o, TermId g, size_t limit) const {
+  size_t n = 0;
+  scan(s, p, o, g, [&](const Quad&, uint32_t) { return ++n < limit; });
+  return n;
+}
+
+Dataset Dataset::flattened_union() const {
+  Dataset out;
+  std::vector<TermId> mapped(terms_.size(), TermId::any());
+  auto map = [&](TermId t) {
+    TermId& m = mapped[t.index];
+    if (m.is_any()) m = out.terms_.import(terms_, t);
+    return m;
+  };
+  for (size_t i = 0; i < quads_.size(); ++i) {
+    const Quad& q = quads_[i];
+    out.add(Quad{map(q.subject), map(q.predicate), map(q.object), TermId::default_graph()},
+            locations_[i]);
+  }
+  return out;
+}
+
+void Dataset::merge(const Dataset& other) {
+  if (&other == this) return;
+  std::vector<TermId> mapped(other.terms_.size(), TermId::any());
+  auto map = [&](TermId t) {
+    TermId& m = mapped[t.index];
+    if (m.is_any()) m = terms_.import(other.terms_, t);
+    return m;
+  };
+  for (size_t i = 0; i < other.quads_.size(); ++i) {
+    const Quad& q = other.quads_[i];
+    add(Quad{map(q.subject), map(q.predicate), map(q.object), map(q.graph)}, other.locations_[i]);
+  }
+}
+
+size_t Dataset::memory_bytes() const {
+  size_t bytes = terms_.memory_bytes() + quads_.capacity() * sizeof(Quad) +
+                 locations_.capacity() * sizeof(SourceLoc) + position_.memory_bytes();
+  for (const PostingIndex& index : index_) {
+    bytes += (index.offsets.capacity() + index.entries.capacity()) * sizeof(uint32_t);
+    for (const auto& [term, list] : index.tail)
+      bytes += list.capacity() * sizeof(uint32_t) + sizeof(list) + 4 * sizeof(void*);
+  }
+  return bytes;
+}
+
+}  // namespace mospec::rdf

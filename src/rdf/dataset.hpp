@@ -1,15 +1,28 @@
 // An in-memory RDF dataset: interned terms, deduplicated quads, indexed
 // lookup for every (s, p, o, g) pattern, and the source location each quad
 // came from (so later stages can point at file:line).
+//
+// Indexing: every position (subject, predicate, object, graph) has a posting
+// list per term: the indexes of the quads holding that term there, in
+// insertion order. A pattern is answered from the shortest posting list among
+// its bound positions, filtered on the other bound positions, so lookups with a
+// bound subject, or a bound (predicate, object) pair, cost the size of the
+// smaller list rather than of the dataset. Posting lists are kept compact (one
+// offsets array and one entry array per position, 4 bytes per quad and per
+// term) for all but the most recently added quads, which sit in small hash maps
+// until they are folded in; folding happens inside add() when that tail grows
+// past a fraction of the dataset, so adding stays amortised O(1) and every
+// const member is a pure read (safe to call from several threads at once).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
 #include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
+#include "rdf/id_hash_set.hpp"
 #include "rdf/term.hpp"
 #include "support/diagnostics.hpp"
 
@@ -39,6 +52,8 @@ class Dataset {
   std::span<const Quad> quads() const { return quads_; }
   SourceLoc location(size_t quad_index) const { return locations_[quad_index]; }
   bool contains(const Quad& q) const;
+  // Index of the quad, or UINT32_MAX when absent.
+  uint32_t find(const Quad& q) const;
 
   // Every quad matching the pattern; TermId::any() is a wildcard in any position.
   // Results are in insertion order.
@@ -46,25 +61,113 @@ class Dataset {
   // Same, without materialising the result (stop by returning false).
   void for_each(TermId s, TermId p, TermId o, TermId g,
                 const std::function<bool(const Quad&, uint32_t index)>& visit) const;
+  // Same as for_each, inlined for hot loops: visit(const Quad&, uint32_t) -> bool.
+  template <class Visit>
+  void scan(TermId s, TermId p, TermId o, TermId g, Visit&& visit) const;
+  // Number of matches (stops early at `limit`).
+  size_t count(TermId s, TermId p, TermId o, TermId g = TermId::any(),
+               size_t limit = SIZE_MAX) const;
 
   // The union of all graphs as triples in the default graph, deduplicated
   // (the "flattened union" later stages read).
   Dataset flattened_union() const;
 
   // Copies every quad (re-interning terms) into this dataset, keeping locations.
+  // Blank nodes keep their labels: a blank node of `other` is the same node as
+  // a blank node of this dataset with the same label. Readers give each
+  // document its own label prefix (TermTable::fresh_blank_prefix), so datasets
+  // read from different documents never share blank nodes by accident.
   void merge(const Dataset& other);
 
+  // Folds every recently added quad into the compact indexes now.
+  void compact();
+  // Approximate heap use (terms, quads, locations, indexes).
+  size_t memory_bytes() const;
+
  private:
+  enum Position : uint8_t { kS, kP, kO, kG };
+
+  // Posting lists for one position. Quads [0, frozen_) are in the compact
+  // arrays, later quads in `tail`.
+  struct PostingIndex {
+    std::vector<uint32_t> offsets;  // entries of term t: [offsets[t], offsets[t+1])
+    std::vector<uint32_t> entries;
+    std::unordered_map<uint32_t, std::vector<uint32_t>> tail;
+
+    std::span<const uint32_t> frozen(TermId t) const {
+      if (t.index + 1 >= offsets.size()) return {};
+      return {entries.data() + offsets[t.index], entries.data() + offsets[t.index + 1]};
+    }
+    std::span<const uint32_t> recent(TermId t) const {
+      auto it = tail.find(t.index);
+      if (it == tail.end()) return {};
+      return it->second;
+    }
+  };
+
+  static TermId at(const Quad& q, int pos) {
+    switch (pos) {
+      case kS:
+        return q.subject;
+      case kP:
+        return q.predicate;
+      case kO:
+        return q.object;
+      default:
+        return q.graph;
+    }
+  }
+  static uint64_t hash_quad(const Quad& q);
+  void rebuild_indexes();
+
   TermTable terms_;
   std::vector<Quad> quads_;
   std::vector<SourceLoc> locations_;
-  // implementation-defined indices (e.g. per-position posting lists + a hash set)
-  struct QuadHash {
-    size_t operator()(const Quad& q) const noexcept;
-  };
-  std::unordered_map<Quad, uint32_t, QuadHash> position_;
-  std::unordered_map<uint32_t, std::vector<uint32_t>> by_subject_, by_predicate_, by_object_,
-      by_graph_;
+  detail::IdHashSet position_;  // quad -> index, for deduplication and contains()
+  std::array<PostingIndex, 4> index_;
+  uint32_t frozen_ = 0;  // quads below this index are in the compact arrays
 };
+
+template <class Visit>
+void Dataset::scan(TermId s, TermId p, TermId o, TermId g, Visit&& visit) const {
+  const std::array<TermId, 4> pattern{s, p, o, g};
+  int bound = 0;
+  for (TermId t : pattern) bound += t.is_any() ? 0 : 1;
+  if (bound == 0) {
+    for (uint32_t i = 0; i < quads_.size(); ++i)
+      if (!visit(quads_[i], i)) return;
+    return;
+  }
+  if (bound == 4) {
+    uint32_t i = find(Quad{s, p, o, g});
+    if (i != UINT32_MAX) visit(quads_[i], i);
+    return;
+  }
+  // Drive from the shortest posting list among the bound positions.
+  int best = -1;
+  size_t best_size = SIZE_MAX;
+  for (int pos = 0; pos < 4; ++pos) {
+    if (pattern[pos].is_any()) continue;
+    if (pattern[pos].index >= terms_.size()) return;  // not a term of this dataset
+    size_t n = index_[pos].frozen(pattern[pos]).size() + index_[pos].recent(pattern[pos]).size();
+    if (n < best_size) {
+      best = pos;
+      best_size = n;
+    }
+  }
+  if (best_size == 0) return;
+  auto matches = [&](const Quad& q) {
+    for (int pos = 0; pos < 4; ++pos)
+      if (pos != best && !pattern[pos].is_any() && at(q, pos) != pattern[pos]) return false;
+    return true;
+  };
+  const PostingIndex& index = index_[best];
+  for (auto list : {index.frozen(pattern[best]), index.recent(pattern[best])}) {
+    for (uint32_t i : list) {
+      const Quad& q = quads_[i];
+      if (matches(q) && !visit(q, i)) return;
+    }
+  }
+}
 
 }  // namespace mospec::rdf

@@ -1,1 +1,181 @@
-// placeholder: implemented in progress
+#include "rdf/iri.hpp"
+
+namespace mospec::rdf {
+
+namespace {
+
+bool is_alpha(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
+// Length of "scheme:" at the start of s (0 when there is none).
+size_t scheme_length(std::string_view s) {
+  if (s.empty() || !is_alpha(s[0])) return 0;
+  for (size_t i = 1; i < s.size(); ++i) {
+    const char c = s[i];
+    if (c == ':') return i + 1;
+    if (!is_alpha(c) && !is_digit(c) && c != '+' && c != '-' && c != '.') return 0;
+  }
+  return 0;
+}
+
+// RFC 3986 section 3 split. Undefined and empty components differ (a "?" with
+// nothing after it is a defined, empty query), so each has a flag.
+struct Parts {
+  std::string_view scheme;  // without ':'
+  std::string_view authority;
+  std::string_view path;
+  std::string_view query;
+  std::string_view fragment;
+  bool has_scheme = false, has_authority = false, has_query = false, has_fragment = false;
+};
+
+Parts split(std::string_view s) {
+  Parts p;
+  if (size_t n = scheme_length(s); n != 0) {
+    p.has_scheme = true;
+    p.scheme = s.substr(0, n - 1);
+    s.remove_prefix(n);
+  }
+  if (size_t hash = s.find('#'); hash != std::string_view::npos) {
+    p.has_fragment = true;
+    p.fragment = s.substr(hash + 1);
+    s = s.substr(0, hash);
+  }
+  if (size_t q = s.find('?'); q != std::string_view::npos) {
+    p.has_query = true;
+    p.query = s.substr(q + 1);
+    s = s.substr(0, q);
+  }
+  if (s.starts_with("//")) {
+    p.has_authority = true;
+    s.remove_prefix(2);
+    size_t slash = s.find('/');
+    p.authority = s.substr(0, slash);
+    s = slash == std::string_view::npos ? std::string_view{} : s.substr(slash);
+  }
+  p.path = s;
+  return p;
+}
+
+// RFC 3986 section 5.2.4, on a copy of the input buffer.
+std::string remove_dot_segments(std::string_view in) {
+  std::string out;
+  out.reserve(in.size());
+  auto drop_last_segment = [&out] {
+    size_t slash = out.rfind('/');
+    out.erase(slash == std::string::npos ? 0 : slash);
+  };
+  while (!in.empty()) {
+    if (in.starts_with("../")) {
+      in.remove_prefix(3);
+    } else if (in.starts_with("./")) {
+      in.remove_prefix(2);
+    } else if (in.starts_with("/./")) {
+      in.remove_prefix(2);  // leaves "/"
+    } else if (in == "/.") {
+      in = "/";
+    } else if (in.starts_with("/../")) {
+      in.remove_prefix(3);  // leaves "/"
+      drop_last_segment();
+    } else if (in == "/..") {
+      in = "/";
+      drop_last_segment();
+    } else if (in == "." || in == "..") {
+      in = {};
+    } else {
+      // Move the first segment (with its leading '/', if any) to the output.
+      size_t end = in.find('/', in[0] == '/' ? 1 : 0);
+      if (end == std::string_view::npos) end = in.size();
+      out.append(in.substr(0, end));
+      in.remove_prefix(end);
+    }
+  }
+  return out;
+}
+
+// RFC 3986 section 5.2.3.
+std::string merge_paths(const Parts& base, std::string_view reference_path) {
+  if (base.has_authority && base.path.empty()) return "/" + std::string(reference_path);
+  size_t slash = base.path.rfind('/');
+  if (slash == std::string_view::npos) return std::string(reference_path);
+  return std::string(base.path.substr(0, slash + 1)) + std::string(reference_path);
+}
+
+}  // namespace
+
+bool is_absolute_iri(std::string_view s) {
+  return scheme_length(s) != 0;
+}
+
+std::string resolve_iri(std::string_view base, std::string_view reference) {
+  if (base.empty()) return std::string(reference);
+  const Parts r = split(reference);
+  const Parts b = split(base);
+
+  // RFC 3986 section 5.2.2 (strict: a reference with a scheme is never
+  // treated as relative, even when the scheme equals the base's).
+  Parts t;
+  std::string path;
+  if (r.has_scheme) {
+    t = r;
+    path = remove_dot_segments(r.path);
+  } else {
+    if (r.has_authority) {
+      t.has_authority = true;
+      t.authority = r.authority;
+      path = remove_dot_segments(r.path);
+      t.has_query = r.has_query;
+      t.query = r.query;
+    } else {
+      if (r.path.empty()) {
+        path = std::string(b.path);
+        if (r.has_query) {
+          t.has_query = true;
+          t.query = r.query;
+        } else {
+          t.has_query = b.has_query;
+          t.query = b.query;
+        }
+      } else {
+        path = remove_dot_segments(r.path.starts_with('/') ? std::string(r.path)
+                                                           : merge_paths(b, r.path));
+        t.has_query = r.has_query;
+        t.query = r.query;
+      }
+      t.has_authority = b.has_authority;
+      t.authority = b.authority;
+    }
+    t.has_scheme = b.has_scheme;
+    t.scheme = b.scheme;
+  }
+  t.has_fragment = r.has_fragment;
+  t.fragment = r.fragment;
+
+  // RFC 3986 section 5.3.
+  std::string out;
+  out.reserve(base.size() + reference.size());
+  if (t.has_scheme) {
+    out.append(t.scheme);
+    out += ':';
+  }
+  if (t.has_authority) {
+    out += "//";
+    out.append(t.authority);
+  }
+  out += path;
+  if (t.has_query) {
+    out += '?';
+    out.append(t.query);
+  }
+  if (t.has_fragment) {
+    out += '#';
+    out.append(t.fragment);
+  }
+  return out;
+}
+
+}  // namespace mospec::rdf

@@ -3,15 +3,18 @@
 // A term is named by a TermId (an index into its TermTable). Comparing two ids
 // of the same table compares the terms. All string_views handed out by a
 // TermTable point into storage owned by the table and stay valid for its
-// lifetime (the table never moves interned text).
+// lifetime (the table never moves interned text, not even when the table
+// itself is moved).
 #pragma once
 
 #include <cstdint>
-#include <deque>
+#include <memory>
 #include <string>
 #include <string_view>
-#include <unordered_map>
+#include <unordered_set>
 #include <vector>
+
+#include "rdf/id_hash_set.hpp"
 
 namespace mospec::rdf {
 
@@ -43,6 +46,10 @@ struct Term {
   TermId datatype;             // literals: the datatype IRI (xsd:string, rdf:langString, ...)
   std::string_view language;   // literals: language tag as written (may be empty)
   std::string_view direction;  // literals: "ltr", "rtl" or empty
+
+  bool is_iri() const { return kind == TermKind::Iri; }
+  bool is_blank() const { return kind == TermKind::Blank; }
+  bool is_literal() const { return kind == TermKind::Literal; }
 };
 
 class TermTable {
@@ -53,33 +60,69 @@ class TermTable {
   TermTable(TermTable&&) = default;
   TermTable& operator=(TermTable&&) = default;
 
+  // Always interned by the constructor, so these ids are the same in every table.
+  static constexpr TermId xsd_string() { return TermId{1}; }
+  static constexpr TermId rdf_lang_string() { return TermId{2}; }
+  static constexpr TermId rdf_dir_lang_string() { return TermId{3}; }
+
   TermId iri(std::string_view iri);
   TermId blank(std::string_view label);
   // A blank node whose label is unused in this table ("b0", "b1", ...).
   TermId fresh_blank();
-  // datatype defaults to xsd:string; a non-empty language makes it rdf:langString
-  // unless a datatype is given explicitly.
+  // A label prefix ("r0_", "r1_", ...) that no blank node in this table starts
+  // with and that was never handed out before. Readers put it in front of every
+  // label of one document so that documents never share blank nodes.
+  std::string fresh_blank_prefix();
+
+  // With the default datatype (index 0) the datatype is xsd:string, or
+  // rdf:langString when a language is given, or rdf:dirLangString when a
+  // language and a direction are given. An explicit datatype is kept as given.
+  // The language tag is stored as written (no case folding).
   TermId literal(std::string_view lexical, TermId datatype = TermId::default_graph(),
                  std::string_view language = {}, std::string_view direction = {});
   TermId literal(std::string_view lexical, std::string_view datatype_iri);
 
-  // Lookup without interning; returns nullopt-like TermId::any() when absent.
+  // Lookups without interning; return TermId::any() when absent.
   TermId find_iri(std::string_view iri) const;
+  TermId find_blank(std::string_view label) const;
+  TermId find_literal(std::string_view lexical, TermId datatype = TermId::default_graph(),
+                      std::string_view language = {}, std::string_view direction = {}) const;
+  // The id in this table of a term of another table (blank nodes by label).
+  TermId find_equivalent(const TermTable& other, TermId id) const;
+  // Interns a term of another table here (blank nodes keep their label).
+  TermId import(const TermTable& other, TermId id);
 
   const Term& operator[](TermId id) const { return terms_[id.index]; }
   size_t size() const { return terms_.size(); }
+  // Approximate heap use, for benchmarks and memory tests.
+  size_t memory_bytes() const;
 
  private:
   std::string_view store(std::string_view text);
   TermId intern(const Term& t);
+  TermId lookup(const Term& t, uint64_t hash) const;
+  Term literal_key(std::string_view lexical, TermId datatype, std::string_view language,
+                   std::string_view direction) const;
 
-  std::deque<std::string> text_;  // stable storage for views
+  // Text lives in fixed blocks that are never reallocated, so views stay valid.
+  std::vector<std::unique_ptr<char[]>> blocks_;
+  size_t block_used_ = 0;
+  size_t block_size_ = 0;
+  size_t text_bytes_ = 0;
+
   std::vector<Term> terms_;
-  std::unordered_map<std::string, uint32_t> index_;  // key encodes kind + fields
+  detail::IdHashSet index_;
+  // For every blank label containing '_', the part up to and including the
+  // first '_' (so fresh_blank_prefix can prove a prefix unused in O(1)).
+  std::unordered_set<std::string_view> blank_stems_;
   uint64_t next_fresh_ = 0;
+  uint64_t next_prefix_ = 0;
 };
 
-// N-Triples/N-Quads rendering of a term ("<iri>", "_:label", "\"lex\"^^<dt>", "\"lex\"@en").
+// N-Triples/N-Quads rendering of a term ("<iri>", "_:label", "\"lex\"^^<dt>",
+// "\"lex\"@en", "\"lex\"@en--ltr"), escaped as write_nquads does.
 std::string to_ntriples(const TermTable&, TermId);
+// Same, appended to `out` (avoids a temporary per term when writing documents).
+void append_ntriples(std::string& out, const TermTable&, TermId);
 
 }  // namespace mospec::rdf

@@ -1,1 +1,203 @@
-// placeholder: implemented in progress
+#include "rdf/turtle.hpp"
+
+#include <serd/serd.h>
+
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+
+#include "rdf/iri.hpp"
+
+namespace mospec::rdf {
+
+namespace {
+
+std::string_view view(const SerdNode* node) {
+  return {reinterpret_cast<const char*>(node->buf), node->n_bytes};
+}
+
+// State shared with serd's C callbacks. Exceptions must not cross serd's C
+// frames, so callbacks record the first error and return a failure status;
+// the caller throws once serd has returned.
+class TurtleReader {
+ public:
+  TurtleReader(std::string_view text, std::string_view base, Dataset& into, uint32_t file_id,
+               std::string_view file_name)
+      : text_(text), base_(base), data_(into), file_id_(file_id), file_name_(file_name) {}
+
+  void run(SerdSyntax syntax) {
+    std::unique_ptr<SerdReader, decltype(&serd_reader_free)> reader(
+        serd_reader_new(syntax, this, nullptr, &on_base, &on_prefix, &on_statement, nullptr),
+        &serd_reader_free);
+    serd_reader_set_strict(reader.get(), true);
+    serd_reader_set_error_sink(reader.get(), &on_error, this);
+    const std::string prefix = data_.terms().fresh_blank_prefix();
+    serd_reader_add_blank_prefix(reader.get(), reinterpret_cast<const uint8_t*>(prefix.c_str()));
+    const std::string name(file_name_);
+    // One byte per read so that the bytes handed out mark serd's cursor,
+    // which is how statements get their locations.
+    const SerdStatus status =
+        serd_reader_read_source(reader.get(), &source, &source_error, this,
+                                reinterpret_cast<const uint8_t*>(name.c_str()), 1);
+    if (error_) throw *error_;
+    if (status > SERD_FAILURE)
+      throw Error("syntax",
+                  std::string("Turtle reader failed: ") +
+                      reinterpret_cast<const char*>(serd_strerror(status)),
+                  std::string(file_name_), line_, column());
+  }
+
+ private:
+  uint32_t column() const { return static_cast<uint32_t>(offset_ - line_start_); }
+
+  void record(std::string message, uint32_t line, uint32_t col) {
+    if (!error_) error_.emplace("syntax", std::move(message), std::string(file_name_), line, col);
+  }
+
+  static size_t source(void* buf, size_t size, size_t nmemb, void* stream) {
+    auto* self = static_cast<TurtleReader*>(stream);
+    const size_t want = size * nmemb;
+    const size_t n = std::min(want, self->text_.size() - self->offset_);
+    std::memcpy(buf, self->text_.data() + self->offset_, n);
+    for (size_t i = 0; i < n; ++i) {
+      if (self->text_[self->offset_ + i] == '\n') {
+        ++self->line_;
+        self->line_start_ = self->offset_ + i + 1;
+      }
+    }
+    self->offset_ += n;
+    return n;
+  }
+  static int source_error(void*) { return 0; }
+
+  static SerdStatus on_error(void* handle, const SerdError* error) {
+    auto* self = static_cast<TurtleReader*>(handle);
+    char buf[512];
+    va_list args;
+    va_copy(args, *error->args);
+    std::vsnprintf(buf, sizeof buf, error->fmt, args);
+    va_end(args);
+    std::string message(buf);
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+      message.pop_back();
+    self->record(std::move(message), error->line, error->col);
+    return SERD_SUCCESS;
+  }
+
+  static SerdStatus on_base(void* handle, const SerdNode* uri) {
+    auto* self = static_cast<TurtleReader*>(handle);
+    self->base_ =
+        self->base_.empty() ? std::string(view(uri)) : resolve_iri(self->base_, view(uri));
+    return SERD_SUCCESS;
+  }
+
+  static SerdStatus on_prefix(void* handle, const SerdNode* name, const SerdNode* uri) {
+    auto* self = static_cast<TurtleReader*>(handle);
+    // Kept unresolved-if-impossible: a relative namespace is only an error if used.
+    self->prefixes_[std::string(view(name))] = is_absolute_iri(view(uri)) || self->base_.empty()
+                                                   ? std::string(view(uri))
+                                                   : resolve_iri(self->base_, view(uri));
+    return SERD_SUCCESS;
+  }
+
+  // The absolute IRI a URI or CURIE node denotes; records an error otherwise.
+  std::optional<std::string> expand(const SerdNode* node) {
+    std::string iri;
+    if (node->type == SERD_CURIE) {
+      const std::string_view curie = view(node);
+      const size_t colon = curie.find(':');
+      auto it = prefixes_.find(std::string(curie.substr(0, colon)));
+      if (colon == std::string_view::npos || it == prefixes_.end()) {
+        record("undefined prefix '" + std::string(curie.substr(0, colon)) + ":' in " +
+                   std::string(curie),
+               line_, column());
+        return std::nullopt;
+      }
+      iri = it->second;
+      iri.append(curie.substr(colon + 1));
+    } else {
+      const std::string_view ref = view(node);
+      iri = is_absolute_iri(ref) || base_.empty() ? std::string(ref) : resolve_iri(base_, ref);
+    }
+    if (!is_absolute_iri(iri)) {
+      record("relative IRI <" + iri + "> and no base IRI to resolve it against", line_, column());
+      return std::nullopt;
+    }
+    return iri;
+  }
+
+  std::optional<TermId> term(const SerdNode* node, const SerdNode* datatype = nullptr,
+                             const SerdNode* language = nullptr) {
+    TermTable& terms = data_.terms();
+    switch (node->type) {
+      case SERD_URI:
+      case SERD_CURIE: {
+        auto iri = expand(node);
+        if (!iri) return std::nullopt;
+        return terms.iri(*iri);
+      }
+      case SERD_BLANK:
+        return terms.blank(view(node));
+      case SERD_LITERAL: {
+        if (datatype != nullptr && datatype->type != SERD_NOTHING) {
+          auto iri = expand(datatype);
+          if (!iri) return std::nullopt;
+          return terms.literal(view(node), terms.iri(*iri));
+        }
+        if (language != nullptr && language->type != SERD_NOTHING)
+          return terms.literal(view(node), TermId::default_graph(), view(language));
+        return terms.literal(view(node));
+      }
+      case SERD_NOTHING:
+        break;
+    }
+    record("unexpected empty node from serd", line_, column());
+    return std::nullopt;
+  }
+
+  static SerdStatus on_statement(void* handle, SerdStatementFlags, const SerdNode* graph,
+                                 const SerdNode* subject, const SerdNode* predicate,
+                                 const SerdNode* object, const SerdNode* object_datatype,
+                                 const SerdNode* object_lang) {
+    auto* self = static_cast<TurtleReader*>(handle);
+    if (self->error_) return SERD_ERR_BAD_SYNTAX;
+    const SourceLoc where{self->file_id_, self->line_, self->column()};
+    auto s = self->term(subject);
+    auto p = self->term(predicate);
+    auto o = self->term(object, object_datatype, object_lang);
+    std::optional<TermId> g = TermId::default_graph();
+    if (graph != nullptr && graph->type != SERD_NOTHING) g = self->term(graph);
+    if (!s || !p || !o || !g) return SERD_ERR_BAD_SYNTAX;
+    self->data_.add(Quad{*s, *p, *o, *g}, where);
+    return SERD_SUCCESS;
+  }
+
+  std::string_view text_;
+  size_t offset_ = 0;  // bytes handed to serd so far
+  uint32_t line_ = 1;
+  size_t line_start_ = 0;
+  std::string base_;
+  std::unordered_map<std::string, std::string> prefixes_;
+  Dataset& data_;
+  uint32_t file_id_;
+  std::string_view file_name_;
+  std::optional<Error> error_;
+};
+
+}  // namespace
+
+void read_turtle(std::string_view text, std::string_view base_iri, Dataset& into, uint32_t file_id,
+                 std::string_view file_name) {
+  TurtleReader(text, base_iri, into, file_id, file_name).run(SERD_TURTLE);
+}
+
+void read_trig(std::string_view text, std::string_view base_iri, Dataset& into, uint32_t file_id,
+               std::string_view file_name) {
+  TurtleReader(text, base_iri, into, file_id, file_name).run(SERD_TRIG);
+}
+
+}  // namespace mospec::rdf

@@ -1,4 +1,9 @@
 // Turtle and TriG reading through serd.
+//
+// Locations: serd 0.30 reports no position with a statement, so each quad is
+// located where serd's read cursor was when it delivered the statement: just
+// past the statement's object (the line is exact for single-line statements
+// and names the object's line otherwise). Errors carry serd's own cursor.
 #pragma once
 
 #include <string_view>
@@ -7,9 +12,11 @@
 
 namespace mospec::rdf {
 
-// Reads Turtle (or TriG) text. `base_iri` resolves relative IRIs. Blank nodes get
-// a prefix fresh to this document. Syntax errors throw mospec::Error (code
-// "syntax") with file:line:col.
+// Reads Turtle (or TriG) text. `base_iri` resolves relative IRIs (RFC 3986, see
+// resolve_iri); @base / BASE directives change it as they appear. A relative
+// IRI with no base to resolve it against is an error. Blank nodes get a prefix
+// fresh to this document. Syntax errors throw mospec::Error (code "syntax")
+// with file:line:col; quads read before the error stay in `into`.
 void read_turtle(std::string_view text, std::string_view base_iri, Dataset& into,
                  uint32_t file_id = 0, std::string_view file_name = "<input>");
 void read_trig(std::string_view text, std::string_view base_iri, Dataset& into,

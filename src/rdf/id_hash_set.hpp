@@ -1,0 +1,82 @@
+// A hash set of dense uint32_t ids whose keys live elsewhere (in a term table or
+// a quad vector). The caller hashes and compares against its own storage, so the
+// set holds no pointers back to its owner and stays valid when the owner moves.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace mospec::rdf::detail {
+
+class IdHashSet {
+ public:
+  static constexpr uint32_t kNone = UINT32_MAX;
+
+  // The id whose key equals the probe (eq(id) is true), or kNone.
+  template <class Eq>
+  uint32_t find(uint64_t hash, Eq&& eq) const {
+    if (slots_.empty()) return kNone;
+    const uint32_t h = fold(hash);
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = h & mask;; i = (i + 1) & mask) {
+      const Slot& s = slots_[i];
+      if (s.id == kNone) return kNone;
+      if (s.hash == h && eq(s.id)) return s.id;
+    }
+  }
+
+  // Adds an id the caller has checked is absent.
+  void insert(uint64_t hash, uint32_t id) {
+    // Linear probing stays short below a 70% load factor.
+    if ((count_ + 1) * 10 > slots_.size() * 7) grow();
+    place(Slot{id, fold(hash)});
+    ++count_;
+  }
+
+  size_t size() const { return count_; }
+  void clear() {
+    slots_.clear();
+    count_ = 0;
+  }
+  size_t memory_bytes() const { return slots_.capacity() * sizeof(Slot); }
+
+ private:
+  struct Slot {
+    uint32_t id = kNone;
+    uint32_t hash = 0;  // kept so that growing never re-reads the keys
+  };
+
+  static uint32_t fold(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
+
+  void place(Slot slot) {
+    const size_t mask = slots_.size() - 1;
+    size_t i = slot.hash & mask;
+    while (slots_[i].id != kNone) i = (i + 1) & mask;
+    slots_[i] = slot;
+  }
+
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(old.empty() ? 16 : old.size() * 2, Slot{});
+    for (const Slot& s : old)
+      if (s.id != kNone) place(s);
+  }
+
+  std::vector<Slot> slots_;
+  size_t count_ = 0;
+};
+
+// 64-bit mixing (splitmix64 finaliser) for combining hashes of small integers.
+inline uint64_t mix64(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+inline uint64_t combine(uint64_t seed, uint64_t value) {
+  return mix64(seed ^ mix64(value));
+}
+
+}  // namespace mospec::rdf::detail
