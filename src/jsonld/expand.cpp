@@ -26,6 +26,7 @@ using ActiveProperty = std::optional<std::string_view>;
 
 constexpr std::string_view kGraph = "@graph";
 constexpr std::string_view kReverse = "@reverse";
+constexpr std::string_view kIncluded = "@included";
 
 std::string_view kind_name(const Value& v) {
   switch (v.kind()) {
@@ -541,7 +542,10 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
     expanded_value = to_array(expand(active, kGraph, value, base_url, false));
   } else if (ep == "@included") {  // 13.4.6
     if (v10) return;
-    expanded_value = to_array(expand(active, std::nullopt, value, base_url, false));
+    // The spec passes null as active property, which would silently drop
+    // free-floating values before the node-object check below; the suite
+    // (in07-in09) expects them to be rejected, so "@included" is used instead.
+    expanded_value = to_array(expand(active, kIncluded, value, base_url, false));
     for (const Value& item : expanded_value.as_array()) {
       if (!is_node_object(item)) {
         fail("invalid @included value",

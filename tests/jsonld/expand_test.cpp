@@ -1,0 +1,423 @@
+#include "jsonld/expand.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "jsonld/loader.hpp"
+
+namespace mospec::jsonld {
+namespace {
+
+class Expand : public ::testing::Test {
+ protected:
+  // Expands `text` as the document "doc.json" with base http://example.org/doc.
+  json::Value run(std::string_view text, std::string_view name = "doc.json") {
+    const uint32_t id = loader_.files().add(std::string(name));
+    json::Value doc = json::parse(text, id, name);
+    opts_.loader = &loader_;
+    opts_.diagnostics = &sink_;
+    if (opts_.base.empty()) opts_.base = "http://example.org/doc";
+    return expand(doc, opts_);
+  }
+
+  // Expands `text` and compares with `expected` (JSON-LD object comparison of
+  // json::Value: member order ignored, array order kept).
+  void expect_expands(std::string_view text, std::string_view expected) {
+    json::Value got = run(text);
+    json::Value want = json::parse(expected);
+    EXPECT_EQ(got, want) << "got:  " << json::dump(got) << "\nwant: " << json::dump(want);
+  }
+
+  // Expands `text` expecting failure with `code`; returns the error.
+  Diagnostic expect_error(std::string_view text, const std::string& code) {
+    try {
+      run(text);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), code) << e.what();
+      return e.diagnostic();
+    }
+    ADD_FAILURE() << "expanded without error: " << text;
+    return {};
+  }
+
+  MappedDocumentLoader loader_;
+  DiagnosticSink sink_;
+  Options opts_;
+};
+
+// ---------------------------------------------------------------------------
+// Type-scoped contexts
+
+TEST_F(Expand, TypeScopedContextsApplyForEveryTypeInCodePointOrder) {
+  // "A" sorts before "B", so B's definition of p wins whatever the array order.
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/",
+                 "B": {"@context": {"p": "http://b/p"}},
+                 "A": {"@context": {"p": "http://a/p", "q": "http://a/q"}}},
+    "@type": ["B", "A"], "p": 1, "q": 2})",
+                 R"([{"@type": ["http://ex/B", "http://ex/A"],
+                      "http://b/p": [{"@value": 1}], "http://a/q": [{"@value": 2}]}])");
+}
+
+TEST_F(Expand, TypeScopedLookupUsesContextBeforeTypeScoping) {
+  // A's scoped context redefines B; B's own scoped context and its IRI still
+  // come from the context as it was before any type-scoped context.
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/",
+                 "A": {"@context": {"B": {"@id": "http://other/B",
+                                          "@context": {"p": "http://other/p"}}}},
+                 "B": {"@context": {"p": "http://b/p"}}},
+    "@type": ["A", "B"], "p": 1})",
+                 R"([{"@type": ["http://ex/A", "http://ex/B"], "http://b/p": [{"@value": 1}]}])");
+}
+
+TEST_F(Expand, TypeScopedContextDoesNotPropagateToNestedNodes) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "T": {"@context": {"q": "http://t/q"}}},
+    "@type": "T",
+    "q": [{"q": "inner"}, {"@value": "v"}, {"@id": "http://ex/n"}]})",
+                 R"([{"@type": ["http://ex/T"],
+                      "http://t/q": [{"http://ex/q": [{"@value": "inner"}]},
+                                     {"@value": "v"}, {"@id": "http://ex/n"}]}])");
+}
+
+TEST_F(Expand, TypeScopedContextWithPropagateTrueReachesNestedNodes) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/",
+                 "T": {"@context": {"@propagate": true, "q": "http://t/q"}}},
+    "@type": "T", "q": {"q": "inner"}})",
+                 R"([{"@type": ["http://ex/T"],
+                      "http://t/q": [{"http://t/q": [{"@value": "inner"}]}]}])");
+}
+
+// ---------------------------------------------------------------------------
+// Property-scoped contexts, @nest, @included, @reverse
+
+TEST_F(Expand, PropertyScopedContextWithBase) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/",
+                 "p": {"@context": {"@base": "http://other.org/dir/"}}},
+    "@id": "rel", "p": {"@id": "inner"}})",
+                 R"([{"@id": "http://example.org/rel",
+                      "http://ex/p": [{"@id": "http://other.org/dir/inner"}]}])");
+}
+
+TEST_F(Expand, PropertyScopedContextPropagatesToNestedNodes) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "p": {"@context": {"q": "http://p/q"}}},
+    "p": {"q": {"q": 1}}})",
+                 R"([{"http://ex/p": [{"http://p/q": [{"http://p/q": [{"@value": 1}]}]}]}])");
+}
+
+TEST_F(Expand, NestUnfoldsIntoTheNode) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "meta": "@nest",
+                 "n": {"@id": "http://ex/n", "@nest": "meta"}},
+    "@id": "http://ex/a",
+    "meta": [{"p": 1, "meta": {"q": 2}}, {"n": 3}]})",
+                 R"([{"@id": "http://ex/a", "http://ex/p": [{"@value": 1}],
+                      "http://ex/q": [{"@value": 2}], "http://ex/n": [{"@value": 3}]}])");
+}
+
+TEST_F(Expand, NestRejectsValueObjects) {
+  Diagnostic d = expect_error(R"({"@context": {"@vocab": "http://ex/", "m": "@nest"},
+    "m": {"@value": 1}})",
+                              "invalid @nest value");
+  EXPECT_EQ(d.file, "doc.json");
+  EXPECT_EQ(d.line, 2u);
+  EXPECT_EQ(d.column, 10u);
+}
+
+TEST_F(Expand, Included) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/"},
+    "@id": "http://ex/a",
+    "@included": [{"@id": "http://ex/b", "p": 1}]})",
+                 R"([{"@id": "http://ex/a",
+                      "@included": [{"@id": "http://ex/b", "http://ex/p": [{"@value": 1}]}]}])");
+  expect_error(R"({"@context": {"@vocab": "http://ex/"}, "@included": [{"@value": 1}]})",
+               "invalid @included value");
+}
+
+TEST_F(Expand, ReverseProperties) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "child": {"@reverse": "http://ex/parent"}},
+    "@id": "http://ex/a", "child": {"@id": "http://ex/b"},
+    "@reverse": {"http://ex/knows": {"@id": "http://ex/c"}}})",
+                 R"([{"@id": "http://ex/a",
+                      "@reverse": {"http://ex/parent": [{"@id": "http://ex/b"}],
+                                   "http://ex/knows": [{"@id": "http://ex/c"}]}}])");
+  expect_error(R"({"@context": {"r": {"@reverse": "http://ex/r"}}, "r": "lit"})",
+               "invalid reverse property value");
+}
+
+// ---------------------------------------------------------------------------
+// Containers and values
+
+TEST_F(Expand, IndexAndPropertyValuedIndexMaps) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/",
+                 "byIndex": {"@container": "@index"},
+                 "byProp": {"@container": "@index", "@index": "tag"}},
+    "byIndex": {"x": "v", "@none": "w"},
+    "byProp": {"t1": {"@id": "http://ex/n"}}})",
+                 R"([{"http://ex/byIndex": [{"@value": "v", "@index": "x"}, {"@value": "w"}],
+                      "http://ex/byProp": [{"@id": "http://ex/n",
+                                            "http://ex/tag": [{"@value": "t1"}]}]}])");
+  expect_error(R"({"@context": {"@vocab": "http://ex/",
+                 "byProp": {"@container": "@index", "@index": "tag"}},
+    "byProp": {"t1": "a literal"}})",
+               "invalid value object");
+}
+
+TEST_F(Expand, IdAndTypeMaps) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/",
+                 "ids": {"@container": "@id"}, "types": {"@container": "@type"},
+                 "T": {"@context": {"p": "http://t/p"}}},
+    "ids": {"n1": {"p": 1}},
+    "types": {"T": {"p": 2}, "@none": {"@id": "http://ex/z"}}})",
+                 R"([{"http://ex/ids": [{"@id": "http://example.org/n1",
+                                         "http://ex/p": [{"@value": 1}]}],
+                      "http://ex/types": [{"@type": ["http://ex/T"],
+                                           "http://t/p": [{"@value": 2}]},
+                                          {"@id": "http://ex/z"}]}])");
+}
+
+TEST_F(Expand, LanguageMapsAndDirection) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "@direction": "ltr",
+                 "label": {"@container": "@language"}},
+    "label": {"en": ["a", null], "@none": "b"}})",
+                 R"([{"http://ex/label": [
+                      {"@value": "a", "@language": "en", "@direction": "ltr"},
+                      {"@value": "b", "@direction": "ltr"}]}])");
+  expect_error(R"({"@context": {"l": {"@id": "http://ex/l", "@container": "@language"}},
+    "l": {"en": 5}})",
+               "invalid language map value");
+}
+
+TEST_F(Expand, GraphContainers) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/",
+                 "g": {"@container": "@graph"},
+                 "gi": {"@container": ["@graph", "@index"]}},
+    "g": {"p": 1},
+    "gi": {"k": {"p": 2}}})",
+                 R"([{"http://ex/g": [{"@graph": [{"http://ex/p": [{"@value": 1}]}]}],
+                      "http://ex/gi": [{"@graph": [{"http://ex/p": [{"@value": 2}]}],
+                                        "@index": "k"}]}])");
+}
+
+TEST_F(Expand, ListsAndSets) {
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "l": {"@container": "@list"}},
+    "l": [["a"], "b"], "s": {"@set": [1, 2]}})",
+                 R"([{"http://ex/l": [{"@list": [{"@list": [{"@value": "a"}]}, {"@value": "b"}]}],
+                      "http://ex/s": [{"@value": 1}, {"@value": 2}]}])");
+  expect_error(R"({"http://ex/p": {"@list": [1], "@id": "x"}})", "invalid set or list object");
+}
+
+TEST_F(Expand, JsonLiteralsKeptAsIs) {
+  expect_expands(R"({
+    "@context": {"j": {"@id": "http://ex/j", "@type": "@json"}},
+    "j": {"b": [1, {"@id": "not-expanded"}], "a": null}})",
+                 R"([{"http://ex/j": [{"@value": {"b": [1, {"@id": "not-expanded"}], "a": null},
+                                       "@type": "@json"}]}])");
+}
+
+TEST_F(Expand, ValueObjectErrors) {
+  expect_error(R"({"http://ex/p": {"@value": "x", "@type": "http://ex/t", "@language": "en"}})",
+               "invalid value object");
+  expect_error(R"({"http://ex/p": {"@value": 1, "@language": "en"}})",
+               "invalid language-tagged value");
+  expect_error(R"({"http://ex/p": {"@value": "x", "@type": "_:b"}})", "invalid typed value");
+  expect_error(R"({"http://ex/p": {"@value": [1]}})", "invalid value object value");
+  expect_error(R"({"http://ex/p": {"@value": "x", "@language": 1}})",
+               "invalid language-tagged string");
+  expect_error(R"({"http://ex/p": {"@value": "x", "@direction": "up"}})", "invalid base direction");
+  expect_error(R"({"http://ex/p": {"@value": "x", "@index": 1}})", "invalid @index value");
+  expect_error(R"({"@type": {"a": 1}})", "invalid type value");
+  expect_error(R"({"@context": {"id": "@id"}, "@id": "a", "id": "b"})", "colliding keywords");
+  expect_error(R"({"@reverse": {"@id": "x"}})", "invalid reverse property map");
+}
+
+TEST_F(Expand, InvalidIdNamesKeyAndLocation) {
+  Diagnostic d = expect_error("{\n  \"@id\": 5\n}", "invalid @id value");
+  EXPECT_EQ(d.file, "doc.json");
+  EXPECT_EQ(d.line, 2u);
+  EXPECT_EQ(d.column, 10u);
+  EXPECT_NE(d.message.find("\"@id\""), std::string::npos) << d.message;
+}
+
+TEST_F(Expand, ProcessingMode10IgnoresNewKeywords) {
+  opts_.processing_mode = ProcessingMode::JsonLd10;
+  expect_expands(R"({"@id": "http://ex/a", "@included": [{"@id": "http://ex/b"}],
+    "http://ex/p": {"@value": "x", "@direction": "rtl"}})",
+                 R"([{"@id": "http://ex/a", "http://ex/p": [{"@value": "x"}]}])");
+}
+
+TEST_F(Expand, ResultShapeAndExpandContext) {
+  // A lone @graph is unwrapped; null and free-floating values give [].
+  expect_expands(R"({"@graph": [{"@id": "http://ex/a", "http://ex/p": 1}]})",
+                 R"([{"@id": "http://ex/a", "http://ex/p": [{"@value": 1}]}])");
+  expect_expands("null", "[]");
+  expect_expands(R"({"@id": "http://ex/a"})", "[]");
+  opts_.expand_context = json::parse(R"({"@context": {"p": "http://ex/p"}})");
+  expect_expands(R"({"p": 1})", R"([{"http://ex/p": [{"@value": 1}]}])");
+}
+
+TEST_F(Expand, OrderedSortsKeys) {
+  opts_.ordered = true;
+  json::Value out = run(R"({"http://ex/b": 1, "http://ex/a": 2, "@id": "http://ex/n"})");
+  const json::Object& node = out.as_array().at(0).as_object();
+  ASSERT_EQ(node.size(), 3u);
+  EXPECT_EQ(node.key(0), "@id");
+  EXPECT_EQ(node.key(1), "http://ex/a");
+  EXPECT_EQ(node.key(2), "http://ex/b");
+}
+
+// ---------------------------------------------------------------------------
+// Source locations
+
+TEST_F(Expand, OutputKeepsSourceLocations) {
+  json::Value out = run("[\n  {\"@id\": \"http://ex/a\",\n   \"http://ex/p\": \"v\"}\n]");
+  const json::Value& node = out.as_array().at(0);
+  EXPECT_EQ(node.location().line, 2u);
+  EXPECT_EQ(node.location().column, 3u);
+  EXPECT_EQ(loader_.files().path(node.location().file), "doc.json");
+  const json::Value* id = node.get("@id");
+  ASSERT_NE(id, nullptr);
+  EXPECT_EQ(id->location().line, 2u);
+  EXPECT_EQ(id->location().column, 11u);
+  const json::Value& value = node.get("http://ex/p")->as_array().at(0);
+  EXPECT_EQ(value.location().line, 3u);
+  EXPECT_EQ(value.location().column, 19u);
+  EXPECT_EQ(value.get("@value")->location().column, 19u);
+}
+
+// ---------------------------------------------------------------------------
+// Silent drops made visible
+
+TEST_F(Expand, DroppedKeyIsReportedAtTheKey) {
+  json::Value out = run(R"({
+  "@context": {"@base": "https://example.org/models/", "name": "http://ex/name"},
+  "@id": "chain-rightarm",
+  "name": "c",
+  "kinematic-chain": "chain-leftarm"
+})");
+  ASSERT_EQ(sink_.diagnostics().size(), 1u);
+  const Diagnostic& d = sink_.diagnostics()[0];
+  EXPECT_EQ(d.severity, Severity::Warning);
+  EXPECT_EQ(d.code, "dropped-key");
+  EXPECT_EQ(d.file, "doc.json");
+  EXPECT_EQ(d.line, 5u);
+  EXPECT_EQ(d.column, 3u);
+  EXPECT_EQ(d.message,
+            "key \"kinematic-chain\" expands to no IRI and is dropped "
+            "(node <https://example.org/models/chain-rightarm>)");
+  EXPECT_EQ(format(d),
+            "doc.json:5:3: warning: key \"kinematic-chain\" expands to no IRI and is dropped "
+            "(node <https://example.org/models/chain-rightarm>)");
+  // The key stays dropped: reporting does not change the result.
+  EXPECT_EQ(out, json::parse(R"([{"@id": "https://example.org/models/chain-rightarm",
+                                  "http://ex/name": [{"@value": "c"}]}])"));
+}
+
+TEST_F(Expand, DroppedKeysInNestedAndAnonymousNodes) {
+  run(R"({"http://ex/p": {"oops": 1}, "@id": "http://ex/a", "@bogus": 2})");
+  ASSERT_EQ(sink_.diagnostics().size(), 2u);
+  EXPECT_EQ(sink_.diagnostics()[0].message,
+            "key \"oops\" expands to no IRI and is dropped (node without @id)");
+  EXPECT_EQ(sink_.diagnostics()[0].column, 18u);
+  EXPECT_EQ(sink_.diagnostics()[1].message,
+            "key \"@bogus\" expands to no IRI and is dropped (node <http://ex/a>)");
+}
+
+TEST_F(Expand, UndefinedTypeIsReportedAtTheValue) {
+  json::Value out = run(R"({
+  "@context": {"@base": "https://example.org/models/",
+               "Point": "http://ex/Point", "ex": "http://ex/"},
+  "@id": "rot-wrench",
+  "@type": ["Point", "ex:Frame", "http://ex/Abs", "RotateWrenchToProximalWithPose"]
+})");
+  ASSERT_EQ(sink_.diagnostics().size(), 1u);
+  const Diagnostic& d = sink_.diagnostics()[0];
+  EXPECT_EQ(d.code, "undefined-type");
+  EXPECT_EQ(d.severity, Severity::Warning);
+  EXPECT_EQ(d.file, "doc.json");
+  EXPECT_EQ(d.line, 5u);
+  EXPECT_EQ(d.column, 52u);
+  EXPECT_EQ(d.message,
+            "@type value \"RotateWrenchToProximalWithPose\" is not a defined term and resolves "
+            "against the base to <https://example.org/models/RotateWrenchToProximalWithPose> "
+            "(node <https://example.org/models/rot-wrench>)");
+  const json::Value& types = *out.as_array().at(0).get("@type");
+  EXPECT_EQ(types.as_array().at(3).as_string(),
+            "https://example.org/models/RotateWrenchToProximalWithPose");
+}
+
+TEST_F(Expand, VocabRelativeTypeIsNotReported) {
+  run(R"({"@context": {"@vocab": "http://ex/"}, "@id": "http://ex/a", "@type": "Thing"})");
+  EXPECT_TRUE(sink_.diagnostics().empty());
+}
+
+TEST_F(Expand, NoSinkNoReports) {
+  opts_.base = "http://example.org/doc";
+  opts_.diagnostics = nullptr;
+  json::Value doc = json::parse(R"({"@id": "a", "@type": "T", "k": 1})");
+  json::Value out = expand(doc, opts_);
+  EXPECT_EQ(out, json::parse(R"([{"@id": "http://example.org/a",
+                                  "@type": ["http://example.org/T"]}])"));
+}
+
+// ---------------------------------------------------------------------------
+// The paper authors' models
+
+TEST(ExpandUpstream, ModelsReportUndefinedTypesAndDroppedKeys) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::path(MOSPEC_SHARED_DIR) / "upstream" / "motion-spec-ral";
+  if (!fs::exists(root / "models")) {
+    GTEST_SKIP() << "upstream models not found under " << root;
+  }
+  MappedDocumentLoader loader;
+  loader.map("https://comp-rob2b.github.io/metamodels/", (root / "comp-rob2b/metamodels").string());
+  DiagnosticSink sink;
+  Options opts;
+  opts.loader = &loader;
+  opts.diagnostics = &sink;
+  size_t files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(root / "models")) {
+    if (entry.path().extension() != ".json") continue;
+    RemoteDocument doc = loader.load_file(entry.path().string());
+    opts.base = doc.document_url;
+    json::Value out = expand(*doc.document, opts);
+    EXPECT_TRUE(out.is_array());
+    ++files;
+  }
+  EXPECT_GT(files, 20u);
+  bool rotate = false;
+  bool chain = false;
+  for (const Diagnostic& d : sink.diagnostics()) {
+    if (d.code == "undefined-type" &&
+        d.message.find("\"RotateWrenchToProximalWithPose\"") != std::string::npos &&
+        d.file.ends_with("01-right-arm/00-misc.json")) {
+      rotate = true;
+      EXPECT_EQ(d.line, 78u);
+    }
+    if (d.code == "dropped-key" && d.message.find("\"kinematic-chain\"") != std::string::npos &&
+        d.file.ends_with("04-sc0a-right-arm/07-scenario.json")) {
+      chain = true;
+      EXPECT_EQ(d.line, 56u);
+      EXPECT_EQ(d.column, 13u);
+    }
+  }
+  EXPECT_TRUE(rotate) << "no undefined-type for RotateWrenchToProximalWithPose";
+  EXPECT_TRUE(chain) << "no dropped-key for kinematic-chain";
+}
+
+}  // namespace
+}  // namespace mospec::jsonld
