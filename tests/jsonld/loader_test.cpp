@@ -1,0 +1,146 @@
+#include "jsonld/loader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using mospec::Error;
+using mospec::SourceLoc;
+using mospec::jsonld::MappedDocumentLoader;
+
+namespace {
+
+class LoaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        fs::temp_directory_path() /
+        ("mospec-loader-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "meta" / "geometry");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& rel, const std::string& text) {
+    fs::path p = dir_ / rel;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  std::string dir(const std::string& rel = {}) const { return (dir_ / rel).string(); }
+
+  fs::path dir_;
+};
+
+TEST_F(LoaderTest, LongestPrefixWins) {
+  MappedDocumentLoader loader;
+  loader.map("https://example.org/", "/a");
+  loader.map("https://example.org/meta/", "/b/");
+  EXPECT_EQ(loader.resolve("https://example.org/x.json"), "/a/x.json");
+  EXPECT_EQ(loader.resolve("https://example.org/meta/geometry/c.json"), "/b/geometry/c.json");
+  EXPECT_EQ(loader.resolve("https://example.org/meta/c.json#frag"), "/b/c.json");
+  EXPECT_EQ(loader.resolve("https://other.org/x.json"), "");
+}
+
+TEST_F(LoaderTest, FileIrisAndPlainPaths) {
+  MappedDocumentLoader loader;
+  EXPECT_EQ(loader.resolve("file:///tmp/a%20b.json"), "/tmp/a b.json");
+  EXPECT_EQ(loader.resolve("file://localhost/tmp/a.json"), "/tmp/a.json");
+  EXPECT_EQ(loader.resolve("models/a.json"), "models/a.json");
+  EXPECT_EQ(loader.resolve("/abs/a.json"), "/abs/a.json");
+  EXPECT_EQ(loader.resolve("tag:non-dereferencable-iri"), "");
+}
+
+TEST_F(LoaderTest, ParsesEachFileOnce) {
+  write("meta/geometry/c.json", R"({"@context": {"x": "http://x/"}})");
+  MappedDocumentLoader loader;
+  loader.map("https://example.org/meta/", dir("meta"));
+  auto a = loader.load("https://example.org/meta/geometry/c.json", {}, true);
+  auto b = loader.load("https://example.org/meta/geometry/c.json", {}, true);
+  auto c = loader.load_file(dir("meta/geometry/../geometry/c.json"));
+  EXPECT_EQ(loader.documents_read(), 1u);
+  EXPECT_EQ(a.document, b.document);
+  EXPECT_EQ(a.document, c.document);
+  EXPECT_EQ(a.document_url, "https://example.org/meta/geometry/c.json");
+  EXPECT_TRUE(c.document_url.starts_with("file:///")) << c.document_url;
+  ASSERT_NE(a.file_id, 0u);
+  EXPECT_EQ(loader.files().path(a.file_id), dir("meta/geometry/c.json"));
+  // Locations inside the document name the file.
+  ASSERT_TRUE(a.document->is_object());
+  SourceLoc loc = a.document->get("@context")->location();
+  EXPECT_EQ(loc.file, a.file_id);
+  EXPECT_EQ(loc.line, 1u);
+  EXPECT_EQ(loc.column, 14u);
+}
+
+TEST_F(LoaderTest, UnmappedIriNamesIriAndReference) {
+  std::string app = write("a.json", "{\n  \"@context\": [\n    \"https://x/y.json\"]}");
+  MappedDocumentLoader loader;
+  loader.map("https://comp-rob2b.github.io/", dir("meta"));
+  auto doc = loader.load_file(app);
+  SourceLoc ref = doc.document->get("@context")->as_array()[0].location();
+  try {
+    loader.load("https://x/y.json", ref, true);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "loading remote context failed");
+    EXPECT_EQ(std::string(e.what()),
+              app +
+                  ":3:5: error: cannot load remote context <https://x/y.json>: no --map or "
+                  "iri-map entry maps this IRI (known prefixes: https://comp-rob2b.github.io/)");
+  }
+  try {
+    loader.load("https://x/y.json", ref, false);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "loading document failed");
+    EXPECT_NE(std::string(e.what()).find("cannot load document <https://x/y.json>"),
+              std::string::npos);
+  }
+}
+
+TEST_F(LoaderTest, MissingFileNamesPathAndReason) {
+  MappedDocumentLoader loader;
+  loader.map("https://example.org/", dir());
+  try {
+    loader.load("https://example.org/missing.json", {}, true);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "loading remote context failed");
+    std::string what = e.what();
+    EXPECT_NE(what.find("<https://example.org/missing.json>"), std::string::npos) << what;
+    EXPECT_NE(what.find(dir("missing.json")), std::string::npos) << what;
+    EXPECT_NE(what.find("No such file or directory"), std::string::npos) << what;
+  }
+  EXPECT_THROW(
+      {
+        try {
+          loader.load_file(dir("meta"));  // a directory
+        } catch (const Error& e) {
+          EXPECT_EQ(e.code(), "loading document failed");
+          EXPECT_NE(std::string(e.what()).find("Is a directory"), std::string::npos);
+          throw;
+        }
+      },
+      Error);
+}
+
+TEST_F(LoaderTest, JsonSyntaxErrorsKeepTheirLocation) {
+  std::string bad = write("bad.json", "{\n  \"a\": [1,\n}");
+  MappedDocumentLoader loader;
+  loader.map("https://example.org/", dir());
+  try {
+    loader.load("https://example.org/bad.json", {}, false);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "invalid json");
+    EXPECT_EQ(e.diagnostic().file, bad);
+    EXPECT_EQ(e.diagnostic().line, 3u);
+  }
+}
+
+}  // namespace

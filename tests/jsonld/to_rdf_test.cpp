@@ -1,0 +1,209 @@
+#include "jsonld/to_rdf.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "jsonld/json.hpp"
+#include "jsonld/loader.hpp"
+#include "rdf/nquads.hpp"
+
+using mospec::jsonld::Options;
+using mospec::jsonld::RdfDirection;
+namespace json = mospec::json;
+namespace rdf = mospec::rdf;
+
+namespace {
+
+constexpr std::string_view kXsd = "http://www.w3.org/2001/XMLSchema#";
+constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
+
+// Converts an already expanded document (so these tests exercise to_rdf alone).
+rdf::Dataset convert(std::string_view expanded, const Options& options = {}) {
+  rdf::Dataset out;
+  mospec::jsonld::to_rdf(json::parse(expanded, 1, "t.jsonld"), out, options);
+  return out;
+}
+
+struct Lit {
+  std::string lexical, datatype, language;
+};
+
+// The object literal of the single quad with predicate `p`.
+Lit literal_of(const rdf::Dataset& d, std::string_view p) {
+  const rdf::TermTable& t = d.terms();
+  rdf::TermId pid = t.find_iri(p);
+  if (pid.is_any()) return {"<no predicate>", "", ""};
+  auto hits = d.match(rdf::TermId::any(), pid, rdf::TermId::any());
+  if (hits.size() != 1) return {"<" + std::to_string(hits.size()) + " quads>", "", ""};
+  const rdf::Term& o = t[d.quads()[hits[0]].object];
+  if (o.kind != rdf::TermKind::Literal) return {"<not a literal>", "", ""};
+  return {std::string(o.value), std::string(t[o.datatype].value), std::string(o.language)};
+}
+
+std::string xsd(std::string_view local) {
+  return std::string(kXsd) + std::string(local);
+}
+
+rdf::Dataset one_value(std::string_view value_object, const Options& options = {}) {
+  return convert(R"([{"@id": "http://ex/s", "http://ex/p": [)" + std::string(value_object) + "]}]",
+                 options);
+}
+
+TEST(ToRdf, NativeNumbers) {
+  struct Case {
+    std::string json, lexical, datatype;
+  } cases[] = {
+      {"1.1", "1.1E0", xsd("double")},
+      {"5.3", "5.3E0", xsd("double")},
+      {"1e21", "1.0E21", xsd("double")},
+      {"0.1", "1.0E-1", xsd("double")},
+      {"-123.456", "-1.23456E2", xsd("double")},
+      // Rounded to 15 fractional digits, as toExponential(15) does.
+      {"0.0922959556", "9.229595559999999E-2", xsd("double")},
+      {"5", "5", xsd("integer")},
+      {"-0", "0", xsd("integer")},
+      {"1e20", "100000000000000000000", xsd("integer")},
+      {"true", "true", xsd("boolean")},
+  };
+  for (const Case& c : cases) {
+    rdf::Dataset d = one_value(R"({"@value": )" + c.json + "}");
+    Lit l = literal_of(d, "http://ex/p");
+    EXPECT_EQ(l.lexical, c.lexical) << c.json;
+    EXPECT_EQ(l.datatype, c.datatype) << c.json;
+  }
+}
+
+TEST(ToRdf, TypedValuesKeepOrCanonicaliseTheirForm) {
+  // A JSON number typed xsd:double is canonicalised, even when integral...
+  Lit l =
+      literal_of(one_value(R"({"@value": 5, "@type": ")" + xsd("double") + "\"}"), "http://ex/p");
+  EXPECT_EQ(l.lexical, "5.0E0");
+  EXPECT_EQ(l.datatype, xsd("double"));
+  // ...but a JSON string typed xsd:double keeps its lexical form.
+  l = literal_of(one_value(R"({"@value": "80.5", "@type": ")" + xsd("double") + "\"}"),
+                 "http://ex/p");
+  EXPECT_EQ(l.lexical, "80.5");
+  EXPECT_EQ(l.datatype, xsd("double"));
+  // A fractional number typed with another datatype gets the double form, keeping the type.
+  l = literal_of(one_value(R"({"@value": 2.5, "@type": "http://ex/t"})"), "http://ex/p");
+  EXPECT_EQ(l.lexical, "2.5E0");
+  EXPECT_EQ(l.datatype, "http://ex/t");
+  l = literal_of(one_value(R"({"@value": "x", "@language": "en-US"})"), "http://ex/p");
+  EXPECT_EQ(l.lexical, "x");
+  EXPECT_EQ(l.datatype, std::string(kRdf) + "langString");
+  EXPECT_EQ(l.language, "en-US");
+}
+
+TEST(ToRdf, JsonLiteralsAreCanonical) {
+  Lit l = literal_of(one_value(R"({"@value": {"b": [1.0, 2.5], "a": "x"}, "@type": "@json"})"),
+                     "http://ex/p");
+  EXPECT_EQ(l.lexical, R"({"a":"x","b":[1,2.5]})");
+  EXPECT_EQ(l.datatype, std::string(kRdf) + "JSON");
+}
+
+TEST(ToRdf, IllFormedTermsAreDropped) {
+  rdf::Dataset d = convert(R"([
+    {"@id": "relative", "http://ex/p": [{"@value": "a"}]},
+    {"@id": "http://ex/s", "http://ex/a b": [{"@value": "b"}],
+     "_:bp": [{"@value": "c"}], "http://ex/q": [{"@id": "http://ex/o o"}],
+     "http://ex/l": [{"@value": "d", "@language": "not a tag"}],
+     "@type": ["http://ex/T", "rel"]}
+  ])");
+  ASSERT_EQ(d.size(), 1u) << rdf::to_nquads(d);
+  EXPECT_EQ(d.terms()[d.quads()[0].object].value, "http://ex/T");
+}
+
+TEST(ToRdf, GeneralizedRdfKeepsBlankPredicates) {
+  Options options;
+  options.produce_generalized_rdf = true;
+  rdf::Dataset d = convert(R"([{"@id": "http://ex/s", "_:bp": [{"@value": "c"}]}])", options);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d.terms()[d.quads()[0].predicate].kind, rdf::TermKind::Blank);
+}
+
+TEST(ToRdf, ListsAndNamedGraphs) {
+  rdf::Dataset d = convert(R"([{"@id": "http://ex/g", "@graph": [
+    {"@id": "http://ex/s", "http://ex/p": [{"@list": [{"@value": 1}, {"@id": "http://ex/o"}]}],
+     "http://ex/e": [{"@list": []}]}]}])");
+  EXPECT_EQ(d.size(), 6u) << rdf::to_nquads(d);
+  rdf::TermId g = d.terms().find_iri("http://ex/g");
+  ASSERT_FALSE(g.is_any());
+  for (const rdf::Quad& q : d.quads()) EXPECT_EQ(q.graph, g);
+  rdf::TermId nil = d.terms().find_iri(std::string(kRdf) + "nil");
+  EXPECT_EQ(
+      d.match(d.terms().find_iri("http://ex/s"), d.terms().find_iri("http://ex/e"), nil).size(),
+      1u);
+}
+
+TEST(ToRdf, RdfDirectionModes) {
+  const std::string value = R"({"@value": "x", "@language": "en-US", "@direction": "rtl"})";
+  Lit plain = literal_of(one_value(value), "http://ex/p");
+  EXPECT_EQ(plain.datatype, std::string(kRdf) + "langString");
+
+  Options i18n;
+  i18n.rdf_direction = RdfDirection::I18nDatatype;
+  Lit l = literal_of(one_value(value, i18n), "http://ex/p");
+  EXPECT_EQ(l.lexical, "x");
+  EXPECT_EQ(l.datatype, "https://www.w3.org/ns/i18n#en-us_rtl");
+  EXPECT_EQ(l.language, "");
+
+  Options compound;
+  compound.rdf_direction = RdfDirection::CompoundLiteral;
+  rdf::Dataset d = one_value(value, compound);
+  EXPECT_EQ(d.size(), 4u) << rdf::to_nquads(d);
+  EXPECT_EQ(literal_of(d, std::string(kRdf) + "value").lexical, "x");
+  EXPECT_EQ(literal_of(d, std::string(kRdf) + "language").lexical, "en-us");
+  EXPECT_EQ(literal_of(d, std::string(kRdf) + "direction").lexical, "rtl");
+}
+
+TEST(ToRdf, DocumentsNeverShareBlankNodes) {
+  rdf::Dataset d;
+  auto doc = json::parse(R"([{"@id": "_:b0", "http://ex/p": [{"@id": "_:b1"}]}])");
+  mospec::jsonld::to_rdf(doc, d, {});
+  mospec::jsonld::to_rdf(doc, d, {});
+  ASSERT_EQ(d.size(), 2u);
+  const rdf::Quad& a = d.quads()[0];
+  const rdf::Quad& b = d.quads()[1];
+  EXPECT_NE(a.subject, b.subject);
+  EXPECT_NE(a.object, b.object);
+  EXPECT_NE(a.subject, a.object);
+}
+
+TEST(ToRdf, QuadsRecordWhereTheNodeIdIsWritten) {
+  rdf::Dataset d = convert("[{\"http://ex/p\": [{\"@value\": 1}],\n  \"@id\": \"http://ex/s\"}]");
+  ASSERT_EQ(d.size(), 1u);
+  mospec::SourceLoc loc = d.location(0);
+  EXPECT_EQ(loc.file, 1u);
+  EXPECT_EQ(loc.line, 2u);
+  EXPECT_EQ(loc.column, 10u);
+}
+
+TEST(ToRdf, ConflictingIndexesAreAnError) {
+  EXPECT_THROW(convert(R"([{"@id": "http://ex/s", "@index": "a"},
+                           {"@id": "http://ex/s", "@index": "b"}])"),
+               mospec::Error);
+}
+
+// load_into = expand + to_rdf, through a document with a context.
+TEST(LoadInto, ExpandsThenConverts) {
+  Options options;
+  options.base = "https://example.org/models/";
+  rdf::Dataset d;
+  mospec::jsonld::load_into(json::parse(R"({
+    "@context": {"ex": "http://ex/", "mass": {"@id": "ex:mass", "@type": "xsd:double"},
+                 "xsd": "http://www.w3.org/2001/XMLSchema#"},
+    "@id": "arm", "mass": [1.5, "80.5"]})"),
+                            d, options);
+  ASSERT_EQ(d.size(), 2u) << rdf::to_nquads(d);
+  std::string nq = rdf::to_nquads(d);
+  EXPECT_NE(nq.find("<https://example.org/models/arm> <http://ex/mass> \"1.5E0\"^^<" +
+                    xsd("double") + ">"),
+            std::string::npos)
+      << nq;
+  EXPECT_NE(nq.find("\"80.5\"^^<" + xsd("double") + ">"), std::string::npos) << nq;
+}
+
+}  // namespace
