@@ -90,18 +90,21 @@ struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
 
-// Reads the whole file; returns an errno value on failure (0 on success).
-int read_whole_file(const std::string& path, std::string& out) {
+// Reads the whole file; returns the reason on failure (empty on success).
+std::string read_whole_file(const std::string& path, std::string& out) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) return EISDIR;
+  fs::file_status status = fs::status(path, ec);
+  if (fs::is_directory(status)) return std::strerror(EISDIR);
+  // Devices and pipes (/dev/zero, a FIFO) could block or never end; models are files.
+  if (fs::exists(status) && !fs::is_regular_file(status)) return "not a regular file";
   errno = 0;
   std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-  if (!f) return errno != 0 ? errno : ENOENT;
+  if (!f) return std::strerror(errno != 0 ? errno : ENOENT);
   char buffer[65536];
   size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) out.append(buffer, n);
-  if (std::ferror(f.get())) return errno != 0 ? errno : EIO;
-  return 0;
+  if (std::ferror(f.get())) return std::strerror(errno != 0 ? errno : EIO);
+  return {};
 }
 
 }  // namespace
@@ -173,9 +176,8 @@ RemoteDocument MappedDocumentLoader::load_file(const std::string& path, std::str
   auto it = cache_.find(key);
   if (it == cache_.end()) {
     std::string text;
-    if (int err = read_whole_file(path, text); err != 0) {
-      throw Error(std::string(kDocumentFailed),
-                  "cannot read '" + path + "': " + std::string(std::strerror(err)), path);
+    if (std::string reason = read_whole_file(path, text); !reason.empty()) {
+      throw Error(std::string(kDocumentFailed), "cannot read '" + path + "': " + reason, path);
     }
     ++reads_;
     RemoteDocument doc;

@@ -129,6 +129,17 @@ TEST_F(LoaderTest, MissingFileNamesPathAndReason) {
       Error);
 }
 
+TEST_F(LoaderTest, RefusesDevices) {
+  MappedDocumentLoader loader;
+  try {
+    loader.load("file:///dev/zero", {}, true);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "loading remote context failed");
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(LoaderTest, JsonSyntaxErrorsKeepTheirLocation) {
   std::string bad = write("bad.json", "{\n  \"a\": [1,\n}");
   MappedDocumentLoader loader;
