@@ -55,7 +55,7 @@ class ActiveContext {
   const std::optional<std::string>& vocab() const;
   const std::optional<std::string>& default_language() const;
   const std::optional<std::string>& default_direction() const;  // "ltr"/"rtl"
-  const ContextPtr& previous() const;        // previous context (non-propagated), may be null
+  const ContextPtr& previous() const;  // previous context (non-propagated), may be null
 
   // Term lookup; nullptr when the term is not defined. A term defined as null
   // yields a definition whose iri is nullopt.
@@ -70,6 +70,41 @@ class ActiveContext {
 
  private:
   std::shared_ptr<Impl> impl_;
+};
+
+// Memo of context processing shared by the documents of one run (one per
+// DocumentLoader; not thread-safe). Two levels:
+//  * exact: (active context pointer, local context, base URL, flags) -> the very
+//    ContextPtr produced before, so expansion switching into the same type-scoped
+//    context at every node allocates nothing;
+//  * remote: (term state of the active context, remote context IRI, flags) ->
+//    the term definitions it produced, so a remote context included by many
+//    documents (each with its own base IRI, hence its own active contexts) is
+//    processed once.
+// Results depend only on the inputs in the key (the base IRI is added to the
+// key when processing read it), and only successful results are stored.
+class ContextCache {
+ public:
+  ContextCache();
+  ~ContextCache();
+  ContextCache(const ContextCache&) = delete;
+  ContextCache& operator=(const ContextCache&) = delete;
+
+  struct Stats {
+    size_t exact_hits = 0;
+    size_t exact_misses = 0;
+    size_t remote_hits = 0;
+    size_t remote_misses = 0;
+    size_t documents_loaded = 0;  // remote context documents fetched from the loader
+  };
+  const Stats& stats() const;
+  void clear();
+
+  struct Impl;
+  Impl& impl() { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
 };
 
 // Context Processing algorithm (4.1.2). `local_context` is the value of an

@@ -1,6 +1,7 @@
 // Options and the term-drop policy shared by the JSON-LD algorithms.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -10,6 +11,7 @@
 namespace mospec::jsonld {
 
 class DocumentLoader;
+class ContextCache;
 
 enum class ProcessingMode : uint8_t { JsonLd10, JsonLd11 };
 enum class RdfDirection : uint8_t { None, I18nDatatype, CompoundLiteral };
@@ -26,6 +28,10 @@ struct Options {
   // that are not defined terms and become document-relative IRIs). nullptr: not
   // reported. The file name in diagnostics comes from the loader's SourceFiles.
   DiagnosticSink* diagnostics = nullptr;
+  // Memo of processed contexts (see ContextCache in context.hpp). Share one per
+  // loader across the documents of a run so that remote and scoped contexts are
+  // processed once; nullptr: every process_context call starts from scratch.
+  std::shared_ptr<ContextCache> context_cache;
 };
 
 }  // namespace mospec::jsonld
