@@ -99,10 +99,14 @@ std::string remove_dot_segments(std::string_view in) {
 
 // RFC 3986 section 5.2.3.
 std::string merge_paths(const Parts& base, std::string_view reference_path) {
-  if (base.has_authority && base.path.empty()) return "/" + std::string(reference_path);
-  size_t slash = base.path.rfind('/');
-  if (slash == std::string_view::npos) return std::string(reference_path);
-  return std::string(base.path.substr(0, slash + 1)) + std::string(reference_path);
+  std::string out;
+  if (base.has_authority && base.path.empty()) {
+    out = "/";
+  } else if (size_t slash = base.path.rfind('/'); slash != std::string_view::npos) {
+    out = base.path.substr(0, slash + 1);
+  }
+  out.append(reference_path);
+  return out;
 }
 
 }  // namespace

@@ -187,7 +187,7 @@ class Parser {
       ++pos_;
     }
     if (c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF)) {
-      char buf[40];
+      char buf[64];
       std::snprintf(buf, sizeof buf, "U+%04X is not a Unicode scalar value", c);
       fail_at(buf, col);
     }

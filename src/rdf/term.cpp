@@ -103,14 +103,18 @@ TermId TermTable::blank(std::string_view label) {
 
 TermId TermTable::fresh_blank() {
   for (;;) {
-    std::string label = "b" + std::to_string(next_fresh_++);
+    // Appending (rather than "b" + ...) sidesteps GCC 12's false -Wrestrict.
+    std::string label(1, 'b');
+    label += std::to_string(next_fresh_++);
     if (find_blank(label).is_any()) return blank(label);
   }
 }
 
 std::string TermTable::fresh_blank_prefix() {
   for (;;) {
-    std::string prefix = "r" + std::to_string(next_prefix_++) + "_";
+    std::string prefix(1, 'r');
+    prefix += std::to_string(next_prefix_++);
+    prefix += '_';
     // "rN" has no '_', so any label starting with the prefix has it as its stem.
     if (!blank_stems_.contains(prefix)) {
       // Reserve it even if the document turns out to have no blank nodes.

@@ -1,0 +1,128 @@
+#include "rdf/iri.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mospec::rdf {
+namespace {
+
+using Cases = std::vector<std::pair<std::string, std::string>>;
+
+void expect_resolves(std::string_view base, const Cases& cases) {
+  for (const auto& [reference, expected] : cases)
+    EXPECT_EQ(resolve_iri(base, reference), expected) << "reference \"" << reference << "\"";
+}
+
+// RFC 3986 section 5.4.1.
+TEST(ResolveIri, Rfc3986NormalExamples) {
+  expect_resolves("http://a/b/c/d;p?q", {
+                                            {"g:h", "g:h"},
+                                            {"g", "http://a/b/c/g"},
+                                            {"./g", "http://a/b/c/g"},
+                                            {"g/", "http://a/b/c/g/"},
+                                            {"/g", "http://a/g"},
+                                            {"//g", "http://g"},
+                                            {"?y", "http://a/b/c/d;p?y"},
+                                            {"g?y", "http://a/b/c/g?y"},
+                                            {"#s", "http://a/b/c/d;p?q#s"},
+                                            {"g#s", "http://a/b/c/g#s"},
+                                            {"g?y#s", "http://a/b/c/g?y#s"},
+                                            {";x", "http://a/b/c/;x"},
+                                            {"g;x", "http://a/b/c/g;x"},
+                                            {"g;x?y#s", "http://a/b/c/g;x?y#s"},
+                                            {"", "http://a/b/c/d;p?q"},
+                                            {".", "http://a/b/c/"},
+                                            {"./", "http://a/b/c/"},
+                                            {"..", "http://a/b/"},
+                                            {"../", "http://a/b/"},
+                                            {"../g", "http://a/b/g"},
+                                            {"../..", "http://a/"},
+                                            {"../../", "http://a/"},
+                                            {"../../g", "http://a/g"},
+                                        });
+}
+
+// RFC 3986 section 5.4.2.
+TEST(ResolveIri, Rfc3986AbnormalExamples) {
+  expect_resolves("http://a/b/c/d;p?q", {
+                                            {"../../../g", "http://a/g"},
+                                            {"../../../../g", "http://a/g"},
+                                            {"/./g", "http://a/g"},
+                                            {"/../g", "http://a/g"},
+                                            {"g.", "http://a/b/c/g."},
+                                            {".g", "http://a/b/c/.g"},
+                                            {"g..", "http://a/b/c/g.."},
+                                            {"..g", "http://a/b/c/..g"},
+                                            {"./../g", "http://a/b/g"},
+                                            {"./g/.", "http://a/b/c/g/"},
+                                            {"g/./h", "http://a/b/c/g/h"},
+                                            {"g/../h", "http://a/b/c/h"},
+                                            {"g;x=1/./y", "http://a/b/c/g;x=1/y"},
+                                            {"g;x=1/../y", "http://a/b/c/y"},
+                                            {"g?y/./x", "http://a/b/c/g?y/./x"},
+                                            {"g?y/../x", "http://a/b/c/g?y/../x"},
+                                            {"g#s/./x", "http://a/b/c/g#s/./x"},
+                                            {"g#s/../x", "http://a/b/c/g#s/../x"},
+                                            {"http:g", "http:g"},
+                                        });
+}
+
+TEST(ResolveIri, BaseWithQueryAndFragment) {
+  expect_resolves("http://example.com/a/b?q=1#frag",
+                  {
+                      {"", "http://example.com/a/b?q=1"},
+                      {"#f", "http://example.com/a/b?q=1#f"},
+                      {"?p", "http://example.com/a/b?p"},
+                      {"c", "http://example.com/a/c"},
+                      {"//other.org", "http://other.org"},
+                      {"//other.org/x/../y", "http://other.org/y"},
+                      {"?", "http://example.com/a/b?"},
+                      {"#", "http://example.com/a/b?q=1#"},
+                  });
+}
+
+TEST(ResolveIri, BaseWithoutPath) {
+  expect_resolves("http://example.com", {
+                                            {"a", "http://example.com/a"},
+                                            {"./a", "http://example.com/a"},
+                                            {"../a", "http://example.com/a"},
+                                            {"", "http://example.com"},
+                                            {"?x", "http://example.com?x"},
+                                        });
+}
+
+TEST(ResolveIri, NonHierarchicalAndFileBases) {
+  expect_resolves("urn:x:y", {{"#a", "urn:x:y#a"}, {"z", "urn:z"}});
+  expect_resolves("file:///home/u/doc.jsonld",
+                  {{"ctx.jsonld", "file:///home/u/ctx.jsonld"}, {"../c", "file:///home/c"}});
+}
+
+TEST(ResolveIri, EmptyBaseReturnsReference) {
+  EXPECT_EQ(resolve_iri("", "a/../b"), "a/../b");
+  EXPECT_EQ(resolve_iri("", "http://x/./y"), "http://x/./y");
+}
+
+TEST(ResolveIri, AbsoluteReferenceLosesDotSegments) {
+  EXPECT_EQ(resolve_iri("http://a/b", "http://x/y/../z/./w"), "http://x/z/w");
+}
+
+TEST(IsAbsoluteIri, RequiresScheme) {
+  EXPECT_TRUE(is_absolute_iri("http://example.com"));
+  EXPECT_TRUE(is_absolute_iri("urn:isbn:123"));
+  EXPECT_TRUE(is_absolute_iri("a+b-c.d:x"));
+  EXPECT_TRUE(is_absolute_iri("x:"));
+  EXPECT_FALSE(is_absolute_iri(""));
+  EXPECT_FALSE(is_absolute_iri(":x"));
+  EXPECT_FALSE(is_absolute_iri("1a:x"));
+  EXPECT_FALSE(is_absolute_iri("_:b0"));
+  EXPECT_FALSE(is_absolute_iri("a b:x"));
+  EXPECT_FALSE(is_absolute_iri("relative/path"));
+  EXPECT_FALSE(is_absolute_iri("#frag"));
+  EXPECT_FALSE(is_absolute_iri("./a:b"));
+}
+
+}  // namespace
+}  // namespace mospec::rdf

@@ -1,0 +1,172 @@
+#include "rdf/turtle.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "rdf/isomorphism.hpp"
+#include "rdf/nquads.hpp"
+
+namespace mospec::rdf {
+namespace {
+
+constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
+
+std::string turtle_error(std::string_view text, std::string_view base = "http://ex.org/") {
+  Dataset d;
+  try {
+    read_turtle(text, base, d, 1, "doc.ttl");
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "syntax");
+    return e.what();
+  }
+  return "no error";
+}
+
+// Expected graphs are written in N-Triples and compared up to blank-node labels.
+void expect_graph(const Dataset& actual, std::string_view ntriples) {
+  Dataset expected;
+  read_nquads(ntriples, expected);
+  EXPECT_TRUE(isomorphic(actual, expected))
+      << describe_difference(actual, expected) << "\nactual:\n"
+      << to_nquads(actual);
+}
+
+TEST(ReadTurtle, PrefixesBaseAndRelativeIris) {
+  Dataset d;
+  read_turtle(
+      "@prefix ex: <http://ex.org/ns#> .\n"
+      "@prefix rel: <vocab/> .\n"
+      "<a> ex:p <../b> ; ex:q rel:x .\n"
+      "@base <http://other.org/dir/> .\n"
+      "<c> a ex:C .\n"
+      "BASE <sub/>\n"
+      "<d> <#frag> <> .\n",
+      "http://ex.org/base/doc.ttl", d);
+  expect_graph(d,
+               "<http://ex.org/base/a> <http://ex.org/ns#p> <http://ex.org/b> .\n"
+               "<http://ex.org/base/a> <http://ex.org/ns#q> <http://ex.org/base/vocab/x> .\n"
+               "<http://other.org/dir/c> <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> "
+               "<http://ex.org/ns#C> .\n"
+               "<http://other.org/dir/sub/d> <http://other.org/dir/sub/#frag> "
+               "<http://other.org/dir/sub/> .\n");
+}
+
+TEST(ReadTurtle, LiteralsWithCurieDatatypesAndLanguages) {
+  Dataset d;
+  read_turtle(
+      "@prefix xsd: <http://www.w3.org/2001/XMLSchema#> .\n"
+      "<s> <p> \"1\"^^xsd:int, 2, 3.5, true, \"hi\"@en-GB, \"\"\"multi\nline\"\"\", 'x\\ty' .\n",
+      "http://ex.org/", d);
+  expect_graph(d,
+               "<http://ex.org/s> <http://ex.org/p> "
+               "\"1\"^^<http://www.w3.org/2001/XMLSchema#int> .\n"
+               "<http://ex.org/s> <http://ex.org/p> "
+               "\"2\"^^<http://www.w3.org/2001/XMLSchema#integer> .\n"
+               "<http://ex.org/s> <http://ex.org/p> "
+               "\"3.5\"^^<http://www.w3.org/2001/XMLSchema#decimal> .\n"
+               "<http://ex.org/s> <http://ex.org/p> "
+               "\"true\"^^<http://www.w3.org/2001/XMLSchema#boolean> .\n"
+               "<http://ex.org/s> <http://ex.org/p> \"hi\"@en-GB .\n"
+               "<http://ex.org/s> <http://ex.org/p> \"multi\\nline\" .\n"
+               "<http://ex.org/s> <http://ex.org/p> \"x\\ty\" .\n");
+}
+
+TEST(ReadTurtle, CollectionsAndBlankNodes) {
+  Dataset d;
+  read_turtle(
+      "@prefix ex: <http://ex.org/> .\n"
+      "ex:s ex:list (1 ex:two [ ex:q \"three\" ]) ;\n"
+      "     ex:empty () ;\n"
+      "     ex:node _:n .\n"
+      "_:n ex:back ex:s .\n",
+      "", d);
+  expect_graph(d,
+               "<http://ex.org/s> <http://ex.org/list> _:l1 .\n"
+               "_:l1 <http://www.w3.org/1999/02/22-rdf-syntax-ns#first> "
+               "\"1\"^^<http://www.w3.org/2001/XMLSchema#integer> .\n"
+               "_:l1 <http://www.w3.org/1999/02/22-rdf-syntax-ns#rest> _:l2 .\n"
+               "_:l2 <http://www.w3.org/1999/02/22-rdf-syntax-ns#first> <http://ex.org/two> .\n"
+               "_:l2 <http://www.w3.org/1999/02/22-rdf-syntax-ns#rest> _:l3 .\n"
+               "_:l3 <http://www.w3.org/1999/02/22-rdf-syntax-ns#first> _:anon .\n"
+               "_:anon <http://ex.org/q> \"three\" .\n"
+               "_:l3 <http://www.w3.org/1999/02/22-rdf-syntax-ns#rest> "
+               "<http://www.w3.org/1999/02/22-rdf-syntax-ns#nil> .\n"
+               "<http://ex.org/s> <http://ex.org/empty> "
+               "<http://www.w3.org/1999/02/22-rdf-syntax-ns#nil> .\n"
+               "<http://ex.org/s> <http://ex.org/node> _:n .\n"
+               "_:n <http://ex.org/back> <http://ex.org/s> .\n");
+  TermId first = d.terms().find_iri(std::string(kRdf) + "first");
+  EXPECT_EQ(d.match(TermId::any(), first, TermId::any()).size(), 3u);
+}
+
+TEST(ReadTurtle, EachDocumentGetsItsOwnBlankNodes) {
+  Dataset d;
+  const std::string doc = "_:a <http://ex.org/p> [ <http://ex.org/q> _:a ] .\n";
+  read_turtle(doc, "", d);
+  read_turtle(doc, "", d);
+  ASSERT_EQ(d.size(), 4u);
+  const auto& q = d.quads();
+  std::set<uint32_t> blanks;
+  for (const Quad& quad : q) {
+    if (d.terms()[quad.subject].is_blank()) blanks.insert(quad.subject.index);
+    if (d.terms()[quad.object].is_blank()) blanks.insert(quad.object.index);
+  }
+  EXPECT_EQ(blanks.size(), 4u);
+}
+
+TEST(ReadTrig, NamedGraphs) {
+  Dataset d;
+  read_trig(
+      "@prefix ex: <http://ex.org/> .\n"
+      "ex:s ex:p ex:o .\n"
+      "ex:g { ex:s ex:p \"in g\" }\n"
+      "GRAPH _:bg { ex:s ex:p \"in blank graph\" }\n",
+      "", d);
+  Dataset expected;
+  read_nquads(
+      "<http://ex.org/s> <http://ex.org/p> <http://ex.org/o> .\n"
+      "<http://ex.org/s> <http://ex.org/p> \"in g\" <http://ex.org/g> .\n"
+      "<http://ex.org/s> <http://ex.org/p> \"in blank graph\" _:g .\n",
+      expected);
+  EXPECT_TRUE(isomorphic(d, expected)) << describe_difference(d, expected);
+}
+
+TEST(ReadTurtle, QuadsAreLocatedOnTheirLine) {
+  Dataset d;
+  read_turtle(
+      "@prefix ex: <http://ex.org/> .\n"
+      "\n"
+      "ex:a ex:p ex:b .\n"
+      "ex:c ex:p\n"
+      "  ex:d .\n",
+      "", d, 7, "doc.ttl");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d.location(0).file, 7u);
+  EXPECT_EQ(d.location(0).line, 3u);
+  EXPECT_EQ(d.location(1).line, 5u);
+  EXPECT_GT(d.location(0).column, 0u);
+}
+
+TEST(ReadTurtle, SyntaxErrorNamesFileAndLine) {
+  const std::string what = turtle_error(
+      "@prefix ex: <http://ex.org/> .\n"
+      "ex:a ex:p ex:b .\n"
+      "ex:c ex:p ex:d ex:e .\n");
+  EXPECT_EQ(what.rfind("doc.ttl:3:", 0), 0u) << what;
+  EXPECT_NE(what.find("error: "), std::string::npos) << what;
+}
+
+TEST(ReadTurtle, UndefinedPrefixIsAnError) {
+  EXPECT_EQ(turtle_error("<s> <p> nope:x .\n"),
+            "doc.ttl:1:15: error: undefined prefix 'nope:' in nope:x");
+}
+
+TEST(ReadTurtle, RelativeIriWithoutBaseIsAnError) {
+  EXPECT_EQ(turtle_error("<http://ex.org/s> <p> <http://ex.org/o> .\n", ""),
+            "doc.ttl:1:40: error: relative IRI <p> and no base IRI to resolve it against");
+}
+
+}  // namespace
+}  // namespace mospec::rdf
