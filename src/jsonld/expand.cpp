@@ -13,6 +13,7 @@
 
 #include "jsonld/context.hpp"
 #include "jsonld/loader.hpp"
+#include "rdf/iri.hpp"
 
 namespace mospec::jsonld {
 namespace {
@@ -66,6 +67,17 @@ bool is_graph_object(const Value& v) {
     if (k != "@graph" && k != "@id" && k != "@index") return false;
   }
   return true;
+}
+
+// An absolute IRI by syntax: a scheme and none of the characters RFC 3987
+// excludes from IRIs (space, controls, <>"{}|\^`).
+bool is_iri(std::string_view s) {
+  if (!rdf::is_absolute_iri(s)) return false;
+  return std::none_of(s.begin(), s.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u <= 0x20 || u == 0x7f ||
+           std::string_view("<>\"{}|\\^`").find(c) != std::string_view::npos;
+  });
 }
 
 bool is_node_object(const Value& v) {
@@ -286,13 +298,10 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const Value&
                               const std::string& base_url, bool from_map) {
   const Object& obj = element.as_object();
   // 3: the property-scoped context comes from the context we were called with.
-  const TermDefinition* ap_def = ap ? active->find(*ap) : nullptr;
-  std::optional<json::Value> property_scoped;
-  std::string property_base;
-  if (ap_def != nullptr && ap_def->local_context) {
-    property_scoped = ap_def->local_context;
-    property_base = ap_def->base_url;
-  }
+  // `entry` keeps that context, and so `ap_def`, alive after `active` moves on.
+  const ContextPtr entry = active;
+  const TermDefinition* ap_def = ap ? entry->find(*ap) : nullptr;
+  if (ap_def != nullptr && !ap_def->local_context) ap_def = nullptr;
 
   // 7: a type-scoped context does not propagate into new node objects.
   if (active->previous() && !from_map) {
@@ -306,9 +315,9 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const Value&
     if (!has_value && !only_id) active = active->previous();
   }
   // 8
-  if (property_scoped) {
-    active =
-        process_context(active, *property_scoped, property_base, opts_, nullptr, true, true, true);
+  if (ap_def != nullptr) {
+    active = process_context(active, *ap_def->local_context, ap_def->base_url, opts_, nullptr, true,
+                             true, true);
   }
   // 9
   if (const Value* ctx = obj.find("@context")) {
@@ -862,9 +871,7 @@ Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc elem
            "only strings can be language-tagged, found " + std::string(kind_name(*v)),
            v->location().known() ? v->location() : element_loc);
     } else if (type != nullptr) {  // 15.5
-      const bool iri = type->is_string() && type->as_string().find(':') != std::string::npos &&
-                       type->as_string().rfind("_:", 0) != 0;
-      if (!iri) {
+      if (!type->is_string() || !is_iri(type->as_string())) {
         fail("invalid typed value",
              "@type of a value object must be an IRI, found " +
                  (type->is_string() ? "\"" + type->as_string() + "\""

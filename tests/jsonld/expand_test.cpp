@@ -145,11 +145,16 @@ TEST_F(Expand, Included) {
 TEST_F(Expand, ReverseProperties) {
   expect_expands(R"({
     "@context": {"@vocab": "http://ex/", "child": {"@reverse": "http://ex/parent"}},
-    "@id": "http://ex/a", "child": {"@id": "http://ex/b"},
-    "@reverse": {"http://ex/knows": {"@id": "http://ex/c"}}})",
+    "@id": "http://ex/a", "child": {"@id": "http://ex/b"}})",
                  R"([{"@id": "http://ex/a",
-                      "@reverse": {"http://ex/parent": [{"@id": "http://ex/b"}],
-                                   "http://ex/knows": [{"@id": "http://ex/c"}]}}])");
+                      "@reverse": {"http://ex/parent": [{"@id": "http://ex/b"}]}}])");
+  // Reversed twice is forward.
+  expect_expands(R"({"@context": {"likedBy": {"@reverse": "http://ex/likes"}},
+    "@id": "http://ex/a",
+    "@reverse": {"http://ex/knows": {"@id": "http://ex/c"},
+                 "likedBy": {"@id": "http://ex/d"}}})",
+                 R"([{"@id": "http://ex/a", "http://ex/likes": [{"@id": "http://ex/d"}],
+                      "@reverse": {"http://ex/knows": [{"@id": "http://ex/c"}]}}])");
   expect_error(R"({"@context": {"r": {"@reverse": "http://ex/r"}}, "r": "lit"})",
                "invalid reverse property value");
 }
@@ -350,7 +355,7 @@ TEST_F(Expand, UndefinedTypeIsReportedAtTheValue) {
   EXPECT_EQ(d.severity, Severity::Warning);
   EXPECT_EQ(d.file, "doc.json");
   EXPECT_EQ(d.line, 5u);
-  EXPECT_EQ(d.column, 52u);
+  EXPECT_EQ(d.column, 51u);
   EXPECT_EQ(d.message,
             "@type value \"RotateWrenchToProximalWithPose\" is not a defined term and resolves "
             "against the base to <https://example.org/models/RotateWrenchToProximalWithPose> "
