@@ -517,7 +517,21 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
            value.location());
     }
     std::optional<std::string> iri = expand_iri(*active, value.as_string(), true, false);
-    if (iri) expanded_value = string_at(std::move(*iri), value.location());
+    if (!iri) {
+      // A keyword-like @id ("@ignoreMe") expands to null. The suite (expand
+      // 0122, toRdf e122) keeps "@id": null so that the node is not mistaken for
+      // a blank node and its triples are dropped.
+      if (opts_.diagnostics != nullptr) {
+        st.pending.push_back({value.location(), "dropped-id",
+                              "@id value \"" + value.as_string() +
+                                  "\" expands to no IRI; the node's triples are dropped"});
+      }
+      Value null_id;
+      null_id.set_location(value.location());
+      put(result, "@id", std::move(null_id), key_loc);
+      return;
+    }
+    expanded_value = string_at(std::move(*iri), value.location());
   } else if (ep == "@type") {  // 13.4.4
     bool ok = value.is_string();
     if (value.is_array()) {
