@@ -244,7 +244,11 @@ struct ContextCache::Impl {
 
   // Which term definition holds a scoped context, so expansion passing
   // `*def->local_context` is recognised by address instead of by content.
-  std::unordered_map<const json::Value*, std::weak_ptr<const TermDefinition>> owners;
+  struct Owner {
+    std::weak_ptr<const TermDefinition> def;
+    size_t hash = 0;  // hash_json of its local context, computed once
+  };
+  std::unordered_map<const json::Value*, Owner> owners;
   size_t owners_purge_at = 1024;
 
   // Remote level: what applying a remote context to a term state produced.
@@ -265,10 +269,10 @@ struct ContextCache::Impl {
 
   void register_owner(const TermPtr& def) {
     if (owners.size() >= owners_purge_at) {
-      std::erase_if(owners, [](const auto& kv) { return kv.second.expired(); });
+      std::erase_if(owners, [](const auto& kv) { return kv.second.def.expired(); });
       owners_purge_at = std::max<size_t>(1024, owners.size() * 2);
     }
-    owners[&*def->local_context] = def;
+    owners[&*def->local_context] = Owner{def, hash_json(*def->local_context)};
   }
 };
 
@@ -1260,22 +1264,29 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   size_t key = 0;
   if (exact_cacheable) {
     // A scoped context passed by reference from its term definition is known by
-    // address (pinned by the entry); anything else by content.
+    // address (the entry pins the definition), which saves hashing and
+    // comparing its content; anything else is looked up by content.
+    size_t content_hash = 0;
     if (auto it = cache->owners.find(&local_context); it != cache->owners.end()) {
-      owner = it->second.lock();
-      if (owner && !(owner->local_context && &*owner->local_context == &local_context)) {
+      owner = it->second.def.lock();
+      if (owner && owner->local_context && &*owner->local_context == &local_context) {
+        content_hash = it->second.hash;
+      } else {
         owner.reset();
       }
     }
-    key = mix(std::hash<const void*>{}(active.get()),
-              owner ? std::hash<const void*>{}(owner.get()) : hash_json(local_context));
+    if (!owner) content_hash = hash_json(local_context);
+    key = mix(std::hash<const void*>{}(active.get()), content_hash);
     key = mix(key, std::hash<std::string_view>{}(base_url));
     auto it = cache->exact.find(key);
     if (it != cache->exact.end()) {
       for (const auto& e : it->second) {
         if (e.active_raw != active.get() || e.flags != flags || e.base_url != base_url) continue;
         if (e.active.lock().get() != active.get()) continue;
-        if (owner ? e.owner != owner : (e.owner || !(e.content == local_context))) continue;
+        if (!(owner && e.owner == owner)) {
+          const json::Value& stored = e.owner ? *e.owner->local_context : e.content;
+          if (!(stored == local_context)) continue;
+        }
         ++cache->stats.exact_hits;
         return e.result;
       }

@@ -1,0 +1,380 @@
+#include "jsonld/context.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "jsonld/loader.hpp"
+
+namespace mospec::jsonld {
+namespace {
+
+// Serves remote contexts from memory and counts loads.
+class MemoryLoader : public DocumentLoader {
+ public:
+  void add(std::string iri, std::string text) { docs_[std::move(iri)] = std::move(text); }
+  RemoteDocument load(std::string_view iri, SourceLoc, bool for_context) override {
+    ++loads;
+    auto it = docs_.find(std::string(iri));
+    if (it == docs_.end()) {
+      throw Error(for_context ? "loading remote context failed" : "loading document failed",
+                  "no document at " + std::string(iri));
+    }
+    const uint32_t id = files_.add(it->first);
+    RemoteDocument d;
+    d.document_url = it->first;
+    d.content_type = "application/ld+json";
+    d.document = std::make_shared<const json::Value>(json::parse(it->second, id, it->first));
+    d.file_id = id;
+    return d;
+  }
+  int loads = 0;
+
+ private:
+  std::map<std::string, std::string> docs_;
+};
+
+class ContextTest : public ::testing::Test {
+ protected:
+  ContextTest() {
+    options.loader = &loader;
+    options.diagnostics = &sink;
+  }
+
+  ContextPtr process(const std::string& text, ContextPtr active = nullptr,
+                     bool override_protected = false) {
+    if (!active) active = ActiveContext::initial("http://example.org/doc/base", options);
+    const uint32_t id = loader.files().add("ctx.jsonld");
+    json::Value v = json::parse(text, id, "ctx.jsonld");
+    return process_context(active, v, "http://example.org/doc/base", options, nullptr,
+                           override_protected);
+  }
+
+  // The error code of processing `text` ("" when it succeeds).
+  std::string error_of(const std::string& text, ContextPtr active = nullptr) {
+    try {
+      process(text, std::move(active));
+    } catch (const Error& e) {
+      last_error = e;
+      return e.code();
+    }
+    return "";
+  }
+
+  MemoryLoader loader;
+  DiagnosticSink sink;
+  Options options;
+  std::optional<Error> last_error;
+};
+
+TEST_F(ContextTest, SimpleTermsPrefixesAndVocab) {
+  ContextPtr c = process(R"({
+    "@vocab": "http://vocab.org/",
+    "ex": "http://example.com/",
+    "name": "ex:name",
+    "age": {"@id": "http://example.com/age", "@type": "http://www.w3.org/2001/XMLSchema#integer"},
+    "ex:knows": {"@type": "@id"},
+    "plain": {},
+    "gone": null
+  })");
+  EXPECT_EQ(c->vocab(), "http://vocab.org/");
+  ASSERT_NE(c->find("ex"), nullptr);
+  EXPECT_TRUE(c->find("ex")->prefix);
+  EXPECT_EQ(c->find("name")->iri, "http://example.com/name");
+  EXPECT_FALSE(c->find("name")->prefix);  // IRI does not end with a gen-delim
+  EXPECT_EQ(c->find("age")->type, "http://www.w3.org/2001/XMLSchema#integer");
+  EXPECT_EQ(c->find("ex:knows")->iri, "http://example.com/knows");
+  EXPECT_EQ(c->find("ex:knows")->type, "@id");
+  EXPECT_EQ(c->find("plain")->iri, "http://vocab.org/plain");
+  ASSERT_NE(c->find("gone"), nullptr);
+  EXPECT_FALSE(c->find("gone")->iri.has_value());
+  EXPECT_EQ(c->find("missing"), nullptr);
+  EXPECT_EQ(c->find("age")->where, (SourceLoc{c->find("age")->where.file, 5, 5}));
+}
+
+TEST_F(ContextTest, KeywordAliasesAndContainers) {
+  ContextPtr c = process(R"({
+    "id": "@id", "type": "@type",
+    "list": {"@id": "http://e/list", "@container": "@list"},
+    "map": {"@id": "http://e/map", "@container": ["@graph", "@index", "@set"], "@index": "http://e/i"},
+    "types": {"@id": "http://e/types", "@container": "@type"},
+    "@type": {"@container": "@set"}
+  })");
+  EXPECT_EQ(c->find("id")->iri, "@id");
+  EXPECT_EQ(c->find("type")->iri, "@type");
+  EXPECT_EQ(c->find("list")->container, (std::set<std::string>{"@list"}));
+  EXPECT_EQ(c->find("map")->container, (std::set<std::string>{"@graph", "@index", "@set"}));
+  EXPECT_EQ(c->find("map")->index, "http://e/i");
+  EXPECT_EQ(c->find("types")->type, "@id");  // CTD 19.4 default
+  EXPECT_EQ(c->find("@type")->iri, "@type");
+  EXPECT_EQ(c->find("@type")->container, (std::set<std::string>{"@set"}));
+}
+
+TEST_F(ContextTest, LanguageDirectionBaseAndReverse) {
+  ContextPtr c = process(R"({
+    "@base": "../other/", "@language": "en", "@direction": "rtl",
+    "label": {"@id": "http://e/label", "@language": null, "@direction": "ltr"},
+    "parent": {"@reverse": "http://e/child", "@container": "@set"},
+    "nested": {"@id": "http://e/n", "@nest": "@nest"}
+  })");
+  EXPECT_EQ(c->base(), "http://example.org/other/");
+  EXPECT_EQ(c->original_base(), "http://example.org/doc/base");
+  EXPECT_EQ(c->default_language(), "en");
+  EXPECT_EQ(c->default_direction(), "rtl");
+  EXPECT_TRUE(c->find("label")->language->is_null());
+  EXPECT_EQ(c->find("label")->direction->as_string(), "ltr");
+  EXPECT_TRUE(c->find("parent")->reverse);
+  EXPECT_EQ(c->find("parent")->iri, "http://e/child");
+  EXPECT_EQ(c->find("nested")->nest, "@nest");
+
+  ContextPtr n = process("null", c);
+  EXPECT_EQ(n->base(), "http://example.org/doc/base");
+  EXPECT_EQ(n->find("label"), nullptr);
+  EXPECT_FALSE(n->default_language());
+}
+
+TEST_F(ContextTest, ScopedContextsStoredUnprocessed) {
+  loader.add("http://ctx.org/links.jsonld", R"({"@context": {"link": "http://e/link"}})");
+  ContextPtr c = process(R"({
+    "@vocab": "http://e/",
+    "Robot": {"@context": {"joint": {"@type": "@id"}}},
+    "links": {"@context": "http://ctx.org/links.jsonld"}
+  })");
+  const TermDefinition* robot = c->find("Robot");
+  ASSERT_NE(robot, nullptr);
+  ASSERT_TRUE(robot->local_context.has_value());
+  EXPECT_EQ(*robot->local_context, json::parse(R"({"joint": {"@type": "@id"}})"));
+  EXPECT_EQ(robot->base_url, "http://example.org/doc/base");
+  EXPECT_EQ(c->find("joint"), nullptr);  // not applied until expansion uses it
+  EXPECT_EQ(c->find("links")->local_context->as_string(), "http://ctx.org/links.jsonld");
+  EXPECT_EQ(loader.loads, 1);  // loaded once to validate it (CTD 21.3)
+  // A scoped context that cannot be processed fails where it is defined.
+  EXPECT_EQ(error_of(R"({"t": {"@id": "http://e/t", "@context": "http://ctx.org/none"}})"),
+            "invalid scoped context");
+}
+
+TEST_F(ContextTest, ProtectedTerms) {
+  ContextPtr c = process(
+      R"({"@protected": true, "p": "http://e/p", "q": {"@id": "http://e/q", "@protected": false}})");
+  EXPECT_TRUE(c->find("p")->protected_);
+  EXPECT_FALSE(c->find("q")->protected_);
+  EXPECT_TRUE(c->has_protected_terms());
+  // Identical redefinition keeps the protected definition.
+  ContextPtr same = process(R"({"p": "http://e/p"})", c);
+  EXPECT_TRUE(same->find("p")->protected_);
+  EXPECT_EQ(error_of(R"({"p": "http://e/other"})", c), "protected term redefinition");
+  EXPECT_NE(std::string(last_error->what()).find("ctx.jsonld:1:2: error: term \"p\" is protected"),
+            std::string::npos)
+      << last_error->what();
+  EXPECT_EQ(error_of("null", c), "invalid context nullification");
+  EXPECT_EQ(error_of(R"([null])", c), "invalid context nullification");
+  // Unprotected terms may change; override_protected (property-scoped) allows it.
+  EXPECT_EQ(process(R"({"q": "http://e/q2"})", c)->find("q")->iri, "http://e/q2");
+  EXPECT_EQ(process(R"({"p": "http://e/p2"})", c, true)->find("p")->iri, "http://e/p2");
+  EXPECT_FALSE(process("null", c, true)->has_protected_terms());
+}
+
+TEST_F(ContextTest, PropagateKeepsPreviousContext) {
+  ContextPtr base = process(R"({"a": "http://e/a"})");
+  ContextPtr c = process(R"({"@propagate": false, "b": "http://e/b"})", base);
+  EXPECT_EQ(c->previous(), base);
+  EXPECT_NE(c->find("a"), nullptr);
+  ContextPtr d = process(R"({"c": "http://e/c"})", c);
+  EXPECT_EQ(d->previous(), base);  // kept until expansion reverts
+}
+
+TEST_F(ContextTest, ErrorCodes) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"(5)", "invalid local context"},
+      {R"([[{}]])", "invalid local context"},
+      {R"({"@version": "1.1"})", "invalid @version value"},
+      {R"({"@version": 1.0})", "invalid @version value"},
+      {R"({"@import": 5})", "invalid @import value"},
+      {R"({"@base": 5})", "invalid base IRI"},
+      {R"({"@vocab": 5})", "invalid vocab mapping"},
+      {R"({"@language": 5})", "invalid default language"},
+      {R"({"@direction": "up"})", "invalid base direction"},
+      {R"({"@propagate": "no"})", "invalid @propagate value"},
+      {R"({"@protected": 1})", "invalid @protected value"},
+      {R"({"": "http://e/"})", "invalid term definition"},
+      {R"({"t": 5})", "invalid term definition"},
+      {R"({"t": {"@id": "http://e/t", "@foo": 1}})", "invalid term definition"},
+      {R"({"@id": "http://e/id"})", "keyword redefinition"},
+      {R"({"@type": {"@id": "http://e/t"}})", "keyword redefinition"},
+      {R"({"t": {"@id": 5}})", "invalid IRI mapping"},
+      {R"({"t": {"@id": "relative"}})", "invalid IRI mapping"},
+      {R"({"t": {}})", "invalid IRI mapping"},  // no @vocab
+      {R"({"ex:t": {"@id": "http://other/t"}, "ex": "http://e/"})", "invalid IRI mapping"},
+      {R"({"a": "b:x", "b": "a:y"})", "cyclic IRI mapping"},
+      {R"({"a": {"@id": "@context"}})", "invalid keyword alias"},
+      {R"({"t": {"@id": "http://e/t", "@type": 5}})", "invalid type mapping"},
+      {R"({"t": {"@id": "http://e/t", "@type": "_:b"}})", "invalid type mapping"},
+      {R"({"t": {"@id": "http://e/t", "@type": "http://e/T", "@container": "@type"}})",
+       "invalid type mapping"},
+      {R"({"t": {"@reverse": "http://e/r", "@id": "http://e/t"}})", "invalid reverse property"},
+      {R"({"t": {"@reverse": "http://e/r", "@container": "@list"}})", "invalid reverse property"},
+      {R"({"t": {"@reverse": 5}})", "invalid IRI mapping"},
+      {R"({"t": {"@id": "http://e/t", "@container": "@foo"}})", "invalid container mapping"},
+      {R"({"t": {"@id": "http://e/t", "@container": ["@list", "@set"]}})",
+       "invalid container mapping"},
+      {R"({"t": {"@id": "http://e/t", "@container": ["@index", "@language"]}})",
+       "invalid container mapping"},
+      {R"({"t": {"@id": "http://e/t", "@container": ["@graph", "@id", "@index"]}})",
+       "invalid container mapping"},
+      {R"({"t": {"@id": "http://e/t", "@index": "http://e/i"}})", "invalid term definition"},
+      {R"({"t": {"@id": "http://e/t", "@container": "@index", "@index": "@id"}})",
+       "invalid term definition"},
+      {R"({"t": {"@id": "http://e/t", "@language": 5}})", "invalid language mapping"},
+      {R"({"t": {"@id": "http://e/t", "@direction": "up"}})", "invalid base direction"},
+      {R"({"t": {"@id": "http://e/t", "@nest": "@id"}})", "invalid @nest value"},
+      {R"({"t": {"@id": "http://e/t", "@prefix": "yes"}})", "invalid @prefix value"},
+      {R"({"t:x": {"@prefix": true}})", "invalid term definition"},
+      {R"({"t": {"@id": "@type", "@prefix": true}})", "invalid term definition"},
+      {R"({"t": {"@id": "http://e/t", "@context": {"@vocab": 5}}})", "invalid scoped context"},
+      {R"({"t": {"@id": "http://e/t", "@protected": "yes"}})", "invalid @protected value"},
+      {R"("http://nowhere.org/ctx")", "loading remote context failed"},
+  };
+  for (const auto& [text, code] : cases) {
+    EXPECT_EQ(error_of(text), code) << text;
+  }
+}
+
+TEST_F(ContextTest, JsonLd10Mode) {
+  options.processing_mode = ProcessingMode::JsonLd10;
+  EXPECT_EQ(error_of(R"({"@version": 1.1})"), "processing mode conflict");
+  EXPECT_EQ(error_of(R"({"@import": "x"})"), "invalid context entry");
+  EXPECT_EQ(error_of(R"({"@propagate": true})"), "invalid context entry");
+  EXPECT_EQ(error_of(R"({"@type": {"@container": "@set"}})"), "keyword redefinition");
+  EXPECT_EQ(error_of(R"({"t": {"@id": "http://e/t", "@container": "@id"}})"),
+            "invalid container mapping");
+  EXPECT_EQ(error_of(R"({"t": {"@id": "http://e/t", "@context": {}}})"), "invalid term definition");
+  EXPECT_EQ(error_of(R"({"@vocab": "relative"})"), "invalid vocab mapping");
+}
+
+TEST_F(ContextTest, KeywordLikeTermsAreIgnoredWithAWarning) {
+  ContextPtr c = process(R"({"@ignoreMe": "http://e/x", "t": {"@id": "@alsoIgnored"}})");
+  EXPECT_EQ(c->find("@ignoreMe"), nullptr);
+  EXPECT_EQ(c->find("t"), nullptr);
+  ASSERT_EQ(sink.count(Severity::Warning), 2u);
+  EXPECT_EQ(sink.diagnostics()[0].file, "ctx.jsonld");
+  EXPECT_EQ(sink.diagnostics()[0].line, 1u);
+  EXPECT_EQ(sink.diagnostics()[0].column, 2u);
+}
+
+TEST_F(ContextTest, VocabForms) {
+  EXPECT_EQ(process(R"({"@vocab": "_:b"})")->vocab(), "_:b");
+  EXPECT_EQ(process(R"({"@vocab": ""})")->vocab(), "http://example.org/doc/base");
+  EXPECT_EQ(process(R"([{"@vocab": "http://v/"}, {"@vocab": "sub#"}])")->vocab(), "http://v/sub#");
+  // @vocab is processed before the terms of its own context (CP 5.8).
+  EXPECT_EQ(process(R"({"ex": "http://e/", "@vocab": "ex:"})")->vocab(), "ex:");
+  EXPECT_EQ(process(R"([{"ex": "http://e/"}, {"@vocab": "ex:"}])")->vocab(), "http://e/");
+  EXPECT_FALSE(process(R"([{"@vocab": "http://v/"}, {"@vocab": null}])")->vocab());
+}
+
+TEST_F(ContextTest, RemoteContexts) {
+  loader.add("http://ctx.org/a.jsonld",
+             R"({"@context": [{"@base": "http://ignored/", "a": "http://e/a"}, "b.jsonld"]})");
+  loader.add("http://ctx.org/b.jsonld", R"({"@context": {"b": "http://e/b"}})");
+  ContextPtr c = process(R"("http://ctx.org/a.jsonld")");
+  EXPECT_EQ(c->find("a")->iri, "http://e/a");
+  EXPECT_EQ(c->find("b")->iri, "http://e/b");           // relative to the remote document
+  EXPECT_EQ(c->base(), "http://example.org/doc/base");  // @base ignored in remote contexts
+
+  loader.add("http://ctx.org/self.jsonld", R"({"@context": ["self.jsonld"]})");
+  EXPECT_EQ(error_of(R"("http://ctx.org/self.jsonld")"), "context overflow");
+  loader.add("http://ctx.org/nocontext.jsonld", R"({"a": 1})");
+  EXPECT_EQ(error_of(R"("http://ctx.org/nocontext.jsonld")"), "invalid remote context");
+  loader.add("http://ctx.org/bad.jsonld", R"({"@context": {"t": 5}})");
+  EXPECT_EQ(error_of(R"("http://ctx.org/bad.jsonld")"), "invalid term definition");
+  // The error points into the remote file.
+  EXPECT_EQ(last_error->diagnostic().file, "http://ctx.org/bad.jsonld");
+  EXPECT_EQ(last_error->diagnostic().line, 1u);
+  EXPECT_EQ(last_error->diagnostic().column, 20u);
+}
+
+TEST_F(ContextTest, Import) {
+  loader.add("http://ctx.org/imp.jsonld",
+             R"({"@context": {"a": "http://e/a", "b": "http://e/b"}})");
+  loader.add("http://ctx.org/imp2.jsonld", R"({"@context": {"@import": "imp.jsonld"}})");
+  loader.add("http://ctx.org/arr.jsonld", R"({"@context": ["imp.jsonld"]})");
+  ContextPtr c = process(R"({"@import": "http://ctx.org/imp.jsonld", "b": "http://e/b2"})");
+  EXPECT_EQ(c->find("a")->iri, "http://e/a");
+  EXPECT_EQ(c->find("b")->iri, "http://e/b2");
+  EXPECT_EQ(error_of(R"({"@import": "http://ctx.org/imp2.jsonld"})"), "invalid context entry");
+  EXPECT_EQ(error_of(R"({"@import": "http://ctx.org/arr.jsonld"})"), "invalid remote context");
+}
+
+TEST_F(ContextTest, ExpandIri) {
+  ContextPtr c = process(R"({
+    "@vocab": "http://v/", "ex": "http://e/", "id": "@id", "nul": null,
+    "exx": {"@id": "http://e/x", "@prefix": false}
+  })");
+  EXPECT_EQ(expand_iri(*c, "@type"), "@type");
+  EXPECT_EQ(expand_iri(*c, "@unknown"), std::nullopt);
+  EXPECT_EQ(expand_iri(*c, "id"), "@id");
+  EXPECT_EQ(expand_iri(*c, "ex"), "http://e/");
+  EXPECT_EQ(expand_iri(*c, "ex:foo"), "http://e/foo");
+  EXPECT_EQ(expand_iri(*c, "exx:foo"), "exx:foo");  // not a prefix, but has a scheme
+  EXPECT_EQ(expand_iri(*c, "nul"), std::nullopt);
+  EXPECT_EQ(expand_iri(*c, "_:b0"), "_:b0");
+  EXPECT_EQ(expand_iri(*c, "term"), "http://v/term");
+  EXPECT_EQ(expand_iri(*c, "rel", true, false), "http://example.org/doc/rel");
+  EXPECT_EQ(expand_iri(*c, "ex", true, false), "http://example.org/doc/ex");
+  EXPECT_EQ(expand_iri(*c, "http://a/b"), "http://a/b");
+}
+
+TEST_F(ContextTest, LayersStayCorrectAcrossManyDerivations) {
+  ContextPtr c = process(R"({"t0": "http://e/0", "keep": "http://e/keep"})");
+  for (int i = 1; i < 20; ++i) {
+    c = process("{\"t" + std::to_string(i) + "\": \"http://e/" + std::to_string(i) + "\", \"t" +
+                    std::to_string(i - 1) + "\": \"http://e/re" + std::to_string(i - 1) + "\"}",
+                c);
+  }
+  EXPECT_EQ(c->find("keep")->iri, "http://e/keep");
+  EXPECT_EQ(c->find("t0")->iri, "http://e/re0");
+  EXPECT_EQ(c->find("t18")->iri, "http://e/re18");
+  EXPECT_EQ(c->find("t19")->iri, "http://e/19");
+  EXPECT_EQ(c->terms().size(), 21u);
+  // A keyword-like @id removes the earlier definition (CTD 6 then 14.2.2).
+  ContextPtr d = process(R"({"keep": {"@id": "@ignored"}})", c);
+  EXPECT_EQ(d->find("keep"), nullptr);
+  EXPECT_NE(c->find("keep"), nullptr);
+}
+
+TEST_F(ContextTest, CacheReturnsTheSameContexts) {
+  options.context_cache = std::make_shared<ContextCache>();
+  loader.add("http://ctx.org/big.jsonld", R"({"@context": {"@vocab": "http://e/",
+      "Robot": {"@context": {"joint": {"@type": "@id"}}}, "a": "http://e/a"}})");
+  json::Value ref = json::parse(R"("http://ctx.org/big.jsonld")");
+  ContextPtr i1 = ActiveContext::initial("http://doc1/", options);
+  ContextPtr i2 = ActiveContext::initial("http://doc2/", options);
+  ContextPtr c1 = process_context(i1, ref, "http://doc1/", options);
+  ContextPtr c1b = process_context(i1, ref, "http://doc1/", options);
+  EXPECT_EQ(c1, c1b);  // exact hit
+  ContextPtr c2 = process_context(i2, ref, "http://doc2/", options);
+  EXPECT_NE(c1, c2);
+  EXPECT_EQ(c2->base(), "http://doc2/");
+  EXPECT_EQ(c1->find("a"), c2->find("a"));  // remote hit shares the definitions
+  const ContextCache::Stats& s = options.context_cache->stats();
+  EXPECT_EQ(s.exact_hits, 1u);
+  EXPECT_EQ(s.remote_hits, 1u);
+  EXPECT_EQ(s.remote_misses, 1u);
+  EXPECT_EQ(loader.loads, 1);
+
+  // Type-scoped contexts passed from their definition hit by address.
+  const TermDefinition* robot = c1->find("Robot");
+  ContextPtr t1 =
+      process_context(c1, *robot->local_context, robot->base_url, options, nullptr, false, false);
+  ContextPtr t2 =
+      process_context(c1, *robot->local_context, robot->base_url, options, nullptr, false, false);
+  EXPECT_EQ(t1, t2);
+  EXPECT_EQ(t1->previous(), c1);
+  EXPECT_EQ(t1->find("joint")->type, "@id");
+  // Equal content at another address still hits.
+  json::Value copy = *robot->local_context;
+  EXPECT_EQ(process_context(c1, copy, robot->base_url, options, nullptr, false, false), t1);
+}
+
+}  // namespace
+}  // namespace mospec::jsonld
