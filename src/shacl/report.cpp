@@ -1,1 +1,346 @@
-// placeholder: implementation in progress
+#include "shacl/report.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <numeric>
+#include <tuple>
+
+#include "shacl/vocab.hpp"
+
+namespace mospec::shacl {
+
+namespace {
+
+using rdf::TermId;
+
+std::string_view severity_iri(Level level) {
+  switch (level) {
+    case Level::Info:
+      return vocab::Info;
+    case Level::Warning:
+      return vocab::Warning;
+    default:
+      return vocab::Violation;
+  }
+}
+
+std::string path_key(const rdf::TermTable& t, const sparql::PathPtr& p) {
+  return p ? path_to_sparql(t, *p) : std::string();
+}
+
+std::string term_key(const rdf::TermTable& t, TermId id) {
+  return id.is_any() ? std::string() : rdf::to_ntriples(t, id);
+}
+
+// Turtle for a term: sh:/rdf:/xsd: IRIs compacted, everything else as in N-Triples.
+std::string turtle_term(const rdf::TermTable& t, TermId id) {
+  const rdf::Term& term = t[id];
+  if (term.is_iri()) {
+    for (auto [ns, prefix] :
+         {std::pair{vocab::kSh, "sh:"}, {vocab::kRdf, "rdf:"}, {vocab::kXsd, "xsd:"}}) {
+      if (term.value.substr(0, ns.size()) != ns) continue;
+      std::string_view local = term.value.substr(ns.size());
+      bool simple = !local.empty() && std::all_of(local.begin(), local.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+               c == '_';
+      });
+      if (simple) return prefix + std::string(local);
+    }
+  }
+  return rdf::to_ntriples(t, id);
+}
+
+void turtle_path(std::string& out, const rdf::TermTable& t, const sparql::Path& p,
+                 const std::string& indent) {
+  using K = sparql::Path::Kind;
+  auto list = [&](const std::vector<sparql::PathPtr>& items) {
+    out += "( ";
+    for (const auto& item : items) {
+      turtle_path(out, t, *item, indent);
+      out += ' ';
+    }
+    out += ')';
+  };
+  auto wrapped = [&](std::string_view predicate) {
+    out += "[ ";
+    out += predicate;
+    out += ' ';
+    if (p.kind == K::Alternative)
+      list(p.items);
+    else
+      turtle_path(out, t, *p.items[0], indent);
+    out += " ]";
+  };
+  switch (p.kind) {
+    case K::Predicate:
+      out += turtle_term(t, p.predicate);
+      return;
+    case K::Sequence:
+      list(p.items);
+      return;
+    case K::Alternative:
+      wrapped("sh:alternativePath");
+      return;
+    case K::Inverse:
+      wrapped("sh:inversePath");
+      return;
+    case K::ZeroOrMore:
+      wrapped("sh:zeroOrMorePath");
+      return;
+    case K::OneOrMore:
+      wrapped("sh:oneOrMorePath");
+      return;
+    case K::ZeroOrOne:
+      wrapped("sh:zeroOrOnePath");
+      return;
+    case K::NegatedSet:
+      out += "[]";
+      return;
+  }
+}
+
+// The message a human reads first: untagged, else English, else any.
+std::string pick_message(const Report& r, const Result& x) {
+  const rdf::TermTable& t = r.terms;
+  for (std::string_view want : {std::string_view(), std::string_view("en")})
+    for (TermId m : x.messages)
+      if (t[m].language == want) return std::string(t[m].value);
+  if (!x.messages.empty()) return std::string(t[x.messages[0]].value);
+  return x.default_message;
+}
+
+std::string quote(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string location(const SourceFiles* files, SourceLoc loc) {
+  if (!loc.known()) return {};
+  return describe_location(files, loc);
+}
+
+}  // namespace
+
+std::string_view level_name(Level level) {
+  switch (level) {
+    case Level::Info:
+      return "info";
+    case Level::Warning:
+      return "warning";
+    case Level::Violation:
+      return "violation";
+    case Level::Other:
+      return "other";
+  }
+  return "violation";
+}
+
+size_t Report::count(Level level) const {
+  return static_cast<size_t>(std::count_if(results.begin(), results.end(),
+                                           [&](const Result& r) { return r.level == level; }));
+}
+
+void Report::sort() {
+  struct Key {
+    bool unlocated;
+    uint32_t file, line, column;
+    std::string focus, shape;
+    Component component;
+    std::string path, value;
+    auto tie() const {
+      return std::tie(unlocated, file, line, column, focus, shape, component, path, value);
+    }
+  };
+  std::vector<Key> keys;
+  keys.reserve(results.size());
+  for (const Result& r : results) {
+    keys.push_back(Key{!r.focus_loc.known(), r.focus_loc.file, r.focus_loc.line, r.focus_loc.column,
+                       term_key(terms, r.focus), term_key(terms, r.shape), r.component,
+                       path_key(terms, r.path), term_key(terms, r.value)});
+  }
+  std::vector<size_t> order(results.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return keys[a].tie() < keys[b].tie(); });
+  std::vector<Result> sorted;
+  sorted.reserve(results.size());
+  for (size_t i : order) sorted.push_back(std::move(results[i]));
+  results = std::move(sorted);
+}
+
+std::string to_turtle(const Report& report) {
+  const rdf::TermTable& t = report.terms;
+  std::string out;
+  out += "@prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> .\n";
+  out += "@prefix sh: <http://www.w3.org/ns/shacl#> .\n";
+  out += "@prefix xsd: <http://www.w3.org/2001/XMLSchema#> .\n\n";
+  out += "[] a sh:ValidationReport ;\n";
+  out += report.conforms() ? "  sh:conforms true" : "  sh:conforms false";
+  for (size_t i = 0; i < report.results.size(); ++i) {
+    const Result& r = report.results[i];
+    out += i == 0 ? " ;\n  sh:result [\n" : " , [\n";
+    out += "    a sh:ValidationResult ;\n";
+    out += "    sh:focusNode " + turtle_term(t, r.focus) + " ;\n";
+    if (r.path) {
+      out += "    sh:resultPath ";
+      turtle_path(out, t, *r.path, "    ");
+      out += " ;\n";
+    }
+    if (!r.value.is_any()) out += "    sh:value " + turtle_term(t, r.value) + " ;\n";
+    for (TermId m : r.messages) out += "    sh:resultMessage " + turtle_term(t, m) + " ;\n";
+    if (r.messages.empty() && !r.default_message.empty()) {
+      out += "    sh:resultMessage " + quote(r.default_message) + " ;\n";
+    }
+    out += "    sh:resultSeverity " +
+           (r.level == Level::Other
+                ? turtle_term(t, r.severity)
+                : "sh:" + std::string(severity_iri(r.level).substr(vocab::kSh.size()))) +
+           " ;\n";
+    out += "    sh:sourceConstraintComponent " + std::string(component_name(r.component)) + " ;\n";
+    if (!r.source_constraint.is_any())
+      out += "    sh:sourceConstraint " + turtle_term(t, r.source_constraint) + " ;\n";
+    out += "    sh:sourceShape " + turtle_term(t, r.shape) + " ;\n";
+    out += "  ]";
+  }
+  out += " .\n";
+  return out;
+}
+
+std::string to_text(const Report& report, const SourceFiles* data_files,
+                    const SourceFiles* shape_files) {
+  const rdf::TermTable& t = report.terms;
+  std::string out;
+  for (const Result& r : report.results) {
+    std::string where = location(data_files, r.focus_loc);
+    out += where.empty() ? "mospec" : where;
+    out += ": ";
+    out += r.level == Level::Other ? rdf::to_ntriples(t, r.severity)
+                                   : std::string(level_name(r.level));
+    out += ": " + rdf::to_ntriples(t, r.focus) + ": " + pick_message(report, r);
+    out += " [shape ";
+    if (t[r.shape].is_iri()) {
+      out += rdf::to_ntriples(t, r.shape);
+    } else {
+      out += "[]";
+      std::string at = location(shape_files, r.shape_loc);
+      if (!at.empty()) out += " at " + at;
+    }
+    out += ", ";
+    out += component_name(r.component);
+    if (r.path) out += ", path " + path_to_sparql(t, *r.path);
+    if (!r.value.is_any()) out += ", value " + rdf::to_ntriples(t, r.value);
+    out += "]\n";
+  }
+  auto plural = [](size_t n, std::string_view one, std::string_view many) {
+    return std::to_string(n) + " " + std::string(n == 1 ? one : many);
+  };
+  out += "shacl: " + plural(report.count(Level::Violation), "violation", "violations") + ", " +
+         plural(report.count(Level::Warning), "warning", "warnings") + ", " +
+         plural(report.count(Level::Info), "info", "infos");
+  if (size_t other = report.count(Level::Other); other != 0)
+    out += ", " + plural(other, "result of another severity", "results of other severities");
+  out += "\n";
+  return out;
+}
+
+rdf::Dataset to_dataset(const Report& report) {
+  rdf::Dataset ds;
+  rdf::TermTable& t = ds.terms();
+  auto iri = [&](std::string_view s) { return t.iri(s); };
+  auto in = [&](TermId id) { return t.import(report.terms, id); };
+  // Import every report term first so that fresh blank nodes cannot collide.
+  std::vector<std::vector<TermId>> imported;
+  for (const Result& r : report.results) {
+    std::vector<TermId> ids{in(r.focus), in(r.shape)};
+    ids.push_back(r.value.is_any() ? TermId::any() : in(r.value));
+    ids.push_back(r.severity.is_any() ? TermId::any() : in(r.severity));
+    ids.push_back(r.source_constraint.is_any() ? TermId::any() : in(r.source_constraint));
+    for (TermId m : r.messages) ids.push_back(in(m));
+    imported.push_back(std::move(ids));
+  }
+  const std::string prefix = t.fresh_blank_prefix();
+  size_t next = 0;
+  auto fresh = [&] { return t.blank(prefix + std::to_string(next++)); };
+  const TermId type = iri(vocab::rdf_type), first = iri(vocab::rdf_first),
+               rest = iri(vocab::rdf_rest), nil = iri(vocab::rdf_nil);
+  auto add = [&](TermId s, TermId p, TermId o) { ds.add(rdf::Quad{s, p, o}); };
+  std::function<TermId(const sparql::Path&)> path = [&](const sparql::Path& p) -> TermId {
+    using K = sparql::Path::Kind;
+    auto make_list = [&](const std::vector<sparql::PathPtr>& items) {
+      TermId head = nil;
+      for (size_t i = items.size(); i-- > 0;) {
+        TermId cell = fresh();
+        add(cell, first, path(*items[i]));
+        add(cell, rest, head);
+        head = cell;
+      }
+      return head;
+    };
+    auto wrapped = [&](std::string_view predicate, TermId object) {
+      TermId node = fresh();
+      add(node, iri(predicate), object);
+      return node;
+    };
+    switch (p.kind) {
+      case K::Predicate:
+        return in(p.predicate);
+      case K::Sequence:
+        return make_list(p.items);
+      case K::Alternative:
+        return wrapped(vocab::alternativePath, make_list(p.items));
+      case K::Inverse:
+        return wrapped(vocab::inversePath, path(*p.items[0]));
+      case K::ZeroOrMore:
+        return wrapped(vocab::zeroOrMorePath, path(*p.items[0]));
+      case K::OneOrMore:
+        return wrapped(vocab::oneOrMorePath, path(*p.items[0]));
+      case K::ZeroOrOne:
+        return wrapped(vocab::zeroOrOnePath, path(*p.items[0]));
+      case K::NegatedSet:
+        return fresh();
+    }
+    return fresh();
+  };
+  TermId root = fresh();
+  add(root, type, iri(vocab::ValidationReport));
+  add(root, iri(vocab::conforms),
+      t.literal(report.conforms() ? "true" : "false", vocab::xsd_boolean));
+  for (size_t i = 0; i < report.results.size(); ++i) {
+    const Result& r = report.results[i];
+    const std::vector<TermId>& ids = imported[i];
+    TermId node = fresh();
+    add(root, iri(vocab::result), node);
+    add(node, type, iri(vocab::ValidationResult));
+    add(node, iri(vocab::focusNode), ids[0]);
+    add(node, iri(vocab::sourceShape), ids[1]);
+    if (!ids[2].is_any()) add(node, iri(vocab::value), ids[2]);
+    add(node, iri(vocab::resultSeverity), ids[3].is_any() ? iri(severity_iri(r.level)) : ids[3]);
+    if (!ids[4].is_any()) add(node, iri(vocab::sourceConstraint), ids[4]);
+    add(node, iri(vocab::sourceConstraintComponent), iri(component_iri(r.component)));
+    for (size_t m = 5; m < ids.size(); ++m) add(node, iri(vocab::resultMessage), ids[m]);
+    if (r.messages.empty() && !r.default_message.empty())
+      add(node, iri(vocab::resultMessage), t.literal(r.default_message));
+    if (r.path) add(node, iri(vocab::resultPath), path(*r.path));
+  }
+  return ds;
+}
+
+}  // namespace mospec::shacl

@@ -1,1 +1,674 @@
-// placeholder: implementation in progress
+#include "shacl/validate.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "shacl/literal.hpp"
+#include "shacl/vocab.hpp"
+
+namespace mospec::shacl {
+
+namespace {
+
+using rdf::TermId;
+
+constexpr TermId kAbsent{UINT32_MAX - 1};
+
+enum class PathSource : uint8_t { None, Shape, Predicate };
+
+// A result before it is rendered into the report's term table. Terms are
+// validation ids (see Validator).
+struct RawResult {
+  TermId focus;
+  TermId value = TermId::any();
+  uint32_t shape = 0;
+  uint32_t constraint = 0;  // index into the shape's constraints
+  Component component = Component::Class;
+  PathSource path = PathSource::None;
+  TermId predicate;  // PathSource::Predicate
+};
+
+// Where a shape's results go: collected for the report, or (conformance
+// checking) just noticed, stopping at the first.
+struct Sink {
+  std::vector<RawResult>* out = nullptr;
+  bool found = false;
+  bool done() const { return out == nullptr && found; }
+  void add(RawResult r) {
+    found = true;
+    if (out != nullptr) out->push_back(r);
+  }
+};
+
+uint64_t pair_key(uint32_t a, TermId b) {
+  return (uint64_t{a} << 32) | b.index;
+}
+
+// Validation ids: ids of the data graph's terms, plus ids from base_ upwards
+// for terms the shapes mention that the data graph lacks (e.g. an
+// sh:targetNode that appears in no triple). Dataset lookups treat ids past
+// the data's term table as absent, so those terms simply have no triples.
+class Validator {
+ public:
+  Validator(const Shapes& shapes, const rdf::Dataset& data, const ValidateOptions& options)
+      : shapes_(shapes),
+        data_(data),
+        dt_(data.terms()),
+        st_(shapes.graph().terms()),
+        same_(&shapes.graph() == &data),
+        base_(static_cast<uint32_t>(data.terms().size())),
+        options_(options) {
+    auto find = [&](std::string_view iri) {
+      TermId id = dt_.find_iri(iri);
+      return id.is_any() ? kAbsent : id;
+    };
+    type_ = find(vocab::rdf_type);
+    subclass_ = find(vocab::rdfs_subclass_of);
+    if (!same_) {
+      to_data_.assign(st_.size(), kAbsent);
+      for (TermId s : shapes.referenced_terms()) {
+        TermId d = dt_.find_equivalent(st_, s);
+        if (d.is_any()) {
+          d = TermId{base_ + static_cast<uint32_t>(overlay_.size())};
+          overlay_.push_back(s);
+        }
+        to_data_[s.index] = d;
+      }
+    }
+    paths_.resize(shapes.shapes().size());
+    bound_.resize(shapes.shapes().size());
+    for (uint32_t i = 0; i < shapes.shapes().size(); ++i) {
+      const Shape& s = shapes[i];
+      if (s.path) paths_[i] = same_ ? s.path : translate(*s.path);
+      // Set-valued parameters, translated and sorted once.
+      bound_[i].resize(s.constraints.size());
+      for (size_t k = 0; k < s.constraints.size(); ++k) {
+        const Constraint& c = s.constraints[k];
+        if (c.component != Component::In && c.component != Component::Closed) continue;
+        auto& set = bound_[i][k];
+        for (TermId t : c.terms) set.push_back(map(t));
+        std::sort(set.begin(), set.end());
+      }
+    }
+  }
+
+  Report run() {
+    std::vector<RawResult> raw;
+    Sink sink{&raw};
+    for (uint32_t i = 0; i < shapes_.shapes().size(); ++i) {
+      const Shape& s = shapes_[i];
+      if (!s.has_targets() || s.deactivated) continue;
+      for (TermId focus : focus_nodes(s)) validate_shape(i, focus, sink);
+    }
+    return render(raw);
+  }
+
+ private:
+  TermId map(TermId shape_term) const { return same_ ? shape_term : to_data_[shape_term.index]; }
+
+  const rdf::Term& term(TermId v) const {
+    return v.index < base_ ? dt_[v] : st_[overlay_[v.index - base_]];
+  }
+
+  sparql::PathPtr translate(const sparql::Path& p) const {
+    if (p.kind == sparql::Path::Kind::Predicate) return sparql::Path::iri(map(p.predicate));
+    std::vector<sparql::PathPtr> items;
+    for (const auto& item : p.items) items.push_back(translate(*item));
+    return sparql::Path::make(p.kind, std::move(items));
+  }
+
+  // ---- data access -------------------------------------------------------
+
+  void objects(TermId s, TermId p, std::vector<TermId>& out) const {
+    out.clear();
+    data_.scan(s, p, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      out.push_back(q.object);
+      return true;
+    });
+    dedupe(out);
+  }
+
+  static void dedupe(std::vector<TermId>& v) {
+    if (v.size() < 2) return;
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+
+  void value_nodes(uint32_t shape, TermId focus, std::vector<TermId>& out) const {
+    const sparql::PathPtr& path = paths_[shape];
+    if (!path) {
+      out.assign(1, focus);
+      return;
+    }
+    if (path->kind == sparql::Path::Kind::Predicate) {
+      objects(focus, path->predicate, out);
+      return;
+    }
+    sparql::evaluate_path(data_, *path, focus, out);
+    dedupe(out);
+  }
+
+  // Every class that is rdfs:subClassOf* `cls` in the data graph, sorted.
+  const std::vector<TermId>& subclasses(TermId cls) {
+    auto [it, inserted] = subclasses_.try_emplace(cls.index);
+    if (!inserted) return it->second;
+    std::vector<TermId> all{cls};
+    for (size_t i = 0; i < all.size(); ++i) {
+      data_.scan(TermId::any(), subclass_, all[i], TermId::any(),
+                 [&](const rdf::Quad& q, uint32_t) {
+                   if (std::find(all.begin(), all.end(), q.subject) == all.end())
+                     all.push_back(q.subject);
+                   return true;
+                 });
+    }
+    std::sort(all.begin(), all.end());
+    it->second = std::move(all);
+    return it->second;
+  }
+
+  bool is_instance(TermId node, TermId cls) {
+    if (term(node).is_literal()) return false;
+    const std::vector<TermId>& classes = subclasses(cls);
+    bool found = false;
+    data_.scan(node, type_, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      found = std::binary_search(classes.begin(), classes.end(), q.object);
+      return !found;
+    });
+    return found;
+  }
+
+  std::vector<TermId> focus_nodes(const Shape& s) {
+    std::vector<TermId> out;
+    std::unordered_set<uint32_t> seen;
+    auto add = [&](TermId t) {
+      if (seen.insert(t.index).second) out.push_back(t);
+    };
+    for (TermId t : s.target_nodes) add(map(t));
+    for (TermId c : s.target_classes) {
+      for (TermId cls : subclasses(map(c)))
+        data_.scan(TermId::any(), type_, cls, TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+          add(q.subject);
+          return true;
+        });
+    }
+    for (TermId p : s.target_subjects_of)
+      data_.scan(TermId::any(), map(p), TermId::any(), TermId::any(),
+                 [&](const rdf::Quad& q, uint32_t) {
+                   add(q.subject);
+                   return true;
+                 });
+    for (TermId p : s.target_objects_of)
+      data_.scan(TermId::any(), map(p), TermId::any(), TermId::any(),
+                 [&](const rdf::Quad& q, uint32_t) {
+                   add(q.object);
+                   return true;
+                 });
+    return out;
+  }
+
+  // ---- literal helpers ---------------------------------------------------
+
+  std::string_view datatype_iri(TermId v) const {
+    const rdf::Term& t = term(v);
+    const rdf::TermTable& table = v.index < base_ ? dt_ : st_;
+    return table[t.datatype].value;
+  }
+
+  LiteralView literal(TermId v) const {
+    const rdf::Term& t = term(v);
+    return {t.value, datatype_iri(v), t.language};
+  }
+
+  LiteralView shape_literal(TermId s) const {
+    const rdf::Term& t = st_[s];
+    return {t.value, st_[t.datatype].value, t.language};
+  }
+
+  bool has_datatype(TermId v, TermId datatype_in_shapes) {
+    const rdf::Term& t = term(v);
+    if (!t.is_literal()) return false;
+    if (v.index < base_ && !same_) {
+      if (t.datatype != map(datatype_in_shapes)) return false;
+    } else if (v.index < base_) {
+      if (t.datatype != datatype_in_shapes) return false;
+    } else if (datatype_iri(v) != st_[datatype_in_shapes].value) {
+      return false;
+    }
+    if (v.index >= base_) return check_well_formed(v);
+    // Cached per literal: the check parses the lexical form.
+    if (well_formed_.size() < base_) well_formed_.assign(base_, 0);
+    uint8_t& cached = well_formed_[v.index];
+    if (cached == 0) cached = check_well_formed(v) ? 1 : 2;
+    return cached == 1;
+  }
+
+  bool check_well_formed(TermId v) const {
+    const rdf::Term& t = term(v);
+    DatatypeInfo info = classify_datatype(datatype_iri(v));
+    if (info.kind == Xsd::LangString) return !t.language.empty();
+    return well_formed(t.value, info);
+  }
+
+  std::string_view str(TermId v) const { return term(v).value; }
+
+  // ---- validation --------------------------------------------------------
+
+  bool conforms(uint32_t shape, TermId focus) {
+    const uint64_t key = pair_key(shape, focus);
+    if (auto it = conforms_cache_.find(key); it != conforms_cache_.end()) return it->second;
+    Sink probe;
+    validate_shape(shape, focus, probe);
+    conforms_cache_.emplace(key, !probe.found);
+    return !probe.found;
+  }
+
+  void validate_shape(uint32_t shape, TermId focus, Sink& sink) {
+    const Shape& s = shapes_[shape];
+    if (s.deactivated) return;
+    const uint64_t key = pair_key(shape, focus);
+    if (!active_.insert(key).second) recursion(shape, focus);
+    stack_.push_back(shape);
+    std::vector<TermId> values;
+    value_nodes(shape, focus, values);
+    for (uint32_t k = 0; k < s.constraints.size() && !sink.done(); ++k)
+      evaluate(shape, k, focus, values, sink);
+    stack_.pop_back();
+    active_.erase(key);
+  }
+
+  [[noreturn]] void recursion(uint32_t shape, TermId focus) {
+    std::string cycle;
+    auto start = std::find(stack_.begin(), stack_.end(), shape);
+    for (auto it = start; it != stack_.end(); ++it) cycle += shapes_.describe(*it) + " -> ";
+    cycle += shapes_.describe(shape);
+    const Shape& s = shapes_[shape];
+    std::string file =
+        shapes_.files() != nullptr && s.where.known() ? shapes_.files()->path(s.where.file) : "";
+    throw Error("shacl-recursion",
+                "recursive shape: " + cycle + " while validating focus node " + show(focus) +
+                    " (recursive shapes are not supported)",
+                file, s.where.line, s.where.column);
+  }
+
+  std::string show(TermId v) const {
+    return v.index < base_ ? rdf::to_ntriples(dt_, v)
+                           : rdf::to_ntriples(st_, overlay_[v.index - base_]);
+  }
+
+  void evaluate(uint32_t shape, uint32_t k, TermId focus, const std::vector<TermId>& values,
+                Sink& sink) {
+    const Shape& s = shapes_[shape];
+    const Constraint& c = s.constraints[k];
+    const PathSource path = s.is_property ? PathSource::Shape : PathSource::None;
+    auto report = [&](TermId value) {
+      RawResult r;
+      r.focus = focus;
+      r.value = value;
+      r.shape = shape;
+      r.constraint = k;
+      r.component = c.component;
+      r.path = path;
+      sink.add(r);
+    };
+    auto each = [&](auto&& fails) {
+      for (TermId v : values) {
+        if (sink.done()) return;
+        if (fails(v)) report(v);
+      }
+    };
+    switch (c.component) {
+      case Component::Class: {
+        TermId cls = map(c.term);
+        each([&](TermId v) { return !is_instance(v, cls); });
+        return;
+      }
+      case Component::Datatype:
+        each([&](TermId v) { return !has_datatype(v, c.term); });
+        return;
+      case Component::NodeKind:
+        each([&](TermId v) {
+          const rdf::Term& t = term(v);
+          uint8_t kind = t.is_blank() ? kBlankNode : t.is_iri() ? kIri : kLiteral;
+          return (c.node_kinds & kind) == 0;
+        });
+        return;
+      case Component::MinCount:
+        if (static_cast<int64_t>(values.size()) < c.number) report(TermId::any());
+        return;
+      case Component::MaxCount:
+        if (static_cast<int64_t>(values.size()) > c.number) report(TermId::any());
+        return;
+      case Component::MinExclusive:
+      case Component::MinInclusive:
+      case Component::MaxExclusive:
+      case Component::MaxInclusive: {
+        const LiteralView bound = shape_literal(c.term);
+        each([&](TermId v) {
+          if (!term(v).is_literal()) return true;
+          Order o = compare_literals(bound, literal(v));
+          switch (c.component) {
+            case Component::MinExclusive:
+              return o != Order::Less;
+            case Component::MinInclusive:
+              return o != Order::Less && o != Order::Equal;
+            case Component::MaxExclusive:
+              return o != Order::Greater;
+            default:
+              return o != Order::Greater && o != Order::Equal;
+          }
+        });
+        return;
+      }
+      case Component::MinLength:
+      case Component::MaxLength:
+        each([&](TermId v) {
+          if (term(v).is_blank()) return true;
+          int64_t n = static_cast<int64_t>(utf8_length(str(v)));
+          return c.component == Component::MinLength ? n < c.number : n > c.number;
+        });
+        return;
+      case Component::Pattern:
+        each([&](TermId v) {
+          if (term(v).is_blank()) return true;
+          std::string_view text = str(v);
+          return !std::regex_search(text.begin(), text.end(), *c.regex);
+        });
+        return;
+      case Component::LanguageIn:
+        each([&](TermId v) {
+          const rdf::Term& t = term(v);
+          if (!t.is_literal() || t.language.empty()) return true;
+          for (const std::string& range : c.ranges)
+            if (lang_matches(t.language, range)) return false;
+          return true;
+        });
+        return;
+      case Component::UniqueLang: {
+        std::vector<std::string> tags;
+        for (TermId v : values) {
+          std::string tag(term(v).language);
+          if (tag.empty()) continue;
+          for (char& ch : tag) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+          tags.push_back(std::move(tag));
+        }
+        std::sort(tags.begin(), tags.end());
+        for (size_t i = 0; i + 1 < tags.size(); ++i) {
+          if (tags[i] != tags[i + 1]) continue;
+          report(TermId::any());
+          while (i + 1 < tags.size() && tags[i] == tags[i + 1]) ++i;
+        }
+        return;
+      }
+      case Component::Equals: {
+        std::vector<TermId> others;
+        objects(focus, map(c.term), others);
+        std::vector<TermId> sorted = values;
+        dedupe(sorted);
+        each([&](TermId v) { return !std::binary_search(others.begin(), others.end(), v); });
+        for (TermId o : others)
+          if (!sink.done() && !std::binary_search(sorted.begin(), sorted.end(), o)) report(o);
+        return;
+      }
+      case Component::Disjoint: {
+        std::vector<TermId> others;
+        objects(focus, map(c.term), others);
+        each([&](TermId v) { return std::binary_search(others.begin(), others.end(), v); });
+        return;
+      }
+      case Component::LessThan:
+      case Component::LessThanOrEquals: {
+        std::vector<TermId> others;
+        objects(focus, map(c.term), others);
+        for (TermId v : values) {
+          for (TermId o : others) {
+            if (sink.done()) return;
+            Order ord = term(v).is_literal() && term(o).is_literal()
+                            ? compare_literals(literal(v), literal(o))
+                            : Order::Incomparable;
+            bool ok = ord == Order::Less ||
+                      (c.component == Component::LessThanOrEquals && ord == Order::Equal);
+            if (!ok) report(v);
+          }
+        }
+        return;
+      }
+      case Component::Not:
+        each([&](TermId v) { return conforms(c.shapes[0], v); });
+        return;
+      case Component::And:
+        each([&](TermId v) {
+          for (uint32_t m : c.shapes)
+            if (!conforms(m, v)) return true;
+          return false;
+        });
+        return;
+      case Component::Or:
+        each([&](TermId v) {
+          for (uint32_t m : c.shapes)
+            if (conforms(m, v)) return false;
+          return true;
+        });
+        return;
+      case Component::Xone:
+        each([&](TermId v) {
+          int n = 0;
+          for (uint32_t m : c.shapes) n += conforms(m, v) ? 1 : 0;
+          return n != 1;
+        });
+        return;
+      case Component::Node:
+        each([&](TermId v) { return !conforms(c.shapes[0], v); });
+        return;
+      case Component::Property:
+        for (TermId v : values) {
+          if (sink.done()) return;
+          validate_shape(c.shapes[0], v, sink);
+        }
+        return;
+      case Component::QualifiedMinCount:
+      case Component::QualifiedMaxCount: {
+        int64_t n = 0;
+        for (TermId v : values) {
+          if (!conforms(c.shapes[0], v)) continue;
+          bool sibling = false;
+          for (uint32_t sib : c.siblings)
+            if (conforms(sib, v)) {
+              sibling = true;
+              break;
+            }
+          if (!sibling) ++n;
+        }
+        bool fails = c.component == Component::QualifiedMinCount ? n < c.number : n > c.number;
+        if (fails) report(TermId::any());
+        return;
+      }
+      case Component::Closed: {
+        const std::vector<TermId>& allowed = bound_[shape][k];
+        for (TermId v : values) {
+          data_.scan(v, TermId::any(), TermId::any(), TermId::any(),
+                     [&](const rdf::Quad& q, uint32_t) {
+                       if (std::binary_search(allowed.begin(), allowed.end(), q.predicate))
+                         return true;
+                       RawResult r;
+                       r.focus = focus;
+                       r.value = q.object;
+                       r.shape = shape;
+                       r.constraint = k;
+                       r.component = c.component;
+                       r.path = PathSource::Predicate;
+                       r.predicate = q.predicate;
+                       sink.add(r);
+                       return !sink.done();
+                     });
+        }
+        return;
+      }
+      case Component::HasValue: {
+        TermId wanted = map(c.term);
+        if (std::find(values.begin(), values.end(), wanted) == values.end()) report(TermId::any());
+        return;
+      }
+      case Component::In: {
+        const std::vector<TermId>& members = bound_[shape][k];
+        each([&](TermId v) { return !std::binary_search(members.begin(), members.end(), v); });
+        return;
+      }
+      case Component::Sparql:
+        // Rejected when the shapes are compiled.
+        return;
+    }
+  }
+
+  // ---- report ------------------------------------------------------------
+
+  TermId import(Report& r, TermId v) const {
+    if (v.index >= base_) return import_shape_term(r, overlay_[v.index - base_]);
+    const rdf::Term& t = dt_[v];
+    // Blank nodes of two tables may share labels; keep the two apart.
+    if (t.is_blank() && !same_) return r.terms.blank("d_" + std::string(t.value));
+    return r.terms.import(dt_, v);
+  }
+
+  TermId import_shape_term(Report& r, TermId s) const {
+    const rdf::Term& t = st_[s];
+    if (t.is_blank() && !same_) return r.terms.blank("s_" + std::string(t.value));
+    return r.terms.import(st_, s);
+  }
+
+  sparql::PathPtr import_path(Report& r, const sparql::Path& p) const {
+    if (p.kind == sparql::Path::Kind::Predicate)
+      return sparql::Path::iri(import_shape_term(r, p.predicate));
+    std::vector<sparql::PathPtr> items;
+    for (const auto& item : p.items) items.push_back(import_path(r, *item));
+    return sparql::Path::make(p.kind, std::move(items));
+  }
+
+  std::string default_message(const RawResult& raw) const {
+    const Shape& s = shapes_[raw.shape];
+    const Constraint& c = s.constraints[raw.constraint];
+    auto shape_term = [&](TermId t) { return rdf::to_ntriples(st_, t); };
+    auto count = [](int64_t n) { return std::to_string(n) + (n == 1 ? " value" : " values"); };
+    switch (c.component) {
+      case Component::Class:
+        return "value is not an instance of " + shape_term(c.term);
+      case Component::Datatype:
+        return "value does not have datatype " + shape_term(c.term);
+      case Component::NodeKind: {
+        std::string kinds;
+        for (auto [bit, name] :
+             {std::pair{kBlankNode, "blank node"}, {kIri, "IRI"}, {kLiteral, "literal"}})
+          if ((c.node_kinds & bit) != 0) kinds += (kinds.empty() ? "" : " or ") + std::string(name);
+        return "value is not a " + kinds;
+      }
+      case Component::MinCount:
+        return "fewer than " + count(c.number);
+      case Component::MaxCount:
+        return "more than " + count(c.number);
+      case Component::MinExclusive:
+        return "value is not > " + shape_term(c.term);
+      case Component::MinInclusive:
+        return "value is not >= " + shape_term(c.term);
+      case Component::MaxExclusive:
+        return "value is not < " + shape_term(c.term);
+      case Component::MaxInclusive:
+        return "value is not <= " + shape_term(c.term);
+      case Component::MinLength:
+        return "value is shorter than " + std::to_string(c.number) + " characters";
+      case Component::MaxLength:
+        return "value is longer than " + std::to_string(c.number) + " characters";
+      case Component::Pattern:
+        return "value does not match the sh:pattern";
+      case Component::LanguageIn:
+        return "language tag is not in sh:languageIn";
+      case Component::UniqueLang:
+        return "a language tag is used more than once";
+      case Component::Equals:
+        return "values differ from those of " + shape_term(c.term);
+      case Component::Disjoint:
+        return "value is also a value of " + shape_term(c.term);
+      case Component::LessThan:
+        return "value is not less than the values of " + shape_term(c.term);
+      case Component::LessThanOrEquals:
+        return "value is not less than or equal to the values of " + shape_term(c.term);
+      case Component::Not:
+        return "value conforms to " + shapes_.describe(c.shapes[0]) + " (sh:not)";
+      case Component::And:
+        return "value does not conform to every shape of sh:and";
+      case Component::Or:
+        return "value conforms to none of the shapes of sh:or";
+      case Component::Xone:
+        return "value does not conform to exactly one shape of sh:xone";
+      case Component::Node:
+        return "value does not conform to " + shapes_.describe(c.shapes[0]);
+      case Component::Property:
+        return "property shape failed";
+      case Component::QualifiedMinCount:
+        return "fewer than " + count(c.number) + " conform to " + shapes_.describe(c.shapes[0]);
+      case Component::QualifiedMaxCount:
+        return "more than " + count(c.number) + " conform to " + shapes_.describe(c.shapes[0]);
+      case Component::Closed:
+        return "predicate is not allowed (closed shape)";
+      case Component::HasValue:
+        return "missing value " + shape_term(c.term);
+      case Component::In:
+        return "value is not in sh:in";
+      case Component::Sparql:
+        return "SPARQL constraint failed";
+    }
+    return {};
+  }
+
+  Report render(const std::vector<RawResult>& raw) const {
+    Report report;
+    report.results.reserve(raw.size());
+    for (const RawResult& x : raw) {
+      const Shape& s = shapes_[x.shape];
+      Result r;
+      r.focus = import(report, x.focus);
+      if (!x.value.is_any()) r.value = import(report, x.value);
+      r.shape = import_shape_term(report, s.node);
+      r.component = x.component;
+      if (x.path == PathSource::Shape) r.path = import_path(report, *s.path);
+      if (x.path == PathSource::Predicate) r.path = sparql::Path::iri(import(report, x.predicate));
+      r.level = s.level;
+      if (s.level == Level::Other) r.severity = import_shape_term(report, s.severity);
+      for (TermId m : s.messages) r.messages.push_back(import_shape_term(report, m));
+      if (r.messages.empty()) r.default_message = default_message(x);
+      if (options_.locate && x.focus.index < base_)
+        if (auto loc = options_.locate(x.focus)) r.focus_loc = *loc;
+      r.shape_loc = s.where;
+      report.results.push_back(std::move(r));
+    }
+    report.sort();
+    return report;
+  }
+
+  const Shapes& shapes_;
+  const rdf::Dataset& data_;
+  const rdf::TermTable& dt_;
+  const rdf::TermTable& st_;
+  const bool same_;
+  const uint32_t base_;
+  const ValidateOptions& options_;
+  TermId type_, subclass_;
+  std::vector<TermId> to_data_;
+  std::vector<TermId> overlay_;
+  std::vector<sparql::PathPtr> paths_;
+  std::vector<std::vector<std::vector<TermId>>> bound_;
+  std::unordered_map<uint32_t, std::vector<TermId>> subclasses_;
+  std::vector<uint8_t> well_formed_;
+  std::unordered_map<uint64_t, bool> conforms_cache_;
+  std::unordered_set<uint64_t> active_;
+  std::vector<uint32_t> stack_;
+};
+
+}  // namespace
+
+Report validate(const Shapes& shapes, const rdf::Dataset& data, const ValidateOptions& options) {
+  return Validator(shapes, data, options).run();
+}
+
+}  // namespace mospec::shacl

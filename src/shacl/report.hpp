@@ -1,0 +1,60 @@
+// SHACL validation reports: the results, their deterministic order, and the
+// Turtle / text / RDF renderings.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "rdf/dataset.hpp"
+#include "shacl/shapes.hpp"
+#include "sparql/path.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::shacl {
+
+// One sh:ValidationResult. Term ids refer to Report::terms.
+struct Result {
+  rdf::TermId focus;                                   // sh:focusNode
+  rdf::TermId value = rdf::TermId::any();              // sh:value (any(): none)
+  rdf::TermId shape;                                   // sh:sourceShape
+  Component component = Component::Class;              // sh:sourceConstraintComponent
+  rdf::TermId source_constraint = rdf::TermId::any();  // sh:sourceConstraint (SHACL-SPARQL)
+  sparql::PathPtr path;                                // sh:resultPath (null: none)
+  Level level = Level::Violation;                      // sh:resultSeverity
+  rdf::TermId severity = rdf::TermId::any();           // the severity IRI when level is Other
+  std::vector<rdf::TermId> messages;                   // sh:resultMessage, from sh:message
+  std::string default_message;  // generated text for results without sh:message
+  SourceLoc focus_loc;          // where the focus node is written (data files)
+  SourceLoc shape_loc;          // where the shape is written (shapes files)
+};
+
+class Report {
+ public:
+  rdf::TermTable terms;
+  std::vector<Result> results;
+
+  bool conforms() const { return results.empty(); }
+  size_t count(Level level) const;
+  // Deterministic order: focus node location (unlocated last), focus node,
+  // shape, component, path, value.
+  void sort();
+};
+
+std::string_view level_name(Level);  // "violation", "warning", "info", "other"
+
+// The report graph in Turtle: sh:ValidationReport with nested results,
+// standard prefixes, byte-for-byte deterministic for a sorted report.
+std::string to_turtle(const Report& report);
+
+// One line per result,
+//   file:line:col: <severity>: <focus>: <message> [shape <S>, <component>, path <P>, value <V>]
+// then "shacl: N violations, M warnings, K infos" (plus other severities when
+// present). `data_files` names Result::focus_loc, `shape_files` Result::shape_loc.
+std::string to_text(const Report& report, const SourceFiles* data_files,
+                    const SourceFiles* shape_files = nullptr);
+
+// The report graph as a dataset (for comparisons, e.g. the W3C test suite).
+rdf::Dataset to_dataset(const Report& report);
+
+}  // namespace mospec::shacl

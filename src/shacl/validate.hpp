@@ -1,0 +1,29 @@
+// SHACL Core validation of a data graph against a compiled shapes model.
+#pragma once
+
+#include <functional>
+#include <optional>
+
+#include "rdf/dataset.hpp"
+#include "shacl/report.hpp"
+#include "shacl/shapes.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::shacl {
+
+struct ValidateOptions {
+  // Where a data node (a term of the data graph's table) is written, for the
+  // report's order and the text output; unset or nullopt: not located.
+  std::function<std::optional<SourceLoc>(rdf::TermId)> locate;
+};
+
+// Validates `data` (every graph of it, as one graph) against every shape with
+// targets. `data` may be shapes.graph() itself. Returns a sorted report.
+//
+// Recursion: a shape that reaches itself for the same focus node (through
+// sh:node, sh:property, sh:and, ...) throws mospec::Error "shacl-recursion"
+// naming the shape cycle and the focus node.
+Report validate(const Shapes& shapes, const rdf::Dataset& data,
+                const ValidateOptions& options = {});
+
+}  // namespace mospec::shacl
