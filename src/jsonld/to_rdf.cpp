@@ -43,8 +43,8 @@ bool is_hex(char c) {
 }
 
 // RFC 3987 well-formedness as far as it matters for RDF output: a scheme,
-// no characters that IRIs exclude (space, controls, <>"{}|\^`), and
-// percent signs that start an escape. Expansion leaves relative references in
+// no characters that IRIs exclude (space, controls, <>"{}|\^`), at most one
+// '#', and percent signs that start an escape. Expansion leaves relative references in
 // place when there is no base; those are not IRIs and their triples are dropped.
 bool is_well_formed_iri(std::string_view s) {
   if (s.empty() || !is_alpha(s[0])) return false;
@@ -59,7 +59,12 @@ bool is_well_formed_iri(std::string_view s) {
   }
   if (colon == 0) return false;
   static constexpr std::string_view kExcluded = "<>\"{}|\\^`";
+  bool fragment = false;  // a fragment may not contain another '#'
   for (size_t i = colon + 1; i < s.size(); ++i) {
+    if (s[i] == '#') {
+      if (fragment) return false;
+      fragment = true;
+    }
     auto u = static_cast<unsigned char>(s[i]);
     if (u <= 0x20 || u == 0x7f || kExcluded.find(s[i]) != std::string_view::npos) return false;
     if (s[i] == '%' && (i + 2 >= s.size() || !is_hex(s[i + 1]) || !is_hex(s[i + 2]))) {

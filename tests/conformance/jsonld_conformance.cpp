@@ -2,10 +2,13 @@
 // against mospec's processor, offline.
 //
 //   jsonld-conformance MANIFEST [--verbose] [--only ID] [--skip-if-missing]
+//                               [--include-optional]
 //
 // Prints one line per failure and per skipped test, then exactly
 // "jsonld-<kind>: N passed, M failed, K skipped"; exits 0 iff nothing failed.
 // With --skip-if-missing a missing manifest exits 77 (ctest's skip code).
+// --include-optional also runs tests that `require` an optional feature
+// (rdfDirection modes, generalized RDF), which are otherwise skipped.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -36,6 +39,7 @@ struct Args {
   std::string manifest;
   bool verbose = false;
   bool skip_if_missing = false;
+  bool include_optional = false;
   std::string only;
 };
 
@@ -186,13 +190,14 @@ class Runner {
   }
 
   // Why a test does not apply, or empty when it does.
-  static std::string not_applicable(const Value& test, const Value* option, Kind kind) {
+  static std::string not_applicable(const Value& test, const Value* option, Kind kind,
+                                    bool include_optional) {
     if (!has_type(test, kind == Kind::ToRdf ? "jld:ToRDFTest" : "jld:ExpandTest")) {
       return "not a " + std::string(kind == Kind::ToRdf ? "toRdf" : "expand") + " test";
     }
     std::string requires_ = str(test.get("requires"));
     if (requires_.empty() && option != nullptr) requires_ = str(option->get("requires"));
-    if (!requires_.empty()) return "requires optional feature " + requires_;
+    if (!requires_.empty() && !include_optional) return "requires optional feature " + requires_;
     if (option != nullptr) {
       if (str(option->get("specVersion")) == "json-ld-1.0") {
         return "specVersion json-ld-1.0 only (mospec implements JSON-LD 1.1)";
@@ -208,7 +213,8 @@ class Runner {
   void run_test(const Value& test, const std::string& id) {
     const std::string name = str(test.get("name"));
     const Value* option = test.get("option");
-    if (std::string reason = not_applicable(test, option, kind_); !reason.empty()) {
+    if (std::string reason = not_applicable(test, option, kind_, args_.include_optional);
+        !reason.empty()) {
       skip(id, name, reason);
       return;
     }
@@ -325,7 +331,8 @@ class Runner {
 };
 
 int usage() {
-  std::cerr << "usage: jsonld-conformance MANIFEST [--verbose] [--only ID] [--skip-if-missing]\n";
+  std::cerr << "usage: jsonld-conformance MANIFEST [--verbose] [--only ID] [--skip-if-missing]\n"
+               "                          [--include-optional]\n";
   return 2;
 }
 
@@ -337,6 +344,8 @@ int main(int argc, char** argv) {
     std::string_view a = argv[i];
     if (a == "--verbose" || a == "-v") {
       args.verbose = true;
+    } else if (a == "--include-optional") {
+      args.include_optional = true;
     } else if (a == "--skip-if-missing") {
       args.skip_if_missing = true;
     } else if (a == "--only") {
