@@ -1,1 +1,654 @@
-// placeholder: implementation in progress
+// Stage 2: syntax tree -> algebra (SPARQL 1.1 section 18.2).
+#include "sparql/algebra.hpp"
+
+#include <unordered_map>
+
+namespace mospec::sparql::detail {
+
+namespace {
+
+constexpr std::string_view kSyntax = "sparql-syntax";
+constexpr std::string_view kUnsupported = "unsupported-sparql";
+constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
+constexpr std::string_view kXsd = "http://www.w3.org/2001/XMLSchema#";
+
+struct Builtin {
+  const char* name;
+  ExprOp op;
+  int min_args, max_args;  // max -1: any number
+};
+constexpr Builtin kBuiltins[] = {
+    {"BOUND", ExprOp::Bound, 1, 1},         {"IF", ExprOp::If, 3, 3},
+    {"COALESCE", ExprOp::Coalesce, 0, -1},  {"ABS", ExprOp::Abs, 1, 1},
+    {"CEIL", ExprOp::Ceil, 1, 1},           {"FLOOR", ExprOp::Floor, 1, 1},
+    {"ROUND", ExprOp::Round, 1, 1},         {"ISIRI", ExprOp::IsIri, 1, 1},
+    {"ISURI", ExprOp::IsIri, 1, 1},         {"ISBLANK", ExprOp::IsBlank, 1, 1},
+    {"ISLITERAL", ExprOp::IsLiteral, 1, 1}, {"ISNUMERIC", ExprOp::IsNumeric, 1, 1},
+    {"STR", ExprOp::Str, 1, 1},             {"LANG", ExprOp::Lang, 1, 1},
+    {"DATATYPE", ExprOp::Datatype, 1, 1},   {"IRI", ExprOp::Iri, 1, 1},
+    {"URI", ExprOp::Iri, 1, 1},             {"REGEX", ExprOp::Regex, 2, 3},
+    {"STRSTARTS", ExprOp::StrStarts, 2, 2}, {"STRENDS", ExprOp::StrEnds, 2, 2},
+    {"CONTAINS", ExprOp::Contains, 2, 2},   {"STRLEN", ExprOp::StrLen, 1, 1},
+    {"UCASE", ExprOp::Ucase, 1, 1},         {"LCASE", ExprOp::Lcase, 1, 1},
+    {"CONCAT", ExprOp::Concat, 0, -1},      {"LANGMATCHES", ExprOp::LangMatches, 2, 2},
+    {"SAMETERM", ExprOp::SameTerm, 2, 2},
+};
+constexpr const char* kKnownUnsupported[] = {
+    "BNODE",   "RAND",   "NOW",     "UUID",    "STRUUID",        "MD5",     "SHA1",
+    "SHA256",  "SHA384", "SHA512",  "YEAR",    "MONTH",          "DAY",     "HOURS",
+    "MINUTES", "SECONDS", "TIMEZONE", "TZ",    "ENCODE_FOR_URI", "REPLACE", "SUBSTR",
+    "STRBEFORE", "STRAFTER", "STRDT", "STRLANG",
+};
+
+struct Cast {
+  const char* local;
+  ExprOp op;
+};
+constexpr Cast kCasts[] = {
+    {"string", ExprOp::CastString},   {"integer", ExprOp::CastInteger},
+    {"decimal", ExprOp::CastDecimal}, {"double", ExprOp::CastDouble},
+    {"float", ExprOp::CastFloat},     {"boolean", ExprOp::CastBoolean},
+};
+
+class Builder {
+ public:
+  explicit Builder(Plan& plan) : plan_(plan) {}
+
+  void build(ast::Query& q) {
+    plan_.form = q.form;
+    plan_.base = q.base;
+    plan_.distinct = q.distinct;
+    plan_.limit = q.limit;
+    plan_.offset = q.offset;
+    // Projected variables are created first so that they keep low slots.
+    for (const ast::Projection& pr : q.projection)
+      if (!pr.has_expr) var(pr.var.value);
+    plan_.root = group(q.where, nullptr);
+    const VarSet& scope = scope_[plan_.root];
+    if (q.form == QueryForm::Select) {
+      if (q.star) {
+        for (Var v = 0; v < plan_.var_names.size(); ++v) {
+          if (!plan_.hidden[v] && scope.contains(v)) {
+            plan_.result_vars.push_back(v);
+            plan_.result_names.push_back(plan_.var_names[v]);
+          }
+        }
+      } else {
+        VarSet projected = scope;
+        for (const ast::Projection& pr : q.projection) {
+          const Var v = var(pr.var.value);
+          if (pr.has_expr) {
+            if (projected.contains(v))
+              ast::fail(kSyntax, pr.var.pos,
+                        "(... AS ?" + pr.var.value + "): variable ?" + pr.var.value +
+                            " is already in scope");
+            plan_.projected_exprs.emplace_back(v, expr(pr.expr));
+            plan_.assigned.emplace_back(v, pr.var.pos);
+            projected.insert(v);
+          }
+          plan_.result_vars.push_back(v);
+          plan_.result_names.push_back(pr.var.value);
+        }
+      }
+    }
+    for (const ast::OrderKey& k : q.order) plan_.order.push_back({expr(k.expr), k.descending});
+  }
+
+ private:
+  // ---- variables and constants ----
+  Var new_var(std::string name, bool hidden) {
+    plan_.var_names.push_back(std::move(name));
+    plan_.hidden.push_back(hidden);
+    return static_cast<Var>(plan_.var_names.size() - 1);
+  }
+  Var var(const std::string& name) {
+    auto it = vars_.find(name);
+    if (it != vars_.end()) return it->second;
+    const Var v = new_var(name, false);
+    vars_.emplace(name, v);
+    return v;
+  }
+  Var fresh() { return new_var("_:#" + std::to_string(fresh_count_++), true); }
+
+  uint32_t constant(const ast::Term& t) {
+    switch (t.kind) {
+      case ast::Term::Kind::Iri:
+      case ast::Term::Kind::Nil:
+        return plan_.terms.iri(t.value).index;
+      case ast::Term::Kind::Literal:
+        if (!t.language.empty()) return plan_.terms.literal(t.value, {}, t.language).index;
+        if (t.datatype.empty()) return plan_.terms.literal(t.value).index;
+        return plan_.terms.literal(t.value, t.datatype).index;
+      default:
+        return 0;
+    }
+  }
+
+  Slot slot(const ast::Term& t) {
+    switch (t.kind) {
+      case ast::Term::Kind::Var:
+        return Slot{true, var(t.value)};
+      case ast::Term::Kind::Blank: {
+        if (t.value.empty()) return Slot{true, fresh()};
+        auto it = blank_labels_.find(t.value);
+        if (it != blank_labels_.end()) {
+          if (it->second.second != bgp_serial_)
+            ast::fail(kSyntax, t.pos,
+                      "blank node _:" + t.value +
+                          " is used in two different basic graph patterns (SPARQL 1.1, 4.1.4)");
+          return Slot{true, it->second.first};
+        }
+        const Var v = new_var("_:" + t.value, true);
+        blank_labels_.emplace(t.value, std::make_pair(v, bgp_serial_));
+        return Slot{true, v};
+      }
+      default:
+        return Slot{false, constant(t)};
+    }
+  }
+
+  // ---- triples and paths ----
+  PathPtr make_path(const ast::Path& p) {
+    switch (p.kind) {
+      case ast::Path::Kind::Iri:
+        return Path::iri(plan_.terms.iri(p.value));
+      case ast::Path::Kind::Negated: {
+        auto neg = std::make_shared<Path>();
+        neg->kind = Path::Kind::NegatedSet;
+        for (const ast::Path& item : p.items) {
+          if (item.kind == ast::Path::Kind::Inverse) {
+            neg->negated_inverse.push_back(plan_.terms.iri(item.items[0].value));
+          } else {
+            neg->negated.push_back(plan_.terms.iri(item.value));
+          }
+        }
+        return neg;
+      }
+      default: {
+        std::vector<PathPtr> items;
+        for (const ast::Path& item : p.items) items.push_back(make_path(item));
+        Path::Kind k = Path::Kind::Sequence;
+        switch (p.kind) {
+          case ast::Path::Kind::Inverse: k = Path::Kind::Inverse; break;
+          case ast::Path::Kind::Sequence: k = Path::Kind::Sequence; break;
+          case ast::Path::Kind::Alternative: k = Path::Kind::Alternative; break;
+          case ast::Path::Kind::ZeroOrMore: k = Path::Kind::ZeroOrMore; break;
+          case ast::Path::Kind::OneOrMore: k = Path::Kind::OneOrMore; break;
+          case ast::Path::Kind::ZeroOrOne: k = Path::Kind::ZeroOrOne; break;
+          default: break;
+        }
+        return Path::make(k, std::move(items));
+      }
+    }
+  }
+
+  // 18.2.2.4: links and inverse links become triple patterns, sequences are
+  // split with a fresh variable, everything else stays a path pattern.
+  void add_path(Slot s, const ast::Path& p, Slot o, std::vector<PatternElem>& out) {
+    switch (p.kind) {
+      case ast::Path::Kind::Var:
+        out.push_back(PatternElem{s, Slot{true, var(p.value)}, o, -1, p.pos});
+        return;
+      case ast::Path::Kind::Iri:
+        out.push_back(PatternElem{s, Slot{false, plan_.terms.iri(p.value).index}, o, -1, p.pos});
+        return;
+      case ast::Path::Kind::Inverse: {
+        const ast::Path& inner = p.items[0];
+        if (inner.kind == ast::Path::Kind::Iri || inner.kind == ast::Path::Kind::Inverse ||
+            inner.kind == ast::Path::Kind::Sequence) {
+          if (inner.kind == ast::Path::Kind::Sequence) {
+            // ^(a/b) = ^b/^a
+            ast::Path seq{ast::Path::Kind::Sequence, {}, {}, inner.pos};
+            for (auto it = inner.items.rbegin(); it != inner.items.rend(); ++it)
+              seq.items.push_back(ast::Path{ast::Path::Kind::Inverse, {}, {*it}, it->pos});
+            add_path(s, seq, o, out);
+          } else {
+            add_path(o, inner, s, out);
+          }
+          return;
+        }
+        break;
+      }
+      case ast::Path::Kind::Sequence: {
+        Slot cur = s;
+        for (size_t i = 0; i + 1 < p.items.size(); ++i) {
+          Slot mid{true, fresh()};
+          add_path(cur, p.items[i], mid, out);
+          cur = mid;
+        }
+        add_path(cur, p.items.back(), o, out);
+        return;
+      }
+      default:
+        break;
+    }
+    plan_.paths.push_back(make_path(p));
+    PatternElem e{s, Slot{}, o, static_cast<int32_t>(plan_.paths.size() - 1), p.pos};
+    out.push_back(e);
+  }
+
+  Slot node(const ast::Node& n, std::vector<PatternElem>& out) {
+    switch (n.kind) {
+      case ast::Node::Kind::Term:
+        return slot(n.term);
+      case ast::Node::Kind::BlankPropertyList: {
+        Slot b{true, fresh()};
+        properties(b, n.properties, out);
+        return b;
+      }
+      case ast::Node::Kind::Collection: {
+        const Slot first{false, plan_.terms.iri(std::string(kRdf) + "first").index};
+        const Slot rest{false, plan_.terms.iri(std::string(kRdf) + "rest").index};
+        const Slot nil{false, plan_.terms.iri(std::string(kRdf) + "nil").index};
+        Slot head{true, fresh()};
+        Slot cur = head;
+        for (size_t i = 0; i < n.members.size(); ++i) {
+          Slot m = node(n.members[i], out);
+          out.push_back(PatternElem{cur, first, m, -1, n.members[i].pos});
+          Slot next = i + 1 < n.members.size() ? Slot{true, fresh()} : nil;
+          out.push_back(PatternElem{cur, rest, next, -1, n.members[i].pos});
+          cur = next;
+        }
+        return head;
+      }
+    }
+    return Slot{};
+  }
+
+  void properties(Slot s, const std::vector<ast::PropertyObjects>& props,
+                  std::vector<PatternElem>& out) {
+    for (const ast::PropertyObjects& po : props)
+      for (const ast::Node& obj : po.objects) add_path(s, po.verb, node(obj, out), out);
+  }
+
+  // ---- ops ----
+  uint32_t push(Op op, VarSet scope) {
+    op.hide.clear();
+    for (Var v : op.mentioned.members())
+      if (!op.certain.contains(v)) op.hide.push_back(v);
+    plan_.ops.push_back(std::move(op));
+    scope_.push_back(std::move(scope));
+    return static_cast<uint32_t>(plan_.ops.size() - 1);
+  }
+
+  uint32_t bgp(std::vector<PatternElem> elems) {
+    Op op;
+    op.kind = OpKind::Bgp;
+    VarSet vars;
+    for (const PatternElem& e : elems)
+      for (const Slot* sl : {&e.s, &e.p, &e.o})
+        if (sl->is_var && !(sl == &e.p && e.path >= 0)) vars.insert(sl->value);
+    op.elems = std::move(elems);
+    op.vars = vars.members();
+    op.certain = vars;
+    op.mentioned = vars;
+    return push(std::move(op), vars);
+  }
+
+  // Translates a group. With `filters_out`, the group's filters are handed
+  // back (OPTIONAL turns them into the LeftJoin condition) instead of placed.
+  uint32_t group(const ast::Group& g, std::vector<uint32_t>* filters_out) {
+    std::vector<Step> steps;
+    std::vector<uint32_t> filters;
+    std::vector<PatternElem> pending;
+    VarSet in_scope;  // for the BIND rule (18.2.1)
+    VarSet certain, mentioned;
+    std::vector<VarSet> certain_after;  // by step
+    auto add_step = [&](Step s) {
+      if (s.kind == Step::Kind::Join) {
+        const Op& child = plan_.ops[s.child];
+        certain.insert_all(child.certain);
+        mentioned.insert_all(child.mentioned);
+        in_scope.insert_all(scope_[s.child]);
+      } else if (s.kind == Step::Kind::LeftJoin) {
+        mentioned.insert_all(plan_.ops[s.child].mentioned);
+        in_scope.insert_all(scope_[s.child]);
+      }
+      steps.push_back(s);
+      certain_after.push_back(certain);
+    };
+    auto flush = [&]() {
+      if (pending.empty()) return;
+      add_step(Step{Step::Kind::Join, bgp(std::move(pending)), kNone, kNone});
+      pending.clear();
+      ++bgp_serial_;
+    };
+    for (const ast::Element& e : g.elements) {
+      switch (e.kind) {
+        case ast::Element::Kind::Triples:
+          for (const ast::Triples& t : e.triples) {
+            Slot s = node(t.subject, pending);
+            properties(s, t.properties, pending);
+          }
+          break;
+        case ast::Element::Kind::Filter:
+          filters.push_back(expr(e.expr));
+          break;
+        case ast::Element::Kind::Group:
+          flush();
+          add_step(Step{Step::Kind::Join, group(e.groups[0], nullptr), kNone, kNone});
+          break;
+        case ast::Element::Kind::Union: {
+          flush();
+          Op u;
+          u.kind = OpKind::Union;
+          VarSet scope;
+          bool first = true;
+          for (const ast::Group& alt : e.groups) {
+            const uint32_t c = group(alt, nullptr);
+            u.children.push_back(c);
+            if (first) {
+              u.certain = plan_.ops[c].certain;
+            } else {
+              u.certain.intersect(plan_.ops[c].certain);
+            }
+            first = false;
+            u.mentioned.insert_all(plan_.ops[c].mentioned);
+            scope.insert_all(scope_[c]);
+          }
+          add_step(Step{Step::Kind::Join, push(std::move(u), scope), kNone, kNone});
+          break;
+        }
+        case ast::Element::Kind::Optional: {
+          flush();
+          std::vector<uint32_t> conds;
+          const uint32_t c = group(e.groups[0], &conds);
+          uint32_t cond = kNone;
+          for (uint32_t f : conds) cond = cond == kNone ? f : conjunction(cond, f);
+          if (cond != kNone)
+            for (Var v : plan_.expr_vars[cond]) mentioned.insert(v);
+          add_step(Step{Step::Kind::LeftJoin, c, cond, kNone});
+          break;
+        }
+        case ast::Element::Kind::Bind: {
+          flush();
+          const Var v = var(e.var.value);
+          if (in_scope.contains(v))
+            ast::fail(kSyntax, e.var.pos,
+                      "BIND ... AS ?" + e.var.value + ": variable ?" + e.var.value +
+                          " is already in scope in this group (SPARQL 1.1, 18.2.1)");
+          const uint32_t x = expr(e.expr);
+          for (Var w : plan_.expr_vars[x]) mentioned.insert(w);
+          mentioned.insert(v);
+          in_scope.insert(v);
+          plan_.assigned.emplace_back(v, e.var.pos);
+          add_step(Step{Step::Kind::Extend, kNone, x, v});
+          break;
+        }
+      }
+    }
+    flush();
+
+    Op op;
+    op.kind = OpKind::Group;
+    op.certain = certain;
+    for (uint32_t f : filters)
+      for (Var v : plan_.expr_vars[f]) mentioned.insert(v);
+    op.mentioned = mentioned;
+    if (filters_out != nullptr) {
+      *filters_out = filters;
+      op.steps = std::move(steps);
+      return push(std::move(op), in_scope);
+    }
+    // Filter placement (see algebra.hpp): `bindable` is what the group binds.
+    VarSet bindable = in_scope;
+    std::vector<std::vector<uint32_t>> after(steps.size() + 1);  // after[k+1]: after step k
+    for (uint32_t f : filters) {
+      size_t place = steps.size();  // default: on top of everything
+      bool need_any = false;
+      VarSet need;
+      for (Var v : plan_.expr_vars[f]) {
+        if (bindable.contains(v)) {
+          need.insert(v);
+          need_any = true;
+        }
+      }
+      if (!need_any) {
+        place = 0;
+      } else {
+        for (size_t k = 0; k < steps.size(); ++k) {
+          if (need.subset_of(certain_after[k])) {
+            place = k + 1;
+            break;
+          }
+        }
+      }
+      after[place].push_back(f);
+    }
+    for (size_t k = 0; k <= steps.size(); ++k) {
+      if (k > 0) {
+        const Step& s = steps[k - 1];
+        if (s.kind == Step::Kind::Join && plan_.ops[s.child].kind == OpKind::Bgp) {
+          // Checked inside the BGP's join loop as soon as their variables are bound.
+          auto& bf = plan_.ops[s.child].filters;
+          bf.insert(bf.end(), after[k].begin(), after[k].end());
+          op.steps.push_back(s);
+          continue;
+        }
+        op.steps.push_back(s);
+      }
+      for (uint32_t f : after[k]) op.steps.push_back(Step{Step::Kind::Filter, kNone, f, kNone});
+    }
+    return push(std::move(op), in_scope);
+  }
+
+  // ---- expressions ----
+  uint32_t push_expr(Expr e, std::vector<Var> vars) {
+    plan_.exprs.push_back(std::move(e));
+    plan_.expr_vars.push_back(std::move(vars));
+    return static_cast<uint32_t>(plan_.exprs.size() - 1);
+  }
+  uint32_t conjunction(uint32_t a, uint32_t b) {
+    Expr e;
+    e.op = ExprOp::And;
+    e.args = {a, b};
+    VarSet vs;
+    for (uint32_t x : {a, b})
+      for (Var v : plan_.expr_vars[x]) vs.insert(v);
+    return push_expr(std::move(e), vs.members());
+  }
+
+  uint32_t expr(const ast::Expr& a) {
+    Expr e;
+    e.pos = a.pos;
+    VarSet vs;
+    auto arg = [&](const ast::Expr& x) {
+      const uint32_t i = expr(x);
+      e.args.push_back(i);
+      for (Var v : plan_.expr_vars[i]) vs.insert(v);
+    };
+    switch (a.kind) {
+      case ast::Expr::Kind::Term:
+        if (a.term.kind == ast::Term::Kind::Var) {
+          e.op = ExprOp::Var;
+          e.value = var(a.term.value);
+          vs.insert(e.value);
+        } else {
+          e.op = ExprOp::Const;
+          e.value = constant(a.term);
+        }
+        break;
+      case ast::Expr::Kind::Or:
+      case ast::Expr::Kind::And:
+      case ast::Expr::Kind::Not:
+      case ast::Expr::Kind::Negate:
+      case ast::Expr::Kind::Plus:
+      case ast::Expr::Kind::In:
+      case ast::Expr::Kind::NotIn:
+        e.op = a.kind == ast::Expr::Kind::Or       ? ExprOp::Or
+               : a.kind == ast::Expr::Kind::And    ? ExprOp::And
+               : a.kind == ast::Expr::Kind::Not    ? ExprOp::Not
+               : a.kind == ast::Expr::Kind::Negate ? ExprOp::Neg
+               : a.kind == ast::Expr::Kind::Plus   ? ExprOp::Plus
+               : a.kind == ast::Expr::Kind::In     ? ExprOp::In
+                                                   : ExprOp::NotIn;
+        for (const ast::Expr& x : a.args) arg(x);
+        break;
+      case ast::Expr::Kind::Compare:
+        e.op = a.name == "="    ? ExprOp::Eq
+               : a.name == "!=" ? ExprOp::Ne
+               : a.name == "<"  ? ExprOp::Lt
+               : a.name == ">"  ? ExprOp::Gt
+               : a.name == "<=" ? ExprOp::Le
+                                : ExprOp::Ge;
+        for (const ast::Expr& x : a.args) arg(x);
+        break;
+      case ast::Expr::Kind::Arith:
+        e.op = a.name == "+"   ? ExprOp::Add
+               : a.name == "-" ? ExprOp::Sub
+               : a.name == "*" ? ExprOp::Mul
+                               : ExprOp::Div;
+        for (const ast::Expr& x : a.args) arg(x);
+        break;
+      case ast::Expr::Kind::Exists:
+      case ast::Expr::Kind::NotExists: {
+        e.op = a.kind == ast::Expr::Kind::Exists ? ExprOp::Exists : ExprOp::NotExists;
+        e.value = group(*a.pattern, nullptr);
+        vs.insert_all(plan_.ops[e.value].mentioned);
+        break;
+      }
+      case ast::Expr::Kind::Call:
+        call(a, e);
+        for (const ast::Expr& x : a.args) arg(x);
+        if (e.op == ExprOp::Regex) regex(a, e);
+        break;
+    }
+    return push_expr(std::move(e), vs.members());
+  }
+
+  void call(const ast::Expr& a, Expr& e) {
+    auto arity = [&](int lo, int hi) {
+      const int n = static_cast<int>(a.args.size());
+      if (n < lo || (hi >= 0 && n > hi)) {
+        std::string want = lo == hi   ? std::to_string(lo)
+                           : hi < 0   ? "at least " + std::to_string(lo)
+                                      : std::to_string(lo) + " or " + std::to_string(hi);
+        ast::fail(kSyntax, a.pos,
+                  a.name + " expects " + want + " argument" + (want == "1" ? "" : "s") +
+                      ", found " + std::to_string(n));
+      }
+    };
+    if (a.is_iri) {
+      if (a.name.starts_with(kXsd)) {
+        const std::string_view local = std::string_view(a.name).substr(kXsd.size());
+        for (const Cast& c : kCasts) {
+          if (local == c.local) {
+            e.op = c.op;
+            arity(1, 1);
+            return;
+          }
+        }
+      }
+      ast::fail(kUnsupported, a.pos, "function <" + a.name + "> is not supported");
+    }
+    for (const Builtin& b : kBuiltins) {
+      if (a.name == b.name) {
+        e.op = b.op;
+        arity(b.min_args, b.max_args);
+        return;
+      }
+    }
+    for (const char* n : kKnownUnsupported)
+      if (a.name == n) ast::fail(kUnsupported, a.pos, "function " + a.name + " is not supported");
+    ast::fail(kSyntax, a.pos, "unknown function " + a.name);
+  }
+
+  void regex(const ast::Expr& a, Expr& e) {
+    auto constant_string = [&](const ast::Expr& x) -> const std::string* {
+      if (x.kind != ast::Expr::Kind::Term || x.term.kind != ast::Term::Kind::Literal) return nullptr;
+      return &x.term.value;
+    };
+    const std::string* pattern = constant_string(a.args[1]);
+    const std::string* flags = a.args.size() > 2 ? constant_string(a.args[2]) : nullptr;
+    if (pattern == nullptr || (a.args.size() > 2 && flags == nullptr)) return;
+    std::regex re;
+    std::string error;
+    bool unsupported = false;
+    if (!compile_regex(*pattern, flags ? *flags : std::string_view(), re, error, unsupported))
+      ast::fail(unsupported ? kUnsupported : kSyntax, a.args[1].pos, error);
+    plan_.regexes.push_back(std::move(re));
+    e.regex = static_cast<int32_t>(plan_.regexes.size() - 1);
+  }
+
+  Plan& plan_;
+  std::unordered_map<std::string, Var> vars_;
+  std::unordered_map<std::string, std::pair<Var, uint32_t>> blank_labels_;
+  uint32_t bgp_serial_ = 0;
+  uint32_t fresh_count_ = 0;
+  std::vector<VarSet> scope_;  // by op: variables it can bind (in-scope, 18.2.1)
+};
+
+}  // namespace
+
+bool compile_regex(std::string_view pattern, std::string_view flags, std::regex& out,
+                   std::string& error, bool& unsupported) {
+  unsupported = false;
+  bool dot_all = false, extended = false;
+  auto syntax = std::regex::ECMAScript;
+  for (char f : flags) {
+    switch (f) {
+      case 's': dot_all = true; break;
+      case 'x': extended = true; break;
+      case 'i': syntax |= std::regex::icase; break;
+      case 'm': syntax |= std::regex::multiline; break;
+      default:
+        error = std::string("invalid REGEX flag '") + f + "' (allowed: s, m, i, x)";
+        return false;
+    }
+  }
+  std::string translated;
+  bool in_class = false;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    const char c = pattern[i];
+    if (c == '\\' && i + 1 < pattern.size()) {
+      const char n = pattern[i + 1];
+      if (n == 'p' || n == 'P' || n == 'i' || n == 'I' || n == 'c' || n == 'C') {
+        error = std::string("XPath regular expression escape \\") + n + " is not supported";
+        unsupported = true;
+        return false;
+      }
+      translated += c;
+      translated += n;
+      ++i;
+      continue;
+    }
+    if (in_class) {
+      if (c == '-' && i + 1 < pattern.size() && pattern[i + 1] == '[') {
+        error = "XPath character class subtraction '-[' is not supported";
+        unsupported = true;
+        return false;
+      }
+      if (c == ']') in_class = false;
+      translated += c;
+      continue;
+    }
+    if (extended && (c == ' ' || c == '\t' || c == '\n' || c == '\r')) continue;
+    if (c == '[') {
+      in_class = true;
+      translated += c;
+      if (i + 1 < pattern.size() && pattern[i + 1] == '^') translated += pattern[++i];
+      if (i + 1 < pattern.size() && pattern[i + 1] == ']') translated += pattern[++i];
+      continue;
+    }
+    if (c == '.' && dot_all) {
+      translated += "[\\s\\S]";
+      continue;
+    }
+    translated += c;
+  }
+  try {
+    out = std::regex(translated, syntax);
+  } catch (const std::regex_error& e) {
+    error = "invalid regular expression \"" + std::string(pattern) + "\": " + e.what();
+    return false;
+  }
+  return true;
+}
+
+std::shared_ptr<Plan> build_plan(ast::Query&& query) {
+  auto plan = std::make_shared<Plan>();
+  Builder(*plan).build(query);
+  return plan;
+}
+
+}  // namespace mospec::sparql::detail
