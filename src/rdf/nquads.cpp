@@ -69,8 +69,10 @@ void append_utf8(std::string& out, uint32_t c) {
 
 class Parser {
  public:
-  Parser(std::string_view text, Dataset& into, uint32_t file_id, std::string_view file_name)
-      : text_(text),
+  Parser(std::string_view text, Dataset& into, const NQuadsOptions& options, uint32_t file_id,
+         std::string_view file_name)
+      : options_(options),
+        text_(text),
         data_(into),
         terms_(into.terms()),
         file_id_(file_id),
@@ -367,23 +369,43 @@ class Parser {
   }
 
   // ---- statements -----------------------------------------------------------
+  TermId any_term(const char* role) {
+    switch (peek()) {
+      case '<':
+        return iri();
+      case '_':
+        return blank();
+      case '"':
+        return literal();
+      default:
+        fail(std::string("expected ") + role + " (IRI, blank node or literal), found " + found());
+    }
+  }
+
   void statement() {
     const SourceLoc where{file_id_, line_, column()};
     Quad q{};
-    switch (peek()) {
-      case '<':
-        q.subject = iri();
-        break;
-      case '_':
-        q.subject = blank();
-        break;
-      default:
-        fail("expected subject (IRI or blank node), found " + found());
+    if (options_.generalized) {
+      q.subject = any_term("subject");
+      skip_space();
+      q.predicate = any_term("predicate");
+      skip_space();
+    } else {
+      switch (peek()) {
+        case '<':
+          q.subject = iri();
+          break;
+        case '_':
+          q.subject = blank();
+          break;
+        default:
+          fail("expected subject (IRI or blank node), found " + found());
+      }
+      skip_space();
+      if (peek() != '<') fail("expected predicate IRI, found " + found());
+      q.predicate = iri();
+      skip_space();
     }
-    skip_space();
-    if (peek() != '<') fail("expected predicate IRI, found " + found());
-    q.predicate = iri();
-    skip_space();
     switch (peek()) {
       case '<':
         q.object = iri();
@@ -418,6 +440,7 @@ class Parser {
     data_.add(q, where);
   }
 
+  NQuadsOptions options_;
   std::string_view text_;
   size_t pos_ = 0;
   uint32_t line_ = 1;
@@ -434,7 +457,12 @@ class Parser {
 
 void read_nquads(std::string_view text, Dataset& into, uint32_t file_id,
                  std::string_view file_name) {
-  Parser(text, into, file_id, file_name).run();
+  Parser(text, into, NQuadsOptions{}, file_id, file_name).run();
+}
+
+void read_nquads(std::string_view text, Dataset& into, const NQuadsOptions& options,
+                 uint32_t file_id, std::string_view file_name) {
+  Parser(text, into, options, file_id, file_name).run();
 }
 
 namespace {

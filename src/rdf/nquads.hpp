@@ -31,6 +31,15 @@ namespace mospec::rdf {
 void read_nquads(std::string_view text, Dataset& into, uint32_t file_id = 0,
                  std::string_view file_name = "<input>");
 
+struct NQuadsOptions {
+  // Generalized RDF (as JSON-LD's produceGeneralizedRdf emits and its test
+  // suite expects): subjects and predicates may be any IRI, blank node or
+  // literal. Off, the RDF 1.1 grammar applies.
+  bool generalized = false;
+};
+void read_nquads(std::string_view text, Dataset& into, const NQuadsOptions& options,
+                 uint32_t file_id = 0, std::string_view file_name = "<input>");
+
 enum class Format { NQuads, NTriples };
 // Writes every quad, one per line, lines sorted bytewise (deterministic output).
 // With NTriples the graph component is dropped (callers pass a flattened

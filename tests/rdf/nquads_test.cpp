@@ -170,6 +170,27 @@ TEST(ReadNQuads, ErrorsAreLocated) {
             "models/x.nq:3:42: error: expected end of line after '.', found '.'");
 }
 
+TEST(ReadNQuads, GeneralizedRdfOnlyWhenAsked) {
+  const std::string text = "_:b0 _:b0 \"v\" .\n\"lit\" <http://ex.org/p> _:b0 .\n";
+  EXPECT_EQ(error_of(text), "<input>:1:6: error: expected predicate IRI, found '_'");
+  Dataset d;
+  read_nquads(text, d, NQuadsOptions{.generalized = true});
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d.quads()[0].subject, d.quads()[0].predicate);
+  EXPECT_TRUE(d.terms()[d.quads()[1].subject].is_literal());
+  EXPECT_EQ(to_nquads(d),
+            "\"lit\" <http://ex.org/p> _:r0_b0 .\n"
+            "_:r0_b0 _:r0_b0 \"v\" .\n");
+  Dataset bad;
+  try {
+    read_nquads("<http://ex.org/s> . .", bad, NQuadsOptions{.generalized = true});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "<input>:1:19: error: expected predicate (IRI, blank node or literal), found '.'");
+  }
+}
+
 TEST(ReadNQuads, QuadsBeforeAnErrorAreKept) {
   Dataset d;
   EXPECT_THROW(read_nquads("<http://a/s> <http://a/p> <http://a/o> .\n<bad", d), Error);
