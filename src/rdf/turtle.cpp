@@ -20,6 +20,27 @@ std::string_view view(const SerdNode* node) {
   return {reinterpret_cast<const char*>(node->buf), node->n_bytes};
 }
 
+bool is_alpha(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+bool is_alnum(char c) {
+  return is_alpha(c) || (c >= '0' && c <= '9');
+}
+
+// Turtle's LANGTAG: [a-zA-Z]+ ('-' [a-zA-Z0-9]+)*
+bool valid_language_tag(std::string_view tag) {
+  size_t i = 0;
+  while (i < tag.size() && is_alpha(tag[i])) ++i;
+  if (i == 0) return false;
+  while (i < tag.size()) {
+    if (tag[i++] != '-') return false;
+    const size_t start = i;
+    while (i < tag.size() && is_alnum(tag[i])) ++i;
+    if (i == start) return false;
+  }
+  return true;
+}
+
 // State shared with serd's C callbacks. Exceptions must not cross serd's C
 // frames, so callbacks record the first error and return a failure status;
 // the caller throws once serd has returned.
@@ -148,8 +169,14 @@ class TurtleReader {
           if (!iri) return std::nullopt;
           return terms.literal(view(node), terms.iri(*iri));
         }
-        if (language != nullptr && language->type != SERD_NOTHING)
+        if (language != nullptr && language->type != SERD_NOTHING) {
+          // serd 0.30 accepts tags such as "en--"; N-Quads could not express them.
+          if (!valid_language_tag(view(language))) {
+            record("invalid language tag '" + std::string(view(language)) + "'", line_, column());
+            return std::nullopt;
+          }
           return terms.literal(view(node), TermId::default_graph(), view(language));
+        }
         return terms.literal(view(node));
       }
       case SERD_NOTHING:

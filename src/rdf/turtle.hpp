@@ -4,6 +4,11 @@
 // located where serd's read cursor was when it delivered the statement: just
 // past the statement's object (the line is exact for single-line statements
 // and names the object's line otherwise). Errors carry serd's own cursor.
+//
+// Known serd 0.30 limitation: in Turtle, serd renames labels of the form
+// _:b<digit>... to _:B<digit>... (its own anonymous nodes are b1, b2, ...) and
+// rejects a document that also uses a _:B<digit>... label ("found both `b' and
+// `B' blank IDs"). Such documents are valid Turtle but are reported as errors.
 #pragma once
 
 #include <string_view>
