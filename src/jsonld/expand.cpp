@@ -105,11 +105,11 @@ Value& put(Object& obj, std::string key, Value v, SourceLoc key_loc) {
 
 // The spec's "add value" with `as array` true: values of an array are appended
 // one by one.
-void add_value(Object& obj, std::string_view key, Value v, SourceLoc key_loc) {
+void add_value(Object& obj, std::string key, Value v, SourceLoc key_loc) {
   Value* slot = obj.find(key);
   if (slot == nullptr) {
     SourceLoc loc = v.location();
-    slot = &put(obj, std::string(key), Value(Array{}), key_loc);
+    slot = &put(obj, std::move(key), Value(Array{}), key_loc);
     slot->set_location(loc);
   } else if (!slot->is_array()) {
     *slot = to_array(std::move(*slot));
@@ -134,6 +134,16 @@ Value string_at(std::string s, SourceLoc loc) {
   Value v(std::move(s));
   v.set_location(loc);
   return v;
+}
+
+// Whether `key` IRI-expands to `keyword` in `ctx`, without building the
+// expansion: only a keyword itself or a keyword alias can (IRI Expansion steps
+// 1, 2 and 4), which keeps this check off the allocator in the per-node scans.
+bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_view keyword) {
+  if (key == keyword) return true;
+  if (is_keyword(key) || has_keyword_form(key)) return false;
+  const TermDefinition* def = ctx.find(key);
+  return def != nullptr && def->iri && *def->iri == keyword;
 }
 
 // Visiting order of an object's members: insertion order, or code-point order
@@ -308,9 +318,8 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const Value&
     bool has_value = false;
     bool only_id = obj.size() == 1;
     for (size_t i = 0; i < obj.size(); ++i) {
-      std::optional<std::string> k = expand_iri(*active, obj.key(i));
-      if (k && *k == "@value") has_value = true;
-      if (!k || *k != "@id") only_id = false;
+      if (expands_to(*active, obj.key(i), "@value")) has_value = true;
+      if (only_id && !expands_to(*active, obj.key(i), "@id")) only_id = false;
     }
     if (!has_value && !only_id) active = active->previous();
   }
@@ -329,12 +338,15 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const Value&
   st.type_scoped = active;
   // 11, 12: keys are visited in code-point order; every @type entry applies the
   // type-scoped contexts of its values, in code-point order of the values.
-  const std::vector<size_t> sorted = member_order(obj, true);
-  bool input_type_seen = false;
   const ContextPtr tsc = st.type_scoped;
-  for (size_t i : sorted) {
-    std::optional<std::string> k = expand_iri(*tsc, obj.key(i));
-    if (!k || *k != "@type") continue;
+  std::vector<size_t> type_entries;  // almost always one: "@type"
+  for (size_t i = 0; i < obj.size(); ++i) {
+    if (expands_to(*tsc, obj.key(i), "@type")) type_entries.push_back(i);
+  }
+  std::sort(type_entries.begin(), type_entries.end(),
+            [&obj](size_t a, size_t b) { return obj.key(a) < obj.key(b); });
+  bool input_type_seen = false;
+  for (size_t i : type_entries) {
     const Value& v = obj.value(i);
     std::vector<const std::string*> terms;
     if (v.is_string()) {
@@ -374,7 +386,8 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
   std::vector<std::pair<std::string, SourceLoc>> nests;
   Object& result = st.result;
   // 13
-  for (size_t i : member_order(element, opts_.ordered)) {
+  const std::vector<size_t> order = member_order(element, opts_.ordered);
+  for (size_t i : order) {
     const std::string& key = element.key(i);
     const Value& value = element.value(i);
     const SourceLoc key_loc = element.key_location(i);
@@ -446,7 +459,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
         add_value(rm->as_object(), *expanded_property, std::move(item), key_loc);
       }
     } else {  // 13.14
-      add_value(result, *expanded_property, std::move(expanded_value), key_loc);
+      add_value(result, std::move(*expanded_property), std::move(expanded_value), key_loc);
     }
   }
 
@@ -468,10 +481,8 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
       bool bad = !nested->is_object();
       if (!bad) {
         const Object& no = nested->as_object();
-        for (size_t i = 0; i < no.size() && !bad; ++i) {
-          std::optional<std::string> k = expand_iri(*active, no.key(i));
-          bad = k && *k == "@value";
-        }
+        for (size_t i = 0; i < no.size() && !bad; ++i)
+          bad = expands_to(*active, no.key(i), "@value");
       }
       if (bad) {
         fail("invalid @nest value",
