@@ -283,6 +283,7 @@ Value Expander::expand(ContextPtr active, ActiveProperty ap, const Value& elemen
     Value out{Array{}};
     out.set_location(element.location());
     Array& result = out.as_array();
+    result.reserve(element.as_array().size());
     for (const Value& item : element.as_array()) {
       Value expanded = expand(active, ap, item, base_url, from_map);  // 5.2.1
       if (list_container && expanded.is_array()) {                    // 5.2.2
@@ -782,20 +783,21 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
       if (has("@index") && index_key != "@index" && !none) {  // 13.8.3.7.2
         Value reexpanded =
             expand_value(*active, std::string_view(index_key), string_at(index, index_loc));
-        std::optional<std::string> eik = expand_iri(*active, index_key);
-        if (!eik) continue;
-        if (!item.is_object()) continue;
-        Object& io = item.as_object();
-        Value values = to_array(std::move(reexpanded));
-        if (Value* existing = io.find(*eik)) {
-          values = concat(std::move(values), std::move(*existing));
-        }
-        put(io, *eik, std::move(values), index_loc);
         if (is_value_object(item)) {
           fail("invalid value object",
                "value in property-valued index \"" + key + "\" under \"" + index +
                    "\" must not be a value object",
                item.location());
+        }
+        // An index key that expands to nothing cannot hold the index: nothing to add.
+        std::optional<std::string> eik = expand_iri(*active, index_key);
+        if (eik && item.is_object()) {
+          Object& io = item.as_object();
+          Value values = to_array(std::move(reexpanded));
+          if (Value* existing = io.find(*eik)) {
+            values = concat(std::move(values), std::move(*existing));
+          }
+          put(io, std::move(*eik), std::move(values), index_loc);
         }
       } else if (has("@index") && !has_key(item, "@index") && !none) {  // 13.8.3.7.3
         put(item.as_object(), "@index", string_at(index, index_loc), index_loc);
