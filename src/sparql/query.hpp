@@ -92,6 +92,7 @@ class Query {
   void check_prebinding(std::span<const std::string_view> names) const;
 
   const detail::Plan& plan() const { return *plan_; }
+  const std::shared_ptr<const detail::Plan>& shared_plan() const { return plan_; }
   explicit Query(std::shared_ptr<const detail::Plan> plan) : plan_(std::move(plan)) {}
 
  private:

@@ -1,1 +1,450 @@
-// placeholder
+// SPARQL operator semantics on expression values.
+#include "sparql/value.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+namespace mospec::sparql::detail {
+
+namespace {
+
+enum class Xsd : uint8_t { Other, Integer, Decimal, Float, Double, Boolean, String, DateTime };
+
+Xsd classify(std::string_view dt) {
+  if (!dt.starts_with(kXsdNs)) return Xsd::Other;
+  const std::string_view local = dt.substr(kXsdNs.size());
+  static constexpr std::string_view kIntegers[] = {
+      "integer",      "long",          "int",         "short",
+      "byte",         "nonNegativeInteger", "positiveInteger", "nonPositiveInteger",
+      "negativeInteger", "unsignedLong",   "unsignedInt", "unsignedShort",
+      "unsignedByte"};
+  for (std::string_view n : kIntegers)
+    if (local == n) return Xsd::Integer;
+  if (local == "decimal") return Xsd::Decimal;
+  if (local == "float") return Xsd::Float;
+  if (local == "double") return Xsd::Double;
+  if (local == "boolean") return Xsd::Boolean;
+  if (local == "string") return Xsd::String;
+  if (local == "dateTime") return Xsd::DateTime;
+  return Xsd::Other;
+}
+
+bool digits(std::string_view s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (c < '0' || c > '9') return false;
+  return true;
+}
+
+std::string_view strip_sign(std::string_view s, bool& negative) {
+  negative = false;
+  if (!s.empty() && (s[0] == '+' || s[0] == '-')) {
+    negative = s[0] == '-';
+    s.remove_prefix(1);
+  }
+  return s;
+}
+
+// [+-]? digits? ('.' digits?)? with at least one digit.
+bool decimal_syntax(std::string_view s) {
+  bool neg;
+  s = strip_sign(s, neg);
+  const size_t dot = s.find('.');
+  if (dot == std::string_view::npos) return digits(s);
+  const std::string_view a = s.substr(0, dot), b = s.substr(dot + 1);
+  return (a.empty() || digits(a)) && (b.empty() || digits(b)) && !(a.empty() && b.empty());
+}
+
+bool parse_long_double(std::string_view s, long double& out) {
+  bool neg;
+  std::string_view body = strip_sign(s, neg);
+  if (body.empty()) return false;
+  auto [p, ec] = std::from_chars(body.data(), body.data() + body.size(), out);
+  if (ec != std::errc() || p != body.data() + body.size()) return false;
+  if (neg) out = -out;
+  return true;
+}
+
+bool parse_double_lexical(std::string_view s, long double& out) {
+  if (s == "INF" || s == "+INF") {
+    out = HUGE_VALL;
+    return true;
+  }
+  if (s == "-INF") {
+    out = -HUGE_VALL;
+    return true;
+  }
+  if (s == "NaN") {
+    out = NAN;
+    return true;
+  }
+  const size_t e = s.find_first_of("eE");
+  std::string_view mantissa = s.substr(0, e);
+  if (!decimal_syntax(mantissa)) return false;
+  if (e != std::string_view::npos) {
+    std::string_view exp = s.substr(e + 1);
+    bool neg;
+    if (!digits(strip_sign(exp, neg))) return false;
+  }
+  return parse_long_double(s, out);
+}
+
+int64_t days_from_civil(int64_t y, unsigned m, unsigned d) {
+  y -= m <= 2;
+  const int64_t era = (y >= 0 ? y : y - 399) / 400;
+  const auto yoe = static_cast<unsigned>(y - era * 400);
+  const unsigned doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+  const unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + static_cast<int64_t>(doe) - 719468;
+}
+
+// xsd:dateTime: -?YYYY-MM-DDThh:mm:ss(.s+)?(Z|[+-]hh:mm)?
+bool parse_datetime(std::string_view s, long double& seconds, bool& has_tz) {
+  size_t i = 0;
+  bool neg = false;
+  if (i < s.size() && s[i] == '-') {
+    neg = true;
+    ++i;
+  }
+  auto num = [&](size_t n, int64_t& out) {
+    if (i + n > s.size()) return false;
+    out = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const char c = s[i + k];
+      if (c < '0' || c > '9') return false;
+      out = out * 10 + (c - '0');
+    }
+    i += n;
+    return true;
+  };
+  auto lit = [&](char c) {
+    if (i < s.size() && s[i] == c) {
+      ++i;
+      return true;
+    }
+    return false;
+  };
+  size_t year_digits = 0;
+  while (i + year_digits < s.size() && s[i + year_digits] >= '0' && s[i + year_digits] <= '9')
+    ++year_digits;
+  int64_t y, mo, d, h, mi, sec;
+  if (year_digits < 4 || year_digits > 9 || !num(year_digits, y)) return false;
+  if (!lit('-') || !num(2, mo) || !lit('-') || !num(2, d) || !lit('T') || !num(2, h) ||
+      !lit(':') || !num(2, mi) || !lit(':') || !num(2, sec))
+    return false;
+  if (mo < 1 || mo > 12 || d < 1 || d > 31 || h > 24 || mi > 59 || sec > 60) return false;
+  long double frac = 0;
+  if (lit('.')) {
+    const size_t start = i;
+    long double scale = 0.1L;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9') {
+      frac += (s[i] - '0') * scale;
+      scale /= 10;
+      ++i;
+    }
+    if (i == start) return false;
+  }
+  int64_t tz_minutes = 0;
+  has_tz = false;
+  if (lit('Z')) {
+    has_tz = true;
+  } else if (i < s.size() && (s[i] == '+' || s[i] == '-')) {
+    const bool tz_neg = s[i] == '-';
+    ++i;
+    int64_t th, tm;
+    if (!num(2, th) || !lit(':') || !num(2, tm) || th > 14 || tm > 59) return false;
+    tz_minutes = (th * 60 + tm) * (tz_neg ? -1 : 1);
+    has_tz = true;
+  }
+  if (i != s.size()) return false;
+  if (neg) y = -y;
+  const int64_t days = days_from_civil(y, static_cast<unsigned>(mo), static_cast<unsigned>(d));
+  seconds = static_cast<long double>(days * 86400 + h * 3600 + mi * 60 + sec - tz_minutes * 60) + frac;
+  return true;
+}
+
+int sign(long double a, long double b) {
+  if (std::isnan(a) || std::isnan(b)) return 2;
+  return a < b ? -1 : a > b ? 1 : 0;
+}
+
+bool iequal(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); ++k)
+    if (std::tolower(static_cast<unsigned char>(a[k])) !=
+        std::tolower(static_cast<unsigned char>(b[k])))
+      return false;
+  return true;
+}
+
+int compare_numeric(const Value& a, const Value& b) {
+  if (a.num == Num::Integer && b.num == Num::Integer) return a.i < b.i ? -1 : a.i > b.i ? 1 : 0;
+  return sign(a.as_long_double(), b.as_long_double());
+}
+
+int three_way(std::string_view a, std::string_view b) {
+  const int c = a.compare(b);
+  return c < 0 ? -1 : c > 0 ? 1 : 0;
+}
+
+template <class F>
+std::string shortest_scientific(F v) {
+  if (std::isnan(v)) return "NaN";
+  if (std::isinf(v)) return v > 0 ? "INF" : "-INF";
+  char buf[64];
+  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific);
+  std::string s(buf, p);
+  const size_t e = s.find('e');
+  std::string mantissa = s.substr(0, e);
+  if (mantissa.find('.') == std::string::npos) mantissa += ".0";
+  int exponent = std::stoi(s.substr(e + 1));
+  return mantissa + "E" + std::to_string(exponent);
+}
+
+}  // namespace
+
+Value decode_literal(std::string_view lexical, std::string_view datatype_iri,
+                     std::string_view language, rdf::TermId id) {
+  Value v;
+  v.id = id;
+  v.str = lexical;
+  v.datatype = datatype_iri;
+  if (!language.empty()) {
+    v.kind = Value::Kind::LangString;
+    v.lang = language;
+    return v;
+  }
+  switch (classify(datatype_iri)) {
+    case Xsd::String:
+      v.kind = Value::Kind::String;
+      return v;
+    case Xsd::Integer: {
+      bool neg;
+      std::string_view body = strip_sign(lexical, neg);
+      if (!digits(body)) break;
+      v.kind = Value::Kind::Numeric;
+      int64_t x = 0;
+      auto [p, ec] = std::from_chars(body.data(), body.data() + body.size(), x);
+      if (ec == std::errc() && p == body.data() + body.size()) {
+        v.num = Num::Integer;
+        v.i = neg ? -x : x;
+      } else {
+        // Beyond 64 bits: kept as a decimal value (see query.hpp).
+        v.num = Num::Decimal;
+        parse_long_double(lexical, v.d);
+      }
+      return v;
+    }
+    case Xsd::Decimal:
+      if (!decimal_syntax(lexical) || !parse_long_double(lexical, v.d)) break;
+      v.kind = Value::Kind::Numeric;
+      v.num = Num::Decimal;
+      return v;
+    case Xsd::Float:
+    case Xsd::Double:
+      if (!parse_double_lexical(lexical, v.d)) break;
+      v.kind = Value::Kind::Numeric;
+      v.num = classify(datatype_iri) == Xsd::Float ? Num::Float : Num::Double;
+      return v;
+    case Xsd::Boolean:
+      if (lexical == "true" || lexical == "1") {
+        v.kind = Value::Kind::Bool;
+        v.b = true;
+        return v;
+      }
+      if (lexical == "false" || lexical == "0") {
+        v.kind = Value::Kind::Bool;
+        v.b = false;
+        return v;
+      }
+      break;
+    case Xsd::DateTime:
+      if (!parse_datetime(lexical, v.d, v.has_tz)) break;
+      v.kind = Value::Kind::DateTime;
+      return v;
+    case Xsd::Other:
+      v.kind = Value::Kind::Literal;
+      return v;
+  }
+  v.kind = Value::Kind::Literal;
+  v.ill_typed = true;
+  return v;
+}
+
+Tri ebv(const Value& v) {
+  switch (v.kind) {
+    case Value::Kind::Bool:
+      return tri(v.b);
+    case Value::Kind::Numeric:
+      if (v.num == Num::Integer) return tri(v.i != 0);
+      return tri(!(v.d == 0 || std::isnan(v.d)));
+    case Value::Kind::String:
+    case Value::Kind::LangString:
+      return tri(!v.str.empty());
+    case Value::Kind::Literal:
+      return v.ill_typed ? Tri::False : Tri::Error;
+    default:
+      return Tri::Error;
+  }
+}
+
+Tri equal(const Value& a, const Value& b) {
+  if (a.error() || b.error()) return Tri::Error;
+  if (a.kind == b.kind) {
+    switch (a.kind) {
+      case Value::Kind::Numeric: {
+        const int c = compare_numeric(a, b);
+        return tri(c == 0);
+      }
+      case Value::Kind::String:
+        return tri(a.str == b.str);
+      case Value::Kind::LangString:
+        return tri(a.str == b.str && iequal(a.lang, b.lang));
+      case Value::Kind::Bool:
+        return tri(a.b == b.b);
+      case Value::Kind::DateTime:
+        return tri(sign(a.d, b.d) == 0);
+      case Value::Kind::Iri:
+      case Value::Kind::Blank:
+        return tri(a.str == b.str);
+      default:
+        break;
+    }
+  }
+  if (!a.is_literal() || !b.is_literal()) return Tri::False;  // different kinds of terms
+  if (a.kind == Value::Kind::Literal && b.kind == Value::Kind::Literal && a.str == b.str &&
+      a.datatype == b.datatype)
+    return Tri::True;  // the same term
+  // Two different literals whose values cannot be compared: a type error (17.4.1.7).
+  return Tri::Error;
+}
+
+int compare(const Value& a, const Value& b) {
+  if (a.error() || b.error() || a.kind != b.kind) return 3;
+  switch (a.kind) {
+    case Value::Kind::Numeric:
+      return compare_numeric(a, b);
+    case Value::Kind::String:
+      return three_way(a.str, b.str);
+    case Value::Kind::Bool:
+      return a.b == b.b ? 0 : a.b ? 1 : -1;
+    case Value::Kind::DateTime:
+      return sign(a.d, b.d);
+    default:
+      return 3;
+  }
+}
+
+int order(const Value& a, const Value& b) {
+  auto rank = [](const Value& v) {
+    switch (v.kind) {
+      case Value::Kind::Error: return 0;
+      case Value::Kind::Blank: return 1;
+      case Value::Kind::Iri: return 2;
+      case Value::Kind::Numeric: return 3;
+      case Value::Kind::Bool: return 4;
+      case Value::Kind::DateTime: return 5;
+      case Value::Kind::String: return 6;
+      case Value::Kind::LangString: return 7;
+      case Value::Kind::Literal: return 8;
+    }
+    return 9;
+  };
+  const int ra = rank(a), rb = rank(b);
+  if (ra != rb) return ra < rb ? -1 : 1;
+  switch (a.kind) {
+    case Value::Kind::Error:
+      return 0;
+    case Value::Kind::Numeric: {
+      const int c = compare_numeric(a, b);
+      if (c == 2) {
+        // NaN sorts first, consistently.
+        const bool na = std::isnan(a.as_long_double()), nb = std::isnan(b.as_long_double());
+        return na == nb ? 0 : na ? -1 : 1;
+      }
+      return c;
+    }
+    case Value::Kind::Bool:
+    case Value::Kind::DateTime: {
+      const int c = compare(a, b);
+      return c == 2 || c == 3 ? 0 : c;
+    }
+    case Value::Kind::LangString: {
+      const int c = three_way(a.str, b.str);
+      return c != 0 ? c : three_way(a.lang, b.lang);
+    }
+    case Value::Kind::Literal: {
+      const int c = three_way(a.datatype, b.datatype);
+      return c != 0 ? c : three_way(a.str, b.str);
+    }
+    default:
+      return three_way(a.str, b.str);
+  }
+}
+
+Value arithmetic(char op, const Value& a, const Value& b) {
+  if (a.kind != Value::Kind::Numeric || b.kind != Value::Kind::Numeric) return Value::make_error();
+  Num t = std::max(a.num, b.num);
+  if (t == Num::Integer) {
+    int64_t r = 0;
+    bool overflow = false;
+    switch (op) {
+      case '+': overflow = __builtin_add_overflow(a.i, b.i, &r); break;
+      case '-': overflow = __builtin_sub_overflow(a.i, b.i, &r); break;
+      case '*': overflow = __builtin_mul_overflow(a.i, b.i, &r); break;
+      default: t = Num::Decimal; break;  // integer division yields a decimal
+    }
+    if (t == Num::Integer) return overflow ? Value::make_error() : Value::integer(r);
+  }
+  const long double x = a.as_long_double(), y = b.as_long_double();
+  long double r = 0;
+  switch (op) {
+    case '+': r = x + y; break;
+    case '-': r = x - y; break;
+    case '*': r = x * y; break;
+    default:
+      // Decimal division by zero is an error; float/double follow IEEE 754.
+      if (t == Num::Decimal && y == 0) return Value::make_error();
+      r = x / y;
+      break;
+  }
+  if (t == Num::Float) r = static_cast<float>(r);
+  if (t == Num::Double) r = static_cast<double>(r);
+  return Value::number(t, r);
+}
+
+std::string canonical_lexical(const Value& v) {
+  if (v.kind == Value::Kind::Bool) return v.b ? "true" : "false";
+  switch (v.num) {
+    case Num::Integer:
+      return std::to_string(v.i);
+    case Num::Decimal: {
+      char buf[128];
+      auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v.d, std::chars_format::fixed);
+      if (ec != std::errc()) return "0.0";
+      std::string s(buf, p);
+      if (s.find('.') == std::string::npos) s += ".0";
+      if (s == "-0.0") s = "0.0";
+      return s;
+    }
+    case Num::Float:
+      return shortest_scientific(static_cast<float>(v.d));
+    case Num::Double:
+      return shortest_scientific(static_cast<double>(v.d));
+  }
+  return {};
+}
+
+std::string_view datatype_of(const Value& v) {
+  if (v.kind == Value::Kind::Bool) return "http://www.w3.org/2001/XMLSchema#boolean";
+  switch (v.num) {
+    case Num::Integer: return "http://www.w3.org/2001/XMLSchema#integer";
+    case Num::Decimal: return "http://www.w3.org/2001/XMLSchema#decimal";
+    case Num::Float: return "http://www.w3.org/2001/XMLSchema#float";
+    case Num::Double: return "http://www.w3.org/2001/XMLSchema#double";
+  }
+  return {};
+}
+
+}  // namespace mospec::sparql::detail
