@@ -10,10 +10,16 @@ namespace mospec::jsonld {
 // The expand() API method: expands `input` (already parsed) using `options`
 // (expand_context applied first, then the document's own contexts). The result is
 // always an array (the spec's final step). Output values keep the source location
-// of the JSON value they came from; node objects carry the location of their
-// "@id" (or of the object when there is none).
+// of the JSON value they came from: a node object carries the location of the
+// input object, its "@id" string that of the input @id string, and output keys
+// (json::Object::key_location) that of the input key.
 // Throws mospec::Error whose code() is the spec's error code, e.g.
 // "invalid context entry", located where possible.
+// With options.diagnostics set, what JSON-LD drops or reinterprets silently is
+// reported as warnings (never changing the result): "dropped-key" (a key that
+// expands to no IRI), "undefined-type" (an @type value that is no term, compact
+// or absolute IRI and is resolved against the base) and "dropped-id" (an @id
+// that expands to nothing).
 json::Value expand(const json::Value& input, const Options& options);
 
 }  // namespace mospec::jsonld

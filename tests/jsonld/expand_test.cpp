@@ -365,6 +365,54 @@ TEST_F(Expand, UndefinedTypeIsReportedAtTheValue) {
             "https://example.org/models/RotateWrenchToProximalWithPose");
 }
 
+TEST_F(Expand, KeywordLikeIdIsKeptAsNullAndReported) {
+  json::Value out = run(R"({"http://ex/p": {"@id": "@ignoreMe", "http://ex/q": 1}})");
+  EXPECT_EQ(out, json::parse(R"([{"http://ex/p": [{"@id": null,
+                                                    "http://ex/q": [{"@value": 1}]}]}])"));
+  ASSERT_EQ(sink_.diagnostics().size(), 1u);
+  EXPECT_EQ(sink_.diagnostics()[0].code, "dropped-id");
+  EXPECT_EQ(sink_.diagnostics()[0].column, 25u);
+}
+
+TEST_F(Expand, DroppedKeyInsideNestIsReportedForItsNode) {
+  run(R"({"@context": {"@vocab": "http://ex/", "meta": "@nest", "x": null},
+    "@id": "http://ex/a", "meta": {"x": 1}})");
+  ASSERT_EQ(sink_.diagnostics().size(), 1u);
+  EXPECT_EQ(sink_.diagnostics()[0].message,
+            "key \"x\" expands to no IRI and is dropped (node <http://ex/a>)");
+  EXPECT_EQ(sink_.diagnostics()[0].line, 2u);
+  EXPECT_EQ(sink_.diagnostics()[0].column, 36u);
+}
+
+TEST_F(Expand, UndefinedTypeInTypeMapKey) {
+  run(R"({"@context": {"t": {"@id": "http://ex/t", "@container": "@type"}},
+    "t": {"Widget": {"@id": "http://ex/w"}}})");
+  ASSERT_EQ(sink_.diagnostics().size(), 1u);
+  EXPECT_EQ(sink_.diagnostics()[0].code, "undefined-type");
+  EXPECT_EQ(sink_.diagnostics()[0].line, 2u);
+  EXPECT_EQ(sink_.diagnostics()[0].column, 11u);
+}
+
+TEST_F(Expand, ErrorsWithoutLoaderNameTheInput) {
+  opts_.base = "http://example.org/doc";
+  json::Value doc = json::parse("{\"@id\": true}");
+  try {
+    expand(doc, opts_);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "invalid @id value");
+    EXPECT_EQ(std::string(e.what()),
+              "<input>:1:9: error: \"@id\" must be a string, found a boolean");
+  }
+}
+
+TEST_F(Expand, ProcessingMode10Errors) {
+  opts_.processing_mode = ProcessingMode::JsonLd10;
+  expect_error(R"({"@context": {"type": "@type"}, "@type": "http://ex/A", "type": "http://ex/B"})",
+               "colliding keywords");
+  expect_error(R"({"http://ex/p": {"@reverse": "x"}})", "invalid @reverse value");
+}
+
 TEST_F(Expand, VocabRelativeTypeIsNotReported) {
   run(R"({"@context": {"@vocab": "http://ex/"}, "@id": "http://ex/a", "@type": "Thing"})");
   EXPECT_TRUE(sink_.diagnostics().empty());
