@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
@@ -176,6 +177,12 @@ class ShapesCompiler {
              {vocab::qualifiedValueShapesDisjoint, &qdisjoint_},
              {vocab::ignoredProperties, &ignored_},
              {vocab::property, &property_},
+             {vocab::select, &select_},
+             {vocab::prefixes, &prefixes_},
+             {vocab::declare, &declare_},
+             {vocab::prefix, &prefix_},
+             {vocab::sh_namespace, &namespace_},
+             {vocab::owl_imports, &owl_imports_},
              {vocab::BlankNode, &nk_blank_},
              {vocab::IRI, &nk_iri_},
              {vocab::Literal, &nk_literal_},
@@ -760,10 +767,108 @@ class ShapesCompiler {
         return;
       }
       case Component::Sparql:
-        fail(self, vs[0].where,
-             "sh:sparql (SHACL-SPARQL) constraints are not supported yet; mospec validates "
-             "SHACL Core only");
+        for (const Value& v : vs) {
+          auto sparql = sparql_constraint(self, s, v);
+          if (!sparql) continue;
+          Constraint k = make(v);
+          k.sparql = std::move(sparql);
+          s.constraints.push_back(std::move(k));
+        }
+        return;
     }
+  }
+
+  // sh:prefixes/owl:imports*/sh:declare of a SPARQL-based constraint.
+  sparql::PrefixMap prefixes(uint32_t shape, TermId constraint) {
+    sparql::PrefixMap out;
+    std::vector<TermId> todo;
+    for (const Value& v : values(constraint, prefixes_)) todo.push_back(v.object);
+    std::unordered_set<uint32_t> visited;
+    while (!todo.empty()) {
+      TermId node = todo.back();
+      todo.pop_back();
+      if (!visited.insert(node.index).second) continue;
+      for (const Value& v : values(node, owl_imports_)) todo.push_back(v.object);
+      for (const Value& d : values(node, declare_)) {
+        auto names = values(d.object, prefix_);
+        auto namespaces = values(d.object, namespace_);
+        if (names.size() != 1 || namespaces.size() != 1 || !t_[names[0].object].is_literal() ||
+            !t_[namespaces[0].object].is_literal())
+          fail(shape, d.where,
+               "prefix declaration " + show(d.object) +
+                   " needs exactly one literal sh:prefix and one literal sh:namespace");
+        std::string name(t_[names[0].object].value);
+        std::string ns(t_[namespaces[0].object].value);
+        auto [it, inserted] = out.emplace(name, ns);
+        if (!inserted && it->second != ns)
+          fail(shape, d.where,
+               "prefix \"" + name + "\" is declared with two namespaces: <" + it->second +
+                   "> and <" + ns + ">");
+      }
+    }
+    return out;
+  }
+
+  std::shared_ptr<const SparqlConstraint> sparql_constraint(uint32_t self, const Shape& s,
+                                                            const Value& v) {
+    if (t_[v.object].is_literal())
+      fail(self, v.where, "sh:sparql must be an IRI or blank node, got " + show(v.object));
+    auto deactivated = values(v.object, deactivated_);
+    at_most_one(self, deactivated, "sh:deactivated");
+    if (!deactivated.empty() && bool_param(self, deactivated[0], "sh:deactivated").value_or(false))
+      return nullptr;
+    auto selects = values(v.object, select_);
+    if (selects.size() != 1 || !t_[selects[0].object].is_literal())
+      fail(self, selects.empty() ? v.where : selects[0].where,
+           "SPARQL constraint " + show(v.object) + " needs exactly one sh:select string");
+    const Value& select = selects[0];
+    std::string text(t_[select.object].value);
+    if (s.is_property) {
+      // SHACL-SPARQL 5.3: $PATH stands for the shape's path in predicate position.
+      const std::string path = "(" + path_to_sparql(t_, *s.path) + ")";
+      std::string replaced;
+      for (size_t i = 0; i < text.size(); ++i) {
+        bool var = (text[i] == '$' || text[i] == '?') && text.compare(i + 1, 4, "PATH") == 0;
+        size_t end = i + 5;
+        if (var && (end >= text.size() ||
+                    !(std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_'))) {
+          replaced += path;
+          i = end - 1;
+        } else {
+          replaced += text[i];
+        }
+      }
+      text = std::move(replaced);
+    }
+    auto where_query = [&](const std::string& what) {
+      return "sh:select of SPARQL constraint " + show(v.object) + ": " + what;
+    };
+    std::optional<sparql::Query> query;
+    try {
+      query = sparql::parse_query(text, prefixes(self, v.object));
+      if (query->form() != sparql::QueryForm::Select)
+        fail(self, select.where, where_query("must be a SELECT query"));
+      const auto& vars = query->variables();
+      if (std::find(vars.begin(), vars.end(), "this") == vars.end())
+        fail(self, select.where, where_query("must project $this"));
+      if (query->mentions("shapesGraph"))
+        fail(self, select.where,
+             where_query("uses $shapesGraph, which mospec does not support (the shapes graph is "
+                         "not a named graph of the data)"));
+      const std::string_view prebound[] = {"this", "currentShape"};
+      query->check_prebinding(prebound);
+    } catch (const sparql::QueryError& e) {
+      fail(self, select.where, where_query(e.what()));
+    }
+    auto c = std::make_shared<SparqlConstraint>(SparqlConstraint{v.object, *query, {}, false});
+    c->binds_current_shape = c->query.mentions("currentShape");
+    for (const Value& m : values(v.object, message_)) {
+      if (!t_[m.object].is_literal())
+        fail(self, m.where, "sh:message must be a literal, got " + show(m.object));
+      c->messages.push_back(m.object);
+    }
+    referenced_.push_back(v.object);
+    return c;
   }
 
   // Cross-shape facts: closed shapes' allowed predicates and qualified siblings.
@@ -822,6 +927,7 @@ class ShapesCompiler {
       severity_, message_;
   TermId alternative_, inverse_, zero_or_more_, one_or_more_, zero_or_one_, flags_;
   TermId qvs_, qmin_, qmax_, qdisjoint_, ignored_, property_;
+  TermId select_, prefixes_, declare_, prefix_, namespace_, owl_imports_;
   TermId nk_blank_, nk_iri_, nk_literal_, nk_blank_iri_, nk_blank_literal_, nk_iri_literal_;
 };
 

@@ -14,6 +14,7 @@
 
 #include "rdf/dataset.hpp"
 #include "sparql/path.hpp"
+#include "sparql/query.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::shacl {
@@ -61,7 +62,13 @@ enum NodeKindMask : uint8_t { kBlankNode = 1, kIri = 2, kLiteral = 4 };
 
 enum class Level : uint8_t { Info, Warning, Violation, Other };
 
-struct SparqlConstraint;  // SHACL-SPARQL; see validate.cpp
+// A SHACL-SPARQL constraint (a value of sh:sparql), parsed once.
+struct SparqlConstraint {
+  rdf::TermId node;                   // the sh:sparql value (sh:sourceConstraint)
+  sparql::Query query;                // sh:select with sh:prefixes applied, $PATH substituted
+  std::vector<rdf::TermId> messages;  // sh:message of the constraint (may hold {?var})
+  bool binds_current_shape = false;   // the query mentions $currentShape
+};
 
 struct Constraint {
   Component component = Component::Class;

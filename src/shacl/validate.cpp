@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -29,6 +30,11 @@ struct RawResult {
   Component component = Component::Class;
   PathSource path = PathSource::None;
   TermId predicate;  // PathSource::Predicate
+  // SHACL-SPARQL: the sh:sparql node (shapes-graph id) and the messages made
+  // from ?message or the constraint's sh:message (used instead of the shape's).
+  TermId source_constraint = TermId::any();
+  bool own_messages = false;
+  std::vector<std::pair<std::string, std::string>> messages;  // (text, language)
 };
 
 // Where a shape's results go: collected for the report, or (conformance
@@ -39,7 +45,7 @@ struct Sink {
   bool done() const { return out == nullptr && found; }
   void add(RawResult r) {
     found = true;
-    if (out != nullptr) out->push_back(r);
+    if (out != nullptr) out->push_back(std::move(r));
   }
 };
 
@@ -72,8 +78,7 @@ class Validator {
       for (TermId s : shapes.referenced_terms()) {
         TermId d = dt_.find_equivalent(st_, s);
         if (d.is_any()) {
-          d = TermId{base_ + static_cast<uint32_t>(overlay_.size())};
-          overlay_.push_back(s);
+          d = outside(extra_.import(st_, s));
         }
         to_data_[s.index] = d;
       }
@@ -107,10 +112,20 @@ class Validator {
   }
 
  private:
+  // The validation id of a term of extra_.
+  TermId outside(TermId x) {
+    auto [it, inserted] = outside_ids_.try_emplace(x.index);
+    if (inserted) {
+      it->second = TermId{base_ + static_cast<uint32_t>(overlay_.size())};
+      overlay_.push_back(x);
+    }
+    return it->second;
+  }
+
   TermId map(TermId shape_term) const { return same_ ? shape_term : to_data_[shape_term.index]; }
 
   const rdf::Term& term(TermId v) const {
-    return v.index < base_ ? dt_[v] : st_[overlay_[v.index - base_]];
+    return v.index < base_ ? dt_[v] : extra_[overlay_[v.index - base_]];
   }
 
   sparql::PathPtr translate(const sparql::Path& p) const {
@@ -213,7 +228,7 @@ class Validator {
 
   std::string_view datatype_iri(TermId v) const {
     const rdf::Term& t = term(v);
-    const rdf::TermTable& table = v.index < base_ ? dt_ : st_;
+    const rdf::TermTable& table = v.index < base_ ? dt_ : extra_;
     return table[t.datatype].value;
   }
 
@@ -295,7 +310,7 @@ class Validator {
 
   std::string show(TermId v) const {
     return v.index < base_ ? rdf::to_ntriples(dt_, v)
-                           : rdf::to_ntriples(st_, overlay_[v.index - base_]);
+                           : rdf::to_ntriples(extra_, overlay_[v.index - base_]);
   }
 
   void evaluate(uint32_t shape, uint32_t k, TermId focus, const std::vector<TermId>& values,
@@ -517,15 +532,115 @@ class Validator {
         return;
       }
       case Component::Sparql:
-        // Rejected when the shapes are compiled.
+        evaluate_sparql(shape, k, focus, sink);
         return;
+    }
+  }
+
+  // ---- SHACL-SPARQL -----------------------------------------------------
+
+  // Evaluator ids: data ids as they are, every other term imported.
+  TermId to_eval(TermId v) {
+    if (v.index < base_) return v;
+    return eval_->import(extra_, overlay_[v.index - base_]);
+  }
+
+  TermId from_eval(TermId e) {
+    if (e.index < base_) return e;
+    auto [table, id] = eval_->locate(e);
+    return outside(extra_.import(*table, id));
+  }
+
+  // {?var} / {$var} in a message, replaced by the row's bindings.
+  std::string substitute(std::string_view text, const sparql::ResultSet& rows, size_t row) const {
+    std::string out;
+    for (size_t i = 0; i < text.size(); ++i) {
+      if (text[i] == '{' && i + 2 < text.size() && (text[i + 1] == '?' || text[i + 1] == '$')) {
+        size_t close = text.find('}', i + 2);
+        if (close != std::string_view::npos) {
+          int col = rows.column(text.substr(i + 2, close - i - 2));
+          if (col >= 0) {
+            TermId v = rows.at(row, static_cast<size_t>(col));
+            if (v != sparql::kUnbound) {
+              const rdf::Term& t = eval_->term(v);
+              out += t.is_literal() ? std::string(t.value) : eval_->to_ntriples(v);
+            }
+            i = close;
+            continue;
+          }
+        }
+      }
+      out += text[i];
+    }
+    return out;
+  }
+
+  void evaluate_sparql(uint32_t shape, uint32_t k, TermId focus, Sink& sink) {
+    const Shape& s = shapes_[shape];
+    const SparqlConstraint& q = *s.constraints[k].sparql;
+    if (!eval_) eval_ = std::make_unique<sparql::Evaluator>(data_);
+    std::vector<sparql::Binding> bindings{{"this", to_eval(focus)}};
+    if (q.binds_current_shape) bindings.push_back({"currentShape", eval_->import(st_, s.node)});
+    sparql::ResultSet rows;
+    eval_->select(q.query, bindings, rows);
+    const int value_col = rows.column("value"), path_col = rows.column("path"),
+              message_col = rows.column("message"), failure_col = rows.column("failure");
+    auto bound = [&](int col, size_t row) {
+      return col >= 0 && rows.at(row, static_cast<size_t>(col)) != sparql::kUnbound;
+    };
+    for (size_t row = 0; row < rows.size() && !sink.done(); ++row) {
+      if (bound(failure_col, row)) {
+        const rdf::Term& f = eval_->term(rows.at(row, static_cast<size_t>(failure_col)));
+        if (f.is_literal() && (f.value == "true" || f.value == "1")) {
+          const SourceLoc& at = s.constraints[k].where;
+          std::string file =
+              shapes_.files() != nullptr && at.known() ? shapes_.files()->path(at.file) : "";
+          throw Error("shacl-failure",
+                      "SPARQL constraint " + rdf::to_ntriples(st_, q.node) + " of shape " +
+                          shapes_.describe(shape) + " reported a failure for focus node " +
+                          show(focus),
+                      file, at.line, at.column);
+        }
+      }
+      RawResult r;
+      r.focus = focus;
+      r.shape = shape;
+      r.constraint = k;
+      r.component = Component::Sparql;
+      r.source_constraint = q.node;
+      r.own_messages = true;
+      if (bound(value_col, row))
+        r.value = from_eval(rows.at(row, static_cast<size_t>(value_col)));
+      else if (!s.is_property)
+        r.value = focus;
+      TermId path =
+          bound(path_col, row) ? rows.at(row, static_cast<size_t>(path_col)) : sparql::kUnbound;
+      if (path != sparql::kUnbound && eval_->term(path).is_iri()) {
+        r.path = PathSource::Predicate;
+        r.predicate = from_eval(path);
+      } else if (s.is_property) {
+        r.path = PathSource::Shape;
+      }
+      if (bound(message_col, row)) {
+        const rdf::Term& m = eval_->term(rows.at(row, static_cast<size_t>(message_col)));
+        r.messages.emplace_back(std::string(m.value), std::string(m.language));
+      } else {
+        for (TermId m : q.messages)
+          r.messages.emplace_back(substitute(st_[m].value, rows, row),
+                                  std::string(st_[m].language));
+      }
+      sink.add(std::move(r));
     }
   }
 
   // ---- report ------------------------------------------------------------
 
   TermId import(Report& r, TermId v) const {
-    if (v.index >= base_) return import_shape_term(r, overlay_[v.index - base_]);
+    if (v.index >= base_) {
+      const TermId x = overlay_[v.index - base_];
+      if (extra_[x].is_blank() && !same_) return r.terms.blank("s_" + std::string(extra_[x].value));
+      return r.terms.import(extra_, x);
+    }
     const rdf::Term& t = dt_[v];
     // Blank nodes of two tables may share labels; keep the two apart.
     if (t.is_blank() && !same_) return r.terms.blank("d_" + std::string(t.value));
@@ -616,9 +731,22 @@ class Validator {
       case Component::In:
         return "value is not in sh:in";
       case Component::Sparql:
-        return "SPARQL constraint failed";
+        return "violates SPARQL constraint " + rdf::to_ntriples(st_, c.sparql->node);
     }
     return {};
+  }
+
+  // Where the focus node is written: the caller's answer, else the first
+  // located triple that has it as subject.
+  SourceLoc locate(TermId focus) const {
+    if (options_.locate) return options_.locate(focus).value_or(SourceLoc{});
+    SourceLoc found;
+    data_.scan(focus, TermId::any(), TermId::any(), TermId::any(),
+               [&](const rdf::Quad&, uint32_t i) {
+                 found = data_.location(i);
+                 return !found.known();
+               });
+    return found;
   }
 
   Report render(const std::vector<RawResult>& raw) const {
@@ -635,10 +763,16 @@ class Validator {
       if (x.path == PathSource::Predicate) r.path = sparql::Path::iri(import(report, x.predicate));
       r.level = s.level;
       if (s.level == Level::Other) r.severity = import_shape_term(report, s.severity);
-      for (TermId m : s.messages) r.messages.push_back(import_shape_term(report, m));
+      if (x.own_messages) {
+        for (const auto& [text, language] : x.messages)
+          r.messages.push_back(report.terms.literal(text, TermId::default_graph(), language));
+      } else {
+        for (TermId m : s.messages) r.messages.push_back(import_shape_term(report, m));
+      }
+      if (!x.source_constraint.is_any())
+        r.source_constraint = import_shape_term(report, x.source_constraint);
       if (r.messages.empty()) r.default_message = default_message(x);
-      if (options_.locate && x.focus.index < base_)
-        if (auto loc = options_.locate(x.focus)) r.focus_loc = *loc;
+      if (x.focus.index < base_) r.focus_loc = locate(x.focus);
       r.shape_loc = s.where;
       report.results.push_back(std::move(r));
     }
@@ -655,7 +789,10 @@ class Validator {
   const ValidateOptions& options_;
   TermId type_, subclass_;
   std::vector<TermId> to_data_;
-  std::vector<TermId> overlay_;
+  // Terms outside the data graph (validation ids from base_ up) live in extra_.
+  rdf::TermTable extra_;
+  std::vector<TermId> overlay_;                       // validation id - base_ -> id in extra_
+  std::unordered_map<uint32_t, TermId> outside_ids_;  // id in extra_ -> validation id
   std::vector<sparql::PathPtr> paths_;
   std::vector<std::vector<std::vector<TermId>>> bound_;
   std::unordered_map<uint32_t, std::vector<TermId>> subclasses_;
@@ -663,6 +800,7 @@ class Validator {
   std::unordered_map<uint64_t, bool> conforms_cache_;
   std::unordered_set<uint64_t> active_;
   std::vector<uint32_t> stack_;
+  std::unique_ptr<sparql::Evaluator> eval_;
 };
 
 }  // namespace

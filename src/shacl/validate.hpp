@@ -13,7 +13,8 @@ namespace mospec::shacl {
 
 struct ValidateOptions {
   // Where a data node (a term of the data graph's table) is written, for the
-  // report's order and the text output; unset or nullopt: not located.
+  // report's order and the text output (nullopt: not located). Unset: the
+  // location of the first triple that has the node as subject.
   std::function<std::optional<SourceLoc>(rdf::TermId)> locate;
 };
 

@@ -19,6 +19,7 @@ inline constexpr std::string_view rdf_nil = "http://www.w3.org/1999/02/22-rdf-sy
 inline constexpr std::string_view rdfs_class = "http://www.w3.org/2000/01/rdf-schema#Class";
 inline constexpr std::string_view rdfs_subclass_of =
     "http://www.w3.org/2000/01/rdf-schema#subClassOf";
+inline constexpr std::string_view owl_imports = "http://www.w3.org/2002/07/owl#imports";
 inline constexpr std::string_view xsd_boolean = "http://www.w3.org/2001/XMLSchema#boolean";
 inline constexpr std::string_view xsd_integer = "http://www.w3.org/2001/XMLSchema#integer";
 
@@ -100,6 +101,7 @@ MOSPEC_SH(select);
 MOSPEC_SH(prefixes);
 MOSPEC_SH(declare);
 MOSPEC_SH(prefix);
+MOSPEC_SH(SPARQLConstraint);
 inline constexpr std::string_view sh_namespace = "http://www.w3.org/ns/shacl#namespace";
 
 #undef MOSPEC_SH
