@@ -1,6 +1,7 @@
 #include "rdf/dataset.hpp"
 
 #include <algorithm>
+#include <string>
 
 namespace mospec::rdf {
 
@@ -27,6 +28,16 @@ bool Dataset::contains(const Quad& q) const {
 }
 
 bool Dataset::add(const Quad& q, SourceLoc where) {
+  // An id from another table (or the wildcard) would corrupt the indexes.
+  for (int pos = 0; pos < 4; ++pos) {
+    if (at(q, pos).index >= terms_.size()) {
+      static constexpr const char* kNames[] = {"subject", "predicate", "object", "graph"};
+      throw Error("invalid-term", std::string("Dataset::add: ") + kNames[pos] + " id " +
+                                      std::to_string(at(q, pos).index) +
+                                      " is not a term of this dataset (" +
+                                      std::to_string(terms_.size()) + " terms)");
+    }
+  }
   const uint64_t h = hash_quad(q);
   if (position_.find(h, [&](uint32_t i) { return quads_[i] == q; }) != UINT32_MAX) return false;
   const auto id = static_cast<uint32_t>(quads_.size());

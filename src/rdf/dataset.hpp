@@ -47,6 +47,8 @@ class Dataset {
   const TermTable& terms() const { return terms_; }
 
   // Returns false (and keeps the first location) when the quad is already present.
+  // Throws mospec::Error (code "invalid-term") when an id is not a term of
+  // terms() (TermId::any(), or an id from another table).
   bool add(const Quad& q, SourceLoc where = {});
   size_t size() const { return quads_.size(); }
   std::span<const Quad> quads() const { return quads_; }

@@ -89,6 +89,21 @@ TEST(Dataset, AddDeduplicatesAndKeepsFirstLocation) {
   EXPECT_EQ(d.find(in_graph), 1u);
 }
 
+TEST(Dataset, RejectsIdsOfOtherTables) {
+  Dataset d;
+  TermId p = d.terms().iri("http://ex.org/p");
+  try {
+    d.add(Quad{p, p, TermId::any()});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "invalid-term");
+    EXPECT_EQ(e.diagnostic().message,
+              "Dataset::add: object id 4294967295 is not a term of this dataset (5 terms)");
+  }
+  EXPECT_EQ(d.size(), 0u);
+  EXPECT_TRUE(d.match(TermId::any(), TermId::any(), TermId::any()).empty());
+}
+
 TEST(Dataset, EveryPatternMatchesBruteForceSmall) {
   Dataset d;
   Pools pools = make_pools(d.terms());
