@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <string>
@@ -130,6 +131,7 @@ std::string double_lexical(double d) {
   for (; *p != 'e'; ++p) {
     if (*p != '.') digits += *p;
   }
+  const int exponent40 = std::atoi(p + 1);  // read before buf is reused below
   bool tie = digits[16] == '5' && digits.find_first_not_of('0', 17) == std::string::npos;
   if (tie) {
     std::snprintf(buf, sizeof buf, "%.800e", mag);
@@ -146,7 +148,7 @@ std::string double_lexical(double d) {
     std::string m = digits.substr(0, 16);
     int i = 15;
     while (i >= 0 && m[static_cast<size_t>(i)] == '9') m[static_cast<size_t>(i--)] = '0';
-    exponent = std::atoi(p + 1);
+    exponent = exponent40;
     if (i < 0) {
       m = "1" + m.substr(0, 15);
       ++exponent;

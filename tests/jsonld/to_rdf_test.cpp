@@ -63,6 +63,11 @@ TEST(ToRdf, NativeNumbers) {
       {"-123.456", "-1.23456E2", xsd("double")},
       // Rounded to 15 fractional digits, as toExponential(15) does.
       {"0.0922959556", "9.229595559999999E-2", xsd("double")},
+      // An exact tie at the 16th digit rounds up, as ECMAScript does (printf
+      // would round it to even).
+      {"1234567890123456.5", "1.234567890123457E15", xsd("double")},
+      {"-1234567890123456.5", "-1.234567890123457E15", xsd("double")},
+      {"4503599627370494.5", "4.503599627370495E15", xsd("double")},
       {"5", "5", xsd("integer")},
       {"-0", "0", xsd("integer")},
       {"1e20", "100000000000000000000", xsd("integer")},
