@@ -203,7 +203,7 @@ class Expander {
 
   std::string file_name(SourceLoc loc) const;
   [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
-  void flush(ObjectState& st, const Object& result) const;
+  void flush(ObjectState& st, const Object& result, ActiveProperty ap) const;
 
   const Options& opts_;
 };
@@ -245,12 +245,16 @@ std::optional<std::string> Expander::expand_type_iri(const ActiveContext& type_s
   return iri;
 }
 
-void Expander::flush(ObjectState& st, const Object& result) const {
+void Expander::flush(ObjectState& st, const Object& result, ActiveProperty ap) const {
   if (st.pending.empty()) return;
   std::string node;
   const Value* id = result.find("@id");
   if (id != nullptr && id->is_string()) {
-    node = " (node <" + id->as_string() + ">)";
+    const std::string& s = id->as_string();
+    node = s.rfind("_:", 0) == 0 ? " (node " + s + ")" : " (node <" + s + ">)";
+  } else if (ap && *ap == kReverse) {
+    // The keys of an @reverse map belong to the enclosing node, reported at them.
+    node = " (in @reverse)";
   } else if (result.contains("@value")) {
     node = " (value object)";
   } else {
@@ -871,7 +875,7 @@ Value Expander::expand_value(const ActiveContext& active, ActiveProperty ap, con
 // Steps 15 to 20.
 Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc element_loc) {
   Object& result = st.result;
-  if (opts_.diagnostics != nullptr) flush(st, result);
+  if (opts_.diagnostics != nullptr) flush(st, result, ap);
   if (Value* v = result.find("@value")) {  // 15
     // 15.1
     const Value* type = result.find("@type");

@@ -384,6 +384,15 @@ TEST_F(Expand, DroppedKeyInsideNestIsReportedForItsNode) {
   EXPECT_EQ(sink_.diagnostics()[0].column, 36u);
 }
 
+TEST_F(Expand, DroppedKeyNamesBlankNodesAndReverseMaps) {
+  run(R"({"@id": "_:b1", "k1": 1, "@reverse": {"k2": {"@id": "http://ex/b"}}})");
+  ASSERT_EQ(sink_.diagnostics().size(), 2u);
+  EXPECT_EQ(sink_.diagnostics()[0].message,
+            "key \"k2\" expands to no IRI and is dropped (in @reverse)");
+  EXPECT_EQ(sink_.diagnostics()[1].message,
+            "key \"k1\" expands to no IRI and is dropped (node _:b1)");
+}
+
 TEST_F(Expand, UndefinedTypeInTypeMapKey) {
   run(R"({"@context": {"t": {"@id": "http://ex/t", "@container": "@type"}},
     "t": {"Widget": {"@id": "http://ex/w"}}})");
