@@ -186,6 +186,25 @@ TEST(ToRdf, QuadsRecordWhereTheNodeIdIsWritten) {
   EXPECT_EQ(loc.column, 10u);
 }
 
+TEST(LoadInto, QuadsRecordWhereTheNodeIdIsWritten) {
+  Options options;
+  options.base = "https://example.org/";
+  rdf::Dataset d;
+  mospec::jsonld::load_into(json::parse("{\"@context\": {\"ex\": \"http://ex/\"},\n"
+                                        "  \"@graph\": [{\"ex:p\": 1,\n"
+                                        "    \"@id\": \"ex:s\"}, {\"ex:q\": 2}]}",
+                                        3, "m.jsonld"),
+                            d, options);
+  ASSERT_EQ(d.size(), 2u) << rdf::to_nquads(d);
+  // The node with an @id points at the @id value; the anonymous one at its object.
+  auto at = [&](std::string_view p) {
+    auto hits = d.match(rdf::TermId::any(), d.terms().find_iri(p), rdf::TermId::any());
+    return hits.size() == 1 ? d.location(hits[0]) : mospec::SourceLoc{};
+  };
+  EXPECT_EQ(at("http://ex/p"), (mospec::SourceLoc{3, 3, 12}));
+  EXPECT_EQ(at("http://ex/q"), (mospec::SourceLoc{3, 3, 21}));
+}
+
 TEST(ToRdf, ConflictingIndexesAreAnError) {
   EXPECT_THROW(convert(R"([{"@id": "http://ex/s", "@index": "a"},
                            {"@id": "http://ex/s", "@index": "b"}])"),
