@@ -92,10 +92,37 @@ Colours refine_once(const Side& side, const Colours& colours) {
   return next;
 }
 
-size_t distinct(Colours c) {
-  std::sort(c.begin(), c.end());
-  return static_cast<size_t>(std::unique(c.begin(), c.end()) - c.begin());
-}
+// Number of distinct colours, by open addressing into a reused buffer: this
+// runs once per refinement round, and sorting made it the hot spot.
+class DistinctCounter {
+ public:
+  size_t operator()(const Colours& colours) {
+    size_t capacity = 16;
+    while (capacity < colours.size() * 2) capacity *= 2;
+    slots_.assign(capacity, 0);
+    const size_t mask = capacity - 1;
+    size_t n = 0;
+    bool zero = false;  // 0 marks an empty slot, so the colour 0 is tracked apart
+    for (uint64_t c : colours) {
+      if (c == 0) {
+        zero = true;
+        continue;
+      }
+      for (size_t i = detail::mix64(c) & mask;; i = (i + 1) & mask) {
+        if (slots_[i] == c) break;
+        if (slots_[i] == 0) {
+          slots_[i] = c;
+          ++n;
+          break;
+        }
+      }
+    }
+    return n + (zero ? 1 : 0);
+  }
+
+ private:
+  std::vector<uint64_t> slots_;
+};
 
 class Matcher {
  public:
@@ -123,10 +150,10 @@ class Matcher {
 
   bool search(Colours ca, Colours cb) {
     // Refine both sides in lock step until neither gains colours.
-    size_t na = distinct(ca), nb = distinct(cb);
+    size_t na = distinct_(ca), nb = distinct_(cb);
     for (;;) {
       Colours ra = refine_once(a_, ca), rb = refine_once(b_, cb);
-      size_t ma = distinct(ra), mb = distinct(rb);
+      size_t ma = distinct_(ra), mb = distinct_(rb);
       ca = std::move(ra);
       cb = std::move(rb);
       if (ma != mb) return false;
@@ -189,6 +216,7 @@ class Matcher {
   const Side& a_;
   const Side& b_;
   std::vector<TermId> translated_;
+  DistinctCounter distinct_;
 };
 
 // A quad rendered with every blank node shown as "_:*".
