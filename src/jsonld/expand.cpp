@@ -181,8 +181,9 @@ class Expander {
     std::vector<Pending> pending;
   };
 
-  Value expand_object(ContextPtr active, ActiveProperty ap, const Value& element,
-                      const std::string& base_url, bool from_map);
+  // `ap_def`: the term definition of `ap` in `active` (looked up once by expand()).
+  Value expand_object(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
+                      const Value& element, const std::string& base_url, bool from_map);
   void expand_entries(const ContextPtr& active, ActiveProperty ap, const Object& element,
                       const std::string& base_url, ObjectState& st);
   void expand_keyword(const ContextPtr& active, ActiveProperty ap, const std::string& key,
@@ -194,7 +195,11 @@ class Expander {
   Value expand_index_map(const ContextPtr& active, const std::string& key,
                          const TermDefinition& def, const Value& value, const std::string& base_url,
                          ObjectState& st);
-  Value expand_value(const ActiveContext& active, ActiveProperty ap, const Value& value);
+  Value expand_value(const ActiveContext& active, ActiveProperty ap, const Value& value) {
+    return expand_value(active, ap ? active.find(*ap) : nullptr, value);
+  }
+  // `def`: the active property's term definition in `active`, or null.
+  Value expand_value(const ActiveContext& active, const TermDefinition* def, const Value& value);
   Value finish_object(ActiveProperty ap, ObjectState& st, SourceLoc element_loc);
 
   std::optional<std::string> expand_type_iri(const ActiveContext& type_scoped, const Value& v,
@@ -278,8 +283,9 @@ Value Expander::expand(ContextPtr active, ActiveProperty ap, const Value& elemen
     if (!ap || *ap == kGraph) return Value();  // 4.1 free-floating scalar
     if (ap_def != nullptr && ap_def->local_context) {
       active = process_context(active, *ap_def->local_context, ap_def->base_url, opts_);  // 4.2
+      return expand_value(*active, ap, element);                                          // 4.3
     }
-    return expand_value(*active, ap, element);  // 4.3
+    return expand_value(*active, ap_def, element);  // 4.3
   }
   // 5
   if (element.is_array()) {
@@ -306,16 +312,15 @@ Value Expander::expand(ContextPtr active, ActiveProperty ap, const Value& elemen
     return out;
   }
   // 6
-  return expand_object(std::move(active), ap, element, base_url, from_map);
+  return expand_object(std::move(active), ap, ap_def, element, base_url, from_map);
 }
 
-Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const Value& element,
-                              const std::string& base_url, bool from_map) {
+Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
+                              const Value& element, const std::string& base_url, bool from_map) {
   const Object& obj = element.as_object();
   // 3: the property-scoped context comes from the context we were called with.
   // `entry` keeps that context, and so `ap_def`, alive after `active` moves on.
   const ContextPtr entry = active;
-  const TermDefinition* ap_def = ap ? entry->find(*ap) : nullptr;
   if (ap_def != nullptr && !ap_def->local_context) ap_def = nullptr;
 
   // 7: a type-scoped context does not propagate into new node objects.
@@ -397,8 +402,15 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     const Value& value = element.value(i);
     const SourceLoc key_loc = element.key_location(i);
     if (key == "@context") continue;  // 13.1
-    // 13.2
-    std::optional<std::string> expanded_property = expand_iri(*active, key);
+    // 13.2, sharing the term lookup with 13.5: for a defined term, IRI
+    // Expansion (vocab true) returns its IRI mapping (steps 4 and 5).
+    const TermDefinition* def = nullptr;
+    std::optional<std::string> expanded_property;
+    if (!key.empty() && key[0] != '@' && (def = active->find(key)) != nullptr) {
+      expanded_property = def->iri;
+    } else {
+      expanded_property = expand_iri(*active, key);
+    }
     // 13.3
     if (!expanded_property ||
         (expanded_property->find(':') == std::string::npos && !is_keyword(*expanded_property))) {
@@ -411,7 +423,6 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
       continue;
     }
     // 13.5
-    const TermDefinition* def = active->find(key);
     static const std::set<std::string> kNoContainer;
     const std::set<std::string>& container = def != nullptr ? def->container : kNoContainer;
     auto has = [&container](const char* c) { return container.count(c) != 0; };
@@ -825,8 +836,8 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
 }
 
 // Value Expansion (5.3.2).
-Value Expander::expand_value(const ActiveContext& active, ActiveProperty ap, const Value& value) {
-  const TermDefinition* def = ap ? active.find(*ap) : nullptr;
+Value Expander::expand_value(const ActiveContext& active, const TermDefinition* def,
+                             const Value& value) {
   const std::optional<std::string>* type = def != nullptr ? &def->type : nullptr;
   if (type != nullptr && *type && value.is_string()) {
     // 1, 2
