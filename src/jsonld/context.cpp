@@ -265,6 +265,17 @@ struct ContextCache::Impl {
   std::unordered_map<std::string, std::vector<RemoteEntry>, detail::StringHash, std::equal_to<>>
       remote;
 
+  // Term-state level for local contexts given to process_context (typically
+  // scoped contexts): like RemoteEntry, keyed by content.
+  struct StateEntry {
+    RemoteEntry state;
+    TermPtr owner;
+    json::Value content;
+    std::string base_url;
+    bool sets_previous = false;  // CP 3 applied
+  };
+  std::unordered_map<size_t, std::vector<StateEntry>> states;
+
   std::unordered_map<std::string, RemoteDoc, detail::StringHash, std::equal_to<>> documents;
 
   void register_owner(const TermPtr& def) {
@@ -368,18 +379,22 @@ struct Builder {
 
   // Moves the overlay into a new immutable layer (requires parent == nullptr).
   void freeze() {
-    if (overlay.empty()) return;
-    auto l = std::make_shared<TermLayer>();
     size_t protected_count = layer ? layer->protected_count : 0;
-    for (auto& [k, v] : overlay) {
-      const TermPtr* below = layer ? layer->lookup(k) : nullptr;
+    for (auto it = overlay.begin(); it != overlay.end();) {
+      const TermPtr* below = layer ? layer->lookup(it->first) : nullptr;
       const bool below_defined = below != nullptr && *below;
       if (below_defined && (*below)->protected_) --protected_count;
-      if (v && v->protected_) ++protected_count;
-      if (!v && !below_defined) continue;  // removing nothing
-      l->defs.emplace(k, std::move(v));
+      if (it->second && it->second->protected_) ++protected_count;
+      if (!it->second && !below_defined) {
+        it = overlay.erase(it);  // removing nothing
+      } else {
+        ++it;
+      }
     }
-    overlay.clear();
+    if (overlay.empty()) return;
+    auto l = std::make_shared<TermLayer>();
+    l->defs = std::move(overlay);  // the nodes move; nothing is reallocated
+    overlay = TermMap();
     l->protected_count = protected_count;
     if (layer && layer->depth + 1 > kMaxLayerDepth) {
       // Flatten: upper layers first, so emplace keeps the visible definition.
@@ -391,11 +406,7 @@ struct Builder {
       l->parent = layer;
       l->depth = layer ? layer->depth + 1 : 1;
     }
-    if (l->defs.empty() && !l->parent) {
-      layer = nullptr;
-    } else {
-      layer = std::move(l);
-    }
+    layer = std::move(l);
   }
 
   ContextPtr to_context() {
@@ -857,20 +868,37 @@ class Processor {
     return std::string(value);
   }
 
+  // A term definition's value as the map of CTD 7 - 9 without building it: a
+  // string or null value stands for {"@id": value}.
+  struct TermValue {
+    const json::Object* obj = nullptr;
+    const json::Value* id_only = nullptr;
+    const json::Value* find(std::string_view key) const {
+      if (obj != nullptr) return obj->find(key);
+      return key == "@id" ? id_only : nullptr;
+    }
+    bool contains(std::string_view key) const { return find(key) != nullptr; }
+    size_t size() const { return obj != nullptr ? obj->size() : 0; }
+    const std::string& key(size_t i) const { return obj->key(i); }
+    SourceLoc key_location(size_t i) const { return obj->key_location(i); }
+  };
+
   // Create Term Definition (4.2.2) for member `idx` of the local context.
   void create_term(Builder& active, LocalCtx& lc, size_t idx, const TermArgs& args) {
     const std::string& term = lc.obj->key(idx);
     const SourceLoc where = lc.obj->key_location(idx);
     const json::Value& value = lc.obj->value(idx);
-    const std::string name = "term " + quoted(term);
+    // Only error paths need the display name.
+    auto name = [&term] { return "term " + quoted(term); };
     // CTD 1
     if (lc.state[idx] == LocalCtx::Defined) return;
     if (lc.state[idx] == LocalCtx::InProgress) {
-      fail("cyclic IRI mapping", name + " depends on itself", where);
+      fail("cyclic IRI mapping", name() + " depends on itself", where);
     }
     // CTD 2
     if (term.empty()) fail("invalid term definition", "the empty string cannot be a term", where);
     lc.state[idx] = LocalCtx::InProgress;
+    if (cache_ != nullptr) ++cache_->stats.terms_defined;
     // CTD 4
     if (term == "@type") {
       bool ok = !json10_ && value.is_object() && !value.as_object().empty();
@@ -895,7 +923,7 @@ class Processor {
       // CTD 5
       fail("keyword redefinition", "keyword " + term + " cannot be redefined", where);
     } else if (has_keyword_form(term)) {
-      warn(name + " has the form of a keyword and is ignored", where);
+      warn(name() + " has the form of a keyword and is ignored", where);
       lc.state[idx] = LocalCtx::Defined;
       return;
     }
@@ -904,18 +932,16 @@ class Processor {
     if (const TermPtr* p = active.lookup(term)) previous = *p;
     if (previous) active.set(term, nullptr);
     // CTD 7 - 9
-    json::Object synthetic;
-    const json::Object* v = nullptr;
+    TermValue tv;
+    const TermValue* v = &tv;
     bool simple_term = false;
     if (value.is_null() || value.is_string()) {
-      synthetic.append_new("@id", value);
-      synthetic.set_key_location(0, where);
-      v = &synthetic;
+      tv.id_only = &value;
       simple_term = value.is_string();
     } else if (value.is_object()) {
-      v = &value.as_object();
+      tv.obj = &value.as_object();
     } else {
-      fail("invalid term definition", name + " must be defined by a string, null or an object",
+      fail("invalid term definition", name() + " must be defined by a string, null or an object",
            value.location());
     }
     // CTD 10
@@ -925,11 +951,11 @@ class Processor {
     // CTD 11
     if (const json::Value* p = v->find("@protected")) {
       if (json10_) {
-        fail("invalid term definition", name + ": @protected is not allowed in json-ld-1.0",
+        fail("invalid term definition", name() + ": @protected is not allowed in json-ld-1.0",
              p->location());
       }
       if (!p->is_bool()) {
-        fail("invalid @protected value", name + ": @protected must be true or false",
+        fail("invalid @protected value", name() + ": @protected must be true or false",
              p->location());
       }
       def->protected_ = p->as_bool();
@@ -937,17 +963,17 @@ class Processor {
     // CTD 12
     if (const json::Value* t = v->find("@type")) {
       if (!t->is_string()) {
-        fail("invalid type mapping", name + ": @type must be a string", t->location());
+        fail("invalid type mapping", name() + ": @type must be a string", t->location());
       }
       std::optional<std::string> type = expand(active, t->as_string(), false, true, &lc, args);
       if (type && (*type == "@json" || *type == "@none") && json10_) {
-        fail("invalid type mapping", name + ": @type " + *type + " requires json-ld-1.1",
+        fail("invalid type mapping", name() + ": @type " + *type + " requires json-ld-1.1",
              t->location());
       }
       if (!type || !(*type == "@id" || *type == "@json" || *type == "@none" || *type == "@vocab" ||
                      rdf::is_absolute_iri(*type))) {
         fail("invalid type mapping",
-             name + ": @type " + quoted(t->as_string()) +
+             name() + ": @type " + quoted(t->as_string()) +
                  " must be @id, @vocab, @json, @none or an absolute IRI",
              t->location());
       }
@@ -956,14 +982,14 @@ class Processor {
     // CTD 13
     if (const json::Value* r = v->find("@reverse")) {
       if (v->contains("@id") || v->contains("@nest")) {
-        fail("invalid reverse property", name + ": @reverse cannot be combined with @id or @nest",
+        fail("invalid reverse property", name() + ": @reverse cannot be combined with @id or @nest",
              r->location());
       }
       if (!r->is_string()) {
-        fail("invalid IRI mapping", name + ": @reverse must be a string", r->location());
+        fail("invalid IRI mapping", name() + ": @reverse must be a string", r->location());
       }
       if (has_keyword_form(r->as_string())) {
-        warn(name + ": @reverse value " + r->as_string() +
+        warn(name() + ": @reverse value " + r->as_string() +
                  " has the form of a keyword; the definition is ignored",
              r->location());
         lc.state[idx] = LocalCtx::Defined;
@@ -972,7 +998,7 @@ class Processor {
       std::optional<std::string> iri = expand(active, r->as_string(), false, true, &lc, args);
       if (!iri || !(rdf::is_absolute_iri(*iri) || is_blank_node(*iri)) || is_keyword(*iri)) {
         fail("invalid IRI mapping",
-             name + ": @reverse " + quoted(r->as_string()) +
+             name() + ": @reverse " + quoted(r->as_string()) +
                  " does not expand to an IRI or blank node identifier",
              r->location());
       }
@@ -981,7 +1007,7 @@ class Processor {
         if (!(c->is_null() ||
               (c->is_string() && (c->as_string() == "@set" || c->as_string() == "@index")))) {
           fail("invalid reverse property",
-               name + ": a reverse property's @container must be @set, @index or null",
+               name() + ": a reverse property's @container must be @set, @index or null",
                c->location());
         }
         if (c->is_string()) def->container.insert(c->as_string());
@@ -994,12 +1020,12 @@ class Processor {
         // CTD 14.1: kept (with no IRI mapping) to detect later redefinitions.
       } else {
         if (!id->is_string()) {
-          fail("invalid IRI mapping", name + ": @id must be a string or null", id->location());
+          fail("invalid IRI mapping", name() + ": @id must be a string or null", id->location());
         }
         const std::string& idv = id->as_string();
         // CTD 14.2.2
         if (!is_keyword(idv) && has_keyword_form(idv)) {
-          warn(name + ": @id " + idv + " has the form of a keyword; the definition is ignored",
+          warn(name() + ": @id " + idv + " has the form of a keyword; the definition is ignored",
                id->location());
           lc.state[idx] = LocalCtx::Defined;
           return;
@@ -1008,12 +1034,12 @@ class Processor {
         std::optional<std::string> iri = expand(active, idv, false, true, &lc, args);
         if (!iri || !(is_keyword(*iri) || rdf::is_absolute_iri(*iri) || is_blank_node(*iri))) {
           fail("invalid IRI mapping",
-               name + ": @id " + quoted(idv) +
+               name() + ": @id " + quoted(idv) +
                    " does not expand to a keyword, an IRI or a blank node identifier",
                id->location());
         }
         if (*iri == "@context") {
-          fail("invalid keyword alias", name + ": @context cannot be aliased", id->location());
+          fail("invalid keyword alias", name() + ": @context cannot be aliased", id->location());
         }
         def->iri = std::move(iri);
         // CTD 14.2.4
@@ -1024,7 +1050,7 @@ class Processor {
           std::optional<std::string> self = expand(active, term, false, true, &lc, args);
           if (self != def->iri) {
             fail("invalid IRI mapping",
-                 name + " looks like an IRI but @id maps it to " + quoted(*def->iri) +
+                 name() + " looks like an IRI but @id maps it to " + quoted(*def->iri) +
                      " instead of " + quoted(self.value_or("null")),
                  id->location());
           }
@@ -1056,7 +1082,7 @@ class Processor {
       // CTD 16
       std::optional<std::string> iri = expand(active, term, true, true, nullptr, {});
       if (!iri || !rdf::is_absolute_iri(*iri)) {
-        fail("invalid IRI mapping", name + " is a relative IRI that does not expand to an IRI",
+        fail("invalid IRI mapping", name() + " is a relative IRI that does not expand to an IRI",
              where);
       }
       def->iri = std::move(iri);
@@ -1068,22 +1094,22 @@ class Processor {
       def->iri = *active.vocab + term;
     } else {
       fail("invalid IRI mapping",
-           name + " has no @id and there is no @vocab to derive its IRI from", where);
+           name() + " has no @id and there is no @vocab to derive its IRI from", where);
     }
     // CTD 19
     if (const json::Value* c = v->find("@container"); c != nullptr && !def->reverse) {
-      validate_container(name, *c, *def);
+      validate_container(term, *c, *def);
     }
     // CTD 20
     if (const json::Value* ix = v->find("@index")) {
       if (json10_ || !def->container.contains("@index")) {
         fail("invalid term definition",
-             name + ": @index requires json-ld-1.1 and an @index container", ix->location());
+             name() + ": @index requires json-ld-1.1 and an @index container", ix->location());
       }
       std::optional<std::string> e;
       if (ix->is_string()) e = expand(active, ix->as_string(), false, true, nullptr, {});
       if (!ix->is_string() || !e || !rdf::is_absolute_iri(*e) || is_keyword(ix->as_string())) {
-        fail("invalid term definition", name + ": @index must be a property (not a keyword)",
+        fail("invalid term definition", name() + ": @index must be a property (not a keyword)",
              ix->location());
       }
       def->index = ix->as_string();
@@ -1091,11 +1117,12 @@ class Processor {
     // CTD 21
     if (const json::Value* sc = v->find("@context")) {
       if (json10_) {
-        fail("invalid term definition", name + ": scoped contexts require json-ld-1.1",
+        fail("invalid term definition", name() + ": scoped contexts require json-ld-1.1",
              sc->location());
       }
       // CTD 21.3: processed now to report errors where the definition is
       // written; the result is discarded.
+      if (cache_ != nullptr) ++cache_->stats.scoped_validations;
       try {
         Builder scratch;
         scratch.parent = &active;
@@ -1109,7 +1136,7 @@ class Processor {
         if (scratch.used_base) active.used_base = true;
       } catch (const Error& e) {
         fail("invalid scoped context",
-             name + ": invalid scoped context: " + e.diagnostic().message +
+             name() + ": invalid scoped context: " + e.diagnostic().message +
                  (e.code() == "invalid scoped context" ? "" : " (" + e.code() + ")"),
              sc->location());
       }
@@ -1120,7 +1147,7 @@ class Processor {
     // CTD 22
     if (const json::Value* l = v->find("@language"); l != nullptr && !v->contains("@type")) {
       if (!l->is_null() && !l->is_string()) {
-        fail("invalid language mapping", name + ": @language must be a string or null",
+        fail("invalid language mapping", name() + ": @language must be a string or null",
              l->location());
       }
       def->language = *l;
@@ -1129,7 +1156,7 @@ class Processor {
     if (const json::Value* d = v->find("@direction"); d != nullptr && !v->contains("@type")) {
       if (!(d->is_null() ||
             (d->is_string() && (d->as_string() == "ltr" || d->as_string() == "rtl")))) {
-        fail("invalid base direction", name + ": @direction must be \"ltr\", \"rtl\" or null",
+        fail("invalid base direction", name() + ": @direction must be \"ltr\", \"rtl\" or null",
              d->location());
       }
       def->direction = *d;
@@ -1137,10 +1164,10 @@ class Processor {
     // CTD 24
     if (const json::Value* n = v->find("@nest")) {
       if (json10_) {
-        fail("invalid term definition", name + ": @nest requires json-ld-1.1", n->location());
+        fail("invalid term definition", name() + ": @nest requires json-ld-1.1", n->location());
       }
       if (!n->is_string() || (is_keyword(n->as_string()) && n->as_string() != "@nest")) {
-        fail("invalid @nest value", name + ": @nest must be a term or @nest", n->location());
+        fail("invalid @nest value", name() + ": @nest must be a term or @nest", n->location());
       }
       def->nest = n->as_string();
     }
@@ -1148,14 +1175,15 @@ class Processor {
     if (const json::Value* p = v->find("@prefix")) {
       if (json10_ || term.find(':') != std::string::npos || term.find('/') != std::string::npos) {
         fail("invalid term definition",
-             name + ": @prefix requires json-ld-1.1 and a term without ':' or '/'", p->location());
+             name() + ": @prefix requires json-ld-1.1 and a term without ':' or '/'",
+             p->location());
       }
       if (!p->is_bool()) {
-        fail("invalid @prefix value", name + ": @prefix must be true or false", p->location());
+        fail("invalid @prefix value", name() + ": @prefix must be true or false", p->location());
       }
       def->prefix = p->as_bool();
       if (def->prefix && def->iri && is_keyword(*def->iri)) {
-        fail("invalid term definition", name + ": a keyword alias cannot be a prefix",
+        fail("invalid term definition", name() + ": a keyword alias cannot be a prefix",
              p->location());
       }
     }
@@ -1165,7 +1193,7 @@ class Processor {
       if (k != "@id" && k != "@reverse" && k != "@container" && k != "@context" &&
           k != "@direction" && k != "@index" && k != "@language" && k != "@nest" &&
           k != "@prefix" && k != "@protected" && k != "@type") {
-        fail("invalid term definition", name + ": unexpected entry " + quoted(k),
+        fail("invalid term definition", name() + ": unexpected entry " + quoted(k),
              v->key_location(i));
       }
     }
@@ -1182,8 +1210,8 @@ class Processor {
           first += std::to_string(previous->where.line) + ":" +
                    std::to_string(previous->where.column) + ")";
         }
-        fail("protected term redefinition", name + " is protected and cannot be redefined" + first,
-             where);
+        fail("protected term redefinition",
+             name() + " is protected and cannot be redefined" + first, where);
       }
       final_def = previous;
     }
@@ -1195,9 +1223,9 @@ class Processor {
     lc.state[idx] = LocalCtx::Defined;
   }
 
-  void validate_container(const std::string& name, const json::Value& c, TermDefinition& def) {
+  void validate_container(std::string_view term, const json::Value& c, TermDefinition& def) {
     auto bad = [&](const std::string& why) {
-      fail("invalid container mapping", name + ": " + why, c.location());
+      fail("invalid container mapping", "term " + quoted(term) + ": " + why, c.location());
     };
     // CTD 19.2
     if (json10_) {
@@ -1242,12 +1270,34 @@ class Processor {
     if (def.container.contains("@type")) {
       if (!def.type) def.type = "@id";
       if (*def.type != "@id" && *def.type != "@vocab") {
-        fail("invalid type mapping", name + ": a @type container requires @type @id or @vocab",
+        fail("invalid type mapping",
+             "term " + quoted(term) + ": a @type container requires @type @id or @vocab",
              c.location());
       }
     }
   }
 };
+
+}  // namespace
+
+namespace {
+
+void store_exact(ContextCache::Impl& cache, const ContextPtr& active, const TermPtr& owner,
+                 const json::Value& local_context, const std::string& base_url, unsigned flags,
+                 size_t key, const ContextPtr& result) {
+  ContextCache::Impl::ExactEntry e;
+  e.active = active;
+  e.active_raw = active.get();
+  if (owner) {
+    e.owner = owner;
+  } else {
+    e.content = local_context;
+  }
+  e.base_url = base_url;
+  e.flags = flags;
+  e.result = result;
+  cache.exact[key].push_back(std::move(e));
+}
 
 }  // namespace
 
@@ -1262,11 +1312,11 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   const unsigned flags = flags_of(options, override_protected, propagate, validate_scoped_context);
   TermPtr owner;
   size_t key = 0;
+  size_t content_hash = 0;
   if (exact_cacheable) {
     // A scoped context passed by reference from its term definition is known by
     // address (the entry pins the definition), which saves hashing and
     // comparing its content; anything else is looked up by content.
-    size_t content_hash = 0;
     if (auto it = cache->owners.find(&local_context); it != cache->owners.end()) {
       owner = it->second.def.lock();
       if (owner && owner->local_context && &*owner->local_context == &local_context) {
@@ -1293,6 +1343,46 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
     }
     ++cache->stats.exact_misses;
   }
+  // CP 2, 3: whether the result keeps `active` as its previous context.
+  bool effective_propagate = propagate;
+  if (const json::Value* p = local_context.get("@propagate"); p != nullptr && p->is_bool()) {
+    effective_propagate = p->as_bool();
+  }
+  const ActiveContext::Impl& in = active->impl();
+  const ContextPtr expected_previous = !effective_propagate && !in.previous ? active : in.previous;
+  size_t state_key = 0;
+  if (exact_cacheable) {
+    state_key = mix(mix(std::hash<const void*>{}(in.terms.get()), content_hash),
+                    std::hash<std::string_view>{}(base_url));
+    auto it = cache->states.find(state_key);
+    if (it != cache->states.end()) {
+      for (const auto& se : it->second) {
+        const auto& e = se.state;
+        if (e.terms_raw != in.terms.get() || e.flags != flags || se.base_url != base_url) continue;
+        if (e.terms_raw != nullptr && e.terms.lock().get() != e.terms_raw) continue;
+        if (e.vocab != in.vocab || e.language != in.language || e.direction != in.direction) {
+          continue;
+        }
+        if (e.used_base && e.base != in.base) continue;
+        if (!(owner && se.owner == owner)) {
+          const json::Value& stored = se.owner ? *se.owner->local_context : se.content;
+          if (!(stored == local_context)) continue;
+        }
+        ++cache->stats.state_hits;
+        auto impl = std::make_shared<ActiveContext::Impl>();
+        impl->terms = e.out_terms;
+        impl->base = in.base;
+        impl->original_base = in.original_base;
+        impl->vocab = e.out_vocab;
+        impl->language = e.out_language;
+        impl->direction = e.out_direction;
+        impl->previous = expected_previous;
+        ContextPtr out = std::make_shared<const ActiveContext>(std::move(impl));
+        store_exact(*cache, active, owner, local_context, base_url, flags, key, out);
+        return out;
+      }
+    }
+  }
 
   // CP 1
   Builder result(*active);
@@ -1303,18 +1393,29 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   ContextPtr out = result.to_context();
 
   if (exact_cacheable) {
-    ContextCache::Impl::ExactEntry e;
-    e.active = active;
-    e.active_raw = active.get();
-    if (owner) {
-      e.owner = owner;
-    } else {
-      e.content = local_context;
+    store_exact(*cache, active, owner, local_context, base_url, flags, key, out);
+    if (!result.touched_base && result.previous == expected_previous) {
+      ContextCache::Impl::StateEntry se;
+      se.state.terms = in.terms;
+      se.state.terms_raw = in.terms.get();
+      se.state.vocab = in.vocab;
+      se.state.language = in.language;
+      se.state.direction = in.direction;
+      se.state.flags = flags;
+      se.state.used_base = result.used_base;
+      if (result.used_base) se.state.base = in.base;
+      se.state.out_terms = result.layer;
+      se.state.out_vocab = result.vocab;
+      se.state.out_language = result.language;
+      se.state.out_direction = result.direction;
+      if (owner) {
+        se.owner = owner;
+      } else {
+        se.content = local_context;
+      }
+      se.base_url = base_url;
+      cache->states[state_key].push_back(std::move(se));
     }
-    e.base_url = base_url;
-    e.flags = flags;
-    e.result = out;
-    cache->exact[key].push_back(std::move(e));
   }
   return out;
 }

@@ -77,10 +77,10 @@ class ActiveContext {
 //  * exact: (active context pointer, local context, base URL, flags) -> the very
 //    ContextPtr produced before, so expansion switching into the same type-scoped
 //    context at every node allocates nothing;
-//  * remote: (term state of the active context, remote context IRI, flags) ->
-//    the term definitions it produced, so a remote context included by many
-//    documents (each with its own base IRI, hence its own active contexts) is
-//    processed once.
+//  * term state: (term definitions, @vocab, @language and @direction of the
+//    active context, local context or remote context IRI, flags) -> the term
+//    definitions it produced, so a context used by many documents (each with
+//    its own base IRI, hence its own active contexts) is processed once.
 // Results depend only on the inputs in the key (the base IRI is added to the
 // key when processing read it), and only successful results are stored.
 class ContextCache {
@@ -93,9 +93,12 @@ class ContextCache {
   struct Stats {
     size_t exact_hits = 0;
     size_t exact_misses = 0;
+    size_t state_hits = 0;  // exact misses answered by the term-state level
     size_t remote_hits = 0;
     size_t remote_misses = 0;
-    size_t documents_loaded = 0;  // remote context documents fetched from the loader
+    size_t documents_loaded = 0;    // remote context documents fetched from the loader
+    size_t terms_defined = 0;       // Create Term Definition runs (work not saved)
+    size_t scoped_validations = 0;  // scoped contexts processed to validate them
   };
   const Stats& stats() const;
   void clear();
