@@ -30,8 +30,11 @@
 //  - xsd:integer arithmetic is 64-bit; an overflow is an expression error.
 //    xsd:decimal is computed in long double (not arbitrary precision).
 //  - A dateTime without a timezone is compared as if it were UTC.
-//  - Two language-tagged literals compare equal/unequal by (lexical form,
-//    case-insensitive tag) instead of raising a type error when they differ.
+//  - '=' and '!=' between literals of two different known types (numeric,
+//    string, language-tagged string, boolean, dateTime) are false/true rather
+//    than a type error; only literals of unknown datatypes (or ill-typed ones)
+//    raise the type error of RDFterm-equal. Language tags compare
+//    case-insensitively.
 //  - REGEX uses std::regex (ECMAScript) after translating XPath flags: s makes
 //    '.' match newlines, x drops whitespace outside classes, m and i map
 //    directly. XPath-only syntax (\p{..}, \i, \c, class subtraction) is

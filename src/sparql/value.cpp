@@ -316,6 +316,8 @@ Tri equal(const Value& a, const Value& b) {
   if (a.kind == Value::Kind::Literal && b.kind == Value::Kind::Literal && a.str == b.str &&
       a.datatype == b.datatype)
     return Tri::True;  // the same term
+  // Values of different known types (e.g. "a"@en and "a") are simply different.
+  if (a.kind != Value::Kind::Literal && b.kind != Value::Kind::Literal) return Tri::False;
   // Two different literals whose values cannot be compared: a type error (17.4.1.7).
   return Tri::Error;
 }

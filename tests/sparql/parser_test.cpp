@@ -1,0 +1,186 @@
+// Parsing: accepted syntax, syntax errors with positions, and the rejection of
+// every construct outside the supported subset.
+#include <regex>
+
+#include "test_util.hpp"
+
+namespace mospec::sparql::test {
+namespace {
+
+std::string message(std::string_view query) { return error_of(query).diagnostic().message; }
+std::string code(std::string_view query) { return error_of(query).code(); }
+
+TEST(SparqlParser, PrologueAndPrefixes) {
+  Query q = parse_query(
+      "BASE <http://base.org/dir/>\n"
+      "PREFIX p: <ns#>\n"
+      "PREFIX : <http://default.org/>\n"
+      "SELECT ?x WHERE { ?x p:a :b , <rel> }");
+  EXPECT_EQ(q.variables(), std::vector<std::string>{"x"});
+  // Caller prefixes apply; the query's own declarations override them.
+  PrefixMap extra{{"ex", "http://wrong.org/"}, {"other", "http://other.org/"}};
+  EXPECT_NO_THROW(parse_query("PREFIX ex: <http://example.org/> SELECT * { ?s ex:p other:o }",
+                              extra));
+}
+
+TEST(SparqlParser, KeywordsAreCaseInsensitiveExceptA) {
+  EXPECT_NO_THROW(parse_query("select distinct ?x where { ?x a ?t optional { ?x ?p ?o } "
+                              "filter(bound(?x)) } order by desc(?x) limit 3 offset 1"));
+  EXPECT_EQ(message("SELECT ?x { ?x A ?t }"),
+            "line 1, column 16: expected a predicate (IRI, 'a', variable or path), found 'A'");
+}
+
+TEST(SparqlParser, VariablesWithDollarAndQuestionMarkAreTheSame) {
+  Query q = parse_query("SELECT $this ?this { $this <http://e/p> ?this }");
+  EXPECT_EQ(q.variables(), (std::vector<std::string>{"this", "this"}));
+  EXPECT_TRUE(q.mentions("this"));
+  EXPECT_FALSE(q.mentions("that"));
+}
+
+TEST(SparqlParser, DotsAfterFiltersAndBinds) {
+  // The upstream shapes end FILTER and BIND with '.'.
+  EXPECT_NO_THROW(parse_query("SELECT $this { $this <http://e/p> ?v . FILTER NOT EXISTS { "
+                              "$this <http://e/q> ?v } . BIND(1 AS ?x) . ?v <http://e/r> ?w . }"));
+}
+
+TEST(SparqlParser, LessThanIsAnOperatorAfterAnOperand) {
+  Data d("ex:a ex:v 1 .");
+  EXPECT_EQ(d.run("SELECT ?s { ?s ex:v ?v FILTER(?v<2&&?v>0) }").size(), 1u);
+  EXPECT_EQ(d.run("SELECT ?s { ?s ex:v ?v FILTER(?v <=1) }").size(), 1u);
+}
+
+TEST(SparqlParser, SyntaxErrorsNamePositionAndExpectation) {
+  EXPECT_EQ(message("SELECT ?x WHERE { ?x <http://e/p> ?y .\n"
+                    "  FILTER(?y > 1)\n"
+                    "  ?y <http://e/q> ?z ]"),
+            "line 3, column 22: expected '}' to close the group started at line 1, column 17, "
+            "found ']'");
+  EXPECT_EQ(code("SELECT ?x { ?x ?p }"), "sparql-syntax");
+  EXPECT_EQ(message("SELECT ?x { ?x ?p }"),
+            "line 1, column 19: expected a variable, IRI, literal, blank node or collection, "
+            "found '}'");
+  EXPECT_EQ(message("SELECT ?x { ?x <http://e/p> ?y"),
+            "line 1, column 31: expected '}' to close the group started at line 1, column 11, "
+            "found end of query");
+  EXPECT_EQ(message("SELECT { ?x ?p ?o }"),
+            "line 1, column 8: expected '*' or a variable after SELECT, found '{'");
+  EXPECT_EQ(message("SELECT ?x { ?x ex2:p ?o }"), "line 1, column 16: undeclared prefix 'ex2:'");
+  EXPECT_EQ(message("SELECT ?x { FILTER(?x = \"abc) }"),
+            "line 1, column 25: unterminated string literal (opened here)");
+  EXPECT_EQ(message("SELECT ?x { FILTER(?x = \"a\\qb\") }"),
+            "line 1, column 27: invalid escape \\q in string literal");
+  EXPECT_EQ(message("SELECT ?x { FILTER((?x = 1) }"),
+            "line 1, column 29: expected ')' to close the expression started at line 1, "
+            "column 19, found '}'");
+  EXPECT_EQ(message("SELECT ?x { ?x <http://e/p> ( 1 2 }"),
+            "line 1, column 35: expected ')' to close the collection started at line 1, "
+            "column 29, found '}'");
+  EXPECT_EQ(message("SELECT ?x { ?x <http://e/p> [ <http://e/q> 1 }"),
+            "line 1, column 46: expected ']' to close the blank node started at line 1, column "
+            "29, found '}'");
+  EXPECT_EQ(message("SELECT ?x {} LIMIT x"), "line 1, column 20: expected an integer after LIMIT, found 'x'");
+  EXPECT_EQ(message("SELECT ?x {} garbage"), "line 1, column 14: expected end of query, found 'garbage'");
+  EXPECT_EQ(message("SELECT ?x { FILTER(FOO(?x)) }"), "line 1, column 20: unknown function FOO");
+  EXPECT_EQ(message("SELECT ?x { FILTER(STRLEN(?x, 2)) }"),
+            "line 1, column 20: STRLEN expects 1 argument, found 2");
+  EXPECT_EQ(message("SELECT ?x { FILTER(REGEX(?x)) }"),
+            "line 1, column 20: REGEX expects 2 or 3 arguments, found 1");
+  EXPECT_EQ(message("SELECT ?x { FILTER(REGEX(?x, \"(\")) }"),
+            std::string("line 1, column 30: invalid regular expression \"(\": ") +
+                [] {
+                  try {
+                    std::regex r("(");
+                  } catch (const std::regex_error& e) {
+                    return std::string(e.what());
+                  }
+                  return std::string();
+                }());
+  EXPECT_EQ(message("SELECT ?x { FILTER(REGEX(?x, \"a\", \"q\")) }"),
+            "line 1, column 30: invalid REGEX flag 'q' (allowed: s, m, i, x)");
+}
+
+TEST(SparqlParser, ScopingRules) {
+  EXPECT_EQ(message("SELECT ?x {\n ?s <http://e/p> ?x .\n BIND(1 AS ?x) }"),
+            "line 3, column 12: BIND ... AS ?x: variable ?x is already in scope in this group "
+            "(SPARQL 1.1, 18.2.1)");
+  // A variable bound in another group is not in scope of this one.
+  EXPECT_NO_THROW(parse_query("SELECT ?x { { ?s <http://e/p> ?x } UNION { BIND(1 AS ?x) } }"));
+  EXPECT_EQ(message("SELECT (1 AS ?x) { ?x <http://e/p> ?y }"),
+            "line 1, column 14: (... AS ?x): variable ?x is already in scope");
+}
+
+TEST(SparqlParser, BlankNodeLabelsAreScopedToOneBasicGraphPattern) {
+  EXPECT_NO_THROW(parse_query("SELECT ?x { ?x <http://e/p> _:b . FILTER(true) _:b <http://e/q> 1 }"));
+  EXPECT_EQ(message("SELECT ?x { ?x <http://e/p> _:b OPTIONAL { _:b <http://e/q> 1 } }"),
+            "line 1, column 44: blank node _:b is used in two different basic graph patterns "
+            "(SPARQL 1.1, 4.1.4)");
+}
+
+TEST(SparqlParser, UnsupportedConstructsAreRejectedWithTheirPosition) {
+  struct Case {
+    const char* query;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"SELECT ?x { ?x ?p ?o MINUS { ?x ?p 1 } }", "line 1, column 22: MINUS is not supported"},
+      {"SELECT ?x { SERVICE <http://e/> { ?x ?p ?o } }",
+       "line 1, column 13: SERVICE (federated query) is not supported"},
+      {"SELECT ?x { VALUES ?x { 1 2 } }", "line 1, column 13: VALUES is not supported"},
+      {"SELECT ?x { ?x ?p ?o } VALUES ?x { 1 }", "line 1, column 24: VALUES is not supported"},
+      {"SELECT ?x { GRAPH ?g { ?x ?p ?o } }", "line 1, column 13: GRAPH is not supported"},
+      {"SELECT ?x {\n  { SELECT ?x { ?x ?p ?o } } }",
+       "line 2, column 5: sub-SELECT (nested queries) is not supported"},
+      {"SELECT ?x { SELECT ?x { ?x ?p ?o } }",
+       "line 1, column 13: sub-SELECT (nested queries) is not supported"},
+      {"SELECT ?x FROM <http://e/g> { ?x ?p ?o }",
+       "line 1, column 11: FROM (dataset clauses) is not supported"},
+      {"SELECT (COUNT(?x) AS ?n) { ?x ?p ?o }",
+       "line 1, column 9: aggregate COUNT is not supported"},
+      {"SELECT ?x { ?x ?p ?o } GROUP BY ?x", "line 1, column 24: GROUP BY is not supported"},
+      {"SELECT ?x { ?x ?p ?o } HAVING (?x)", "line 1, column 24: HAVING is not supported"},
+      {"CONSTRUCT { ?x ?p ?o } WHERE { ?x ?p ?o }",
+       "line 1, column 1: CONSTRUCT queries are not supported"},
+      {"DESCRIBE ?x", "line 1, column 1: DESCRIBE queries are not supported"},
+      {"INSERT DATA { <a> <b> <c> }", "line 1, column 1: SPARQL Update (INSERT) is not supported"},
+      {"SELECT ?x { FILTER(<http://e/f>(?x)) }",
+       "line 1, column 20: function <http://e/f> is not supported"},
+      {"SELECT ?x { FILTER(REPLACE(?x, \"a\", \"b\")) }",
+       "line 1, column 20: function REPLACE is not supported"},
+      {"SELECT ?x { FILTER(REGEX(?x, \"\\\\p{L}\")) }",
+       "line 1, column 30: XPath regular expression escape \\p is not supported"},
+  };
+  for (const Case& c : cases) {
+    QueryError e = error_of(c.query);
+    EXPECT_EQ(e.code(), "unsupported-sparql") << c.query;
+    EXPECT_EQ(e.diagnostic().message, c.message) << c.query;
+  }
+}
+
+TEST(SparqlParser, PropertyPathSyntax) {
+  for (const char* q : {
+           "SELECT * { ?s <http://e/p>/<http://e/q> ?o }",
+           "SELECT * { ?s ^<http://e/p> ?o }",
+           "SELECT * { ?s (<http://e/p>|<http://e/q>)* ?o }",
+           "SELECT * { ?s <http://e/p>+/^<http://e/q>? ?o }",
+           "SELECT * { ?s !<http://e/p> ?o }",
+           "SELECT * { ?s !(<http://e/p>|^<http://e/q>|a) ?o }",
+           "SELECT * { ?s !^a ?o }",
+           "SELECT * { ?s (a/(<http://e/p>)) ?o }",
+           "SELECT * { ?s ^(<http://e/p>/<http://e/q>) ?o }",
+       })
+    EXPECT_NO_THROW(parse_query(q)) << q;
+  EXPECT_EQ(message("SELECT * { ?s !() ?o }"), "line 1, column 15: empty negated property set '!()'");
+  EXPECT_EQ(message("SELECT * { ?s (<http://e/p> ?o }"),
+            "line 1, column 29: expected ')' to close the path group started at line 1, column 15, "
+            "found variable ?o");
+}
+
+TEST(SparqlParser, NumbersAndSigns) {
+  Data d("ex:a ex:v -1 , 2.5 , 3e2 , +4 .");
+  EXPECT_EQ(d.run("SELECT ?s { ?s ex:v -1 , 2.5 , 3e2 , +4 }").size(), 1u);
+  EXPECT_EQ(d.run("SELECT ?v { ?s ex:v ?v FILTER(?v - 1 < 0) }").size(), 1u);
+  EXPECT_EQ(d.run("SELECT ?v { ?s ex:v ?v FILTER(?v-1 < 0) }").size(), 1u);
+}
+
+}  // namespace
+}  // namespace mospec::sparql::test
