@@ -176,7 +176,7 @@ class Expander {
   // Shared state of steps 13 and 14 for one element (nested values included).
   struct ObjectState {
     ContextPtr type_scoped;
-    std::optional<std::string> input_type;
+    bool input_type_json = false;  // step 12's input type is @json
     Object result;
     std::vector<Pending> pending;
   };
@@ -299,7 +299,7 @@ Value Expander::expand(ContextPtr active, ActiveProperty ap, const Value& elemen
       if (list_container && expanded.is_array()) {                    // 5.2.2
         SourceLoc loc = expanded.location();
         Object list;
-        list.set("@list", std::move(expanded));
+        list.append_new("@list", std::move(expanded));
         expanded = Value(std::move(list));
         expanded.set_location(loc);
       }
@@ -349,41 +349,48 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDe
   // 11, 12: keys are visited in code-point order; every @type entry applies the
   // type-scoped contexts of its values, in code-point order of the values.
   const ContextPtr tsc = st.type_scoped;
-  std::vector<size_t> type_entries;  // almost always one: "@type"
+  std::vector<size_t> type_entries;  // stays unallocated for the usual single "@type"
+  size_t single_type = obj.size();
   for (size_t i = 0; i < obj.size(); ++i) {
-    if (expands_to(*tsc, obj.key(i), "@type")) type_entries.push_back(i);
+    if (!expands_to(*tsc, obj.key(i), "@type")) continue;
+    if (single_type == obj.size()) {
+      single_type = i;
+    } else {
+      if (type_entries.empty()) type_entries.push_back(single_type);
+      type_entries.push_back(i);
+    }
   }
   std::sort(type_entries.begin(), type_entries.end(),
             [&obj](size_t a, size_t b) { return obj.key(a) < obj.key(b); });
-  bool input_type_seen = false;
+  if (type_entries.empty() && single_type != obj.size()) type_entries.push_back(single_type);
+  auto apply_type_scoped = [&](const std::string& term) {
+    const TermDefinition* def = tsc->find(term);
+    if (def != nullptr && def->local_context) {
+      active = process_context(active, *def->local_context, def->base_url, opts_, nullptr, false,
+                               false, true);
+    }
+  };
   for (size_t i : type_entries) {
     const Value& v = obj.value(i);
-    std::vector<const std::string*> terms;
     if (v.is_string()) {
-      terms.push_back(&v.as_string());
+      apply_type_scoped(v.as_string());
     } else if (v.is_array()) {
+      std::vector<const std::string*> terms;
       for (const Value& t : v.as_array()) {
         if (t.is_string()) terms.push_back(&t.as_string());
       }
+      std::sort(terms.begin(), terms.end(),
+                [](const std::string* a, const std::string* b) { return *a < *b; });
+      for (const std::string* term : terms) apply_type_scoped(*term);
     }
-    std::sort(terms.begin(), terms.end(),
-              [](const std::string* a, const std::string* b) { return *a < *b; });
-    for (const std::string* term : terms) {
-      const TermDefinition* def = tsc->find(*term);
-      if (def != nullptr && def->local_context) {
-        active = process_context(active, *def->local_context, def->base_url, opts_, nullptr, false,
-                                 false, true);
-      }
-    }
-    // 12: the last value of the first @type entry.
-    if (!input_type_seen) {
-      input_type_seen = true;
-      const Value* last =
-          v.is_array() ? (v.as_array().empty() ? nullptr : &v.as_array().back()) : &v;
-      if (last != nullptr && last->is_string()) {
-        st.input_type = expand_iri(*active, last->as_string(), true, true);
-      }
-    }
+  }
+  // 12: the last value of the first @type entry. Only whether it is @json
+  // matters (13.4.7.1, 15), and only @json or an alias of it expands to @json.
+  if (!type_entries.empty()) {
+    const Value& v = obj.value(type_entries.front());
+    const Value* last = v.is_array() ? (v.as_array().empty() ? nullptr : &v.as_array().back()) : &v;
+    st.input_type_json =
+        last != nullptr && last->is_string() && expands_to(*active, last->as_string(), "@json");
   }
 
   // 13, 14
@@ -396,8 +403,11 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
   std::vector<std::pair<std::string, SourceLoc>> nests;
   Object& result = st.result;
   // 13
-  const std::vector<size_t> order = member_order(element, opts_.ordered);
-  for (size_t i : order) {
+  // Insertion order needs no index vector; `ordered` sorts one.
+  const std::vector<size_t> order =
+      opts_.ordered ? member_order(element, true) : std::vector<size_t>();
+  for (size_t n = 0; n < element.size(); ++n) {
+    const size_t i = opts_.ordered ? order[n] : n;
     const std::string& key = element.key(i);
     const Value& value = element.value(i);
     const SourceLoc key_loc = element.key_location(i);
@@ -429,8 +439,8 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     Value expanded_value;
     if (def != nullptr && def->type && *def->type == "@json") {  // 13.6
       Object lit;
-      lit.set("@value", value);
-      lit.set("@type", Value("@json"));
+      lit.append_new("@value", value);
+      lit.append_new("@type", Value("@json"));
       expanded_value = Value(std::move(lit));
       expanded_value.set_location(value.location());
     } else if (has("@language") && value.is_object()) {  // 13.7
@@ -446,7 +456,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     if (has("@list") && !is_list_object(expanded_value)) {
       SourceLoc loc = expanded_value.location();
       Object list;
-      list.set("@list", to_array(std::move(expanded_value)));
+      list.append_new("@list", to_array(std::move(expanded_value)));
       expanded_value = Value(std::move(list));
       expanded_value.set_location(loc);
     }
@@ -456,7 +466,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
       for (Value& ev : expanded_value.as_array()) {
         SourceLoc loc = ev.location();
         Object g;
-        g.set("@graph", to_array(std::move(ev)));
+        g.append_new("@graph", to_array(std::move(ev)));
         ev = Value(std::move(g));
         ev.set_location(loc);
       }
@@ -609,7 +619,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
       expanded_value = concat(std::move(*existing), std::move(expanded_value));
     }
   } else if (ep == "@value") {  // 13.4.7
-    if (st.input_type && *st.input_type == "@json") {
+    if (st.input_type_json) {
       if (v10) {
         fail("invalid value object value", "@json literals need processing mode json-ld-1.1",
              value.location());
@@ -744,9 +754,9 @@ Value Expander::expand_language_map(const ActiveContext& active, const TermDefin
              item->location());
       }
       Object v;  // 13.7.4.2.3
-      v.set("@value", *item);
-      if (!none) v.set("@language", string_at(language, map.key_location(i)));
-      if (direction) v.set("@direction", Value(*direction));
+      v.append_new("@value", *item);
+      if (!none) v.append_new("@language", string_at(language, map.key_location(i)));
+      if (direction) v.append_new("@direction", Value(*direction));
       Value vv(std::move(v));
       vv.set_location(item->location());
       out.as_array().push_back(std::move(vv));
@@ -791,7 +801,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
       if (has("@graph") && !is_graph_object(item)) {  // 13.8.3.7.1
         SourceLoc loc = item.location();
         Object g;
-        g.set("@graph", to_array(std::move(item)));
+        g.append_new("@graph", to_array(std::move(item)));
         item = Value(std::move(g));
         item.set_location(loc);
       }
@@ -845,7 +855,7 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
       std::optional<std::string> iri =
           expand_iri(active, value.as_string(), true, **type == "@vocab");
       Object o;
-      o.set("@id", iri ? string_at(std::move(*iri), value.location()) : Value());
+      o.append_new("@id", iri ? string_at(std::move(*iri), value.location()) : Value());
       Value out(std::move(o));
       out.set_location(value.location());
       return out;
@@ -853,10 +863,10 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
   }
   // 3
   Object result;
-  result.set("@value", value);
+  result.append_new("@value", value);
   if (type != nullptr && *type && **type != "@id" && **type != "@vocab" && **type != "@none") {
-    result.set("@type", string_at(**type, value.location()));  // 4
-  } else if (value.is_string()) {                              // 5
+    result.append_new("@type", string_at(**type, value.location()));  // 4
+  } else if (value.is_string()) {                                     // 5
     // 5.1, 5.2: a term's own mapping (even null) wins over the defaults.
     const Value* language = nullptr;
     std::optional<std::string> language_default;
@@ -872,11 +882,11 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
       direction = active.default_direction();
     }
     if (language != nullptr && language->is_string()) {
-      result.set("@language", *language);
+      result.append_new("@language", *language);
     } else if (language == nullptr && language_default) {
-      result.set("@language", Value(*language_default));
+      result.append_new("@language", Value(*language_default));
     }
-    if (direction) result.set("@direction", Value(*direction));
+    if (direction) result.append_new("@direction", Value(*direction));
   }
   Value out(std::move(result));
   out.set_location(value.location());
