@@ -161,12 +161,13 @@ Status achd(const AchdModel& model, AchdData& d, const JointIn& q, const JointIn
     const auto k = static_cast<std::size_t>(i);
     const SegmentModel& s = model.segments[k];
     const Vec6 S = motion_subspace(s);
-    const Vec6 a_pre = motion_to_child(d.X_PS[k], a_P) + d.c[k];
+    const Vec6 a_from_parent = motion_to_child(d.X_PS[k], a_P);
+    // u already holds -S^T IA c, so c is not in the projected acceleration;
     // EZ was scaled by 1/D in the inward sweep.
-    double qdd = (d.u[k] - d.U[k].dot(a_pre)) / d.D[k];
+    double qdd = (d.u[k] - d.U[k].dot(a_from_parent)) / d.D[k];
     if (nc > 0) qdd -= d.EZ[k].dot(d.nu);
     d.qdd[i] = qdd;
-    d.a[k] = a_pre + S * qdd;
+    d.a[k] = a_from_parent + d.c[k] + S * qdd;
     a_P = d.a[k];
     // tau = tau_ff - J^T (alpha nu): the constraint wrench's moment about the
     // joint, projected on its axis.

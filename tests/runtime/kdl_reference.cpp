@@ -77,9 +77,24 @@ KDL::Chain kdl_chain(const KDL::Tree& tree, const std::string& root, const std::
 
 KDL::Chain fold_fixed_segments(const KDL::Chain& chain) {
   std::vector<KDL::Segment> out;
+  KDL::Frame X_BF = KDL::Frame::Identity();  // fixed segments before the first moving one
   for (unsigned i = 0; i < chain.getNrOfSegments(); ++i) {
     const KDL::Segment& s = chain.getSegment(i);
-    if (s.getJoint().getType() != KDL::Joint::Fixed || out.empty()) {
+    const bool fixed = s.getJoint().getType() == KDL::Joint::Fixed;
+    if (out.empty()) {
+      if (fixed) {
+        X_BF = X_BF * s.getFrameToTip();  // its inertia is on the root: irrelevant
+        continue;
+      }
+      // Move the joint (origin and axis are in the parent frame) and the tip
+      // in front of the root offset.
+      const KDL::Joint& j = s.getJoint();
+      const KDL::Joint moved(j.getName(), X_BF * j.JointOrigin(), X_BF.M * j.JointAxis(),
+                             j.getType());
+      out.emplace_back(s.getName(), moved, X_BF * s.getFrameToTip(), s.getInertia());
+      continue;
+    }
+    if (!fixed) {
       out.push_back(s);
       continue;
     }
