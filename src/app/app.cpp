@@ -202,7 +202,10 @@ std::optional<SourceLoc> LoadedModel::where(rdf::TermId subject) const {
 
 std::string LoadedModel::describe(SourceLoc loc) const {
   std::string out = files().path(loc.file);
-  if (loc.line) out += ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column);
+  if (loc.line != 0) {
+    out.append(":").append(std::to_string(loc.line));
+    out.append(":").append(std::to_string(loc.column));
+  }
   return out;
 }
 
