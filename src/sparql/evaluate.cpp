@@ -43,6 +43,9 @@ constexpr uint32_t kTierMask = 0xC0000000u;
 // The table of computed terms is dropped at the start of an evaluation once it
 // holds this many terms, so a long validation run does not grow it forever.
 constexpr size_t kComputedLimit = size_t{1} << 16;
+// Join ordering only needs to tell selective patterns from unselective ones,
+// so match counts stop here (keeps preparing a query cheap on large data).
+constexpr size_t kCountCap = 4096;
 constexpr std::string_view kRdfLangString = "http://www.w3.org/1999/02/22-rdf-syntax-ns#langString";
 constexpr std::string_view kXsdStringIri = "http://www.w3.org/2001/XMLSchema#string";
 
@@ -214,7 +217,7 @@ class Engine {
         double c = 0;
         if (e.path < 0)
           c = static_cast<double>(
-              data_.count(constant(e.s), constant(e.p), constant(e.o), TermId::any(), 1u << 20));
+              data_.count(constant(e.s), constant(e.p), constant(e.o), TermId::any(), kCountCap));
         p->counts[o].push_back(c);
       }
       OpState& st = p->state[o];
@@ -265,7 +268,8 @@ class Engine {
     const size_t width = plan.result_vars.size();
     if (plan.limit == 0) return;
     std::vector<TermId>& cells = out.cells;
-    std::unordered_set<size_t, RowHash, RowEq> seen(16, RowHash{&cells, width},
+    // Only DISTINCT needs the set (no allocation per call otherwise).
+    std::unordered_set<size_t, RowHash, RowEq> seen(0, RowHash{&cells, width},
                                                     RowEq{&cells, width});
     const bool ordered = !plan.order.empty();
     const size_t wanted = plan.limit < 0 ? SIZE_MAX
