@@ -285,6 +285,7 @@ class Validator {
     if (s.deactivated) return;
     const uint64_t key = pair_key(shape, focus);
     if (!active_.insert(key).second) recursion(shape, focus);
+    if (stack_.size() >= kMaxDepth) too_deep(shape, focus);
     stack_.push_back(shape);
     std::vector<TermId> values;
     value_nodes(shape, focus, values);
@@ -292,6 +293,21 @@ class Validator {
       evaluate(shape, k, focus, values, sink);
     stack_.pop_back();
     active_.erase(key);
+  }
+
+  // Shapes that reach themselves over ever new data nodes (a recursive shape
+  // along a long chain) nest one call per node; stop before the stack does.
+  static constexpr size_t kMaxDepth = 1000;
+
+  [[noreturn]] void too_deep(uint32_t shape, TermId focus) {
+    const Shape& s = shapes_[shape];
+    std::string file =
+        shapes_.files() != nullptr && s.where.known() ? shapes_.files()->path(s.where.file) : "";
+    throw Error("shacl-recursion",
+                "shapes nest deeper than " + std::to_string(kMaxDepth) + " levels at shape " +
+                    shapes_.describe(shape) + " (focus node " + show(focus) +
+                    "): a recursive shape follows a long chain in the data",
+                file, s.where.line, s.where.column);
   }
 
   [[noreturn]] void recursion(uint32_t shape, TermId focus) {
@@ -502,22 +518,30 @@ class Validator {
       }
       case Component::Closed: {
         const std::vector<TermId>& allowed = bound_[shape][k];
+        std::vector<std::pair<TermId, TermId>> extra;  // (predicate, object)
         for (TermId v : values) {
+          extra.clear();
           data_.scan(v, TermId::any(), TermId::any(), TermId::any(),
                      [&](const rdf::Quad& q, uint32_t) {
-                       if (std::binary_search(allowed.begin(), allowed.end(), q.predicate))
-                         return true;
-                       RawResult r;
-                       r.focus = focus;
-                       r.value = q.object;
-                       r.shape = shape;
-                       r.constraint = k;
-                       r.component = c.component;
-                       r.path = PathSource::Predicate;
-                       r.predicate = q.predicate;
-                       sink.add(r);
-                       return !sink.done();
+                       if (!std::binary_search(allowed.begin(), allowed.end(), q.predicate))
+                         extra.emplace_back(q.predicate, q.object);
+                       return true;
                      });
+          // A triple may sit in several graphs; report it once.
+          std::sort(extra.begin(), extra.end());
+          extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+          for (auto [predicate, object] : extra) {
+            if (sink.done()) return;
+            RawResult r;
+            r.focus = focus;
+            r.value = object;
+            r.shape = shape;
+            r.constraint = k;
+            r.component = c.component;
+            r.path = PathSource::Predicate;
+            r.predicate = predicate;
+            sink.add(std::move(r));
+          }
         }
         return;
       }

@@ -173,3 +173,43 @@ ex:S a sh:NodeShape ; sh:targetClass ex:Thing ; sh:closed true ; sh:ignoredPrope
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Validate, RecursionAlongALongChainStopsWithAnErrorInsteadOfOverflowingTheStack) {
+  std::string body =
+      "ex:List a sh:NodeShape ; sh:targetNode ex:n0 ;\n"
+      "  sh:property [ sh:path ex:next ; sh:node ex:List ] .\n";
+  for (int i = 0; i < 5000; ++i)
+    body += "ex:n" + std::to_string(i) + " ex:next ex:n" + std::to_string(i + 1) + " .\n";
+  auto g = turtle(body);
+  Shapes shapes = Shapes::compile(g->data, &g->files);
+  try {
+    validate(shapes, g->data);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "shacl-recursion");
+    EXPECT_NE(std::string(e.what()).find("deeper than"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Validate, ClosedShapesReportEachExtraTripleOnce) {
+  auto g = turtle(R"(
+ex:S a sh:NodeShape ; sh:targetNode ex:a ; sh:closed true ; sh:property [ sh:path ex:p ] .
+)");
+  rdf::Dataset data;
+  auto& t = data.terms();
+  rdf::TermId a = t.iri("http://example.org/a"), p = t.iri("http://example.org/p"),
+              q = t.iri("http://example.org/q"), g1 = t.iri("http://example.org/g1"),
+              g2 = t.iri("http://example.org/g2");
+  data.add({a, p, a, g1});
+  data.add({a, q, a, g1});
+  data.add({a, q, a, g2});
+  Shapes shapes = Shapes::compile(g->data, &g->files);
+  Report r = validate(shapes, data);
+  ASSERT_EQ(r.results.size(), 1u) << to_text(r, nullptr);
+  EXPECT_EQ(r.results[0].component, Component::Closed);
+  EXPECT_EQ(r.terms[r.results[0].path->predicate].value, "http://example.org/q");
+}
+
+}  // namespace
