@@ -4,6 +4,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "jsonld/context.hpp"
 #include "jsonld/expand.hpp"
 #include "jsonld/to_rdf.hpp"
 #include "rdf/iri.hpp"
@@ -74,6 +75,7 @@ class Loader {
     opts.base = doc.document_url;
     opts.loader = &docs_;
     opts.diagnostics = &diagnostics_;
+    opts.context_cache = context_cache_;  // remote contexts are processed once per load
     rdf::Dataset local;
     jsonld::load_into(*doc.document, local, opts);
 
@@ -179,6 +181,7 @@ class Loader {
   DiagnosticSink& diagnostics_;
   std::vector<std::pair<std::string, std::string>> maps_;
   std::unordered_set<std::string> loaded_;
+  std::shared_ptr<jsonld::ContextCache> context_cache_ = std::make_shared<jsonld::ContextCache>();
 };
 
 }  // namespace
