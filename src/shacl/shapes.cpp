@@ -83,7 +83,7 @@ std::string_view component_name(Component c) {
 std::string describe_location(const SourceFiles* files, SourceLoc loc) {
   if (!loc.known()) return {};
   std::string out = files != nullptr ? files->path(loc.file) : std::string();
-  if (out.empty()) out = "<shapes>";
+  if (out.empty()) out = "<input>";
   out += ':' + std::to_string(loc.line);
   if (loc.column != 0) out += ':' + std::to_string(loc.column);
   return out;

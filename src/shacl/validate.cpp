@@ -761,15 +761,17 @@ class Validator {
   }
 
   // Where the focus node is written: the caller's answer, else the first
-  // located triple that has it as subject.
+  // located triple that has it as subject (or, failing that, as object).
   SourceLoc locate(TermId focus) const {
     if (options_.locate) return options_.locate(focus).value_or(SourceLoc{});
     SourceLoc found;
-    data_.scan(focus, TermId::any(), TermId::any(), TermId::any(),
-               [&](const rdf::Quad&, uint32_t i) {
-                 found = data_.location(i);
-                 return !found.known();
-               });
+    auto visit = [&](const rdf::Quad&, uint32_t i) {
+      found = data_.location(i);
+      return !found.known();
+    };
+    data_.scan(focus, TermId::any(), TermId::any(), TermId::any(), visit);
+    // A node that is never a subject is at least mentioned as an object.
+    if (!found.known()) data_.scan(TermId::any(), TermId::any(), focus, TermId::any(), visit);
     return found;
   }
 

@@ -14,7 +14,7 @@ namespace mospec::shacl {
 struct ValidateOptions {
   // Where a data node (a term of the data graph's table) is written, for the
   // report's order and the text output (nullopt: not located). Unset: the
-  // location of the first triple that has the node as subject.
+  // location of the first triple that has the node as subject (else as object).
   std::function<std::optional<SourceLoc>(rdf::TermId)> locate;
 };
 
