@@ -18,26 +18,39 @@ struct Builtin {
   int min_args, max_args;  // max -1: any number
 };
 constexpr Builtin kBuiltins[] = {
-    {"BOUND", ExprOp::Bound, 1, 1},         {"IF", ExprOp::If, 3, 3},
-    {"COALESCE", ExprOp::Coalesce, 0, -1},  {"ABS", ExprOp::Abs, 1, 1},
-    {"CEIL", ExprOp::Ceil, 1, 1},           {"FLOOR", ExprOp::Floor, 1, 1},
-    {"ROUND", ExprOp::Round, 1, 1},         {"ISIRI", ExprOp::IsIri, 1, 1},
-    {"ISURI", ExprOp::IsIri, 1, 1},         {"ISBLANK", ExprOp::IsBlank, 1, 1},
-    {"ISLITERAL", ExprOp::IsLiteral, 1, 1}, {"ISNUMERIC", ExprOp::IsNumeric, 1, 1},
-    {"STR", ExprOp::Str, 1, 1},             {"LANG", ExprOp::Lang, 1, 1},
-    {"DATATYPE", ExprOp::Datatype, 1, 1},   {"IRI", ExprOp::Iri, 1, 1},
-    {"URI", ExprOp::Iri, 1, 1},             {"REGEX", ExprOp::Regex, 2, 3},
-    {"STRSTARTS", ExprOp::StrStarts, 2, 2}, {"STRENDS", ExprOp::StrEnds, 2, 2},
-    {"CONTAINS", ExprOp::Contains, 2, 2},   {"STRLEN", ExprOp::StrLen, 1, 1},
-    {"UCASE", ExprOp::Ucase, 1, 1},         {"LCASE", ExprOp::Lcase, 1, 1},
-    {"CONCAT", ExprOp::Concat, 0, -1},      {"LANGMATCHES", ExprOp::LangMatches, 2, 2},
+    {"BOUND", ExprOp::Bound, 1, 1},
+    {"IF", ExprOp::If, 3, 3},
+    {"COALESCE", ExprOp::Coalesce, 0, -1},
+    {"ABS", ExprOp::Abs, 1, 1},
+    {"CEIL", ExprOp::Ceil, 1, 1},
+    {"FLOOR", ExprOp::Floor, 1, 1},
+    {"ROUND", ExprOp::Round, 1, 1},
+    {"ISIRI", ExprOp::IsIri, 1, 1},
+    {"ISURI", ExprOp::IsIri, 1, 1},
+    {"ISBLANK", ExprOp::IsBlank, 1, 1},
+    {"ISLITERAL", ExprOp::IsLiteral, 1, 1},
+    {"ISNUMERIC", ExprOp::IsNumeric, 1, 1},
+    {"STR", ExprOp::Str, 1, 1},
+    {"LANG", ExprOp::Lang, 1, 1},
+    {"DATATYPE", ExprOp::Datatype, 1, 1},
+    {"IRI", ExprOp::Iri, 1, 1},
+    {"URI", ExprOp::Iri, 1, 1},
+    {"REGEX", ExprOp::Regex, 2, 3},
+    {"STRSTARTS", ExprOp::StrStarts, 2, 2},
+    {"STRENDS", ExprOp::StrEnds, 2, 2},
+    {"CONTAINS", ExprOp::Contains, 2, 2},
+    {"STRLEN", ExprOp::StrLen, 1, 1},
+    {"UCASE", ExprOp::Ucase, 1, 1},
+    {"LCASE", ExprOp::Lcase, 1, 1},
+    {"CONCAT", ExprOp::Concat, 0, -1},
+    {"LANGMATCHES", ExprOp::LangMatches, 2, 2},
     {"SAMETERM", ExprOp::SameTerm, 2, 2},
 };
 constexpr const char* kKnownUnsupported[] = {
-    "BNODE",   "RAND",   "NOW",     "UUID",    "STRUUID",        "MD5",     "SHA1",
-    "SHA256",  "SHA384", "SHA512",  "YEAR",    "MONTH",          "DAY",     "HOURS",
-    "MINUTES", "SECONDS", "TIMEZONE", "TZ",    "ENCODE_FOR_URI", "REPLACE", "SUBSTR",
-    "STRBEFORE", "STRAFTER", "STRDT", "STRLANG",
+    "BNODE",     "RAND",     "NOW",      "UUID",    "STRUUID",        "MD5",     "SHA1",
+    "SHA256",    "SHA384",   "SHA512",   "YEAR",    "MONTH",          "DAY",     "HOURS",
+    "MINUTES",   "SECONDS",  "TIMEZONE", "TZ",      "ENCODE_FOR_URI", "REPLACE", "SUBSTR",
+    "STRBEFORE", "STRAFTER", "STRDT",    "STRLANG",
 };
 
 struct Cast {
@@ -169,13 +182,26 @@ class Builder {
         for (const ast::Path& item : p.items) items.push_back(make_path(item));
         Path::Kind k = Path::Kind::Sequence;
         switch (p.kind) {
-          case ast::Path::Kind::Inverse: k = Path::Kind::Inverse; break;
-          case ast::Path::Kind::Sequence: k = Path::Kind::Sequence; break;
-          case ast::Path::Kind::Alternative: k = Path::Kind::Alternative; break;
-          case ast::Path::Kind::ZeroOrMore: k = Path::Kind::ZeroOrMore; break;
-          case ast::Path::Kind::OneOrMore: k = Path::Kind::OneOrMore; break;
-          case ast::Path::Kind::ZeroOrOne: k = Path::Kind::ZeroOrOne; break;
-          default: break;
+          case ast::Path::Kind::Inverse:
+            k = Path::Kind::Inverse;
+            break;
+          case ast::Path::Kind::Sequence:
+            k = Path::Kind::Sequence;
+            break;
+          case ast::Path::Kind::Alternative:
+            k = Path::Kind::Alternative;
+            break;
+          case ast::Path::Kind::ZeroOrMore:
+            k = Path::Kind::ZeroOrMore;
+            break;
+          case ast::Path::Kind::OneOrMore:
+            k = Path::Kind::OneOrMore;
+            break;
+          case ast::Path::Kind::ZeroOrOne:
+            k = Path::Kind::ZeroOrOne;
+            break;
+          default:
+            break;
         }
         return Path::make(k, std::move(items));
       }
@@ -520,9 +546,9 @@ class Builder {
     auto arity = [&](int lo, int hi) {
       const int n = static_cast<int>(a.args.size());
       if (n < lo || (hi >= 0 && n > hi)) {
-        std::string want = lo == hi   ? std::to_string(lo)
-                           : hi < 0   ? "at least " + std::to_string(lo)
-                                      : std::to_string(lo) + " or " + std::to_string(hi);
+        std::string want = lo == hi ? std::to_string(lo)
+                           : hi < 0 ? "at least " + std::to_string(lo)
+                                    : std::to_string(lo) + " or " + std::to_string(hi);
         ast::fail(kSyntax, a.pos,
                   a.name + " expects " + want + " argument" + (want == "1" ? "" : "s") +
                       ", found " + std::to_string(n));
@@ -555,7 +581,8 @@ class Builder {
 
   void regex(const ast::Expr& a, Expr& e) {
     auto constant_string = [&](const ast::Expr& x) -> const std::string* {
-      if (x.kind != ast::Expr::Kind::Term || x.term.kind != ast::Term::Kind::Literal) return nullptr;
+      if (x.kind != ast::Expr::Kind::Term || x.term.kind != ast::Term::Kind::Literal)
+        return nullptr;
       return &x.term.value;
     };
     const std::string* pattern = constant_string(a.args[1]);
@@ -587,10 +614,18 @@ bool compile_regex(std::string_view pattern, std::string_view flags, std::regex&
   auto syntax = std::regex::ECMAScript;
   for (char f : flags) {
     switch (f) {
-      case 's': dot_all = true; break;
-      case 'x': extended = true; break;
-      case 'i': syntax |= std::regex::icase; break;
-      case 'm': syntax |= std::regex::multiline; break;
+      case 's':
+        dot_all = true;
+        break;
+      case 'x':
+        extended = true;
+        break;
+      case 'i':
+        syntax |= std::regex::icase;
+        break;
+      case 'm':
+        syntax |= std::regex::multiline;
+        break;
       default:
         error = std::string("invalid REGEX flag '") + f + "' (allowed: s, m, i, x)";
         return false;

@@ -180,7 +180,7 @@ struct Plan {
   uint32_t root = 0;
 
   std::vector<std::string> result_names;
-  std::vector<Var> result_vars;  // by column
+  std::vector<Var> result_vars;                           // by column
   std::vector<std::pair<Var, uint32_t>> projected_exprs;  // (var, expr) computed after WHERE
   bool distinct = false;
   std::vector<OrderKey> order;

@@ -70,18 +70,18 @@ struct Group;
 
 struct Expr {
   enum class Kind : uint8_t {
-    Term,      // term (Var, Iri, Literal)
-    Or,        // args[0] || args[1]
+    Term,  // term (Var, Iri, Literal)
+    Or,    // args[0] || args[1]
     And,
-    Not,       // !args[0]
-    Compare,   // name is "=", "!=", "<", ">", "<=", ">="
-    In,        // args[0] IN (args[1..])
+    Not,      // !args[0]
+    Compare,  // name is "=", "!=", "<", ">", "<=", ">="
+    In,       // args[0] IN (args[1..])
     NotIn,
-    Arith,     // name is "+", "-", "*", "/"
-    Negate,    // -args[0]
-    Plus,      // +args[0]
-    Call,      // built-in function `name` (upper case) or function IRI (is_iri)
-    Exists,    // pattern
+    Arith,   // name is "+", "-", "*", "/"
+    Negate,  // -args[0]
+    Plus,    // +args[0]
+    Call,    // built-in function `name` (upper case) or function IRI (is_iri)
+    Exists,  // pattern
     NotExists,
   };
   Kind kind = Kind::Term;

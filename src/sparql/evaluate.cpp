@@ -53,8 +53,8 @@ constexpr std::string_view kXsdStringIri = "http://www.w3.org/2001/XMLSchema#str
 class Cont {
  public:
   template <class F>
-    requires(!std::is_same_v<std::remove_cvref_t<F>, Cont>)
-  Cont(F& f) : obj_(&f), call_(&invoke<F>) {}  // NOLINT: implicit on purpose
+  requires(!std::is_same_v<std::remove_cvref_t<F>, Cont>) Cont(F& f)
+      : obj_(&f), call_(&invoke<F>) {}  // NOLINT: implicit on purpose
   bool operator()() const { return call_(obj_); }
 
  private:
@@ -77,9 +77,9 @@ struct OpState {
 
 struct Prepared {
   std::shared_ptr<const Plan> plan;
-  std::vector<TermId> consts;                // plan term id -> engine id
-  std::vector<PathPtr> paths;                // with engine ids
-  std::vector<std::vector<double>> counts;   // by op, by element: matches of its constants
+  std::vector<TermId> consts;               // plan term id -> engine id
+  std::vector<PathPtr> paths;               // with engine ids
+  std::vector<std::vector<double>> counts;  // by op, by element: matches of its constants
   std::vector<OpState> state;
 };
 
@@ -100,9 +100,12 @@ class Engine {
   // ---- terms ----
   std::pair<const rdf::TermTable*, TermId> locate(TermId id) const {
     switch (id.index & kTierMask) {
-      case kConstTier: return {&constants_, TermId{id.index - kConstTier}};
-      case kComputedTier: return {&computed_, TermId{id.index - kComputedTier}};
-      default: return {&data_.terms(), id};
+      case kConstTier:
+        return {&constants_, TermId{id.index - kConstTier}};
+      case kComputedTier:
+        return {&computed_, TermId{id.index - kComputedTier}};
+      default:
+        return {&data_.terms(), id};
     }
   }
   const rdf::Term& term(TermId id) const {
@@ -247,8 +250,7 @@ class Engine {
     size_t width;
     size_t operator()(size_t r) const {
       uint64_t h = 0x9E3779B97F4A7C15ull;
-      for (size_t c = 0; c < width; ++c)
-        h = (h ^ (*cells)[r * width + c].index) * 0x100000001B3ull;
+      for (size_t c = 0; c < width; ++c) h = (h ^ (*cells)[r * width + c].index) * 0x100000001B3ull;
       return static_cast<size_t>(h ^ (h >> 29));
     }
   };
@@ -272,8 +274,7 @@ class Engine {
     std::unordered_set<size_t, RowHash, RowEq> seen(0, RowHash{&cells, width},
                                                     RowEq{&cells, width});
     const bool ordered = !plan.order.empty();
-    const size_t wanted = plan.limit < 0 ? SIZE_MAX
-                                         : static_cast<size_t>(plan.offset + plan.limit);
+    const size_t wanted = plan.limit < 0 ? SIZE_MAX : static_cast<size_t>(plan.offset + plan.limit);
     std::vector<TermId> keys;
     size_t rows = 0;
     auto sink = [&]() {
@@ -647,15 +648,22 @@ class Engine {
   TermId to_term(const Value& v) {
     if (!v.id.is_any()) return v.id;
     switch (v.kind) {
-      case Value::Kind::Error: return kUnbound;
-      case Value::Kind::Iri: return intern_iri(v.str);
-      case Value::Kind::Blank: return kUnbound;  // blank nodes always come with an id
-      case Value::Kind::String: return intern_literal(v.str, kXsdStringIri, {});
-      case Value::Kind::LangString: return intern_literal(v.str, kRdfLangString, v.lang);
+      case Value::Kind::Error:
+        return kUnbound;
+      case Value::Kind::Iri:
+        return intern_iri(v.str);
+      case Value::Kind::Blank:
+        return kUnbound;  // blank nodes always come with an id
+      case Value::Kind::String:
+        return intern_literal(v.str, kXsdStringIri, {});
+      case Value::Kind::LangString:
+        return intern_literal(v.str, kRdfLangString, v.lang);
       case Value::Kind::Numeric:
-      case Value::Kind::Bool: return intern_literal(canonical_lexical(v), datatype_of(v), {});
+      case Value::Kind::Bool:
+        return intern_literal(canonical_lexical(v), datatype_of(v), {});
       case Value::Kind::DateTime:
-      case Value::Kind::Literal: return intern_literal(v.str, v.datatype, {});
+      case Value::Kind::Literal:
+        return intern_literal(v.str, v.datatype, {});
     }
     return kUnbound;
   }
@@ -713,10 +721,14 @@ class Engine {
         if (c == 3) return Value::make_error();
         if (c == 2) return Value::boolean(false);
         switch (e.op) {
-          case ExprOp::Lt: return Value::boolean(c < 0);
-          case ExprOp::Gt: return Value::boolean(c > 0);
-          case ExprOp::Le: return Value::boolean(c <= 0);
-          default: return Value::boolean(c >= 0);
+          case ExprOp::Lt:
+            return Value::boolean(c < 0);
+          case ExprOp::Gt:
+            return Value::boolean(c > 0);
+          case ExprOp::Le:
+            return Value::boolean(c <= 0);
+          default:
+            return Value::boolean(c >= 0);
         }
       }
       case ExprOp::In:
@@ -732,10 +744,14 @@ class Engine {
         if (error) return Value::make_error();
         return Value::boolean(e.op == ExprOp::NotIn);
       }
-      case ExprOp::Add: return arithmetic('+', arg(0), arg(1));
-      case ExprOp::Sub: return arithmetic('-', arg(0), arg(1));
-      case ExprOp::Mul: return arithmetic('*', arg(0), arg(1));
-      case ExprOp::Div: return arithmetic('/', arg(0), arg(1));
+      case ExprOp::Add:
+        return arithmetic('+', arg(0), arg(1));
+      case ExprOp::Sub:
+        return arithmetic('-', arg(0), arg(1));
+      case ExprOp::Mul:
+        return arithmetic('*', arg(0), arg(1));
+      case ExprOp::Div:
+        return arithmetic('/', arg(0), arg(1));
       case ExprOp::Neg: {
         Value v = arg(0);
         if (v.kind != Value::Kind::Numeric) return Value::make_error();
@@ -783,10 +799,18 @@ class Engine {
         }
         long double r = v.d;
         switch (e.op) {
-          case ExprOp::Abs: r = std::fabs(r); break;
-          case ExprOp::Ceil: r = std::ceil(r); break;
-          case ExprOp::Floor: r = std::floor(r); break;
-          default: r = std::floor(r + 0.5L); break;  // fn:round: halves toward +INF
+          case ExprOp::Abs:
+            r = std::fabs(r);
+            break;
+          case ExprOp::Ceil:
+            r = std::ceil(r);
+            break;
+          case ExprOp::Floor:
+            r = std::floor(r);
+            break;
+          default:
+            r = std::floor(r + 0.5L);
+            break;  // fn:round: halves toward +INF
         }
         return Value::number(v.num, r);
       }
@@ -797,10 +821,14 @@ class Engine {
         const Value v = arg(0);
         if (v.error()) return Value::make_error();
         switch (e.op) {
-          case ExprOp::IsIri: return Value::boolean(v.kind == Value::Kind::Iri);
-          case ExprOp::IsBlank: return Value::boolean(v.kind == Value::Kind::Blank);
-          case ExprOp::IsLiteral: return Value::boolean(v.is_literal());
-          default: return Value::boolean(v.kind == Value::Kind::Numeric);
+          case ExprOp::IsIri:
+            return Value::boolean(v.kind == Value::Kind::Iri);
+          case ExprOp::IsBlank:
+            return Value::boolean(v.kind == Value::Kind::Blank);
+          case ExprOp::IsLiteral:
+            return Value::boolean(v.is_literal());
+          default:
+            return Value::boolean(v.kind == Value::Kind::Numeric);
         }
       }
       case ExprOp::Str:
@@ -821,13 +849,19 @@ class Engine {
         Value r;
         r.kind = Value::Kind::Iri;
         switch (v.kind) {
-          case Value::Kind::String: r.str = kXsdStringIri; break;
-          case Value::Kind::LangString: r.str = kRdfLangString; break;
+          case Value::Kind::String:
+            r.str = kXsdStringIri;
+            break;
+          case Value::Kind::LangString:
+            r.str = kRdfLangString;
+            break;
           case Value::Kind::Numeric:
           case Value::Kind::Bool:
             r.str = v.id.is_any() ? datatype_of(v) : v.datatype;
             break;
-          default: r.str = v.datatype; break;
+          default:
+            r.str = v.datatype;
+            break;
         }
         return r;
       }
@@ -852,9 +886,12 @@ class Engine {
         // Argument compatibility (17.4.3.1.2): b's language, if any, must be a's.
         if (!b.lang.empty() && a.lang != b.lang) return Value::make_error();
         switch (e.op) {
-          case ExprOp::StrStarts: return Value::boolean(a.str.starts_with(b.str));
-          case ExprOp::StrEnds: return Value::boolean(a.str.ends_with(b.str));
-          default: return Value::boolean(a.str.find(b.str) != std::string_view::npos);
+          case ExprOp::StrStarts:
+            return Value::boolean(a.str.starts_with(b.str));
+          case ExprOp::StrEnds:
+            return Value::boolean(a.str.ends_with(b.str));
+          default:
+            return Value::boolean(a.str.find(b.str) != std::string_view::npos);
         }
       }
       case ExprOp::StrLen: {
@@ -871,8 +908,9 @@ class Engine {
         if (!stringish(v)) return Value::make_error();
         std::string s(v.str);
         for (char& c : s)
-          c = static_cast<char>(e.op == ExprOp::Ucase ? std::toupper(static_cast<unsigned char>(c))
-                                                      : std::tolower(static_cast<unsigned char>(c)));
+          c = static_cast<char>(e.op == ExprOp::Ucase
+                                    ? std::toupper(static_cast<unsigned char>(c))
+                                    : std::tolower(static_cast<unsigned char>(c)));
         return Value::string(store(std::move(s)), v.lang);
       }
       case ExprOp::Concat: {
@@ -949,11 +987,16 @@ class Engine {
                                                    : Num::Double;
     if (v.kind == Value::Kind::String) {
       switch (op) {
-        case ExprOp::CastInteger: return from_string("http://www.w3.org/2001/XMLSchema#integer");
-        case ExprOp::CastDecimal: return from_string("http://www.w3.org/2001/XMLSchema#decimal");
-        case ExprOp::CastFloat: return from_string("http://www.w3.org/2001/XMLSchema#float");
-        case ExprOp::CastDouble: return from_string("http://www.w3.org/2001/XMLSchema#double");
-        default: return from_string("http://www.w3.org/2001/XMLSchema#boolean");
+        case ExprOp::CastInteger:
+          return from_string("http://www.w3.org/2001/XMLSchema#integer");
+        case ExprOp::CastDecimal:
+          return from_string("http://www.w3.org/2001/XMLSchema#decimal");
+        case ExprOp::CastFloat:
+          return from_string("http://www.w3.org/2001/XMLSchema#float");
+        case ExprOp::CastDouble:
+          return from_string("http://www.w3.org/2001/XMLSchema#double");
+        default:
+          return from_string("http://www.w3.org/2001/XMLSchema#boolean");
       }
     }
     if (v.kind == Value::Kind::Bool) {
@@ -1058,9 +1101,15 @@ class Engine {
 
 // ---- public API ----
 
-QueryForm Query::form() const { return plan_->form; }
-const std::vector<std::string>& Query::variables() const { return plan_->result_names; }
-bool Query::mentions(std::string_view name) const { return plan_->find_var(name) != detail::kNone; }
+QueryForm Query::form() const {
+  return plan_->form;
+}
+const std::vector<std::string>& Query::variables() const {
+  return plan_->result_names;
+}
+bool Query::mentions(std::string_view name) const {
+  return plan_->find_var(name) != detail::kNone;
+}
 
 void Query::check_prebinding(std::span<const std::string_view> names) const {
   for (std::string_view name : names) {
@@ -1103,7 +1152,9 @@ bool Evaluator::ask(const Query& query, std::span<const Binding> prebound) {
 std::pair<const rdf::TermTable*, TermId> Evaluator::locate(TermId id) const {
   return engine_->locate(id);
 }
-const rdf::Term& Evaluator::term(TermId id) const { return engine_->term(id); }
+const rdf::Term& Evaluator::term(TermId id) const {
+  return engine_->term(id);
+}
 std::string Evaluator::to_ntriples(TermId id) const {
   if (id == kUnbound) return "UNDEF";
   auto [table, local] = engine_->locate(id);
@@ -1112,6 +1163,8 @@ std::string Evaluator::to_ntriples(TermId id) const {
 TermId Evaluator::import(const rdf::TermTable& table, TermId id) {
   return engine_->import(table, id);
 }
-const rdf::Dataset& Evaluator::data() const { return engine_->data(); }
+const rdf::Dataset& Evaluator::data() const {
+  return engine_->data();
+}
 
 }  // namespace mospec::sparql

@@ -20,8 +20,7 @@ std::string with_position(uint32_t line, uint32_t column, const std::string& mes
 }
 }  // namespace
 
-QueryError::QueryError(std::string code, uint32_t line, uint32_t column,
-                       const std::string& message)
+QueryError::QueryError(std::string code, uint32_t line, uint32_t column, const std::string& message)
     : Error(std::move(code), with_position(line, column, message)), line_(line), column_(column) {}
 
 namespace ast {
@@ -59,11 +58,15 @@ struct Token {
   size_t begin = 0, end = 0;
 };
 
-bool is_name_start(unsigned char c) { return std::isalpha(c) || c >= 0x80; }
+bool is_name_start(unsigned char c) {
+  return std::isalpha(c) || c >= 0x80;
+}
 bool is_name_char(unsigned char c) {
   return std::isalnum(c) || c == '_' || c == '-' || c >= 0x80;
 }
-bool is_var_char(unsigned char c) { return std::isalnum(c) || c == '_' || c >= 0x80; }
+bool is_var_char(unsigned char c) {
+  return std::isalnum(c) || c == '_' || c >= 0x80;
+}
 
 std::string upper(std::string_view s) {
   std::string out(s);
@@ -110,9 +113,8 @@ class Parser {
       q.form = QueryForm::Ask;
     } else if (kw == "CONSTRUCT" || kw == "DESCRIBE") {
       unsupported(t, kw + " queries are");
-    } else if (kw == "INSERT" || kw == "DELETE" || kw == "LOAD" || kw == "CLEAR" ||
-               kw == "DROP" || kw == "CREATE" || kw == "WITH" || kw == "COPY" || kw == "MOVE" ||
-               kw == "ADD") {
+    } else if (kw == "INSERT" || kw == "DELETE" || kw == "LOAD" || kw == "CLEAR" || kw == "DROP" ||
+               kw == "CREATE" || kw == "WITH" || kw == "COPY" || kw == "MOVE" || kw == "ADD") {
       unsupported(t, "SPARQL Update (" + kw + ") is");
     } else {
       expected(t, "SELECT or ASK");
@@ -139,18 +141,28 @@ class Parser {
 
   std::string describe(const Token& t) const {
     switch (t.kind) {
-      case Tok::End: return "end of query";
-      case Tok::IriRef: return "IRI <" + t.text + ">";
-      case Tok::PName: return "prefixed name " + t.prefix + ":" + t.text;
-      case Tok::Blank: return "blank node _:" + t.text;
-      case Tok::Var: return "variable ?" + t.text;
-      case Tok::LangTag: return "language tag @" + t.text;
+      case Tok::End:
+        return "end of query";
+      case Tok::IriRef:
+        return "IRI <" + t.text + ">";
+      case Tok::PName:
+        return "prefixed name " + t.prefix + ":" + t.text;
+      case Tok::Blank:
+        return "blank node _:" + t.text;
+      case Tok::Var:
+        return "variable ?" + t.text;
+      case Tok::LangTag:
+        return "language tag @" + t.text;
       case Tok::Integer:
       case Tok::Decimal:
-      case Tok::Double: return "number " + t.text;
-      case Tok::String: return "string literal";
-      case Tok::Word: return "'" + t.text + "'";
-      case Tok::Punct: return "'" + t.text + "'";
+      case Tok::Double:
+        return "number " + t.text;
+      case Tok::String:
+        return "string literal";
+      case Tok::Word:
+        return "'" + t.text + "'";
+      case Tok::Punct:
+        return "'" + t.text + "'";
     }
     return "token";
   }
@@ -235,14 +247,30 @@ class Parser {
         if (i + 1 >= text_.size()) lex_error(i, "incomplete escape");
         const char e = text_[i + 1];
         switch (e) {
-          case 't': t.text += '\t'; break;
-          case 'b': t.text += '\b'; break;
-          case 'n': t.text += '\n'; break;
-          case 'r': t.text += '\r'; break;
-          case 'f': t.text += '\f'; break;
-          case '"': t.text += '"'; break;
-          case '\'': t.text += '\''; break;
-          case '\\': t.text += '\\'; break;
+          case 't':
+            t.text += '\t';
+            break;
+          case 'b':
+            t.text += '\b';
+            break;
+          case 'n':
+            t.text += '\n';
+            break;
+          case 'r':
+            t.text += '\r';
+            break;
+          case 'f':
+            t.text += '\f';
+            break;
+          case '"':
+            t.text += '"';
+            break;
+          case '\'':
+            t.text += '\'';
+            break;
+          case '\\':
+            t.text += '\\';
+            break;
           case 'u':
             append_utf8(t.text, hex_value(i + 2, 4));
             i += 6;
@@ -327,8 +355,8 @@ class Parser {
         size_t j = i + 1;
         while (j < text_.size()) {
           const auto d = static_cast<unsigned char>(text_[j]);
-          if (d == '>' || d <= 0x20 || std::string_view("<\"{}|^`\\").find(static_cast<char>(d)) !=
-                                           std::string_view::npos)
+          if (d == '>' || d <= 0x20 ||
+              std::string_view("<\"{}|^`\\").find(static_cast<char>(d)) != std::string_view::npos)
             break;
           ++j;
         }
@@ -358,8 +386,8 @@ class Parser {
     }
     if (c == '@') {
       size_t j = i + 1;
-      while (j < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[j])) ||
-                                  (text_[j] == '-' && j > i + 1)))
+      while (j < text_.size() &&
+             (std::isalnum(static_cast<unsigned char>(text_[j])) || (text_[j] == '-' && j > i + 1)))
         ++j;
       if (j == i + 1 || !std::isalpha(static_cast<unsigned char>(text_[i + 1])))
         lex_error(i, "'@' must start a language tag");
@@ -379,7 +407,8 @@ class Parser {
         t.kind = Tok::Decimal;
         ++j;
         while (j < text_.size() && std::isdigit(static_cast<unsigned char>(text_[j]))) ++j;
-      } else if (j + 1 < text_.size() && text_[j] == '.' && (text_[j + 1] == 'e' || text_[j + 1] == 'E')) {
+      } else if (j + 1 < text_.size() && text_[j] == '.' &&
+                 (text_[j + 1] == 'e' || text_[j + 1] == 'E')) {
         ++j;  // "1.e5"
         t.kind = Tok::Decimal;
       }
@@ -426,8 +455,8 @@ class Parser {
       }
       // Keywords and function names are plain words.
       size_t k = i;
-      while (k < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[k])) ||
-                                  text_[k] == '_'))
+      while (k < text_.size() &&
+             (std::isalnum(static_cast<unsigned char>(text_[k])) || text_[k] == '_'))
         ++k;
       if (k == i) lex_error(i, "unexpected character");
       t.kind = Tok::Word;
@@ -521,7 +550,8 @@ class Parser {
       } else if (is_keyword(t, "PREFIX")) {
         next();
         Token p = next();
-        if (p.kind != Tok::PName || !p.text.empty()) expected(p, "a prefix name like 'ex:' after PREFIX");
+        if (p.kind != Tok::PName || !p.text.empty())
+          expected(p, "a prefix name like 'ex:' after PREFIX");
         if (peek().kind != Tok::IriRef) expected(peek(), "an IRI after PREFIX " + p.prefix + ":");
         prefixes_local_[p.prefix] = resolve(next().text);
       } else {
@@ -1083,8 +1113,8 @@ class Parser {
       e.pattern = std::make_shared<Group>(parse_group());
       return e;
     }
-    static const char* const kAggregates[] = {"COUNT", "SUM", "MIN", "MAX", "AVG", "SAMPLE",
-                                              "GROUP_CONCAT"};
+    static const char* const kAggregates[] = {"COUNT", "SUM",    "MIN",         "MAX",
+                                              "AVG",   "SAMPLE", "GROUP_CONCAT"};
     for (const char* a : kAggregates)
       if (name == a) unsupported(t, "aggregate " + name + " is");
     if (name == "TRUE" || name == "FALSE") expected(t, "an expression");  // unreachable
@@ -1172,8 +1202,9 @@ class Parser {
         } else if (t.kind == Tok::Var) {
           key.expr.pos = pos(t);
           key.expr.term = parse_var();
-        } else if (is_punct(t, "(") || (t.kind == Tok::Word && !is_keyword(t, "LIMIT") &&
-                                        !is_keyword(t, "OFFSET") && !is_keyword(t, "VALUES")) ||
+        } else if (is_punct(t, "(") ||
+                   (t.kind == Tok::Word && !is_keyword(t, "LIMIT") && !is_keyword(t, "OFFSET") &&
+                    !is_keyword(t, "VALUES")) ||
                    at_iri()) {
           key.expr = parse_constraint();
         } else {

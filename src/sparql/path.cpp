@@ -6,9 +6,9 @@
 // search with a visited set. Visited sets are stamp arrays indexed by term id
 // (reset in O(1) by bumping a generation) taken from a per-thread pool, so a
 // call allocates nothing once the pool has warmed up.
-#include <algorithm>
-
 #include "sparql/path.hpp"
+
+#include <algorithm>
 
 namespace mospec::sparql {
 
@@ -136,8 +136,7 @@ class Walker {
         for (size_t i = 0; i < queue.list().size(); ++i) {
           const TermId node = queue.list()[i];
           emit(node);
-          reach(*p.items[0], inv, std::span<const TermId>(&node, 1), queue.list(),
-                visited.marks());
+          reach(*p.items[0], inv, std::span<const TermId>(&node, 1), queue.list(), visited.marks());
         }
         return;
       }

@@ -128,9 +128,7 @@ struct ResultSet {
   std::span<const rdf::TermId> row(size_t i) const {
     return {cells.data() + i * variables.size(), variables.size()};
   }
-  rdf::TermId at(size_t row, size_t column) const {
-    return cells[row * variables.size() + column];
-  }
+  rdf::TermId at(size_t row, size_t column) const { return cells[row * variables.size() + column]; }
   // Column of a variable, or -1.
   int column(std::string_view name) const;
   void clear() {

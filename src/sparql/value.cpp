@@ -14,11 +14,19 @@ enum class Xsd : uint8_t { Other, Integer, Decimal, Float, Double, Boolean, Stri
 Xsd classify(std::string_view dt) {
   if (!dt.starts_with(kXsdNs)) return Xsd::Other;
   const std::string_view local = dt.substr(kXsdNs.size());
-  static constexpr std::string_view kIntegers[] = {
-      "integer",      "long",          "int",         "short",
-      "byte",         "nonNegativeInteger", "positiveInteger", "nonPositiveInteger",
-      "negativeInteger", "unsignedLong",   "unsignedInt", "unsignedShort",
-      "unsignedByte"};
+  static constexpr std::string_view kIntegers[] = {"integer",
+                                                   "long",
+                                                   "int",
+                                                   "short",
+                                                   "byte",
+                                                   "nonNegativeInteger",
+                                                   "positiveInteger",
+                                                   "nonPositiveInteger",
+                                                   "negativeInteger",
+                                                   "unsignedLong",
+                                                   "unsignedInt",
+                                                   "unsignedShort",
+                                                   "unsignedByte"};
   for (std::string_view n : kIntegers)
     if (local == n) return Xsd::Integer;
   if (local == "decimal") return Xsd::Decimal;
@@ -130,8 +138,8 @@ bool parse_datetime(std::string_view s, long double& seconds, bool& has_tz) {
     ++year_digits;
   int64_t y, mo, d, h, mi, sec;
   if (year_digits < 4 || year_digits > 9 || !num(year_digits, y)) return false;
-  if (!lit('-') || !num(2, mo) || !lit('-') || !num(2, d) || !lit('T') || !num(2, h) ||
-      !lit(':') || !num(2, mi) || !lit(':') || !num(2, sec))
+  if (!lit('-') || !num(2, mo) || !lit('-') || !num(2, d) || !lit('T') || !num(2, h) || !lit(':') ||
+      !num(2, mi) || !lit(':') || !num(2, sec))
     return false;
   if (mo < 1 || mo > 12 || d < 1 || d > 31 || h > 24 || mi > 59 || sec > 60) return false;
   long double frac = 0;
@@ -160,7 +168,8 @@ bool parse_datetime(std::string_view s, long double& seconds, bool& has_tz) {
   if (i != s.size()) return false;
   if (neg) y = -y;
   const int64_t days = days_from_civil(y, static_cast<unsigned>(mo), static_cast<unsigned>(d));
-  seconds = static_cast<long double>(days * 86400 + h * 3600 + mi * 60 + sec - tz_minutes * 60) + frac;
+  seconds =
+      static_cast<long double>(days * 86400 + h * 3600 + mi * 60 + sec - tz_minutes * 60) + frac;
   return true;
 }
 
@@ -341,15 +350,24 @@ int compare(const Value& a, const Value& b) {
 int order(const Value& a, const Value& b) {
   auto rank = [](const Value& v) {
     switch (v.kind) {
-      case Value::Kind::Error: return 0;
-      case Value::Kind::Blank: return 1;
-      case Value::Kind::Iri: return 2;
-      case Value::Kind::Numeric: return 3;
-      case Value::Kind::Bool: return 4;
-      case Value::Kind::DateTime: return 5;
-      case Value::Kind::String: return 6;
-      case Value::Kind::LangString: return 7;
-      case Value::Kind::Literal: return 8;
+      case Value::Kind::Error:
+        return 0;
+      case Value::Kind::Blank:
+        return 1;
+      case Value::Kind::Iri:
+        return 2;
+      case Value::Kind::Numeric:
+        return 3;
+      case Value::Kind::Bool:
+        return 4;
+      case Value::Kind::DateTime:
+        return 5;
+      case Value::Kind::String:
+        return 6;
+      case Value::Kind::LangString:
+        return 7;
+      case Value::Kind::Literal:
+        return 8;
     }
     return 9;
   };
@@ -392,19 +410,33 @@ Value arithmetic(char op, const Value& a, const Value& b) {
     int64_t r = 0;
     bool overflow = false;
     switch (op) {
-      case '+': overflow = __builtin_add_overflow(a.i, b.i, &r); break;
-      case '-': overflow = __builtin_sub_overflow(a.i, b.i, &r); break;
-      case '*': overflow = __builtin_mul_overflow(a.i, b.i, &r); break;
-      default: t = Num::Decimal; break;  // integer division yields a decimal
+      case '+':
+        overflow = __builtin_add_overflow(a.i, b.i, &r);
+        break;
+      case '-':
+        overflow = __builtin_sub_overflow(a.i, b.i, &r);
+        break;
+      case '*':
+        overflow = __builtin_mul_overflow(a.i, b.i, &r);
+        break;
+      default:
+        t = Num::Decimal;
+        break;  // integer division yields a decimal
     }
     if (t == Num::Integer) return overflow ? Value::make_error() : Value::integer(r);
   }
   const long double x = a.as_long_double(), y = b.as_long_double();
   long double r = 0;
   switch (op) {
-    case '+': r = x + y; break;
-    case '-': r = x - y; break;
-    case '*': r = x * y; break;
+    case '+':
+      r = x + y;
+      break;
+    case '-':
+      r = x - y;
+      break;
+    case '*':
+      r = x * y;
+      break;
     default:
       // Decimal division by zero is an error; float/double follow IEEE 754.
       if (t == Num::Decimal && y == 0) return Value::make_error();
@@ -441,10 +473,14 @@ std::string canonical_lexical(const Value& v) {
 std::string_view datatype_of(const Value& v) {
   if (v.kind == Value::Kind::Bool) return "http://www.w3.org/2001/XMLSchema#boolean";
   switch (v.num) {
-    case Num::Integer: return "http://www.w3.org/2001/XMLSchema#integer";
-    case Num::Decimal: return "http://www.w3.org/2001/XMLSchema#decimal";
-    case Num::Float: return "http://www.w3.org/2001/XMLSchema#float";
-    case Num::Double: return "http://www.w3.org/2001/XMLSchema#double";
+    case Num::Integer:
+      return "http://www.w3.org/2001/XMLSchema#integer";
+    case Num::Decimal:
+      return "http://www.w3.org/2001/XMLSchema#decimal";
+    case Num::Float:
+      return "http://www.w3.org/2001/XMLSchema#float";
+    case Num::Double:
+      return "http://www.w3.org/2001/XMLSchema#double";
   }
   return {};
 }

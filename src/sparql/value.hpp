@@ -68,11 +68,15 @@ struct Value {
     r.lang = lang;
     return r;
   }
-  long double as_long_double() const { return num == Num::Integer ? static_cast<long double>(i) : d; }
+  long double as_long_double() const {
+    return num == Num::Integer ? static_cast<long double>(i) : d;
+  }
 };
 
 enum class Tri : uint8_t { False, True, Error };
-inline Tri tri(bool b) { return b ? Tri::True : Tri::False; }
+inline Tri tri(bool b) {
+  return b ? Tri::True : Tri::False;
+}
 
 // A literal term as a value: recognises xsd numerics (and integer subtypes),
 // boolean, string, dateTime, rdf:langString.

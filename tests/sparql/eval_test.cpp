@@ -14,8 +14,7 @@ ex:dave a ex:Robot ; ex:name "Dave" .
 TEST(SparqlEval, BasicGraphPatternWithSemicolonCommaAndA) {
   Data d(kPeople);
   EXPECT_EQ(d.sorted("SELECT ?p ?n WHERE { ?p a ex:Person ; ex:name ?n . }"),
-            (Rows{R"(<http://example.org/alice> "Alice")",
-                  R"(<http://example.org/bob> "Bob"@en)",
+            (Rows{R"(<http://example.org/alice> "Alice")", R"(<http://example.org/bob> "Bob"@en)",
                   R"(<http://example.org/carol> "Carol")"}));
   EXPECT_EQ(d.sorted("SELECT ?x { ex:alice ex:knows ?x , ?x }"),
             (Rows{"<http://example.org/bob>", "<http://example.org/carol>"}));
@@ -56,8 +55,7 @@ TEST(SparqlEval, BlankNodesAndCollectionsInPatterns) {
   EXPECT_EQ(d.run("SELECT ?s ?c { ?s ex:row ( 1 ?b ?c ) }"),
             (Rows{R"(<http://example.org/m> "3"^^<http://www.w3.org/2001/XMLSchema#integer>)"}));
   EXPECT_EQ(d.run("SELECT ?s { ?s ex:row ( ?x ?y ) }"), (Rows{"<http://example.org/n>"}));
-  EXPECT_EQ(d.run("SELECT ?s { ?s ex:knows [ ex:name \"x\" ] }"),
-            (Rows{"<http://example.org/a>"}));
+  EXPECT_EQ(d.run("SELECT ?s { ?s ex:knows [ ex:name \"x\" ] }"), (Rows{"<http://example.org/a>"}));
   EXPECT_EQ(d.run("SELECT ?s { ?s ex:knows _:b . _:b ex:name ?n }"),
             (Rows{"<http://example.org/a>"}));
   EXPECT_EQ(d.run("SELECT ?s { ?s ex:knows [] }"), (Rows{"<http://example.org/a>"}));
@@ -171,11 +169,13 @@ TEST(SparqlEval, ThreeValuedLogic) {
   EXPECT_FALSE(passes("?u = 1 || false"));
   EXPECT_FALSE(passes("?u = 1 && true"));
   EXPECT_TRUE(passes("!(?u = 1 && false)"));  // E && F = F, !F = T
-  EXPECT_FALSE(passes("!(?u = 1)"));  // !E = E
+  EXPECT_FALSE(passes("!(?u = 1)"));          // !E = E
   EXPECT_FALSE(passes("!(!(?u = 1))"));
   EXPECT_TRUE(passes("!(?u = 1 || ?u = 2) || true"));
   EXPECT_FALSE(passes("?u = 1 || ?u = 2"));
-  EXPECT_FALSE(passes("\"abc\""  " && ?u"));
+  EXPECT_FALSE(
+      passes("\"abc\""
+             " && ?u"));
   EXPECT_TRUE(passes("\"abc\""));
   EXPECT_FALSE(passes("\"\""));
   EXPECT_FALSE(passes("0"));
@@ -200,9 +200,9 @@ TEST(SparqlEval, ArithmeticPromotionAndResultDatatypes) {
   EXPECT_EQ(value("\"2\"^^xsd:float * 2"), "\"4.0E0\"" + xsd + "float>");
   EXPECT_EQ(value("-?v - 1"), "\"-2\"" + xsd + "integer>");
   EXPECT_EQ(value("ABS(-2.25)"), "\"2.25\"" + xsd + "decimal>");
-  EXPECT_EQ(value("1 / 0"), "UNDEF");                       // decimal division by zero
+  EXPECT_EQ(value("1 / 0"), "UNDEF");                          // decimal division by zero
   EXPECT_EQ(value("1.0e0 / 0"), "\"INF\"" + xsd + "double>");  // IEEE
-  EXPECT_EQ(value("9223372036854775807 + 1"), "UNDEF");      // 64-bit overflow
+  EXPECT_EQ(value("9223372036854775807 + 1"), "UNDEF");        // 64-bit overflow
   EXPECT_EQ(value("\"a\" + 1"), "UNDEF");
   EXPECT_EQ(value("?v * 10"), "\"10\"" + xsd + "integer>");
 }
@@ -234,8 +234,8 @@ TEST(SparqlEval, BuiltinFunctions) {
   EXPECT_TRUE(passes("IF(?v = 1, true, false) && IF(false, false, true)"));
   EXPECT_FALSE(passes("IF(?undefined, true, true)"));
   EXPECT_TRUE(passes("?v IN (3, 2, 1) && ?v NOT IN (4, 5) && !(?v IN ())"));
-  EXPECT_FALSE(passes("?v IN (?undefined, 4)"));        // no match and an error: error
-  EXPECT_TRUE(passes("?v IN (?undefined, 1)"));          // a match wins
+  EXPECT_FALSE(passes("?v IN (?undefined, 4)"));  // no match and an error: error
+  EXPECT_TRUE(passes("?v IN (?undefined, 1)"));   // a match wins
   EXPECT_TRUE(passes("UCASE(\"ab\") = \"AB\" && LCASE(?name) = \"alice\"@en"));
   EXPECT_TRUE(passes("LANGMATCHES(LANG(?name), \"EN\") && LANGMATCHES(LANG(?name), \"*\")"));
   EXPECT_TRUE(passes("xsd:integer(\"12\") = 12 && xsd:double(?v) = 1 && xsd:string(?v) = \"1\""));
@@ -247,9 +247,10 @@ TEST(SparqlEval, BuiltinFunctions) {
 
 TEST(SparqlEval, BindExtendsAndErrorsLeaveUnbound) {
   Data d(kPeople);
-  EXPECT_EQ(d.sorted("SELECT ?p ?b { ?p ex:age ?a BIND(?a + 1 AS ?b) FILTER(?b > 30) }"),
-            (Rows{R"(<http://example.org/alice> "31"^^<http://www.w3.org/2001/XMLSchema#integer>)",
-                  R"(<http://example.org/carol> "42"^^<http://www.w3.org/2001/XMLSchema#integer>)"}));
+  EXPECT_EQ(
+      d.sorted("SELECT ?p ?b { ?p ex:age ?a BIND(?a + 1 AS ?b) FILTER(?b > 30) }"),
+      (Rows{R"(<http://example.org/alice> "31"^^<http://www.w3.org/2001/XMLSchema#integer>)",
+            R"(<http://example.org/carol> "42"^^<http://www.w3.org/2001/XMLSchema#integer>)"}));
   // BIND to a term of the data joins with later patterns.
   EXPECT_EQ(d.run("SELECT ?p { BIND(\"Alice\" AS ?n) ?p ex:name ?n }"),
             (Rows{"<http://example.org/alice>"}));
@@ -293,8 +294,10 @@ TEST(SparqlEval, PreBindingHoldsInEverySubPattern) {
   const char* shacl =
       "SELECT $this ?value { $this ex:knows ?value . "
       "FILTER NOT EXISTS { $this ex:knows / ex:knows ?value } . }";
-  EXPECT_EQ(d.run(shacl, {{"this", alice}}), (Rows{"<http://example.org/alice> <http://example.org/bob>"}));
-  EXPECT_EQ(d.run(shacl, {{"$this", bob}}), (Rows{"<http://example.org/bob> <http://example.org/carol>"}));
+  EXPECT_EQ(d.run(shacl, {{"this", alice}}),
+            (Rows{"<http://example.org/alice> <http://example.org/bob>"}));
+  EXPECT_EQ(d.run(shacl, {{"$this", bob}}),
+            (Rows{"<http://example.org/bob> <http://example.org/carol>"}));
   // An unknown focus node (not in the data): zero-length paths still include it.
   Data e("ex:a ex:p ex:b .");
   const rdf::TermId outside = e.eval().import(d.data().terms(), alice);

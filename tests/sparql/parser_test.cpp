@@ -7,8 +7,12 @@
 namespace mospec::sparql::test {
 namespace {
 
-std::string message(std::string_view query) { return error_of(query).diagnostic().message; }
-std::string code(std::string_view query) { return error_of(query).code(); }
+std::string message(std::string_view query) {
+  return error_of(query).diagnostic().message;
+}
+std::string code(std::string_view query) {
+  return error_of(query).code();
+}
 
 TEST(SparqlParser, PrologueAndPrefixes) {
   Query q = parse_query(
@@ -19,13 +23,14 @@ TEST(SparqlParser, PrologueAndPrefixes) {
   EXPECT_EQ(q.variables(), std::vector<std::string>{"x"});
   // Caller prefixes apply; the query's own declarations override them.
   PrefixMap extra{{"ex", "http://wrong.org/"}, {"other", "http://other.org/"}};
-  EXPECT_NO_THROW(parse_query("PREFIX ex: <http://example.org/> SELECT * { ?s ex:p other:o }",
-                              extra));
+  EXPECT_NO_THROW(
+      parse_query("PREFIX ex: <http://example.org/> SELECT * { ?s ex:p other:o }", extra));
 }
 
 TEST(SparqlParser, KeywordsAreCaseInsensitiveExceptA) {
-  EXPECT_NO_THROW(parse_query("select distinct ?x where { ?x a ?t optional { ?x ?p ?o } "
-                              "filter(bound(?x)) } order by desc(?x) limit 3 offset 1"));
+  EXPECT_NO_THROW(
+      parse_query("select distinct ?x where { ?x a ?t optional { ?x ?p ?o } "
+                  "filter(bound(?x)) } order by desc(?x) limit 3 offset 1"));
   EXPECT_EQ(message("SELECT ?x { ?x A ?t }"),
             "line 1, column 16: expected a predicate (IRI, 'a', variable or path), found 'A'");
 }
@@ -39,8 +44,9 @@ TEST(SparqlParser, VariablesWithDollarAndQuestionMarkAreTheSame) {
 
 TEST(SparqlParser, DotsAfterFiltersAndBinds) {
   // The upstream shapes end FILTER and BIND with '.'.
-  EXPECT_NO_THROW(parse_query("SELECT $this { $this <http://e/p> ?v . FILTER NOT EXISTS { "
-                              "$this <http://e/q> ?v } . BIND(1 AS ?x) . ?v <http://e/r> ?w . }"));
+  EXPECT_NO_THROW(
+      parse_query("SELECT $this { $this <http://e/p> ?v . FILTER NOT EXISTS { "
+                  "$this <http://e/q> ?v } . BIND(1 AS ?x) . ?v <http://e/r> ?w . }"));
 }
 
 TEST(SparqlParser, LessThanIsAnOperatorAfterAnOperand) {
@@ -78,23 +84,25 @@ TEST(SparqlParser, SyntaxErrorsNamePositionAndExpectation) {
   EXPECT_EQ(message("SELECT ?x { ?x <http://e/p> [ <http://e/q> 1 }"),
             "line 1, column 46: expected ']' to close the blank node started at line 1, column "
             "29, found '}'");
-  EXPECT_EQ(message("SELECT ?x {} LIMIT x"), "line 1, column 20: expected an integer after LIMIT, found 'x'");
-  EXPECT_EQ(message("SELECT ?x {} garbage"), "line 1, column 14: expected end of query, found 'garbage'");
+  EXPECT_EQ(message("SELECT ?x {} LIMIT x"),
+            "line 1, column 20: expected an integer after LIMIT, found 'x'");
+  EXPECT_EQ(message("SELECT ?x {} garbage"),
+            "line 1, column 14: expected end of query, found 'garbage'");
   EXPECT_EQ(message("SELECT ?x { FILTER(FOO(?x)) }"), "line 1, column 20: unknown function FOO");
   EXPECT_EQ(message("SELECT ?x { FILTER(STRLEN(?x, 2)) }"),
             "line 1, column 20: STRLEN expects 1 argument, found 2");
   EXPECT_EQ(message("SELECT ?x { FILTER(REGEX(?x)) }"),
             "line 1, column 20: REGEX expects 2 or 3 arguments, found 1");
-  EXPECT_EQ(message("SELECT ?x { FILTER(REGEX(?x, \"(\")) }"),
-            std::string("line 1, column 30: invalid regular expression \"(\": ") +
-                [] {
-                  try {
-                    std::regex r("(");
-                  } catch (const std::regex_error& e) {
-                    return std::string(e.what());
-                  }
-                  return std::string();
-                }());
+  EXPECT_EQ(
+      message("SELECT ?x { FILTER(REGEX(?x, \"(\")) }"),
+      std::string("line 1, column 30: invalid regular expression \"(\": ") + [] {
+        try {
+          std::regex r("(");
+        } catch (const std::regex_error& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      }());
   EXPECT_EQ(message("SELECT ?x { FILTER(REGEX(?x, \"a\", \"q\")) }"),
             "line 1, column 30: invalid REGEX flag 'q' (allowed: s, m, i, x)");
 }
@@ -110,7 +118,8 @@ TEST(SparqlParser, ScopingRules) {
 }
 
 TEST(SparqlParser, BlankNodeLabelsAreScopedToOneBasicGraphPattern) {
-  EXPECT_NO_THROW(parse_query("SELECT ?x { ?x <http://e/p> _:b . FILTER(true) _:b <http://e/q> 1 }"));
+  EXPECT_NO_THROW(
+      parse_query("SELECT ?x { ?x <http://e/p> _:b . FILTER(true) _:b <http://e/q> 1 }"));
   EXPECT_EQ(message("SELECT ?x { ?x <http://e/p> _:b OPTIONAL { _:b <http://e/q> 1 } }"),
             "line 1, column 44: blank node _:b is used in two different basic graph patterns "
             "(SPARQL 1.1, 4.1.4)");
@@ -169,7 +178,8 @@ TEST(SparqlParser, PropertyPathSyntax) {
            "SELECT * { ?s ^(<http://e/p>/<http://e/q>) ?o }",
        })
     EXPECT_NO_THROW(parse_query(q)) << q;
-  EXPECT_EQ(message("SELECT * { ?s !() ?o }"), "line 1, column 15: empty negated property set '!()'");
+  EXPECT_EQ(message("SELECT * { ?s !() ?o }"),
+            "line 1, column 15: empty negated property set '!()'");
   EXPECT_EQ(message("SELECT * { ?s (<http://e/p> ?o }"),
             "line 1, column 29: expected ')' to close the path group started at line 1, column 15, "
             "found variable ?o");

@@ -58,12 +58,12 @@ TEST_F(Paths, ArbitraryLengthTerminatesOnCyclesAndIncludesStart) {
   EXPECT_EQ(from(*plus, "e"), Names{});
   auto opt = Path::make(Path::Kind::ZeroOrOne, {p("p")});
   EXPECT_EQ(from(*opt, "a"), (Names{"a", "b"}));
-  auto any = Path::make(Path::Kind::ZeroOrMore,
-                        {Path::make(Path::Kind::Alternative, {p("p"), p("q")})});
+  auto any =
+      Path::make(Path::Kind::ZeroOrMore, {Path::make(Path::Kind::Alternative, {p("p"), p("q")})});
   EXPECT_EQ(from(*any, "a"), (Names{"a", "b", "c", "d"}));
   EXPECT_EQ(from(*any, "d", true), (Names{"d", "c", "b", "a"}));
-  auto seq_star = Path::make(Path::Kind::OneOrMore,
-                             {Path::make(Path::Kind::Sequence, {p("p"), p("p")})});
+  auto seq_star =
+      Path::make(Path::Kind::OneOrMore, {Path::make(Path::Kind::Sequence, {p("p"), p("p")})});
   EXPECT_EQ(from(*seq_star, "a"), (Names{"c", "b", "a"}));
 }
 

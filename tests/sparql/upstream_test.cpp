@@ -71,7 +71,8 @@ class Upstream : public ::testing::Test {
     static const Query users = parse_query(
         "PREFIX sh: <http://www.w3.org/ns/shacl#> "
         "PREFIX rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> "
-        "SELECT DISTINCT ?c { ?c (sh:node|((sh:and|sh:or|sh:xone)/rdf:rest*/rdf:first/sh:node))* $s }");
+        "SELECT DISTINCT ?c { ?c (sh:node|((sh:and|sh:or|sh:xone)/rdf:rest*/rdf:first/sh:node))* "
+        "$s }");
     static const Query targets = parse_query(
         "SELECT DISTINCT ?x { ?x a/<http://www.w3.org/2000/01/rdf-schema#subClassOf>* $cls }");
     Evaluator on_shapes(shapes_);
@@ -125,8 +126,8 @@ TEST_F(Upstream, EveryConstraintParsesAndPassesOnTheAppGraphs) {
     // Four independent validators agree: no SPARQL-based violation in these apps.
     EXPECT_EQ(o.violations, 0u) << app;
     EXPECT_GT(o.evaluations, 0u) << app;
-    std::printf("%-16s %6zu triples, %4zu evaluations, %.3f ms\n", app, data.size(),
-                o.evaluations, o.seconds * 1e3);
+    std::printf("%-16s %6zu triples, %4zu evaluations, %.3f ms\n", app, data.size(), o.evaluations,
+                o.seconds * 1e3);
   }
 }
 
@@ -164,7 +165,8 @@ TEST_F(Upstream, EvaluationScalesLinearly) {
       std::string text = nt;
       const std::string from = "https://secorolab.github.io/models/";
       const std::string to = from + "copy" + std::to_string(i) + "/";
-      for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+      for (size_t at = text.find(from); at != std::string::npos;
+           at = text.find(from, at + to.size()))
         text.replace(at, from.size(), to);
       rdf::read_nquads(text, data);
     }
@@ -177,9 +179,10 @@ TEST_F(Upstream, EvaluationScalesLinearly) {
   ASSERT_GT(s.evaluations, 0u);
   const double per_small = s.seconds / static_cast<double>(s.evaluations);
   const double per_large = l.seconds / static_cast<double>(l.evaluations);
-  std::printf("1x: %zu triples %.3f ms; 75x: %zu triples %.3f ms (%.2f us vs %.2f us per focus node)\n",
-              small.size(), s.seconds * 1e3, large.size(), l.seconds * 1e3, per_small * 1e6,
-              per_large * 1e6);
+  std::printf(
+      "1x: %zu triples %.3f ms; 75x: %zu triples %.3f ms (%.2f us vs %.2f us per focus node)\n",
+      small.size(), s.seconds * 1e3, large.size(), l.seconds * 1e3, per_small * 1e6,
+      per_large * 1e6);
   EXPECT_EQ(l.evaluations, 75 * s.evaluations);
   // Linear: the cost per focus node must not grow with the data (generous
   // bound for noisy, shared machines).
