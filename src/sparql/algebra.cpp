@@ -290,8 +290,12 @@ class Builder {
   // ---- ops ----
   uint32_t push(Op op, VarSet scope) {
     op.hide.clear();
-    for (Var v : op.mentioned.members())
-      if (!op.certain.contains(v)) op.hide.push_back(v);
+    // A union joins each branch with the input separately and every branch
+    // hides for itself, so the union itself needs no hiding (and branches that
+    // bind a variable keep using the input's binding for their lookups).
+    if (op.kind != OpKind::Union)
+      for (Var v : op.mentioned.members())
+        if (!op.certain.contains(v)) op.hide.push_back(v);
     plan_.ops.push_back(std::move(op));
     scope_.push_back(std::move(scope));
     return static_cast<uint32_t>(plan_.ops.size() - 1);
@@ -678,6 +682,150 @@ bool compile_regex(std::string_view pattern, std::string_view flags, std::regex&
     return false;
   }
   return true;
+}
+
+namespace {
+
+class Printer {
+ public:
+  explicit Printer(const Plan& plan) : plan_(plan) {}
+
+  std::string query() {
+    std::string body = op(plan_.root);
+    std::string out = plan_.form == QueryForm::Ask ? "(ask " : "(select (";
+    if (plan_.form == QueryForm::Select) {
+      for (size_t i = 0; i < plan_.result_vars.size(); ++i)
+        out += (i > 0 ? " ?" : "?") + plan_.var_names[plan_.result_vars[i]];
+      out += ") ";
+    }
+    for (const auto& [v, x] : plan_.projected_exprs)
+      body = "(extend ?" + plan_.var_names[v] + " " + expr(x) + " " + body + ")";
+    if (!plan_.order.empty()) {
+      std::string keys;
+      for (const OrderKey& k : plan_.order)
+        keys += (keys.empty() ? "" : " ") +
+                (k.descending ? "(desc " + expr(k.expr) + ")" : expr(k.expr));
+      body = "(order (" + keys + ") " + body + ")";
+    }
+    if (plan_.distinct) body = "(distinct " + body + ")";
+    if (plan_.limit >= 0 || plan_.offset > 0)
+      body = "(slice " + std::to_string(plan_.offset) + " " +
+             (plan_.limit >= 0 ? std::to_string(plan_.limit) : "_") + " " + body + ")";
+    return out + body + ")";
+  }
+
+ private:
+  std::string var(Var v) const { return "?" + plan_.var_names[v]; }
+  std::string term(uint32_t id) const { return rdf::to_ntriples(plan_.terms, rdf::TermId{id}); }
+  std::string slot(const Slot& s) const { return s.is_var ? var(s.value) : term(s.value); }
+
+  std::string path(const Path& p) const {
+    auto list = [&](const char* head) {
+      std::string out = std::string("(") + head;
+      for (const PathPtr& item : p.items) out += " " + path(*item);
+      return out + ")";
+    };
+    switch (p.kind) {
+      case Path::Kind::Predicate:
+        return term(p.predicate.index);
+      case Path::Kind::Inverse:
+        return list("inv");
+      case Path::Kind::Sequence:
+        return list("seq");
+      case Path::Kind::Alternative:
+        return list("alt");
+      case Path::Kind::ZeroOrMore:
+        return list("*");
+      case Path::Kind::OneOrMore:
+        return list("+");
+      case Path::Kind::ZeroOrOne:
+        return list("?");
+      case Path::Kind::NegatedSet: {
+        std::string out = "(!";
+        for (rdf::TermId t : p.negated) out += " " + term(t.index);
+        for (rdf::TermId t : p.negated_inverse) out += " ^" + term(t.index);
+        return out + ")";
+      }
+    }
+    return {};
+  }
+
+  std::string op(uint32_t index) const {
+    const Op& o = plan_.ops[index];
+    std::string out;
+    switch (o.kind) {
+      case OpKind::Bgp:
+        out = "(bgp";
+        for (const PatternElem& e : o.elems) {
+          out += " (" + slot(e.s) + " " +
+                 (e.path >= 0 ? path(*plan_.paths[static_cast<size_t>(e.path)]) : slot(e.p)) + " " +
+                 slot(e.o) + ")";
+        }
+        for (uint32_t f : o.filters) out += " (filter " + expr(f) + ")";
+        return out + ")";
+      case OpKind::Union:
+        out = "(union";
+        for (uint32_t c : o.children) out += " " + op(c);
+        return out + ")";
+      case OpKind::Group:
+        out = "(group";
+        for (const Step& s : o.steps) {
+          switch (s.kind) {
+            case Step::Kind::Join:
+              out += " (join " + op(s.child) + ")";
+              break;
+            case Step::Kind::LeftJoin:
+              out +=
+                  " (leftjoin " + op(s.child) + (s.expr != kNone ? " " + expr(s.expr) : "") + ")";
+              break;
+            case Step::Kind::Extend:
+              out += " (extend " + var(s.var) + " " + expr(s.expr) + ")";
+              break;
+            case Step::Kind::Filter:
+              out += " (filter " + expr(s.expr) + ")";
+              break;
+          }
+        }
+        return out + ")";
+    }
+    return out;
+  }
+
+  std::string expr(uint32_t index) const {
+    const Expr& e = plan_.exprs[index];
+    static const char* const kNames[] = {
+        "const",       "var",        "||",          "&&",         "!",          "=",
+        "!=",          "<",          ">",           "<=",         ">=",         "in",
+        "notin",       "+",          "-",           "*",          "/",          "-",
+        "+",           "exists",     "notexists",   "bound",      "if",         "coalesce",
+        "abs",         "ceil",       "floor",       "round",      "isIRI",      "isBlank",
+        "isLiteral",   "isNumeric",  "str",         "lang",       "datatype",   "iri",
+        "regex",       "strstarts",  "strends",     "contains",   "strlen",     "ucase",
+        "lcase",       "concat",     "langMatches", "sameTerm",   "xsd:string", "xsd:integer",
+        "xsd:decimal", "xsd:double", "xsd:float",   "xsd:boolean"};
+    switch (e.op) {
+      case ExprOp::Const:
+        return term(e.value);
+      case ExprOp::Var:
+        return var(e.value);
+      case ExprOp::Exists:
+      case ExprOp::NotExists:
+        return std::string("(") + kNames[static_cast<size_t>(e.op)] + " " + op(e.value) + ")";
+      default: {
+        std::string out = std::string("(") + kNames[static_cast<size_t>(e.op)];
+        for (uint32_t a : e.args) out += " " + expr(a);
+        return out + ")";
+      }
+    }
+  }
+
+  const Plan& plan_;
+};
+
+}  // namespace
+
+std::string to_sse(const Plan& plan) {
+  return Printer(plan).query();
 }
 
 std::shared_ptr<Plan> build_plan(ast::Query&& query) {

@@ -203,6 +203,9 @@ struct Plan {
 // constant regular expressions).
 std::shared_ptr<Plan> build_plan(ast::Query&& query);
 
+// The algebra as an S-expression, for tests and debugging (see Query::algebra).
+std::string to_sse(const Plan& plan);
+
 // Compiles a REGEX pattern with XPath flags into a std::regex (see query.hpp).
 // Returns false with `error` set when the pattern or flags are invalid or use
 // XPath-only syntax.

@@ -1110,6 +1110,9 @@ const std::vector<std::string>& Query::variables() const {
 bool Query::mentions(std::string_view name) const {
   return plan_->find_var(name) != detail::kNone;
 }
+std::string Query::algebra() const {
+  return detail::to_sse(*plan_);
+}
 
 void Query::check_prebinding(std::span<const std::string_view> names) const {
   for (std::string_view name : names) {

@@ -87,6 +87,10 @@ class Query {
   const std::vector<std::string>& variables() const;
   // True when the query text mentions the variable (anywhere).
   bool mentions(std::string_view name) const;
+  // The translated algebra as an S-expression (group steps in evaluation
+  // order, filters where they were placed), e.g.
+  //   (select (?x) (group (join (bgp (?x <p> ?y) (filter (> ?y 1))))))
+  std::string algebra() const;
 
   // Rejects (unsupported-sparql, with position) queries that SHACL's pre-binding
   // (SHACL 1.0 appendix "Pre-binding of Variables") cannot handle for the given
