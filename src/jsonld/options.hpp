@@ -23,6 +23,9 @@ struct Options {
   bool ordered = false;
   bool produce_generalized_rdf = false;
   RdfDirection rdf_direction = RdfDirection::None;
+  // toRdf: the graph that receives the default graph's quads (an IRI, used as
+  // is). Empty: the dataset's default graph.
+  std::string default_graph;
   DocumentLoader* loader = nullptr;  // required for remote contexts
   // Where silent drops are reported (keys that expand to no IRI, @type values
   // that are not defined terms and become document-relative IRIs). nullptr: not

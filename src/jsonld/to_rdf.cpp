@@ -1,6 +1,8 @@
 #include "jsonld/to_rdf.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -47,6 +49,18 @@ bool is_hex(char c) {
 // no characters that IRIs exclude (space, controls, <>"{}|\^`), at most one
 // '#', and percent signs that start an escape. Expansion leaves relative references in
 // place when there is no base; those are not IRIs and their triples are dropped.
+// Per byte after the scheme: 0 ordinary, 1 excluded (controls, space, DEL and
+// <>"{}|\^`), 2 '#', 3 '%'.
+constexpr std::array<uint8_t, 256> kIriByteClass = [] {
+  std::array<uint8_t, 256> t{};
+  for (int c = 0; c <= 0x20; ++c) t[static_cast<size_t>(c)] = 1;
+  t[0x7f] = 1;
+  for (char c : std::string_view("<>\"{}|\\^`")) t[static_cast<unsigned char>(c)] = 1;
+  t['#'] = 2;
+  t['%'] = 3;
+  return t;
+}();
+
 bool is_well_formed_iri(std::string_view s) {
   if (s.empty() || !is_alpha(s[0])) return false;
   size_t colon = 0;
@@ -59,17 +73,19 @@ bool is_well_formed_iri(std::string_view s) {
     if (!is_alpha(c) && !is_digit(c) && c != '+' && c != '-' && c != '.') return false;
   }
   if (colon == 0) return false;
-  static constexpr std::string_view kExcluded = "<>\"{}|\\^`";
   bool fragment = false;  // a fragment may not contain another '#'
   for (size_t i = colon + 1; i < s.size(); ++i) {
-    if (s[i] == '#') {
-      if (fragment) return false;
-      fragment = true;
-    }
-    auto u = static_cast<unsigned char>(s[i]);
-    if (u <= 0x20 || u == 0x7f || kExcluded.find(s[i]) != std::string_view::npos) return false;
-    if (s[i] == '%' && (i + 2 >= s.size() || !is_hex(s[i + 1]) || !is_hex(s[i + 2]))) {
-      return false;
+    switch (kIriByteClass[static_cast<unsigned char>(s[i])]) {
+      case 0:
+        break;
+      case 1:
+        return false;
+      case 2:
+        if (fragment) return false;
+        fragment = true;
+        break;
+      default:
+        if (i + 2 >= s.size() || !is_hex(s[i + 1]) || !is_hex(s[i + 2])) return false;
     }
   }
   return true;
@@ -379,7 +395,9 @@ class Converter {
     const rdf::TermId rdf_type = terms.iri(rdf_iri("type"));
     for (auto& [graph_name, graph] : graphs_) {
       rdf::TermId graph_term = rdf::TermId::default_graph();
-      if (graph_name != "@default") {
+      if (graph_name == "@default") {
+        if (!options_.default_graph.empty()) graph_term = terms.iri(options_.default_graph);
+      } else {
         std::optional<rdf::TermId> g = resource(graph_name);
         if (!g) continue;
         graph_term = *g;
