@@ -17,7 +17,11 @@
 // every literal form; property paths (/ | ^ * + ? ! and groups); OPTIONAL,
 // UNION, nested groups, FILTER (placed per 18.2.2.6), BIND; the operators
 // = != < > <= >= && || ! + - * / IN, NOT IN, EXISTS, NOT EXISTS; the functions
-// listed in functions.cpp; ORDER BY, LIMIT, OFFSET.
+// BOUND IF COALESCE ABS CEIL FLOOR ROUND isIRI isURI isBlank isLiteral
+// isNumeric STR LANG DATATYPE IRI URI REGEX STRSTARTS STRENDS CONTAINS STRLEN
+// UCASE LCASE (ASCII case mapping) CONCAT LANGMATCHES sameTerm and the XSD
+// casts xsd:string/integer/decimal/double/float/boolean; ORDER BY, LIMIT,
+// OFFSET.
 // Everything else (MINUS, VALUES, SERVICE, GRAPH, sub-SELECT, FROM, aggregates,
 // GROUP BY, HAVING, CONSTRUCT, DESCRIBE, updates, unknown functions) is rejected
 // with a QueryError of code "unsupported-sparql" naming the construct and its

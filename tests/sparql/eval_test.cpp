@@ -112,6 +112,15 @@ TEST(SparqlEval, FilterInNestedGroupDoesNotSeeOuterVariables) {
   EXPECT_EQ(d.run("SELECT ?p { ?p ex:age ?a { ?p ex:name ?n FILTER(!BOUND(?a)) } }").size(), 3u);
 }
 
+TEST(SparqlEval, UnionBranchesAreJoinedWithTheOuterSolutionSeparately) {
+  Data d(kPeople);
+  // The first branch's filter must not see the outer ?a; the second branch joins on ?x.
+  EXPECT_EQ(d.sorted("SELECT ?x ?z { ?x ex:age ?a { { ?x ex:knows ?z FILTER(BOUND(?a)) } "
+                     "UNION { ?x ex:name ?z } } }"),
+            (Rows{R"(<http://example.org/alice> "Alice")", R"(<http://example.org/bob> "Bob"@en)",
+                  R"(<http://example.org/carol> "Carol")"}));
+}
+
 TEST(SparqlEval, UnionAndNestedGroups) {
   Data d(kPeople);
   EXPECT_EQ(d.sorted("SELECT ?x { { ?x a ex:Robot } UNION { ?x ex:age 25 } }"),

@@ -194,3 +194,17 @@ TEST(SparqlParser, NumbersAndSigns) {
 
 }  // namespace
 }  // namespace mospec::sparql::test
+
+namespace mospec::sparql::test {
+namespace {
+
+TEST(SparqlParser, CommentsAndDotsInPrefixedNames) {
+  Data d("ex:a.b ex:p 1 .");
+  EXPECT_EQ(d.run("SELECT ?s { # a comment with } and <\n ?s ex:p 1. }"),
+            (Rows{"<http://example.org/a.b>"}));
+  EXPECT_EQ(d.run("SELECT ?o { ex:a.b ex:p ?o.}").size(), 1u);
+  EXPECT_EQ(d.run("SELECT ?s { ?s ex:p ?o FILTER regex(str(?s), \"a\\\\.b$\") }").size(), 1u);
+}
+
+}  // namespace
+}  // namespace mospec::sparql::test
