@@ -1,5 +1,7 @@
 #include "runtime/achd.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "support/diagnostics.hpp"
@@ -41,61 +43,193 @@ void outward_sweep(const AchdModel& model, AchdData& d, const JointIn& q, const 
   d.X_BT = X_BP * model.X_NT;
 }
 
+// The constraint part runs with compile-time sizes: nc is dispatched once to
+// solve<NC>() so every 6 x nc and nc x nc operation is fixed-size (unrolled,
+// vectorised) while the storage in AchdData keeps its one capacity.
+template <int NC>
+struct Fixed {
+  using E = Eigen::Matrix<double, 6, NC>;
+  using Vec = Eigen::Matrix<double, NC, 1>;
+  using Sq = Eigen::Matrix<double, NC, NC>;
+  static Eigen::Map<E> e(ConstraintMatrix& m) {
+    m.resize(6, NC);
+    return Eigen::Map<E>(m.data());
+  }
+  static Eigen::Map<Vec> vec(ConstraintVector& v) {
+    v.resize(NC);
+    return Eigen::Map<Vec>(v.data());
+  }
+  static Eigen::Map<Sq> sq(ConstraintSquare& m) {
+    m.resize(NC, NC);
+    return Eigen::Map<Sq>(m.data());
+  }
+};
+
 // alpha (at To, in B) -> the last segment's frame N, at No.
+template <int NC>
 void constraints_to_tip_segment(const AchdModel& model, AchdData& d,
                                 const ConstraintsIn& alpha_To_B) noexcept {
-  const int nc = static_cast<int>(alpha_To_B.cols());
   const Mat3& R_BN = d.X_BS[static_cast<std::size_t>(model.nq - 1)].R;
-  const Vec3& p_NoTo_N = model.X_NT.p;
-  d.alpha_No_N.resize(6, nc);
-  for (int c = 0; c < nc; ++c) {
-    const Vec3 f_N = R_BN.transpose() * alpha_To_B.col(c).tail<3>();
-    d.alpha_No_N.col(c).tail<3>() = f_N;
-    d.alpha_No_N.col(c).head<3>() =
-        R_BN.transpose() * alpha_To_B.col(c).head<3>() + p_NoTo_N.cross(f_N);
-  }
+  auto alpha_N = Fixed<NC>::e(d.alpha_No_N);
+  alpha_N.template bottomRows<3>().noalias() =
+      R_BN.transpose() * alpha_To_B.template bottomRows<3>();
+  alpha_N.template topRows<3>().noalias() = R_BN.transpose() * alpha_To_B.template topRows<3>();
+  alpha_N.template topRows<3>().noalias() += skew(model.X_NT.p) * alpha_N.template bottomRows<3>();
 }
 
 // Inward sweep: articulated inertias and bias forces, and how the unit
 // constraint forces propagate to the root (E), the acceleration energy they
 // generate (M) and the bias acceleration energy (G).
-void inward_sweep(const AchdModel& model, AchdData& d, const JointIn& tau_ff, int nc) noexcept {
+template <int NC>
+void inward_sweep(const AchdModel& model, AchdData& d, const JointIn& tau_ff) noexcept {
+  using F = Fixed<NC>;
   const int n = model.nq;
-  d.E[static_cast<std::size_t>(n - 1)] = d.alpha_No_N;
-  d.M.setZero(nc, nc);
-  d.G.setZero(nc);
+  auto M = F::sq(d.M);
+  auto G = F::vec(d.G);
+  M.setZero();
+  G.setZero();
+  F::e(d.E[static_cast<std::size_t>(n - 1)]) = F::e(d.alpha_No_N);
   for (int i = n - 1; i >= 0; --i) {
     const auto k = static_cast<std::size_t>(i);
     const SegmentModel& s = model.segments[k];
-    const Vec6 S = motion_subspace(s);
+    const bool revolute = s.type == JointType::Revolute;
     Mat6& IA = d.IA[k];
-    d.U[k].noalias() = IA * S;
-    d.D[k] = S.dot(d.U[k]) + s.armature;
+    Vec6& U = d.U[k];
+    // IA S picks three columns of IA (S is [a; 0] or [0; a]).
+    U.noalias() = revolute ? IA.leftCols<3>() * s.axis : IA.rightCols<3>() * s.axis;
+    const auto S_dot = [&](const Vec6& x) {
+      return revolute ? s.axis.dot(x.head<3>()) : s.axis.dot(x.tail<3>());
+    };
+    d.D[k] = S_dot(U) + s.armature;
     const Vec6 IAc = IA * d.c[k];
-    d.u[k] = tau_ff[i] - S.dot(d.pA[k] + IAc);
-    d.EZ[k].noalias() = d.E[k].transpose() * S;
+    d.u[k] = tau_ff[i] - S_dot(d.pA[k] + IAc);
     const double inv_D = 1.0 / d.D[k];
-    // d) acceleration energy of the unit constraint forces.
-    d.M.noalias() -= (inv_D * d.EZ[k]) * d.EZ[k].transpose();
-    // e) bias acceleration energy.
-    d.G.noalias() += d.E[k].transpose() * (d.c[k] + (d.u[k] * inv_D) * S);
-    // a) b) c) what the parent sees through joint i, still in S_i ...
-    Mat6 Ia = IA;
-    Ia.noalias() -= (inv_D * d.U[k]) * d.U[k].transpose();
-    const Vec6 pa = d.pA[k] + IAc + (d.u[k] * inv_D) * d.U[k];
-    ConstraintMatrix& Ea = d.E[k];  // E_i is not needed after this step
-    d.EZ[k] *= inv_D;               // ... so neither is EZ unscaled; pass 3 rescales
-    Ea.noalias() -= d.U[k] * d.EZ[k].transpose();
-    // ... and moved into the parent frame.
-    const Mat6 X = motion_transform_to_child(d.X_PS[k]);
+    // a) b) what the parent sees through joint i, still in S_i (IA_i is not
+    // needed after this) ...
+    const Vec6 pa = d.pA[k] + IAc + (d.u[k] * inv_D) * U;
+    IA.noalias() -= (inv_D * U) * U.transpose();
+    const Pose& X_PS = d.X_PS[k];
     if (i > 0) {
-      d.IA[k - 1].noalias() += X.transpose() * Ia * X;
-      d.pA[k - 1] += force_to_parent(d.X_PS[k], pa);
-      d.E[k - 1].noalias() = X.transpose() * Ea;
-    } else {
-      d.E_base.noalias() = X.transpose() * Ea;
+      add_inertia_to_parent(X_PS, IA, d.IA[k - 1]);
+      d.pA[k - 1] += force_to_parent(X_PS, pa);
+    }
+    if constexpr (NC > 0) {
+      auto E = F::e(d.E[k]);
+      auto EZ = F::vec(d.EZ[k]);
+      EZ.noalias() = revolute ? E.template topRows<3>().transpose() * s.axis
+                              : E.template bottomRows<3>().transpose() * s.axis;
+      // d) acceleration energy of the unit constraint forces.
+      M.noalias() -= (inv_D * EZ) * EZ.transpose();
+      // e) bias acceleration energy.
+      Vec6 cSu = d.c[k];
+      (revolute ? cSu.head<3>() : cSu.tail<3>()) += (d.u[k] * inv_D) * s.axis;
+      G.noalias() += E.transpose() * cSu;
+      // c) the constraint forces the parent sees (E_i and unscaled EZ_i are
+      // not needed after this: pass 3 uses EZ / D) ...
+      EZ *= inv_D;
+      E.noalias() -= U * EZ.transpose();
+      // ... moved into the parent frame: f_P = R f, n_P = R n + p x f_P.
+      auto E_P = F::e(i > 0 ? d.E[k - 1] : d.E_base);
+      E_P.template bottomRows<3>().noalias() = X_PS.R * E.template bottomRows<3>();
+      E_P.template topRows<3>().noalias() = X_PS.R * E.template topRows<3>();
+      E_P.template topRows<3>().noalias() += skew(X_PS.p) * E_P.template bottomRows<3>();
     }
   }
+}
+
+// f) the constraint force magnitudes:  M_0 nu = beta' - E_0^T a_0 - G_0,
+// where a_0 = [0; -g_B] is the root acceleration standing in for gravity and
+// beta' = beta + alpha^T a_0 re-adds that fictitious acceleration to the
+// caller's physical beta (a root acceleration with no angular part is the same
+// spatial vector at To).
+template <int NC>
+Status constraint_magnitudes(const AchdModel& model, AchdData& d, const ConstraintsIn& alpha_To_B,
+                             const ConstraintValuesIn& beta) noexcept {
+  using F = Fixed<NC>;
+  auto nu = F::vec(d.nu);
+  if constexpr (NC == 0) {
+    return Status::Ok;
+  } else {
+    auto rhs = F::vec(d.rhs);
+    const auto M = F::sq(d.M);
+    const auto G = F::vec(d.G);
+    const auto E_base = F::e(d.E_base);
+    const Vec3 minus_g = -model.g_B;
+    rhs = beta;
+    rhs.noalias() += alpha_To_B.template bottomRows<3>().transpose() * minus_g;
+    rhs.noalias() -= E_base.template bottomRows<3>().transpose() * minus_g;
+    rhs -= G;
+    // M_0 is negative definite unless this configuration is singular for the
+    // constraints: Cholesky of -M_0 is exact and cheap for nc <= 6.
+    const Eigen::LLT<typename F::Sq> llt(-M);
+    const auto diag = llt.matrixLLT().diagonal();
+    if (llt.info() == Eigen::Success && diag.minCoeff() > 1e-6 * diag.maxCoeff()) {
+      nu = -llt.solve(rhs);
+      return Status::Ok;
+    }
+    // Singular: a truncated eigen-decomposition pseudo-inverse keeps the
+    // constraints that remain feasible (KDL truncates an SVD the same way,
+    // with an absolute 1e-14 threshold).
+    d.eig_M.compute(d.M);
+    const auto& w = d.eig_M.eigenvalues();
+    const auto& Q = d.eig_M.eigenvectors();
+    const double tol = 1e-12 * std::max(w.cwiseAbs().maxCoeff(), 1e-300);
+    typename F::Vec y = Q.transpose() * rhs;
+    for (int k = 0; k < NC; ++k) y[k] = std::abs(w[k]) > tol ? y[k] / w[k] : 0.0;
+    nu.noalias() = Q * y;
+    return Status::ConstraintsDegraded;
+  }
+}
+
+// g) outward: joint and segment accelerations, and the realising torque.
+template <int NC>
+void final_sweep(const AchdModel& model, AchdData& d, const JointIn& tau_ff,
+                 const ConstraintsIn& alpha_To_B) noexcept {
+  using F = Fixed<NC>;
+  Vec3 f_c = Vec3::Zero(), n_c = Vec3::Zero();
+  if constexpr (NC > 0) {
+    const auto nu = F::vec(d.nu);
+    f_c.noalias() = alpha_To_B.template bottomRows<3>() * nu;
+    n_c.noalias() = alpha_To_B.template topRows<3>() * nu;
+  }
+  const int n = model.nq;
+  d.qdd.resize(n);
+  d.tau.resize(n);
+  Vec6 a_P;
+  a_P << Vec3::Zero(), -model.g_B;
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const SegmentModel& s = model.segments[k];
+    const Vec6 a_from_parent = motion_to_child(d.X_PS[k], a_P);
+    // u already holds -S^T IA c, so c is not in the projected acceleration.
+    double qdd = (d.u[k] - d.U[k].dot(a_from_parent)) / d.D[k];
+    if constexpr (NC > 0) qdd -= F::vec(d.EZ[k]).dot(F::vec(d.nu));  // EZ holds EZ / D
+    d.qdd[i] = qdd;
+    d.a[k] = a_from_parent + d.c[k];
+    const Vec3 axis_B = d.X_BS[k].R * s.axis;
+    // tau = tau_ff - J^T (alpha nu): the constraint wrench's moment about the
+    // joint, projected on its axis.
+    double Jt_F;
+    if (s.type == JointType::Revolute) {
+      d.a[k].head<3>() += s.axis * qdd;
+      Jt_F = axis_B.dot(n_c + (d.X_BT.p - d.X_BS[k].p).cross(f_c));
+    } else {
+      d.a[k].tail<3>() += s.axis * qdd;
+      Jt_F = axis_B.dot(f_c);
+    }
+    d.tau[i] = tau_ff[i] - Jt_F;
+    a_P = d.a[k];
+  }
+}
+
+template <int NC>
+Status solve(const AchdModel& model, AchdData& d, const JointIn& tau_ff,
+             const ConstraintsIn& alpha_To_B, const ConstraintValuesIn& beta) noexcept {
+  if constexpr (NC > 0) constraints_to_tip_segment<NC>(model, d, alpha_To_B);
+  inward_sweep<NC>(model, d, tau_ff);
+  const Status status = constraint_magnitudes<NC>(model, d, alpha_To_B, beta);
+  final_sweep<NC>(model, d, tau_ff, alpha_To_B);
+  return status;
 }
 
 }  // namespace
@@ -110,77 +244,23 @@ Status achd(const AchdModel& model, AchdData& d, const JointIn& q, const JointIn
       beta.size() != nc) {
     return Status::SizeMismatch;
   }
-
   outward_sweep(model, d, q, qd, F_ext);
-  constraints_to_tip_segment(model, d, alpha_To_B);
-  inward_sweep(model, d, tau_ff, nc);
-
-  // f) the constraint force magnitudes:  M_0 nu = beta' - E_0^T a_0 - G_0,
-  // where a_0 = [0; -g_B] is the root acceleration standing in for gravity and
-  // beta' = beta + alpha^T a_0 re-adds that fictitious acceleration to the
-  // caller's physical beta (a root acceleration with no angular part is the same
-  // spatial vector at To).
-  Vec6 a_0;
-  a_0 << Vec3::Zero(), -model.g_B;
-  Status status = Status::Ok;
-  d.nu.resize(nc);
-  if (nc > 0) {
-    d.rhs = beta;
-    d.rhs.noalias() += alpha_To_B.transpose() * a_0;
-    d.rhs.noalias() -= d.E_base.transpose() * a_0;
-    d.rhs -= d.G;
-    // M_0 is negative definite unless the configuration is singular for the
-    // constraints; LDLT (with pivoting) is exact and cheap for nc <= 6.
-    d.ldlt_M.compute(d.M);
-    const auto& D = d.ldlt_M.vectorD();
-    const double largest = D.cwiseAbs().maxCoeff();
-    if (d.ldlt_M.info() == Eigen::Success && D.cwiseAbs().minCoeff() > 1e-12 * largest) {
-      d.nu = d.ldlt_M.solve(d.rhs);
-    } else {
-      // Singular: a truncated eigen-decomposition pseudo-inverse keeps the
-      // constraints that remain feasible (KDL truncates an SVD the same way,
-      // with an absolute 1e-14 threshold).
-      status = Status::ConstraintsDegraded;
-      d.eig_M.compute(d.M);
-      const auto& w = d.eig_M.eigenvalues();
-      const auto& Q = d.eig_M.eigenvectors();
-      const double tol = 1e-12 * std::max(w.cwiseAbs().maxCoeff(), 1e-300);
-      d.G.noalias() = Q.transpose() * d.rhs;  // G is free now: reuse as scratch
-      for (int k = 0; k < nc; ++k) d.G[k] = std::abs(w[k]) > tol ? d.G[k] / w[k] : 0.0;
-      d.nu.noalias() = Q * d.G;
-    }
+  switch (nc) {
+    case 0:
+      return solve<0>(model, d, tau_ff, alpha_To_B, beta);
+    case 1:
+      return solve<1>(model, d, tau_ff, alpha_To_B, beta);
+    case 2:
+      return solve<2>(model, d, tau_ff, alpha_To_B, beta);
+    case 3:
+      return solve<3>(model, d, tau_ff, alpha_To_B, beta);
+    case 4:
+      return solve<4>(model, d, tau_ff, alpha_To_B, beta);
+    case 5:
+      return solve<5>(model, d, tau_ff, alpha_To_B, beta);
+    default:
+      return solve<6>(model, d, tau_ff, alpha_To_B, beta);
   }
-
-  // g) outward: joint and segment accelerations, and the realising torque.
-  const Vec3 f_c = nc > 0 ? Vec3(alpha_To_B.bottomRows<3>() * d.nu) : Vec3::Zero();
-  const Vec3 n_c = nc > 0 ? Vec3(alpha_To_B.topRows<3>() * d.nu) : Vec3::Zero();
-  d.qdd.resize(n);
-  d.tau.resize(n);
-  Vec6 a_P = a_0;
-  for (int i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const SegmentModel& s = model.segments[k];
-    const Vec6 S = motion_subspace(s);
-    const Vec6 a_from_parent = motion_to_child(d.X_PS[k], a_P);
-    // u already holds -S^T IA c, so c is not in the projected acceleration;
-    // EZ was scaled by 1/D in the inward sweep.
-    double qdd = (d.u[k] - d.U[k].dot(a_from_parent)) / d.D[k];
-    if (nc > 0) qdd -= d.EZ[k].dot(d.nu);
-    d.qdd[i] = qdd;
-    d.a[k] = a_from_parent + d.c[k] + S * qdd;
-    a_P = d.a[k];
-    // tau = tau_ff - J^T (alpha nu): the constraint wrench's moment about the
-    // joint, projected on its axis.
-    const Vec3 axis_B = d.X_BS[k].R * s.axis;
-    double Jt_F;
-    if (s.type == JointType::Revolute) {
-      Jt_F = axis_B.dot(n_c + (d.X_BT.p - d.X_BS[k].p).cross(f_c));
-    } else {
-      Jt_F = axis_B.dot(f_c);
-    }
-    d.tau[i] = tau_ff[i] - Jt_F;
-  }
-  return status;
 }
 
 void check_achd_arguments(const AchdModel& model, const JointIn& q, const JointIn& qd,

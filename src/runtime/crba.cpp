@@ -15,8 +15,7 @@ void crba_into(const AchdModel& model, AchdData& data, const JointIn& q) noexcep
   }
   for (int i = n - 1; i > 0; --i) {
     const auto k = static_cast<std::size_t>(i);
-    const Mat6 X = motion_transform_to_child(data.X_PS[k]);
-    data.IA[k - 1].noalias() += X.transpose() * data.IA[k] * X;
+    add_inertia_to_parent(data.X_PS[k], data.IA[k], data.IA[k - 1]);
   }
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);

@@ -124,7 +124,6 @@ struct AchdData {
   ConstraintSquare M;                               // constraint coupling, M_0
   ConstraintVector G;                               // bias acceleration energy, G_0
   ConstraintVector rhs;
-  Eigen::LDLT<ConstraintSquare> ldlt_M;
   Eigen::SelfAdjointEigenSolver<ConstraintSquare> eig_M;  // fallback when singular
 
   // Results.

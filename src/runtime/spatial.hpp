@@ -78,6 +78,25 @@ inline Mat6 motion_transform_to_child(const Pose& X_AB) {
   return X;
 }
 
+// A spatial inertia (rigid or articulated, symmetric) about So in S, moved to
+// about Po in P for X_PS: X^T I X with X the motion transform P -> S. Done on
+// 3x3 blocks because the 6x6 congruence costs twice as much. With
+// I = [A, B; B^T, C] rotated into P (A', B', C') and Px = [p_PoSo]x:
+// [A' + Px B'^T - B' Px - Px C' Px,  B' + Px C';  (B' + Px C')^T,  C'].
+inline void add_inertia_to_parent(const Pose& X_PS, const Mat6& I_S, Mat6& I_P) {
+  const Mat3& R = X_PS.R;
+  const Mat3 A = R * I_S.topLeftCorner<3, 3>() * R.transpose();
+  const Mat3 B = R * I_S.topRightCorner<3, 3>() * R.transpose();
+  const Mat3 C = R * I_S.bottomRightCorner<3, 3>() * R.transpose();
+  const Mat3 Px = skew(X_PS.p);
+  const Mat3 B_P = B + Px * C;
+  const Mat3 PB = Px * B.transpose();
+  I_P.topLeftCorner<3, 3>() += A + PB + PB.transpose() - Px * C * Px;
+  I_P.topRightCorner<3, 3>() += B_P;
+  I_P.bottomLeftCorner<3, 3>() += B_P.transpose();
+  I_P.bottomRightCorner<3, 3>() += C;
+}
+
 // Spatial cross products: m ×m x (motion on motion) and m ×f f (motion on force).
 inline Vec6 cross_motion(const Vec6& m, const Vec6& x) {
   Vec6 out;
