@@ -146,6 +146,10 @@ struct ResultSet {
   }
 };
 
+// Not thread-safe (one per thread). The dataset must not change while an
+// evaluator uses it. Each query it evaluates stays alive in its cache of
+// prepared queries (constants resolved, match counts for join ordering) until
+// the evaluator is destroyed.
 class Evaluator {
  public:
   explicit Evaluator(const rdf::Dataset& data);
