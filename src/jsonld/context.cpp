@@ -47,6 +47,35 @@ struct TermLayer {
   }
 };
 
+// What processing a context read from the term definitions of the active
+// context it started from (the "state"): the answer it got for `term`. With
+// `weak`, only whether that definition is protected mattered (Create Term
+// Definition looking for a previous definition to protect).
+struct Dep {
+  std::string term;
+  TermPtr def;  // null: not defined
+  bool weak = false;
+};
+
+// Records the Deps of one processing run; `opaque` when processing depended on
+// the state in a way Deps do not capture (nothing is then stored).
+struct DepLog {
+  std::vector<Dep> deps;
+  bool opaque = false;
+};
+
+// The result of one processing run as a change to the term state, valid for
+// any state on which `deps` hold.
+struct Delta {
+  unsigned flags = 0;
+  std::optional<std::string> vocab, language, direction;  // of the state
+  bool used_base = false;
+  std::string base;  // compared only when used_base
+  std::vector<Dep> deps;
+  TermMap changes;  // defined or (null) removed terms
+  std::optional<std::string> out_vocab, out_language, out_direction;
+};
+
 }  // namespace detail
 
 using detail::TermLayer;
@@ -278,6 +307,17 @@ struct ContextCache::Impl {
 
   std::unordered_map<std::string, RemoteDoc, detail::StringHash, std::equal_to<>> documents;
 
+  // Delta level, by remote context IRI and by local context content.
+  std::unordered_map<std::string, std::vector<detail::Delta>, detail::StringHash, std::equal_to<>>
+      remote_deltas;
+  struct LocalDelta {
+    detail::Delta delta;
+    TermPtr owner;
+    json::Value content;
+    std::string base_url;
+  };
+  std::unordered_map<size_t, std::vector<LocalDelta>> local_deltas;
+
   void register_owner(const TermPtr& def) {
     if (owners.size() >= owners_purge_at) {
       std::erase_if(owners, [](const auto& kv) { return kv.second.def.expired(); });
@@ -330,12 +370,26 @@ struct Builder {
     previous = i.previous;
   }
 
-  const TermPtr* lookup(std::string_view term) const {
+  // While set, lookups that reach `layer` (the state processing started from)
+  // are recorded, so the result can be cached as a Delta.
+  detail::DepLog* deps = nullptr;
+
+  const TermPtr* lookup(std::string_view term, bool weak = false) const {
     auto it = overlay.find(term);
     if (it != overlay.end()) return &it->second;
-    if (parent != nullptr) return parent->lookup(term);
-    return layer ? layer->lookup(term) : nullptr;
+    if (parent != nullptr) return parent->lookup(term, weak);
+    const TermPtr* p = layer ? layer->lookup(term) : nullptr;
+    if (deps != nullptr) {
+      TermPtr def = p != nullptr ? *p : nullptr;
+      const bool only_protection = weak && !(def && def->protected_);
+      deps->deps.push_back(
+          {std::string(term), only_protection ? nullptr : std::move(def), only_protection});
+    }
+    return p;
   }
+  // CTD 6: the previous definition of a term being defined, which matters
+  // only if it is protected.
+  const TermPtr* lookup_previous(std::string_view term) const { return lookup(term, true); }
   const TermDefinition* find(std::string_view term) const {
     const TermPtr* p = lookup(term);
     return p != nullptr ? p->get() : nullptr;
@@ -361,6 +415,7 @@ struct Builder {
   }
 
   bool has_protected() const {
+    if (deps != nullptr) deps->opaque = true;
     size_t n = 0;
     if (parent != nullptr) {
       n = parent->has_protected() ? 1 : 0;
@@ -379,6 +434,7 @@ struct Builder {
 
   // Moves the overlay into a new immutable layer (requires parent == nullptr).
   void freeze() {
+    if (deps != nullptr) deps->opaque = true;
     size_t protected_count = layer ? layer->protected_count : 0;
     for (auto it = overlay.begin(); it != overlay.end();) {
       const TermPtr* below = layer ? layer->lookup(it->first) : nullptr;
@@ -448,6 +504,58 @@ struct LocalCtx {
     }
     return std::string::npos;
   }
+};
+
+// Whether `state` answers every lookup in `deps` as the state they were
+// recorded on did: the same definition, or an equal unprotected one.
+bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* state) {
+  for (const detail::Dep& d : deps) {
+    const TermPtr* p = state != nullptr ? state->lookup(d.term) : nullptr;
+    const TermDefinition* now = p != nullptr ? p->get() : nullptr;
+    if (d.weak) {
+      if (now != nullptr && now->protected_) return false;
+      continue;
+    }
+    const TermDefinition* then = d.def.get();
+    if (now == then) continue;
+    if (now == nullptr || then == nullptr || now->protected_ || then->protected_ ||
+        now->base_url != then->base_url || !(*now == *then)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// One Dep per term (a full answer wins over a weak one), in a stable order.
+std::vector<detail::Dep> unique_deps(std::vector<detail::Dep> deps) {
+  std::stable_sort(deps.begin(), deps.end(), [](const detail::Dep& a, const detail::Dep& b) {
+    return a.term != b.term ? a.term < b.term : (!a.weak && b.weak);
+  });
+  auto last = std::unique(deps.begin(), deps.end(), [](const detail::Dep& a, const detail::Dep& b) {
+    return a.term == b.term;
+  });
+  deps.erase(last, deps.end());
+  return deps;
+}
+
+// Applies a cached Delta to `b` (whose state the Delta's deps hold on) and
+// freezes the result.
+void apply_delta(Builder& b, const detail::Delta& d) {
+  b.overlay = d.changes;
+  b.vocab = d.out_vocab;
+  b.language = d.out_language;
+  b.direction = d.out_direction;
+  if (d.used_base) b.used_base = true;
+  b.freeze();
+}
+
+// Turns off dependency recording when processing ends (even by an exception).
+struct DepRecording {
+  Builder& b;
+  DepRecording(Builder& builder, detail::DepLog* log) : b(builder) { b.deps = log; }
+  ~DepRecording() { b.deps = nullptr; }
+  DepRecording(const DepRecording&) = delete;
+  DepRecording& operator=(const DepRecording&) = delete;
 };
 
 // Flags that change a processing result, part of every cache key.
@@ -738,10 +846,15 @@ class Processor {
     }
     remote_contexts.push_back(iri);
 
-    const bool cacheable = cache_ != nullptr && result.parent == nullptr && validate;
+    // Not while an enclosing run records dependencies: freezing would move
+    // that run's own definitions into the state it is recorded against.
+    const bool cacheable =
+        cache_ != nullptr && result.parent == nullptr && validate && result.deps == nullptr;
     const unsigned flags = flags_of(opts_, override_protected, true, validate);
+    LayerPtr in_terms;
     if (cacheable) {
       result.freeze();
+      in_terms = result.layer;
       auto it = cache_->remote.find(iri);
       if (it != cache_->remote.end()) {
         for (const auto& e : it->second) {
@@ -761,6 +874,23 @@ class Processor {
         }
       }
       ++cache_->stats.remote_misses;
+      auto dit = cache_->remote_deltas.find(iri);
+      if (dit != cache_->remote_deltas.end()) {
+        for (const detail::Delta& d : dit->second) {
+          if (d.flags != flags || d.vocab != result.vocab || d.language != result.language ||
+              d.direction != result.direction) {
+            continue;
+          }
+          if (d.used_base && d.base != result.base) continue;
+          if (!deps_hold(d.deps, result.layer.get())) continue;
+          ++cache_->stats.delta_hits;
+          const std::string in_base = result.base;
+          apply_delta(result, d);
+          store_remote(iri, flags, in_terms, d.vocab, d.language, d.direction, d.used_base, in_base,
+                       result);
+          return;
+        }
+      }
     }
 
     // CP 5.2.4 - 5.2.5
@@ -775,36 +905,63 @@ class Processor {
     const std::string doc_url = doc.url;
 
     // CP 5.2.6
-    LayerPtr in_terms = result.layer;
-    std::optional<std::string> in_vocab = result.vocab, in_language = result.language,
-                               in_direction = result.direction;
+    detail::Delta delta;
+    delta.flags = flags;
+    delta.vocab = result.vocab;
+    delta.language = result.language;
+    delta.direction = result.direction;
     const std::string in_base = result.base;
     const ContextPtr in_previous = result.previous;
     const bool saved_used = result.used_base, saved_touched = result.touched_base;
     result.used_base = false;
     result.touched_base = false;
     std::vector<std::string> copy = remote_contexts;
-    process(result, nullptr, *loaded, doc_url, copy, override_protected, true, validate,
-            /*in_remote=*/true);
+    detail::DepLog log;
+    {
+      DepRecording recording(result, cacheable ? &log : nullptr);
+      process(result, nullptr, *loaded, doc_url, copy, override_protected, true, validate,
+              /*in_remote=*/true);
+    }
     if (cacheable && !result.touched_base && result.previous == in_previous) {
+      delta.used_base = result.used_base;
+      if (delta.used_base) delta.base = in_base;
+      if (!log.opaque) {
+        delta.deps = unique_deps(std::move(log.deps));
+        delta.changes = result.overlay;
+        delta.out_vocab = result.vocab;
+        delta.out_language = result.language;
+        delta.out_direction = result.direction;
+      }
       result.freeze();
-      ContextCache::Impl::RemoteEntry e;
-      e.terms = in_terms;
-      e.terms_raw = in_terms.get();
-      e.vocab = std::move(in_vocab);
-      e.language = std::move(in_language);
-      e.direction = std::move(in_direction);
-      e.flags = flags;
-      e.used_base = result.used_base;
-      if (e.used_base) e.base = in_base;
-      e.out_terms = result.layer;
-      e.out_vocab = result.vocab;
-      e.out_language = result.language;
-      e.out_direction = result.direction;
-      cache_->remote[iri].push_back(std::move(e));
+      store_remote(iri, flags, in_terms, delta.vocab, delta.language, delta.direction,
+                   delta.used_base, in_base, result);
+      if (!log.opaque) cache_->remote_deltas[iri].push_back(std::move(delta));
     }
     result.used_base = result.used_base || saved_used;
     result.touched_base = result.touched_base || saved_touched;
+  }
+
+  // Records the remote level's entry: `iri` applied to (in_terms, vocab,
+  // language, direction[, base]) gave `result` (frozen).
+  void store_remote(const std::string& iri, unsigned flags, const LayerPtr& in_terms,
+                    const std::optional<std::string>& vocab,
+                    const std::optional<std::string>& language,
+                    const std::optional<std::string>& direction, bool used_base,
+                    const std::string& base, const Builder& result) {
+    ContextCache::Impl::RemoteEntry e;
+    e.terms = in_terms;
+    e.terms_raw = in_terms.get();
+    e.vocab = vocab;
+    e.language = language;
+    e.direction = direction;
+    e.flags = flags;
+    e.used_base = used_base;
+    if (used_base) e.base = base;
+    e.out_terms = result.layer;
+    e.out_vocab = result.vocab;
+    e.out_language = result.language;
+    e.out_direction = result.direction;
+    cache_->remote[iri].push_back(std::move(e));
   }
 
   struct TermArgs {
@@ -929,7 +1086,7 @@ class Processor {
     }
     // CTD 6
     TermPtr previous;
-    if (const TermPtr* p = active.lookup(term)) previous = *p;
+    if (const TermPtr* p = active.lookup_previous(term)) previous = *p;
     if (previous) active.set(term, nullptr);
     // CTD 7 - 9
     TermValue tv;
@@ -1282,6 +1439,16 @@ class Processor {
 
 namespace {
 
+// Whether a local context names a remote context (a string, or a string in
+// an array).
+bool has_remote_reference(const json::Value& local_context) {
+  if (local_context.is_string()) return true;
+  if (!local_context.is_array()) return false;
+  const json::Array& items = local_context.as_array();
+  return std::any_of(items.begin(), items.end(),
+                     [](const json::Value& v) { return v.is_string(); });
+}
+
 void store_exact(ContextCache::Impl& cache, const ContextPtr& active, const TermPtr& owner,
                  const json::Value& local_context, const std::string& base_url, unsigned flags,
                  size_t key, const ContextPtr& result) {
@@ -1384,38 +1551,101 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
     }
   }
 
+  // Stores the term-state entry for a result computed from `active`.
+  auto store_state = [&](const Builder& result) {
+    ContextCache::Impl::StateEntry se;
+    se.state.terms = in.terms;
+    se.state.terms_raw = in.terms.get();
+    se.state.vocab = in.vocab;
+    se.state.language = in.language;
+    se.state.direction = in.direction;
+    se.state.flags = flags;
+    se.state.used_base = result.used_base;
+    if (result.used_base) se.state.base = in.base;
+    se.state.out_terms = result.layer;
+    se.state.out_vocab = result.vocab;
+    se.state.out_language = result.language;
+    se.state.out_direction = result.direction;
+    if (owner) {
+      se.owner = owner;
+    } else {
+      se.content = local_context;
+    }
+    se.base_url = base_url;
+    cache->states[state_key].push_back(std::move(se));
+  };
+
+  // The delta level, for contexts that reference no remote context (those are
+  // cached per remote context instead).
+  const bool delta_cacheable = exact_cacheable && !has_remote_reference(local_context);
+  size_t delta_key = 0;
+  if (delta_cacheable) {
+    delta_key = mix(content_hash, std::hash<std::string_view>{}(base_url));
+    auto it = cache->local_deltas.find(delta_key);
+    if (it != cache->local_deltas.end()) {
+      for (const auto& ld : it->second) {
+        const detail::Delta& d = ld.delta;
+        if (d.flags != flags || ld.base_url != base_url) continue;
+        if (d.vocab != in.vocab || d.language != in.language || d.direction != in.direction) {
+          continue;
+        }
+        if (d.used_base && d.base != in.base) continue;
+        if (!(owner && ld.owner == owner)) {
+          const json::Value& stored = ld.owner ? *ld.owner->local_context : ld.content;
+          if (!(stored == local_context)) continue;
+        }
+        if (!deps_hold(d.deps, in.terms.get())) continue;
+        ++cache->stats.delta_hits;
+        Builder result(*active);
+        apply_delta(result, d);
+        result.previous = expected_previous;
+        ContextPtr out = result.to_context();
+        store_exact(*cache, active, owner, local_context, base_url, flags, key, out);
+        store_state(result);
+        return out;
+      }
+    }
+  }
+
   // CP 1
   Builder result(*active);
   std::vector<std::string> local_remote;
   std::vector<std::string>& remote = remote_contexts != nullptr ? *remote_contexts : local_remote;
-  proc.process(result, &active, local_context, base_url, remote, override_protected, propagate,
-               validate_scoped_context, /*in_remote=*/false);
+  detail::DepLog log;
+  {
+    DepRecording recording(result, delta_cacheable ? &log : nullptr);
+    proc.process(result, &active, local_context, base_url, remote, override_protected, propagate,
+                 validate_scoped_context, /*in_remote=*/false);
+  }
+  const bool state_cacheable =
+      exact_cacheable && !result.touched_base && result.previous == expected_previous;
+  if (state_cacheable && delta_cacheable && !log.opaque) {
+    ContextCache::Impl::LocalDelta ld;
+    detail::Delta& d = ld.delta;
+    d.flags = flags;
+    d.vocab = in.vocab;
+    d.language = in.language;
+    d.direction = in.direction;
+    d.used_base = result.used_base;
+    if (d.used_base) d.base = in.base;
+    d.deps = unique_deps(std::move(log.deps));
+    d.changes = result.overlay;
+    d.out_vocab = result.vocab;
+    d.out_language = result.language;
+    d.out_direction = result.direction;
+    if (owner) {
+      ld.owner = owner;
+    } else {
+      ld.content = local_context;
+    }
+    ld.base_url = base_url;
+    cache->local_deltas[delta_key].push_back(std::move(ld));
+  }
   ContextPtr out = result.to_context();
 
   if (exact_cacheable) {
     store_exact(*cache, active, owner, local_context, base_url, flags, key, out);
-    if (!result.touched_base && result.previous == expected_previous) {
-      ContextCache::Impl::StateEntry se;
-      se.state.terms = in.terms;
-      se.state.terms_raw = in.terms.get();
-      se.state.vocab = in.vocab;
-      se.state.language = in.language;
-      se.state.direction = in.direction;
-      se.state.flags = flags;
-      se.state.used_base = result.used_base;
-      if (result.used_base) se.state.base = in.base;
-      se.state.out_terms = result.layer;
-      se.state.out_vocab = result.vocab;
-      se.state.out_language = result.language;
-      se.state.out_direction = result.direction;
-      if (owner) {
-        se.owner = owner;
-      } else {
-        se.content = local_context;
-      }
-      se.base_url = base_url;
-      cache->states[state_key].push_back(std::move(se));
-    }
+    if (state_cacheable) store_state(result);
   }
   return out;
 }

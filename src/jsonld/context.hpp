@@ -80,7 +80,14 @@ class ActiveContext {
 //  * term state: (term definitions, @vocab, @language and @direction of the
 //    active context, local context or remote context IRI, flags) -> the term
 //    definitions it produced, so a context used by many documents (each with
-//    its own base IRI, hence its own active contexts) is processed once.
+//    its own base IRI, hence its own active contexts) is processed once;
+//  * delta: (local context or remote context IRI, flags, @vocab, @language,
+//    @direction) -> the term definitions processing added or removed, with
+//    the definitions of the active context that processing looked at. It
+//    applies to any active context that gives the same answers there, so a
+//    context that is applied on top of different term states (a remote context
+//    listed after different ones, a type-scoped context in documents with
+//    different contexts) is still processed once.
 // Results depend only on the inputs in the key (the base IRI is added to the
 // key when processing read it), and only successful results are stored.
 class ContextCache {
@@ -96,6 +103,7 @@ class ContextCache {
     size_t state_hits = 0;  // exact misses answered by the term-state level
     size_t remote_hits = 0;
     size_t remote_misses = 0;
+    size_t delta_hits = 0;          // state or remote misses answered by the delta level
     size_t documents_loaded = 0;    // remote context documents fetched from the loader
     size_t terms_defined = 0;       // Create Term Definition runs (work not saved)
     size_t scoped_validations = 0;  // scoped contexts processed to validate them

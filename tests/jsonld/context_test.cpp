@@ -376,5 +376,36 @@ TEST_F(ContextTest, CacheReturnsTheSameContexts) {
   EXPECT_EQ(process_context(c1, copy, robot->base_url, options, nullptr, false, false), t1);
 }
 
+TEST_F(ContextTest, DeltaCacheAppliesOnlyWhereTheStateAnswersAlike) {
+  options.context_cache = std::make_shared<ContextCache>();
+  // "p" needs the prefix "ex" of whatever context it is applied to.
+  loader.add("http://ctx.org/r.jsonld", R"({"@context": {"p": "ex:p", "q": {"@id": "ex:q",
+      "@context": {"r": "ex:r"}}}})");
+  ContextPtr one = process(R"({"ex": "http://one/"})");
+  ContextPtr two = process(R"({"ex": "http://two/"})");
+  ContextPtr one_again = process(R"({"ex": "http://one/", "unrelated": "http://u/"})");
+  ContextPtr guarded = process(R"({"ex": "http://one/", "p": {"@id": "http://x/p",
+      "@protected": true}})");
+  const std::string ref = R"("http://ctx.org/r.jsonld")";
+  EXPECT_EQ(process(ref, one)->find("p")->iri, "http://one/p");
+  EXPECT_EQ(process(ref, two)->find("p")->iri, "http://two/p");  // other "ex": processed anew
+  const size_t hits = options.context_cache->stats().delta_hits;
+  ContextPtr c = process(ref, one_again);  // same "ex", another state: the delta applies
+  EXPECT_EQ(options.context_cache->stats().delta_hits, hits + 1);
+  EXPECT_EQ(c->find("p")->iri, "http://one/p");
+  EXPECT_EQ(c->find("q")->iri, "http://one/q");
+  EXPECT_EQ(c->find("unrelated")->iri, "http://u/");
+  // A protected "p" underneath must still be reported.
+  EXPECT_EQ(error_of(ref, guarded), "protected term redefinition");
+
+  // Type-scoped contexts: the same content over different states.
+  const std::string scoped = R"({"s": "ex:s"})";
+  EXPECT_EQ(process(scoped, one)->find("s")->iri, "http://one/s");
+  EXPECT_EQ(process(scoped, two)->find("s")->iri, "http://two/s");
+  const size_t before = options.context_cache->stats().delta_hits;
+  EXPECT_EQ(process(scoped, one_again)->find("s")->iri, "http://one/s");
+  EXPECT_EQ(options.context_cache->stats().delta_hits, before + 1);
+}
+
 }  // namespace
 }  // namespace mospec::jsonld
