@@ -28,6 +28,10 @@ RigidInertia RigidInertia::expressed_in(const Pose& X_AS) const {
 }
 
 RigidInertia operator+(const RigidInertia& a, const RigidInertia& b) {
+  // Adding a massless body keeps the other's numbers bit for bit (what a URDF
+  // states stays what the chain holds), rather than round-tripping m c / m.
+  if (b.mass == 0.0) return {a.mass, a.p_SoScm_S, a.I_Scm_S + b.I_Scm_S};
+  if (a.mass == 0.0) return {b.mass, b.p_SoScm_S, a.I_Scm_S + b.I_Scm_S};
   RigidInertia out;
   out.mass = a.mass + b.mass;
   // A massless body has no centre of mass: keep the other one's (or the origin).

@@ -1,0 +1,42 @@
+// Chain -> JSON-LD text in the published comp-rob2b vocabulary (kinematic
+// chain, geometry, rigid-body dynamics, QUDT units), so a robot description can
+// be composed with task models like any other model file.
+#pragma once
+
+#include <string>
+
+#include "runtime/chain.hpp"
+
+namespace mospec::runtime {
+
+struct ChainJsonldOptions {
+  // Base IRI of the document; every entity id is relative to it.
+  std::string base = "https://mospec.example/robots/robot/";
+  // Where the published metamodel contexts live (IRI prefix).
+  std::string metamodels = "https://comp-rob2b.github.io/metamodels/";
+};
+
+// The document, deterministic to the byte (numbers in shortest round-trip
+// form), so generated files can be committed and compared.
+//
+// What it states (ids relative to the base):
+//   link-L, frame-L (origin point-L-origin)   every link on the chain and the
+//                                             root; frame-L is the URDF link frame
+//   joint-J: RevoluteJoint                    between-attachments
+//                                             {frame-J-attachment, frame-C}
+//                                             (C the child link), common-axis axis-J
+//   pose-J: Pose of frame-J-attachment w.r.t. and as seen by the parent link
+//           frame (DirectionCosineXYZ: the attachment's x, y, z axes in parent
+//           coordinates; VectorXYZ: its origin), units [UNITLESS, M]; at q = 0
+//           the child frame coincides with the attachment
+//   axis-J: UnitVector as seen by frame-J-attachment (and frame-C)
+//   mass-L, position-L-com, inertia-L: mass [KiloGM], centre of mass
+//           point-L-com in frame-L [M], rotational inertia about point-L-com
+//           as seen by frame-L [KiloGM-M2] (folded links already merged)
+//   pose-T: the tip frame w.r.t. the last link frame, when they differ
+//   chain: KinematicChain with its joints.
+// Throws mospec::Error for a prismatic joint: the published vocabulary has no
+// term for one.
+std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& options = {});
+
+}  // namespace mospec::runtime
