@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <system_error>
 
@@ -14,8 +15,8 @@ namespace mospec::json {
 // Object
 
 const Value* Object::find(std::string_view key) const {
-  for (size_t i = 0; i < keys_.size(); ++i) {
-    if (keys_[i] == key) return &values_[i];
+  for (const Member& m : members_) {
+    if (m.key == key) return &m.value;
   }
   return nullptr;
 }
@@ -25,47 +26,34 @@ Value* Object::find(std::string_view key) {
 }
 
 Value& Object::set(std::string key, Value v) {
-  for (size_t i = 0; i < keys_.size(); ++i) {
-    if (keys_[i] == key) {
-      values_[i] = std::move(v);
-      return values_[i];
+  for (Member& m : members_) {
+    if (m.key == key) {
+      m.value = std::move(v);
+      return m.value;
     }
   }
-  keys_.push_back(std::move(key));
-  values_.push_back(std::move(v));
-  key_locs_.emplace_back();
-  return values_.back();
+  return append_new(std::move(key), std::move(v));
 }
 
 Value& Object::append_new(std::string key, Value v) {
-  keys_.push_back(std::move(key));
-  values_.push_back(std::move(v));
-  key_locs_.emplace_back();
-  return values_.back();
+  members_.push_back(Member{std::move(key), std::move(v), SourceLoc{}});
+  return members_.back().value;
 }
 
 bool Object::erase(std::string_view key) {
-  for (size_t i = 0; i < keys_.size(); ++i) {
-    if (keys_[i] == key) {
-      const auto d = static_cast<std::ptrdiff_t>(i);
-      keys_.erase(keys_.begin() + d);
-      values_.erase(values_.begin() + d);
-      key_locs_.erase(key_locs_.begin() + d);
+  for (auto it = members_.begin(); it != members_.end(); ++it) {
+    if (it->key == key) {
+      members_.erase(it);
       return true;
     }
   }
   return false;
 }
 
-const Value& Object::value(size_t i) const {
-  return values_[i];
-}
-Value& Object::value(size_t i) {
-  return values_[i];
-}
-
 std::vector<std::string_view> Object::sorted_keys() const {
-  std::vector<std::string_view> out(keys_.begin(), keys_.end());
+  std::vector<std::string_view> out;
+  out.reserve(members_.size());
+  for (const Member& m : members_) out.push_back(m.key);
   // Byte order of UTF-8 equals code-point order, which is what the JSON-LD
   // algorithms mean by "lexicographical order".
   std::sort(out.begin(), out.end());
@@ -235,15 +223,28 @@ class Parser {
     }
   }
 
+  // Members and elements are collected in per-depth scratch buffers (reused
+  // across objects) and moved into an exactly sized container, so that each
+  // object or array costs one allocation.
+  std::vector<std::vector<Object::Member>> member_scratch_;
+  std::vector<std::vector<Value>> element_scratch_;
+
+  template <class T>
+  static std::vector<T>& scratch_at(std::vector<std::vector<T>>& s, int depth) {
+    const auto d = static_cast<size_t>(depth);
+    if (s.size() <= d) s.resize(d + 1);
+    return s[d];
+  }
+
   Value parse_object(int depth) {
     if (depth >= kMaxDepth) fail("nesting deeper than 512 levels");
     ++pos_;  // '{'
-    Object obj;
     skip_ws();
     if (!at_end() && peek() == '}') {
       ++pos_;
-      return Value(std::move(obj));
+      return Value(Object());
     }
+    scratch_at(member_scratch_, depth).clear();
     for (;;) {
       if (at_end()) fail("unexpected end of input; expected a string key in object");
       if (peek() != '"') fail("expected a string key in object, found " + describe(peek()));
@@ -255,19 +256,27 @@ class Parser {
       skip_ws();
       Value v = parse_value(depth + 1);
       // Duplicate keys: the last wins, as in JavaScript's JSON.parse.
-      size_t idx = 0;
-      while (idx < obj.size() && obj.key(idx) != key) ++idx;
-      if (idx < obj.size()) {
-        obj.value(idx) = std::move(v);
+      std::vector<Object::Member>& members = member_scratch_[static_cast<size_t>(depth)];
+      auto same = std::find_if(members.begin(), members.end(),
+                               [&key](const Object::Member& m) { return m.key == key; });
+      if (same != members.end()) {
+        same->value = std::move(v);
+        same->key_loc = key_loc;
       } else {
-        obj.append_new(std::move(key), std::move(v));
+        members.push_back(Object::Member{std::move(key), std::move(v), key_loc});
       }
-      obj.set_key_location(idx, key_loc);
       skip_ws();
       if (at_end()) fail("unexpected end of input; expected ',' or '}' after object member");
       const char c = peek();
       if (c == '}') {
         ++pos_;
+        Object obj;
+        obj.reserve(members.size());
+        for (Object::Member& m : members) {
+          obj.append_new(std::move(m.key), std::move(m.value));
+          obj.set_key_location(obj.size() - 1, m.key_loc);
+        }
+        members.clear();
         return Value(std::move(obj));
       }
       if (c != ',') fail("expected ',' or '}' after object member");
@@ -281,19 +290,24 @@ class Parser {
   Value parse_array(int depth) {
     if (depth >= kMaxDepth) fail("nesting deeper than 512 levels");
     ++pos_;  // '['
-    Array arr;
     skip_ws();
     if (!at_end() && peek() == ']') {
       ++pos_;
-      return Value(std::move(arr));
+      return Value(Array());
     }
+    scratch_at(element_scratch_, depth).clear();
     for (;;) {
-      arr.push_back(parse_value(depth + 1));
+      Value v = parse_value(depth + 1);
+      std::vector<Value>& elements = element_scratch_[static_cast<size_t>(depth)];
+      elements.push_back(std::move(v));
       skip_ws();
       if (at_end()) fail("unexpected end of input; expected ',' or ']' after array element");
       const char c = peek();
       if (c == ']') {
         ++pos_;
+        Array arr(std::make_move_iterator(elements.begin()),
+                  std::make_move_iterator(elements.end()));
+        elements.clear();
         return Value(std::move(arr));
       }
       if (c != ',') fail("expected ',' or ']' after array element");

@@ -21,8 +21,9 @@ using Array = std::vector<Value>;
 
 class Object {
  public:
-  size_t size() const { return keys_.size(); }
-  bool empty() const { return keys_.empty(); }
+  size_t size() const { return members_.size(); }
+  bool empty() const { return members_.empty(); }
+  void reserve(size_t n) { members_.reserve(n); }
   const Value* find(std::string_view key) const;
   Value* find(std::string_view key);
   bool contains(std::string_view key) const { return find(key) != nullptr; }
@@ -32,19 +33,20 @@ class Object {
   // key is new (saves set()'s linear search when building large objects).
   Value& append_new(std::string key, Value v);
   bool erase(std::string_view key);
-  const std::string& key(size_t i) const { return keys_[i]; }
-  const Value& value(size_t i) const;
-  Value& value(size_t i);
+  inline const std::string& key(size_t i) const;
+  inline const Value& value(size_t i) const;
+  inline Value& value(size_t i);
   // Keys in code-point (byte) order, as the JSON-LD algorithms iterate them.
   std::vector<std::string_view> sorted_keys() const;
   // Where the key i was written (its opening quote).
-  SourceLoc key_location(size_t i) const { return key_locs_[i]; }
-  void set_key_location(size_t i, SourceLoc l) { key_locs_[i] = l; }
+  inline SourceLoc key_location(size_t i) const;
+  inline void set_key_location(size_t i, SourceLoc l);
+
+  // One member; members are kept together so that an object is one allocation.
+  struct Member;
 
  private:
-  std::vector<std::string> keys_;
-  std::vector<Value> values_;
-  std::vector<SourceLoc> key_locs_;
+  std::vector<Member> members_;
 };
 
 enum class Kind : uint8_t { Null, Boolean, Number, String, Array, Object };
@@ -102,6 +104,28 @@ class Value {
   std::variant<std::nullptr_t, bool, double, std::string, Array, Object> data_{nullptr};
   SourceLoc loc_{};
 };
+
+struct Object::Member {
+  std::string key;
+  Value value;
+  SourceLoc key_loc{};
+};
+
+inline const std::string& Object::key(size_t i) const {
+  return members_[i].key;
+}
+inline const Value& Object::value(size_t i) const {
+  return members_[i].value;
+}
+inline Value& Object::value(size_t i) {
+  return members_[i].value;
+}
+inline SourceLoc Object::key_location(size_t i) const {
+  return members_[i].key_loc;
+}
+inline void Object::set_key_location(size_t i, SourceLoc l) {
+  members_[i].key_loc = l;
+}
 
 // Parses RFC 8259 JSON. Errors throw mospec::Error with code "invalid json"
 // (the JSON-LD "loading document failed" family is decided by the caller) and the

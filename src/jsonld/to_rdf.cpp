@@ -74,18 +74,17 @@ bool is_well_formed_iri(std::string_view s) {
   }
   if (colon == 0) return false;
   bool fragment = false;  // a fragment may not contain another '#'
-  for (size_t i = colon + 1; i < s.size(); ++i) {
-    switch (kIriByteClass[static_cast<unsigned char>(s[i])]) {
-      case 0:
-        break;
-      case 1:
-        return false;
-      case 2:
-        if (fragment) return false;
-        fragment = true;
-        break;
-      default:
-        if (i + 2 >= s.size() || !is_hex(s[i + 1]) || !is_hex(s[i + 2])) return false;
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  const size_t n = s.size();
+  for (size_t i = colon + 1; i < n; ++i) {
+    const uint8_t cls = kIriByteClass[p[i]];
+    if (cls == 0) continue;
+    if (cls == 1) return false;
+    if (cls == 2) {
+      if (fragment) return false;
+      fragment = true;
+    } else if (i + 2 >= n || !is_hex(s[i + 1]) || !is_hex(s[i + 2])) {
+      return false;
     }
   }
   return true;
