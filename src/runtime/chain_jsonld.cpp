@@ -79,7 +79,8 @@ Node pose_node(const std::string& id, const std::string& of, const std::string& 
 void add_link(std::vector<Node>& graph, const std::string& link, const RigidInertia* inertia) {
   const std::string frame = "frame-" + link, origin = "point-" + link + "-origin";
   Node l;
-  l.add("@id", quoted("link-" + link)).add("@type", list(types({"SimplicialComplex", "RigidBody"})));
+  l.add("@id", quoted("link-" + link))
+      .add("@type", list(types({"SimplicialComplex", "RigidBody"})));
   graph.push_back(l);
   Node f;
   f.add("@id", quoted(frame)).add("@type", quoted("Frame")).add("origin", quoted(origin));
@@ -192,11 +193,10 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
 
   const std::string& mm = options.metamodels;
   std::string out = "{\n    \"@context\": [\n";
-  for (const char* ctx :
-       {"geometry/structural-entities.json", "geometry/spatial-relations.json",
-        "geometry/coordinates.json", "kinematic-chain/structural-entities.json",
-        "newtonian-rigid-body-dynamics/structural-entities.json",
-        "newtonian-rigid-body-dynamics/coordinates.json", "qudt.json"}) {
+  for (const char* ctx : {"geometry/structural-entities.json", "geometry/spatial-relations.json",
+                          "geometry/coordinates.json", "kinematic-chain/structural-entities.json",
+                          "newtonian-rigid-body-dynamics/structural-entities.json",
+                          "newtonian-rigid-body-dynamics/coordinates.json", "qudt.json"}) {
     out += "        " + quoted(mm + ctx) + ",\n";
   }
   out += "        { \"@base\": " + quoted(options.base) + " }\n    ],\n";

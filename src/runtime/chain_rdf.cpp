@@ -1,0 +1,270 @@
+#include "runtime/chain_rdf.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "support/diagnostics.hpp"
+
+namespace mospec::runtime {
+
+namespace {
+
+constexpr std::string_view kMm = "https://comp-rob2b.github.io/metamodels/";
+constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
+constexpr std::string_view kUnit = "http://qudt.org/vocab/unit/";
+
+std::string iri(std::string_view ns, std::string_view local) {
+  return std::string(ns) + std::string(local);
+}
+std::string kc(std::string_view l) {
+  return iri(std::string(kMm) + "kinematic-chain/structural-entities#", l);
+}
+std::string geom_rel(std::string_view l) {
+  return iri(std::string(kMm) + "geometry/spatial-relations#", l);
+}
+std::string geom_coord(std::string_view l) {
+  return iri(std::string(kMm) + "geometry/coordinates#", l);
+}
+std::string dyn_ent(std::string_view l) {
+  return iri(std::string(kMm) + "newtonian-rigid-body-dynamics/structural-entities#", l);
+}
+std::string dyn_coord(std::string_view l) {
+  return iri(std::string(kMm) + "newtonian-rigid-body-dynamics/coordinates#", l);
+}
+
+class Reader {
+ public:
+  explicit Reader(const rdf::Dataset& g) : g_(g) {}
+
+  std::string name(rdf::TermId t) const {
+    const auto& term = g_.terms()[t];
+    return term.is_iri() ? std::string(term.value) : "_:" + std::string(term.value);
+  }
+  rdf::TermId id(std::string_view iri_text) const { return g_.terms().find_iri(iri_text); }
+
+  std::vector<rdf::TermId> objects(rdf::TermId s, const std::string& p) const {
+    std::vector<rdf::TermId> out;
+    const rdf::TermId pid = id(p);
+    if (pid.is_any()) return out;
+    for (uint32_t i : g_.match(s, pid, rdf::TermId::any())) out.push_back(g_.quads()[i].object);
+    return out;
+  }
+  std::vector<rdf::TermId> subjects(const std::string& p, rdf::TermId o) const {
+    std::vector<rdf::TermId> out;
+    const rdf::TermId pid = id(p);
+    if (pid.is_any()) return out;
+    for (uint32_t i : g_.match(rdf::TermId::any(), pid, o)) out.push_back(g_.quads()[i].subject);
+    return out;
+  }
+  bool has_type(rdf::TermId s, const std::string& type) const {
+    const rdf::TermId p = id(iri(kRdf, "type")), t = id(type);
+    return !p.is_any() && !t.is_any() && g_.count(s, p, t, rdf::TermId::any(), 1) > 0;
+  }
+  rdf::TermId one(rdf::TermId s, const std::string& p) const {
+    const auto os = objects(s, p);
+    if (os.size() != 1) {
+      throw Error("invalid-robot-model", name(s) + ": expected exactly one <" + p + ">, found " +
+                                             std::to_string(os.size()));
+    }
+    return os.front();
+  }
+  double number(rdf::TermId s, const std::string& p) const { return to_double(s, p, one(s, p)); }
+  double to_double(rdf::TermId s, const std::string& p, rdf::TermId o) const {
+    const auto& term = g_.terms()[o];
+    double v = 0.0;
+    if (term.is_literal()) {
+      const auto r = std::from_chars(term.value.data(), term.value.data() + term.value.size(), v);
+      if (r.ec == std::errc() && r.ptr == term.value.data() + term.value.size()) return v;
+    }
+    throw Error("invalid-robot-model", name(s) + ": <" + p + "> is not a number");
+  }
+  std::vector<double> number_list(rdf::TermId s, const std::string& p) const {
+    std::vector<double> out;
+    const std::string first = iri(kRdf, "first"), rest = iri(kRdf, "rest");
+    const rdf::TermId nil = id(iri(kRdf, "nil"));
+    for (rdf::TermId node = one(s, p); node != nil; node = one(node, rest)) {
+      out.push_back(to_double(s, p, one(node, first)));
+      if (out.size() > 16) break;
+    }
+    return out;
+  }
+  // The QUDT units of `s` must be exactly `want` (a set).
+  void require_units(rdf::TermId s, std::vector<std::string_view> want) const {
+    std::vector<std::string> got;
+    for (rdf::TermId u : objects(s, "http://qudt.org/schema/qudt/unit")) got.push_back(name(u));
+    std::sort(got.begin(), got.end());
+    std::vector<std::string> expected;
+    for (auto w : want) expected.push_back(iri(kUnit, w));
+    std::sort(expected.begin(), expected.end());
+    expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+    if (got != expected) {
+      std::string g;
+      for (const auto& u : got) g += (g.empty() ? "" : ", ") + u;
+      std::string e;
+      for (const auto& u : expected) e += (e.empty() ? "" : ", ") + u;
+      throw Error("invalid-robot-model",
+                  name(s) + ": unit must be {" + e + "}, got {" + (g.empty() ? "none" : g) + "}");
+    }
+  }
+
+  Pose pose(rdf::TermId p) const {
+    require_units(p, {"UNITLESS", "M"});
+    Pose X;
+    const char* keys[] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
+    for (int c = 0; c < 3; ++c) {
+      const auto col = number_list(p, geom_coord(keys[c]));
+      if (col.size() != 3) {
+        throw Error("invalid-robot-model", name(p) + ": " + keys[c] + " must have 3 entries, got " +
+                                               std::to_string(col.size()));
+      }
+      X.R.col(c) = Vec3(col[0], col[1], col[2]);
+    }
+    X.p = Vec3(number(p, geom_coord("x")), number(p, geom_coord("y")), number(p, geom_coord("z")));
+    return X;
+  }
+
+  // The Pose node "of" frame f, if any.
+  std::optional<rdf::TermId> pose_of(rdf::TermId f) const {
+    for (rdf::TermId s : subjects(geom_rel("of"), f)) {
+      if (has_type(s, geom_rel("Pose"))) return s;
+    }
+    return std::nullopt;
+  }
+
+  // Inertia of the link whose frame is `frame`: the RotationalInertia seen by
+  // it, about a point whose Position (seen by the frame) is the CoM, plus the
+  // Mass of the same body. No inertia node: a massless link.
+  RigidInertia inertia(rdf::TermId frame) const {
+    RigidInertia I;
+    for (rdf::TermId r : subjects(dyn_coord("as-seen-by"), frame)) {
+      if (!has_type(r, dyn_ent("RotationalInertia"))) continue;
+      require_units(r, {"KiloGM-M2"});
+      const auto c = [&](const char* k) { return number(r, dyn_coord(k)); };
+      I.I_Scm_S << c("ixx"), c("ixy"), c("ixz"), c("ixy"), c("iyy"), c("iyz"), c("ixz"), c("iyz"),
+          c("izz");
+      const rdf::TermId com = one(r, dyn_ent("about"));
+      bool found = false;
+      for (rdf::TermId p : subjects(geom_rel("of"), com)) {
+        if (!has_type(p, geom_rel("Position"))) continue;
+        require_units(p, {"M"});
+        I.p_SoScm_S = Vec3(number(p, geom_coord("x")), number(p, geom_coord("y")),
+                           number(p, geom_coord("z")));
+        found = true;
+      }
+      if (!found) {
+        throw Error("invalid-robot-model", name(r) + ": no Position of its point " + name(com));
+      }
+      const rdf::TermId body = one(r, dyn_ent("of-body"));
+      found = false;
+      for (rdf::TermId m : subjects(dyn_ent("of-body"), body)) {
+        if (!has_type(m, dyn_ent("Mass"))) continue;
+        require_units(m, {"KiloGM"});
+        I.mass = number(m, dyn_coord("mass"));
+        found = true;
+      }
+      if (!found) throw Error("invalid-robot-model", name(body) + ": has inertia but no Mass");
+      return I;
+    }
+    return I;
+  }
+
+  static std::string local_name(const std::string& iri_text, std::string_view prefix) {
+    std::string s = iri_text.substr(iri_text.find_last_of("/#") + 1);
+    if (s.rfind(prefix, 0) == 0) s = s.substr(prefix.size());
+    return s;
+  }
+
+ private:
+  const rdf::Dataset& g_;
+};
+
+}  // namespace
+
+Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
+  const Reader r(graph);
+  const rdf::TermId chain_id = r.id(chain_iri);
+  if (chain_id.is_any() || !r.has_type(chain_id, kc("KinematicChain"))) {
+    throw Error("invalid-robot-model",
+                "no KinematicChain named <" + std::string(chain_iri) + "> in the model");
+  }
+  struct JointInfo {
+    rdf::TermId joint, attachment, child, parent_frame, pose;
+  };
+  std::map<rdf::TermId, JointInfo> by_parent_frame;
+  std::map<rdf::TermId, rdf::TermId> child_frames;  // child frame -> joint
+  for (rdf::TermId j : r.objects(chain_id, kc("joints"))) {
+    if (!r.has_type(j, kc("RevoluteJoint"))) {
+      throw Error("invalid-robot-model", r.name(j) + ": only RevoluteJoint is supported");
+    }
+    const auto at = r.objects(j, kc("between-attachments"));
+    if (at.size() != 2) {
+      throw Error("invalid-robot-model",
+                  r.name(j) + ": expected 2 between-attachments, got " + std::to_string(at.size()));
+    }
+    // The parent-side attachment is the one placed by a Pose.
+    const auto p0 = r.pose_of(at[0]), p1 = r.pose_of(at[1]);
+    if (p0.has_value() == p1.has_value()) {
+      throw Error("invalid-robot-model",
+                  r.name(j) + ": exactly one attachment needs a Pose relative to its parent link");
+    }
+    JointInfo info{j, p0 ? at[0] : at[1], p0 ? at[1] : at[0], {}, p0 ? *p0 : *p1};
+    info.parent_frame = r.one(info.pose, geom_rel("with-respect-to"));
+    if (!by_parent_frame.emplace(info.parent_frame, info).second) {
+      throw Error("invalid-robot-model",
+                  r.name(info.parent_frame) + ": two joints start here; a chain cannot branch");
+    }
+    child_frames.emplace(info.child, j);
+  }
+  if (by_parent_frame.empty()) throw Error("invalid-robot-model", r.name(chain_id) + ": no joints");
+  std::vector<rdf::TermId> roots;
+  for (const auto& [frame, info] : by_parent_frame) {
+    if (!child_frames.count(frame)) roots.push_back(frame);
+  }
+  if (roots.size() != 1) {
+    throw Error("invalid-robot-model", r.name(chain_id) + ": the joints form " +
+                                           std::to_string(roots.size()) +
+                                           " chains; expected one serial chain");
+  }
+  Chain chain(Reader::local_name(r.name(roots.front()), "frame-"));
+  rdf::TermId frame = roots.front();
+  for (auto it = by_parent_frame.find(frame); it != by_parent_frame.end();
+       it = by_parent_frame.find(frame)) {
+    const JointInfo& info = it->second;
+    Segment s;
+    s.joint = Reader::local_name(r.name(info.joint), "joint-");
+    s.link = Reader::local_name(r.name(info.child), "frame-");
+    s.type = JointType::Revolute;
+    s.X_PJ = r.pose(info.pose);
+    const rdf::TermId axis = r.one(info.joint, kc("common-axis"));
+    s.axis_J = Vec3(r.number(axis, geom_coord("x")), r.number(axis, geom_coord("y")),
+                    r.number(axis, geom_coord("z")));
+    s.inertia = r.inertia(info.child);
+    chain.add_segment(std::move(s));
+    frame = info.child;
+    by_parent_frame.erase(it);
+  }
+  if (!by_parent_frame.empty()) {
+    throw Error("invalid-robot-model", r.name(chain_id) + ": " +
+                                           std::to_string(by_parent_frame.size()) +
+                                           " joints are not on the chain from its root");
+  }
+  // The tip: a frame posed relative to the last link's frame, if any.
+  std::vector<rdf::TermId> tips;
+  for (rdf::TermId p : r.subjects(geom_rel("with-respect-to"), frame)) {
+    if (r.has_type(p, geom_rel("Pose"))) tips.push_back(p);
+  }
+  if (tips.size() > 1) {
+    throw Error("invalid-robot-model", r.name(frame) + ": more than one tip frame is posed here");
+  }
+  if (!tips.empty()) {
+    const rdf::TermId tip = r.one(tips.front(), geom_rel("of"));
+    chain.add_fixed(Reader::local_name(r.name(tip), "frame-"), r.pose(tips.front()), {});
+  }
+  return chain;
+}
+
+}  // namespace mospec::runtime

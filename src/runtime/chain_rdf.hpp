@@ -1,0 +1,26 @@
+// RDF graph -> Chain: reads back a kinematic chain written in the vocabulary
+// that chain_to_jsonld() emits (after JSON-LD loading, e.g. by app::load).
+#pragma once
+
+#include <string_view>
+
+#include "rdf/dataset.hpp"
+#include "runtime/chain.hpp"
+
+namespace mospec::runtime {
+
+// Builds the Chain whose KinematicChain node is `chain_iri` in `graph` (one
+// flattened graph: every quad is read regardless of its graph name).
+//
+// The joints are a set in RDF; their order comes from the topology: each joint's
+// parent-side attachment frame has a Pose with respect to the parent link's
+// frame, its other attachment is the child link's frame, and the root is the
+// one parent frame that no joint moves. A Pose of a further frame relative to
+// the last link's frame is the tip. Link and joint names are the ids' last path
+// segment without the "frame-" / "joint-" prefix. Lengths must be in M,
+// masses in KiloGM, inertias in KiloGM-M2 (QUDT). Joint limits are not part of
+// the vocabulary and stay unbounded.
+// Throws mospec::Error naming the entity and what is missing or wrong.
+Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri);
+
+}  // namespace mospec::runtime

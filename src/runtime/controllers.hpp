@@ -1,0 +1,123 @@
+// Controllers (paper Sec. II-E and Eq. 4): 1D PID controllers that map a
+// constraint's error signal to a control signal (a force, an acceleration
+// setpoint), with the paper's decaying integral term
+//
+//   f(t) = Kp ε(t) + Ki ∫_0^t e^{λ(τ - t)} ε(τ) dτ + Kd dε(t)/dt      (4)
+//
+// plus a feed-forward term, output saturation and anti-windup.
+//
+// Time. Every step gets the MEASURED time since the previous step, dt [s]; the
+// integral is a true time integral and the derivative a difference quotient
+// over dt. A step with dt <= 0, NaN or inf changes nothing (the state and the
+// held output stay as they were) and reports HeldInvalidDt.
+//
+// λ is a rate per SECOND, as in Eq. (4): an error sample's weight in the
+// integral decays as e^{-λ (t - τ)}, so the integral forgets with time constant
+// 1/λ whatever the tick rate. The paper allows 0 <= λ <= 1 [1/s] (λ = 0 is the
+// ordinary integral); the authors' models use 0.99. A gain tuned as a per-TICK
+// factor β (I <- β I + ...) at period T corresponds to λ = -ln(β) / T:
+// decay_rate_from_factor_per_tick() converts.
+//
+// Discretisation (exact for an error that is linear between samples — a
+// first-order hold): with h = dt, a = λh, ε0 the previous and ε1 the new error,
+//   I1 = e^{-a} I0 + h [ φ2(a) ε0 + (φ1(a) - φ2(a)) ε1 ],
+//   φ1(a) = (1 - e^{-a}) / a,   φ2(a) = (1 - (1 + a) e^{-a}) / a²,
+// which for λ = 0 is the trapezoidal rule (φ1 = 1, φ2 = 1/2). So a constant
+// error gives I(t) = ε (1 - e^{-λt}) / λ (ε t for λ = 0) exactly, for any
+// sequence of dt. The first step after a reset has no previous error; it holds
+// the new error over its dt (ε0 = ε1) and its derivative term is zero — prime
+// the previous error with reset(state, ε0) to avoid both.
+//
+// Output and anti-windup. u = ff + Kp ε + Ki I + Kd ε̇, clamped to
+// [output_min, output_max]; state.saturated reports the clamp.
+//   ConditionalIntegration (default): while the output is clamped and this
+//     step's integration increment (Ki times it) would push further past the
+//     clamped limit, the increment is dropped (the decay e^{-a} still applies,
+//     which only shrinks |I|).
+//   BackCalculation: the integral is pulled towards the value that makes the
+//     unclamped output equal the clamped one, at rate tracking_rate k_b [1/s]:
+//     Ki I += (1 - e^{-k_b h}) (u_clamped - u_unclamped), the exact solution of
+//     d(Ki I)/dt = k_b (u_clamped - u) over the step with the other terms held.
+//   None: the integral integrates regardless.
+//
+// Faults. A non-finite error or feed-forward leaves the state untouched, holds
+// the previous output, latches state.fault (cleared only by reset) and reports
+// HeldInvalidInput: no NaN ever reaches the integral or the output.
+//
+// Model/Data: Pid is the constant description (gains, limits), checked at
+// setup; PidState is the per-controller data. step() is noexcept and
+// allocation-free.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+namespace mospec::runtime {
+
+enum class AntiWindup : uint8_t { None, ConditionalIntegration, BackCalculation };
+
+struct PidSpec {
+  double kp = 0.0;          // [output unit / error unit]
+  double ki = 0.0;          // [output unit / (error unit · s)]
+  double kd = 0.0;          // [output unit · s / error unit]
+  double decay_rate = 0.0;  // λ [1/s], 0 <= λ <= 1 (paper, Eq. 4); 0: plain integral
+  double output_min = -std::numeric_limits<double>::infinity();
+  double output_max = std::numeric_limits<double>::infinity();
+  AntiWindup anti_windup = AntiWindup::ConditionalIntegration;
+  double tracking_rate = 0.0;  // k_b [1/s] for BackCalculation (> 0 there)
+};
+
+struct PidState {
+  double integral = 0.0;        // I = ∫ e^{-λ(t-τ)} ε(τ) dτ [error unit · s]
+  double previous_error = 0.0;  // ε at the previous valid step
+  bool has_previous = false;
+  double derivative = 0.0;  // the last dε/dt [error unit / s]
+  double output = 0.0;      // the last output (held while inputs are invalid)
+  bool saturated = false;   // the last output was clamped
+  bool fault = false;       // latched: a non-finite input was seen since reset
+};
+
+enum class PidStatus : int8_t {
+  Ok = 0,
+  HeldInvalidDt = 1,     // dt <= 0, NaN or inf: nothing changed
+  HeldInvalidInput = -1  // error or feed-forward not finite: output held, fault latched
+};
+
+// λ [1/s] equivalent to multiplying the integral by `factor` (0 < factor <= 1)
+// every tick of `period` seconds.
+double decay_rate_from_factor_per_tick(double factor, double period) noexcept;
+
+// φ1(a) = (1 - e^{-a})/a and φ2(a) = (1 - (1 + a) e^{-a})/a², a >= 0, with their
+// limits 1 and 1/2 at a = 0 (no cancellation for small a).
+double decay_phi1(double a) noexcept;
+double decay_phi2(double a) noexcept;
+
+class Pid {
+ public:
+  // Throws mospec::Error("invalid-controller") naming `name` and the offending
+  // values: non-finite gains, λ outside [0, 1], output_min >= output_max or NaN
+  // limits, a negative or non-finite tracking rate, or BackCalculation with
+  // Ki != 0 and no positive tracking rate.
+  explicit Pid(const PidSpec& spec, const char* name = "controller");
+
+  const PidSpec& spec() const { return spec_; }
+
+  // One control step; the output is also in state.output.
+  PidStatus step(PidState& state, double error, double dt,
+                 double feed_forward = 0.0) const noexcept;
+
+  // Back to the initial state (zero integral, no previous error, no fault).
+  static void reset(PidState& state) noexcept { state = PidState{}; }
+  // ... with a known error at the start, so the first step's integral uses a
+  // first-order hold and its derivative is finite.
+  static void reset(PidState& state, double initial_error) noexcept {
+    state = PidState{};
+    state.previous_error = initial_error;
+    state.has_previous = true;
+  }
+
+ private:
+  PidSpec spec_;
+};
+
+}  // namespace mospec::runtime

@@ -1,0 +1,206 @@
+#include "runtime/kelo.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "runtime/operators.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::runtime {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+[[noreturn]] void reject(const std::string& what) {
+  throw Error("invalid-kelo", "KELO base: " + what);
+}
+
+void require_positive(const char* field, double v) {
+  if (!(v > 0.0) || !std::isfinite(v)) {
+    reject(std::string(field) + " must be finite and > 0, got " + number(v));
+  }
+}
+
+void require_weight(const char* field, int i, double v) {
+  if (!(v >= 0.0) || !std::isfinite(v)) {
+    reject(std::string(field) + " of drive " + std::to_string(i) +
+           " must be finite and >= 0, got " + number(v));
+  }
+}
+
+}  // namespace
+
+KeloModel::KeloModel(const KeloConfig& c) : config(c) {
+  const KeloGeometry& g = c.geometry;
+  require_positive("wheel diameter", g.wheel_diameter);
+  require_positive("wheel distance", g.wheel_distance);
+  require_positive("castor offset", g.castor_offset);
+  wheel_radius = 0.5 * g.wheel_diameter;
+  lateral_ratio = g.wheel_distance / (2.0 * g.castor_offset);
+  int first = -1;
+  bool two_distinct = false;
+  for (int i = 0; i < kKeloDrives; ++i) {
+    if (!g.p_PoAi_P[i].allFinite()) {
+      reject("pivot position of drive " + std::to_string(i) + " must be finite");
+    }
+    require_weight("drive weight", i, c.drive_weight[i]);
+    require_weight("force-alignment weight", i, c.align_force_weight[i]);
+    require_weight("moment-alignment weight", i, c.align_moment_weight[i]);
+    if (c.align_moment_weight[i] > 0.0 && !(g.p_PoAi_P[i].norm() > 0.0)) {
+      reject("drive " + std::to_string(i) +
+             " is at the platform centre, so it cannot align with the moment; set its "
+             "moment-alignment weight to 0");
+    }
+    enabled[i] = c.drive_weight[i] > 0.0;
+    w_inv[2 * i] = w_inv[2 * i + 1] = c.drive_weight[i];
+    if (!enabled[i]) continue;
+    if (first < 0) {
+      first = i;
+    } else if ((g.p_PoAi_P[i] - g.p_PoAi_P[first]).norm() > 1e-6) {
+      two_distinct = true;
+    }
+  }
+  if (!two_distinct) {
+    reject(
+        "at least two enabled drives (drive weight > 0) at distinct pivot positions are "
+        "needed to produce every platform wrench");
+  }
+}
+
+KeloData::KeloData(const KeloModel& model) {
+  // A valid G W^{-1} G^T to start from: the one at zero pivot angles.
+  kelo_set_pivots(model, *this, Vec4::Zero());
+}
+
+const KeloComposition& kelo_set_pivots(const KeloModel& model, KeloData& data,
+                                       const Vec4& q_pivot) noexcept {
+  data.q_pivot = q_pivot;
+  for (int i = 0; i < kKeloDrives; ++i) {
+    const double c = std::cos(q_pivot[i]), s = std::sin(q_pivot[i]);
+    const double x = model.config.geometry.p_PoAi_P[i].x();
+    const double y = model.config.geometry.p_PoAi_P[i].y();
+    data.G.col(2 * i) << c, s, x * s - y * c;
+    data.G.col(2 * i + 1) << -s, c, x * c + y * s;
+  }
+  // W^{-1} G^T (8x3), then (G W^{-1} G^T) and G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}.
+  const KeloDistribution WinvGt = model.w_inv.asDiagonal() * data.G.transpose();
+  const Mat3 GWGt = data.G * WinvGt;
+  data.llt_GWGt.compute(GWGt);
+  data.G_pinv = data.llt_GWGt.solve(WinvGt.transpose()).transpose();
+  return data.G;
+}
+
+const KeloDriveVector& kelo_alignment_reference(const KeloModel& model, KeloData& data,
+                                                const Vec3& F_p) noexcept {
+  const double f = std::hypot(F_p[0], F_p[1]);
+  const double m = F_p[2];
+  const double force_heading = std::atan2(F_p[1], F_p[0]);
+  for (int i = 0; i < kKeloDrives; ++i) {
+    data.F_d_ref[2 * i] = 0.0;
+    data.F_d_ref[2 * i + 1] = 0.0;
+    if (!model.enabled[i]) continue;
+    const double q = data.q_pivot[i];
+    double lateral = 0.0;
+    if (f > 0.0) {
+      lateral += model.config.align_force_weight[i] * f * wrap_angle(force_heading - q);
+    }
+    const Vec2& p = model.config.geometry.p_PoAi_P[i];
+    if (m != 0.0 && model.config.align_moment_weight[i] > 0.0) {
+      const double sign = m > 0.0 ? 1.0 : -1.0;
+      const double rho = p.norm();
+      const double tangent_heading = std::atan2(sign * p.x(), -sign * p.y());
+      lateral += model.config.align_moment_weight[i] * (std::abs(m) / rho) *
+                 wrap_angle(tangent_heading - q);
+    }
+    data.F_d_ref[2 * i + 1] = lateral;
+  }
+  return data.F_d_ref;
+}
+
+const KeloDriveVector& kelo_distribute(const KeloModel& model, KeloData& data, const Vec3& F_p,
+                                       const KeloDriveVector& F_d_ref) noexcept {
+  // Disabled drives' references are ignored: N keeps a reference on a drive
+  // that G⁺ never loads, so it must not enter at all.
+  KeloDriveVector ref;
+  for (int k = 0; k < 2 * kKeloDrives; ++k) ref[k] = model.w_inv[k] > 0.0 ? F_d_ref[k] : 0.0;
+  // N F̄ = F̄ - G⁺ (G F̄), without forming the 8x8 N.
+  const Vec3 G_ref = data.G * ref;
+  data.F_d_null.noalias() = ref - data.G_pinv * G_ref;
+
+  if (model.config.rescale_reference) {
+    double max_ref = 0.0, max_null = 0.0;
+    for (int i = 0; i < kKeloDrives; ++i) {
+      max_ref = std::max(max_ref, ref.segment<2>(2 * i).norm());
+      max_null = std::max(max_null, data.F_d_null.segment<2>(2 * i).norm());
+    }
+    data.alpha = max_null > 1e-9 * max_ref ? max_ref / max_null : 0.0;
+  } else {
+    data.alpha = 1.0;
+  }
+  data.F_d.noalias() = data.G_pinv * F_p;
+  data.F_d += data.alpha * data.F_d_null;
+  return data.F_d;
+}
+
+const KeloDriveVector& kelo_hub_torques(const KeloModel& model, KeloData& data) noexcept {
+  const double r = model.wheel_radius;
+  const double k = 0.5 / model.lateral_ratio;  // (f_r - f_l) / 2 = s f_y / d
+  for (int i = 0; i < kKeloDrives; ++i) {
+    const double fx = data.F_d[2 * i], fy = data.F_d[2 * i + 1];
+    data.f_wheel[2 * i] = 0.5 * fx - k * fy;      // left
+    data.f_wheel[2 * i + 1] = 0.5 * fx + k * fy;  // right
+  }
+  data.tau_wheel = r * data.f_wheel;
+  return data.tau_wheel;
+}
+
+const KeloDriveVector& kelo_force_step(const KeloModel& model, KeloData& data, const Vec4& q_pivot,
+                                       const Vec3& F_p) noexcept {
+  kelo_set_pivots(model, data, q_pivot);
+  kelo_alignment_reference(model, data, F_p);
+  kelo_distribute(model, data, F_p, data.F_d_ref);
+  return kelo_hub_torques(model, data);
+}
+
+const Vec3& kelo_platform_twist(const KeloModel& model, KeloData& data,
+                                const KeloDriveVector& wheel_rates) noexcept {
+  const double r = model.wheel_radius;
+  const double s_over_d = 0.5 / model.lateral_ratio;  // s / d
+  for (int i = 0; i < kKeloDrives; ++i) {
+    const double vl = r * wheel_rates[2 * i], vr = r * wheel_rates[2 * i + 1];
+    data.u_pivot[2 * i] = 0.5 * (vl + vr);
+    data.u_pivot[2 * i + 1] = s_over_d * (vr - vl);
+  }
+  data.xd_platform.noalias() = data.G_pinv.transpose() * data.u_pivot;
+  return data.xd_platform;
+}
+
+const KeloDriveVector& kelo_wheel_rates(const KeloModel& model, KeloData& data,
+                                        const Vec3& xd_p) noexcept {
+  const double r = model.wheel_radius;
+  const double s = model.config.geometry.castor_offset;
+  data.u_pivot.noalias() = data.G.transpose() * xd_p;
+  for (int i = 0; i < kKeloDrives; ++i) {
+    const double ux = data.u_pivot[2 * i], uy = data.u_pivot[2 * i + 1];
+    // v_r - v_l = d u_y / s; the drive turns at (v_r - v_l)/d = u_y / s.
+    const double half_diff = model.lateral_ratio * uy;
+    data.wheel_rates[2 * i] = (ux - half_diff) / r;
+    data.wheel_rates[2 * i + 1] = (ux + half_diff) / r;
+    data.qd_pivot[i] = uy / s - xd_p[2];
+  }
+  return data.wheel_rates;
+}
+
+KeloProjector kelo_nullspace_projector(const KeloData& data) noexcept {
+  KeloProjector N = -data.G_pinv * data.G;
+  N.diagonal().array() += 1.0;
+  return N;
+}
+
+}  // namespace mospec::runtime
