@@ -1,10 +1,12 @@
 #include "jsonld/to_rdf.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -21,14 +23,19 @@ namespace mospec::jsonld {
 namespace {
 
 constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
-constexpr std::string_view kXsd = "http://www.w3.org/2001/XMLSchema#";
 constexpr std::string_view kI18n = "https://www.w3.org/ns/i18n#";
+constexpr std::string_view kRdfJson = "http://www.w3.org/1999/02/22-rdf-syntax-ns#JSON";
+constexpr std::string_view kXsdBoolean = "http://www.w3.org/2001/XMLSchema#boolean";
+constexpr std::string_view kXsdDouble = "http://www.w3.org/2001/XMLSchema#double";
+constexpr std::string_view kXsdInteger = "http://www.w3.org/2001/XMLSchema#integer";
+
+struct StringHash {
+  using is_transparent = void;
+  size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+};
 
 std::string rdf_iri(std::string_view local) {
   return std::string(kRdf) + std::string(local);
-}
-std::string xsd_iri(std::string_view local) {
-  return std::string(kXsd) + std::string(local);
 }
 
 bool is_blank_id(std::string_view s) {
@@ -165,12 +172,14 @@ std::string double_lexical(double d) {
     while (i >= 0 && m[static_cast<size_t>(i)] == '9') m[static_cast<size_t>(i--)] = '0';
     exponent = exponent40;
     if (i < 0) {
-      m = "1" + m.substr(0, 15);
+      m.insert(m.begin(), '1');
+      m.pop_back();
       ++exponent;
     } else {
       ++m[static_cast<size_t>(i)];
     }
-    mantissa = m.substr(0, 1) + "." + m.substr(1);
+    mantissa.assign(1, m[0]);
+    mantissa.append(".").append(m, 1, std::string::npos);
   } else {
     std::snprintf(buf, sizeof buf, "%.15e", mag);
     std::string s = buf;
@@ -181,30 +190,34 @@ std::string double_lexical(double d) {
   size_t last = mantissa.find_last_not_of('0');
   if (mantissa[last] == '.') ++last;  // keep one fractional digit
   mantissa.erase(last + 1);
-  return (negative ? "-" : "") + mantissa + "E" + std::to_string(exponent);
+  std::string out = negative ? "-" : "";
+  out.append(mantissa).append("E").append(std::to_string(exponent));
+  return out;
 }
 
 // ---------------------------------------------------------------------------
 // Node map (API spec 7.2.2), kept in typed form: each entry remembers the
 // expanded value it came from and where its subject was written.
 
+// Node-map keys (IRIs and "_:" labels) are views of strings that outlive the
+// conversion: the expanded document's, or labels owned by the Converter.
 struct Item {
   enum class Kind : uint8_t { Value, Ref, List };
   Kind kind = Kind::Value;
   const json::Value* value = nullptr;  // Kind::Value: the value object
-  std::string id;                      // Kind::Ref: node map key (IRI or "_:" label)
+  std::string_view id;                 // Kind::Ref: node map key (IRI or "_:" label)
   std::vector<Item> list;              // Kind::List
   SourceLoc where;                     // the subject node object's "@id" (or the object)
 };
 
 struct Node {
   SourceLoc where;
-  std::vector<std::pair<std::string, SourceLoc>> types;
-  std::map<std::string, std::vector<Item>> properties;  // ordered by property
+  std::vector<std::pair<std::string_view, SourceLoc>> types;
+  std::map<std::string_view, std::vector<Item>> properties;  // ordered by property
   const json::Value* index = nullptr;
 };
 
-using Graph = std::map<std::string, Node>;  // ordered by subject
+using Graph = std::map<std::string_view, Node>;  // ordered by subject
 
 struct Triple {
   rdf::TermId s, p, o;
@@ -216,23 +229,37 @@ class Converter {
   Converter(rdf::Dataset& out, const Options& options) : out_(out), options_(options) {}
 
   void run(const json::Value& expanded) {
-    generate(expanded, "@default", nullptr, nullptr, nullptr, nullptr, SourceLoc{});
+    generate(expanded, graphs_["@default"], nullptr, nullptr, {}, nullptr, SourceLoc{});
     emit();
   }
 
  private:
+  // Where a value of the active property goes: the property's values of the
+  // active subject, created on first use (an empty property adds no entry).
+  struct Target {
+    Node* subject = nullptr;
+    std::string_view property;
+    std::vector<Item>* values = nullptr;
+    explicit operator bool() const { return subject != nullptr; }
+    std::vector<Item>& get() {
+      if (values == nullptr) values = &subject->properties[property];
+      return *values;
+    }
+  };
+
   // Generate Blank Node Identifier: labels are drawn fresh from the output
   // dataset, so documents loaded into one dataset never share a blank node.
-  std::string relabel(std::string_view label) {
+  std::string_view relabel(std::string_view label) {
     if (!label.empty()) {
-      auto it = identifiers_.find(std::string(label));
+      auto it = identifiers_.find(label);
       if (it != identifiers_.end()) return it->second;
     }
     rdf::TermId fresh = out_.terms().fresh_blank();
-    std::string key = "_:" + std::string(out_.terms()[fresh].value);
-    blank_terms_.emplace(key, fresh);
-    if (!label.empty()) identifiers_.emplace(std::string(label), key);
-    return key;
+    std::string key = "_:";
+    key += out_.terms()[fresh].value;
+    std::string_view stored = blank_terms_.emplace(std::move(key), fresh).first->first;
+    if (!label.empty()) identifiers_.emplace(std::string(label), stored);
+    return stored;
   }
 
   std::string file_of(SourceLoc loc) const {
@@ -261,50 +288,51 @@ class Converter {
     values.push_back(std::move(item));
   }
 
-  // `subject`: the active subject's node-map key, or null. `reverse_subject`:
-  // set instead when a reverse property is being processed.
-  void generate(const json::Value& element, const std::string& graph_name,
-                const std::string* subject, const Item* reverse_subject,
-                const std::string* property, std::vector<Item>* list, SourceLoc subject_where) {
+  // `target`: where values of the active property go (unset: no active
+  // subject or property). `reverse_subject`: set instead when a reverse
+  // property is being processed (then `reverse_property` names it).
+  void generate(const json::Value& element, Graph& graph, std::vector<Item>* list,
+                const Item* reverse_subject, std::string_view reverse_property, Target* target,
+                SourceLoc subject_where) {
     if (element.is_array()) {
       for (const json::Value& item : element.as_array()) {
-        generate(item, graph_name, subject, reverse_subject, property, list, subject_where);
+        generate(item, graph, list, reverse_subject, reverse_property, target, subject_where);
       }
       return;
     }
     if (!element.is_object()) return;  // expansion never leaves free-floating scalars
-    Graph& graph = graphs_[graph_name];
-    Node* subject_node = subject != nullptr ? &graph[*subject] : nullptr;
+    const json::Object& members = element.as_object();
 
-    if (element.get("@value") != nullptr) {
+    if (members.find("@value") != nullptr) {
       Item item{Item::Kind::Value, &element, {}, {}, subject_where};
       if (list != nullptr) {
         list->push_back(std::move(item));
-      } else if (subject_node != nullptr && property != nullptr) {
-        add_to(subject_node->properties[*property], std::move(item));
+      } else if (target != nullptr && *target) {
+        add_to(target->get(), std::move(item));
       }
       return;
     }
-    if (const json::Value* members = element.get("@list")) {
+    if (const json::Value* list_members = members.find("@list")) {
       Item result{Item::Kind::List, nullptr, {}, {}, subject_where};
-      generate(*members, graph_name, subject, reverse_subject, property, &result.list,
+      generate(*list_members, graph, &result.list, reverse_subject, reverse_property, target,
                subject_where);
       if (list != nullptr) {
         list->push_back(std::move(result));
-      } else if (subject_node != nullptr && property != nullptr) {
-        subject_node->properties[*property].push_back(std::move(result));
+      } else if (target != nullptr && *target) {
+        target->get().push_back(std::move(result));
       }
       return;
     }
 
     // A node object.
     const SourceLoc where = node_location(element);
-    std::string id;
-    if (const json::Value* v = element.get("@id")) {
+    std::string_view id;
+    if (const json::Value* v = members.find("@id")) {
       // A non-string @id (only possible for ignored keyword-like values) stays
       // empty: never well-formed, so its triples are dropped.
       if (v->is_string())
-        id = is_blank_id(v->as_string()) ? relabel(v->as_string()) : v->as_string();
+        id = is_blank_id(v->as_string()) ? relabel(v->as_string())
+                                         : std::string_view(v->as_string());
     } else {
       id = relabel({});
     }
@@ -313,25 +341,23 @@ class Converter {
     if (created) node.where = where;
 
     if (reverse_subject != nullptr) {
-      if (property != nullptr) {
+      if (!reverse_property.empty()) {
         Item ref = *reverse_subject;
         ref.where = where;
-        node.properties[*property].push_back(std::move(ref));
+        node.properties[reverse_property].push_back(std::move(ref));
       }
-    } else if (property != nullptr) {
-      Item ref{Item::Kind::Ref, nullptr, id, {}, subject_where};
-      if (list != nullptr) {
-        list->push_back(std::move(ref));
-      } else if (subject_node != nullptr) {
-        subject_node->properties[*property].push_back(std::move(ref));
-      }
+    } else if (list != nullptr) {
+      list->push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
+    } else if (target != nullptr && *target) {
+      target->get().push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
     }
 
-    if (const json::Value* types = element.get("@type")) {
+    if (const json::Value* types = members.find("@type")) {
       auto add_type = [&](const json::Value& t) {
         if (!t.is_string()) return;
-        std::string type = is_blank_id(t.as_string()) ? relabel(t.as_string()) : t.as_string();
-        node.types.emplace_back(std::move(type), where);
+        std::string_view type =
+            is_blank_id(t.as_string()) ? relabel(t.as_string()) : std::string_view(t.as_string());
+        node.types.emplace_back(type, where);
       };
       if (types->is_array()) {
         for (const json::Value& t : types->as_array()) add_type(t);
@@ -340,38 +366,42 @@ class Converter {
       }
     }
 
-    if (const json::Value* index = element.get("@index")) {
+    if (const json::Value* index = members.find("@index")) {
       if (node.index != nullptr && !(*node.index == *index)) {
         SourceLoc at = index->location();
         throw Error("conflicting indexes",
-                    "node <" + id + "> has conflicting @index values " + json::dump(*node.index) +
-                        " and " + json::dump(*index),
+                    "node <" + std::string(id) + "> has conflicting @index values " +
+                        json::dump(*node.index) + " and " + json::dump(*index),
                     file_of(at), at.line, at.column);
       }
       node.index = index;
     }
 
-    if (const json::Value* reverse = element.get("@reverse"); reverse && reverse->is_object()) {
+    if (const json::Value* reverse = members.find("@reverse"); reverse && reverse->is_object()) {
       Item referenced{Item::Kind::Ref, nullptr, id, {}, where};
       const json::Object& map = reverse->as_object();
       for (std::string_view key : map.sorted_keys()) {
-        std::string prop = is_blank_id(key) ? relabel(key) : std::string(key);
-        generate(*map.find(key), graph_name, nullptr, &referenced, &prop, nullptr, where);
+        std::string_view prop = is_blank_id(key) ? relabel(key) : key;
+        generate(*map.find(key), graph, nullptr, &referenced, prop, nullptr, where);
       }
     }
 
-    if (const json::Value* g = element.get("@graph")) {
-      generate(*g, id, nullptr, nullptr, nullptr, nullptr, where);
+    if (const json::Value* g = members.find("@graph")) {
+      generate(*g, graphs_[id], nullptr, nullptr, {}, nullptr, where);
     }
-    if (const json::Value* included = element.get("@included")) {
-      generate(*included, graph_name, nullptr, nullptr, nullptr, nullptr, where);
+    if (const json::Value* included = members.find("@included")) {
+      generate(*included, graph, nullptr, nullptr, {}, nullptr, where);
     }
 
-    const json::Object& members = element.as_object();
-    for (std::string_view key : members.sorted_keys()) {
+    std::vector<size_t> order(members.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&members](size_t a, size_t b) { return members.key(a) < members.key(b); });
+    for (size_t i : order) {
+      std::string_view key = members.key(i);
       if (key.starts_with('@') && is_keyword(key)) continue;
-      std::string prop = is_blank_id(key) ? relabel(key) : std::string(key);
-      generate(*members.find(key), graph_name, &id, nullptr, &prop, nullptr, where);
+      Target values{&node, is_blank_id(key) ? relabel(key) : key, nullptr};
+      generate(members.value(i), graph, nullptr, nullptr, {}, &values, where);
     }
   }
 
@@ -381,18 +411,28 @@ class Converter {
   // The RDF term for a node-map key, or nullopt when it is not well-formed.
   std::optional<rdf::TermId> resource(std::string_view key) {
     if (is_blank_id(key)) {
-      auto it = blank_terms_.find(std::string(key));
+      auto it = blank_terms_.find(key);
       if (it != blank_terms_.end()) return it->second;
       return out_.terms().blank(key.substr(2));
     }
-    if (!is_well_formed_iri(key)) return std::nullopt;
-    return out_.terms().iri(key);
+    auto [it, fresh] = iri_terms_.try_emplace(key, rdf::TermId::any());
+    if (fresh && is_well_formed_iri(key)) it->second = out_.terms().iri(key);
+    if (it->second.is_any()) return std::nullopt;
+    return it->second;
+  }
+
+  // The term of an IRI known to be well-formed (memoised like resource()).
+  rdf::TermId iri_term(std::string_view iri) {
+    auto [it, fresh] = iri_terms_.try_emplace(iri, rdf::TermId::any());
+    if (fresh) it->second = out_.terms().iri(iri);
+    return it->second;
   }
 
   void emit() {
     rdf::TermTable& terms = out_.terms();
     const rdf::TermId rdf_type = terms.iri(rdf_iri("type"));
     for (auto& [graph_name, graph] : graphs_) {
+      if (graph.empty()) continue;  // nothing was put in it
       rdf::TermId graph_term = rdf::TermId::default_graph();
       if (graph_name == "@default") {
         if (!options_.default_graph.empty()) graph_term = terms.iri(options_.default_graph);
@@ -442,7 +482,7 @@ class Converter {
     const json::Value* language = object.get("@language");
     const json::Value* direction = object.get("@direction");
 
-    std::optional<std::string> datatype;
+    std::optional<std::string_view> datatype;
     if (type != nullptr) {
       if (!type->is_string()) return std::nullopt;
       if (type->as_string() != "@json" && !is_well_formed_iri(type->as_string())) {
@@ -455,30 +495,29 @@ class Converter {
       return std::nullopt;
     }
 
-    std::string lexical;
+    std::string lexical_storage;
+    std::string_view lexical;
     if (datatype == "@json") {
-      lexical = json::canonicalize(value);
-      datatype = rdf_iri("JSON");
+      lexical = lexical_storage = json::canonicalize(value);
+      datatype = kRdfJson;
     } else if (value.is_bool()) {
       lexical = value.as_bool() ? "true" : "false";
-      if (!datatype) datatype = xsd_iri("boolean");
+      if (!datatype) datatype = kXsdBoolean;
     } else if (value.is_number()) {
       double d = value.as_number();
       // A JSON *string* typed xsd:double keeps its lexical form; only JSON
       // numbers are put in canonical form.
       if (std::fmod(d, 1.0) != 0 || std::fabs(d) >= 1e21 || !std::isfinite(d) ||
-          datatype == xsd_iri("double")) {
-        lexical = double_lexical(d);
-        if (!datatype) datatype = xsd_iri("double");
+          datatype == kXsdDouble) {
+        lexical = lexical_storage = double_lexical(d);
+        if (!datatype) datatype = kXsdDouble;
       } else {
-        lexical = integer_lexical(d);
-        if (!datatype) datatype = xsd_iri("integer");
+        lexical = lexical_storage = integer_lexical(d);
+        if (!datatype) datatype = kXsdInteger;
       }
     } else if (value.is_string()) {
       lexical = value.as_string();
-      if (!datatype) {
-        datatype = std::string(language != nullptr ? rdf::kRdfLangString : rdf::kXsdString);
-      }
+      if (!datatype) datatype = language != nullptr ? rdf::kRdfLangString : rdf::kXsdString;
     } else {
       return std::nullopt;  // arrays/objects/null need @json; expansion rejects them
     }
@@ -487,7 +526,9 @@ class Converter {
         options_.rdf_direction != RdfDirection::None) {
       std::string lang = language != nullptr ? to_lower(language->as_string()) : std::string();
       if (options_.rdf_direction == RdfDirection::I18nDatatype) {
-        return terms.literal(lexical, std::string(kI18n) + lang + "_" + direction->as_string());
+        std::string dt(kI18n);
+        dt.append(lang).append("_").append(direction->as_string());
+        return terms.literal(lexical, dt);
       }
       rdf::TermId literal = terms.fresh_blank();
       const rdf::TermId xsd_string = terms.iri(rdf::kXsdString);
@@ -502,9 +543,9 @@ class Converter {
       return literal;
     }
     if (language != nullptr) {
-      return terms.literal(lexical, terms.iri(*datatype), language->as_string());
+      return terms.literal(lexical, iri_term(*datatype), language->as_string());
     }
-    return terms.literal(lexical, terms.iri(*datatype));
+    return terms.literal(lexical, iri_term(*datatype));
   }
 
   // List to RDF Conversion (API spec 8.1.4).
@@ -532,9 +573,13 @@ class Converter {
 
   rdf::Dataset& out_;
   const Options& options_;
-  std::map<std::string, Graph> graphs_;                       // ordered by graph name
-  std::unordered_map<std::string, std::string> identifiers_;  // document label -> key
-  std::unordered_map<std::string, rdf::TermId> blank_terms_;  // key -> fresh blank node
+  std::map<std::string_view, Graph> graphs_;  // ordered by graph name
+  // IRI -> its term, TermId::any() when not well-formed.
+  std::unordered_map<std::string_view, rdf::TermId> iri_terms_;
+  // Document label -> key (a view of a blank_terms_ key).
+  std::unordered_map<std::string, std::string_view, StringHash, std::equal_to<>> identifiers_;
+  // Key -> fresh blank node (node-based: the keys never move).
+  std::unordered_map<std::string, rdf::TermId, StringHash, std::equal_to<>> blank_terms_;
 };
 
 }  // namespace
