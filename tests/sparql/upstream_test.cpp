@@ -18,7 +18,6 @@ namespace fs = std::filesystem;
 const fs::path kShared = MOSPEC_SHARED_DIR;
 const fs::path kMetamodels = kShared / "upstream/motion-spec-ral/comp-rob2b/metamodels";
 constexpr std::string_view kSh = "http://www.w3.org/ns/shacl#";
-constexpr std::string_view kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
 
 std::string read(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
