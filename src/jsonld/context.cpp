@@ -526,16 +526,23 @@ bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* state) {
   return true;
 }
 
-// One Dep per term (a full answer wins over a weak one), in a stable order.
+// One Dep per term (a full answer wins over a weak one), in first-lookup order.
 std::vector<detail::Dep> unique_deps(std::vector<detail::Dep> deps) {
-  std::stable_sort(deps.begin(), deps.end(), [](const detail::Dep& a, const detail::Dep& b) {
-    return a.term != b.term ? a.term < b.term : (!a.weak && b.weak);
-  });
-  auto last = std::unique(deps.begin(), deps.end(), [](const detail::Dep& a, const detail::Dep& b) {
-    return a.term == b.term;
-  });
-  deps.erase(last, deps.end());
-  return deps;
+  std::unordered_map<std::string_view, size_t> at;  // views of out's terms
+  at.reserve(deps.size());
+  std::vector<detail::Dep> out;
+  out.reserve(deps.size());  // never reallocates, so the views stay valid
+  for (detail::Dep& d : deps) {
+    auto it = at.find(d.term);
+    if (it == at.end()) {
+      out.push_back(std::move(d));
+      at.emplace(out.back().term, out.size() - 1);
+    } else if (out[it->second].weak && !d.weak) {
+      out[it->second].weak = false;
+      out[it->second].def = std::move(d.def);
+    }
+  }
+  return out;
 }
 
 // Applies a cached Delta to `b` (whose state the Delta's deps hold on) and

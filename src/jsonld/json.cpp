@@ -271,11 +271,8 @@ class Parser {
       if (c == '}') {
         ++pos_;
         Object obj;
-        obj.reserve(members.size());
-        for (Object::Member& m : members) {
-          obj.append_new(std::move(m.key), std::move(m.value));
-          obj.set_key_location(obj.size() - 1, m.key_loc);
-        }
+        obj.append_members(std::make_move_iterator(members.begin()),
+                           std::make_move_iterator(members.end()));
         members.clear();
         return Value(std::move(obj));
       }

@@ -44,6 +44,11 @@ class Object {
 
   // One member; members are kept together so that an object is one allocation.
   struct Member;
+  // Appends members whose keys are unique and new to this object.
+  template <class It>
+  void append_members(It first, It last) {
+    members_.insert(members_.end(), first, last);
+  }
 
  private:
   std::vector<Member> members_;
