@@ -498,7 +498,14 @@ class Converter {
     std::string lexical_storage;
     std::string_view lexical;
     if (datatype == "@json") {
-      lexical = lexical_storage = json::canonicalize(value);
+      try {
+        lexical = lexical_storage = json::canonicalize(value);
+      } catch (const Error& e) {
+        // canonicalize() knows the line and column, not the file.
+        const Diagnostic& d = e.diagnostic();
+        throw Error(e.code(), d.message, d.file.empty() ? file_of(value.location()) : d.file,
+                    d.line, d.column);
+      }
       datatype = kRdfJson;
     } else if (value.is_bool()) {
       lexical = value.as_bool() ? "true" : "false";

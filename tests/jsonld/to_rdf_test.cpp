@@ -211,6 +211,28 @@ TEST(ToRdf, ConflictingIndexesAreAnError) {
                mospec::Error);
 }
 
+// A @json literal holding a number JSON cannot write (1e400 overflows to
+// Infinity) is an error located at file:line:col.
+TEST(LoadInto, UncanonicalisableJsonLiteralIsLocated) {
+  mospec::jsonld::MappedDocumentLoader loader;
+  const uint32_t id = loader.files().add("inf.jsonld");
+  Options options;
+  options.loader = &loader;
+  rdf::Dataset d;
+  try {
+    mospec::jsonld::load_into(json::parse("{\"@id\": \"http://ex/s\",\n"
+                                          " \"http://ex/p\": {\"@value\": [1e400], "
+                                          "\"@type\": \"@json\"}}",
+                                          id, "inf.jsonld"),
+                              d, options);
+    FAIL() << "expected an error";
+  } catch (const mospec::Error& e) {
+    EXPECT_EQ(e.diagnostic().file, "inf.jsonld");
+    EXPECT_EQ(e.diagnostic().line, 2u);
+    EXPECT_EQ(e.diagnostic().column, 29u);  // the number
+  }
+}
+
 // load_into = expand + to_rdf, through a document with a context.
 TEST(LoadInto, ExpandsThenConverts) {
   Options options;
