@@ -268,6 +268,39 @@ TEST(Achd, GravityCompensationHoldsStill) {
   EXPECT_TRUE(near(Eigen::VectorXd(data.tau), g_comp, 1e-9));
 }
 
+// beta's documented meaning, checked from outside the solver: differentiate
+// the tip twist J(q) qd numerically along the solved motion. With
+// [ω; v_To] = J qd, the tip's spatial acceleration is [ω̇; p̈_To - ω × v_To]
+// (p̈_To = d/dt v_To), and alpha^T of it must be beta: gravity is not in it.
+TEST(Achd, BetaConstrainsThePhysicalSpatialAccelerationOfTheTip) {
+  const Robot r = toy();
+  const AchdModel model(r.chain);
+  AchdData data(model), kin(model);
+  std::mt19937 rng(13);
+  for (int trial = 0; trial < 10; ++trial) {
+    const auto s = testing::random_state(rng, model.nq);
+    const auto alpha = testing::random_alpha(rng, 4, trial % 2 == 0);
+    const Eigen::Vector4d beta(0.3, -1.2, 2.0, 0.7);
+    ASSERT_EQ(achd(model, data, s.q, s.qd, s.tau, s.F_ext, alpha, beta), Status::Ok);
+    const Eigen::VectorXd qdd = data.qdd;
+    const auto twist_at = [&](double t) {
+      const Eigen::VectorXd q = s.q + s.qd * t + 0.5 * qdd * t * t;
+      const Eigen::VectorXd qd = s.qd + qdd * t;
+      tip_jacobian(model, kin, q);
+      return Vec6(kin.J_To_B * qd);
+    };
+    // Central differences with one Richardson step: error O(h^4).
+    const auto central = [&](double h) { return Vec6((twist_at(h) - twist_at(-h)) / (2.0 * h)); };
+    const double h = 1e-4;
+    const Vec6 V = twist_at(0.0);
+    const Vec6 dV = (4.0 * central(h / 2) - central(h)) / 3.0;
+    Vec6 A;
+    A << dV.head<3>(), dV.tail<3>() - V.head<3>().cross(V.tail<3>());
+    EXPECT_TRUE(near(Eigen::VectorXd(alpha.transpose() * A), Eigen::VectorXd(beta), 1e-7))
+        << "trial " << trial;
+  }
+}
+
 TEST(Achd, SingularConstraintsDegradeAndKeepTheFeasibleOnes) {
   const Robot r = toy();
   const AchdModel model(r.chain);
