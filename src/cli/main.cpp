@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
   std::vector<std::pair<CLI::App*, Action>> commands;
   Action rdf = add_rdf_command(app);
   commands.emplace_back(app.get_subcommand("rdf"), rdf);
+  Action validate = add_validate_command(app);
+  commands.emplace_back(app.get_subcommand("validate"), validate);
 
   try {
     app.parse(argc, argv);

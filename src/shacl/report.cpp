@@ -5,6 +5,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "jsonld/json.hpp"
 #include "shacl/vocab.hpp"
 
 namespace mospec::shacl {
@@ -341,6 +342,112 @@ rdf::Dataset to_dataset(const Report& report) {
     if (r.path) add(node, iri(vocab::resultPath), path(*r.path));
   }
   return ds;
+}
+
+namespace {
+
+// JSON-LD for one term of the report: {"@id"} for IRIs and blank nodes,
+// a value object for literals (xsd:string without "@type").
+json::Value jsonld_term(const rdf::TermTable& t, TermId id) {
+  const rdf::Term& term = t[id];
+  json::Object o;
+  if (term.is_iri()) {
+    o.set("@id", json::Value(std::string(term.value)));
+  } else if (term.is_blank()) {
+    o.set("@id", json::Value("_:" + std::string(term.value)));
+  } else {
+    o.set("@value", json::Value(std::string(term.value)));
+    if (!term.language.empty()) {
+      o.set("@language", json::Value(std::string(term.language)));
+      if (!term.direction.empty()) o.set("@direction", json::Value(std::string(term.direction)));
+    } else if (t[term.datatype].value != "http://www.w3.org/2001/XMLSchema#string") {
+      o.set("@type", json::Value(std::string(t[term.datatype].value)));
+    }
+  }
+  return json::Value(std::move(o));
+}
+
+json::Value sh_id(std::string_view iri) {
+  json::Object o;
+  std::string compact = "sh:";
+  compact.append(iri.substr(vocab::kSh.size()));
+  o.set("@id", json::Value(std::move(compact)));
+  return json::Value(std::move(o));
+}
+
+json::Value jsonld_path(const rdf::TermTable& t, const sparql::Path& p) {
+  using K = sparql::Path::Kind;
+  auto list = [&](const std::vector<sparql::PathPtr>& items) {
+    json::Array a;
+    for (const auto& item : items) a.push_back(jsonld_path(t, *item));
+    json::Object o;
+    o.set("@list", json::Value(std::move(a)));
+    return json::Value(std::move(o));
+  };
+  auto wrapped = [&](std::string_view predicate, json::Value inner) {
+    json::Object o;
+    std::string key = "sh:";
+    key.append(predicate.substr(vocab::kSh.size()));
+    o.set(std::move(key), std::move(inner));
+    return json::Value(std::move(o));
+  };
+  switch (p.kind) {
+    case K::Predicate:
+      return jsonld_term(t, p.predicate);
+    case K::Sequence:
+      return list(p.items);
+    case K::Alternative:
+      return wrapped(vocab::alternativePath, list(p.items));
+    case K::Inverse:
+      return wrapped(vocab::inversePath, jsonld_path(t, *p.items[0]));
+    case K::ZeroOrMore:
+      return wrapped(vocab::zeroOrMorePath, jsonld_path(t, *p.items[0]));
+    case K::OneOrMore:
+      return wrapped(vocab::oneOrMorePath, jsonld_path(t, *p.items[0]));
+    case K::ZeroOrOne:
+      return wrapped(vocab::zeroOrOnePath, jsonld_path(t, *p.items[0]));
+    case K::NegatedSet:
+      break;
+  }
+  return json::Value(json::Object{});
+}
+
+}  // namespace
+
+std::string to_jsonld(const Report& report) {
+  const rdf::TermTable& t = report.terms;
+  json::Object context;
+  context.set("sh", json::Value(std::string(vocab::kSh)));
+  context.set("xsd", json::Value(std::string(vocab::kXsd)));
+  json::Object root;
+  root.set("@context", json::Value(std::move(context)));
+  root.set("@type", json::Value("sh:ValidationReport"));
+  root.set("sh:conforms", json::Value(report.conforms()));
+  json::Array results;
+  for (const Result& r : report.results) {
+    json::Object o;
+    o.set("@type", json::Value("sh:ValidationResult"));
+    o.set("sh:focusNode", jsonld_term(t, r.focus));
+    if (r.path) o.set("sh:resultPath", jsonld_path(t, *r.path));
+    if (!r.value.is_any()) o.set("sh:value", jsonld_term(t, r.value));
+    json::Array messages;
+    for (TermId m : r.messages) messages.push_back(jsonld_term(t, m));
+    if (r.messages.empty() && !r.default_message.empty()) {
+      json::Object m;
+      m.set("@value", json::Value(r.default_message));
+      messages.push_back(json::Value(std::move(m)));
+    }
+    if (!messages.empty()) o.set("sh:resultMessage", json::Value(std::move(messages)));
+    o.set("sh:resultSeverity",
+          r.level == Level::Other ? jsonld_term(t, r.severity) : sh_id(severity_iri(r.level)));
+    o.set("sh:sourceConstraintComponent", sh_id(component_iri(r.component)));
+    if (!r.source_constraint.is_any())
+      o.set("sh:sourceConstraint", jsonld_term(t, r.source_constraint));
+    o.set("sh:sourceShape", jsonld_term(t, r.shape));
+    results.push_back(json::Value(std::move(o)));
+  }
+  if (!results.empty()) root.set("sh:result", json::Value(std::move(results)));
+  return json::dump(json::Value(std::move(root)), 2) + "\n";
 }
 
 }  // namespace mospec::shacl

@@ -54,6 +54,11 @@ std::string to_turtle(const Report& report);
 std::string to_text(const Report& report, const SourceFiles* data_files,
                     const SourceFiles* shape_files = nullptr);
 
+// The report graph as JSON-LD: one node object with a small context ("sh",
+// "xsd"), results nested in report order, blank-node focus nodes as "_:"
+// identifiers. Deterministic for a sorted report.
+std::string to_jsonld(const Report& report);
+
 // The report graph as a dataset (for comparisons, e.g. the W3C test suite).
 rdf::Dataset to_dataset(const Report& report);
 

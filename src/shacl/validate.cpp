@@ -111,6 +111,13 @@ class Validator {
     return render(raw);
   }
 
+  std::vector<size_t> focus_counts() {
+    std::vector<size_t> out(shapes_.shapes().size(), 0);
+    for (uint32_t i = 0; i < shapes_.shapes().size(); ++i)
+      if (shapes_[i].has_targets()) out[i] = focus_nodes(shapes_[i]).size();
+    return out;
+  }
+
  private:
   // The validation id of a term of extra_.
   TermId outside(TermId x) {
@@ -833,6 +840,11 @@ class Validator {
 
 Report validate(const Shapes& shapes, const rdf::Dataset& data, const ValidateOptions& options) {
   return Validator(shapes, data, options).run();
+}
+
+std::vector<size_t> count_focus_nodes(const Shapes& shapes, const rdf::Dataset& data) {
+  ValidateOptions options;
+  return Validator(shapes, data, options).focus_counts();
 }
 
 }  // namespace mospec::shacl

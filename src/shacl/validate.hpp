@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "rdf/dataset.hpp"
 #include "shacl/report.hpp"
@@ -26,5 +27,11 @@ struct ValidateOptions {
 // naming the shape cycle and the focus node.
 Report validate(const Shapes& shapes, const rdf::Dataset& data,
                 const ValidateOptions& options = {});
+
+// For each shape (indexed as shapes.shapes()): how many focus nodes its
+// targets select in `data` (0 for shapes without targets). Deactivated shapes
+// are counted too. `mospec validate --strict` reports shapes with targets that
+// select nothing.
+std::vector<size_t> count_focus_nodes(const Shapes& shapes, const rdf::Dataset& data);
 
 }  // namespace mospec::shacl

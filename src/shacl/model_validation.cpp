@@ -1,0 +1,318 @@
+#include "shacl/model_validation.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <functional>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "jsonld/context.hpp"
+#include "jsonld/to_rdf.hpp"
+#include "rdf/nquads.hpp"
+#include "rdf/turtle.hpp"
+#include "shacl/validate.hpp"
+#include "shacl/vocab.hpp"
+#include "support/io.hpp"
+
+namespace mospec::shacl {
+
+namespace fs = std::filesystem;
+using rdf::TermId;
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+std::string file_url(const std::string& path) {
+  std::error_code ec;
+  fs::path abs = fs::weakly_canonical(fs::absolute(path), ec);
+  return "file://" + abs.generic_string();
+}
+
+// An Error re-issued at `at` (a location in the model's files) when it has no
+// location of its own.
+[[noreturn]] void rethrow_at(const Error& e, const SourceFiles& files, SourceLoc at,
+                             const std::string& prefix) {
+  const Diagnostic& d = e.diagnostic();
+  if (!d.file.empty() && d.line != 0) throw e;
+  std::string message = prefix;
+  message += d.message;
+  if (at.known()) throw Error(e.code(), message, files.path(at.file), at.line, at.column);
+  throw Error(e.code(), message);
+}
+
+}  // namespace
+
+ShapeSyntax shape_syntax(const std::string& path, std::string_view content) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".ttl" || ext == ".turtle") return ShapeSyntax::Turtle;
+  if (ext == ".trig") return ShapeSyntax::TriG;
+  if (ext == ".nt" || ext == ".nq") return ShapeSyntax::NQuads;
+  if (ext == ".json" || ext == ".jsonld") return ShapeSyntax::JsonLd;
+  for (char c : content) {
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r') continue;
+    return c == '{' || c == '[' ? ShapeSyntax::JsonLd : ShapeSyntax::Turtle;
+  }
+  return ShapeSyntax::Turtle;
+}
+
+void read_shape_file(const ShapeFile& file, jsonld::MappedDocumentLoader& loader,
+                     rdf::Dataset& into, DiagnosticSink* diagnostics) {
+  SourceFiles& files = loader.files();
+  const std::string what = "shape file '" + file.path + "'" +
+                           (file.iri.empty() ? std::string() : " (<" + file.iri + ">)") + ": ";
+  std::string text;
+  try {
+    text = read_file(file.path);
+  } catch (const Error& e) {
+    // read_file names the path; say which shape file it was and where it is named.
+    const std::string& m = e.diagnostic().message;
+    Error plain("io", "cannot read shape file" +
+                          (file.iri.empty() ? std::string() : " <" + file.iri + ">") + ": " + m);
+    rethrow_at(plain, files, file.named_at, "");
+  }
+  const std::string base = file.iri.empty() ? file_url(file.path) : file.iri;
+  const ShapeSyntax syntax = shape_syntax(file.path, text);
+  if (syntax == ShapeSyntax::JsonLd) {
+    jsonld::RemoteDocument doc = loader.load_file(file.path, base);
+    jsonld::Options opts;
+    opts.base = doc.document_url;
+    opts.loader = &loader;
+    opts.diagnostics = diagnostics;
+    try {
+      jsonld::load_into(*doc.document, into, opts);
+    } catch (const Error& e) {
+      rethrow_at(e, files, file.named_at, what);
+    }
+    return;
+  }
+  const uint32_t id = files.add(file.path);
+  switch (syntax) {
+    case ShapeSyntax::Turtle:
+      rdf::read_turtle(text, base, into, id, file.path);
+      break;
+    case ShapeSyntax::TriG:
+      rdf::read_trig(text, base, into, id, file.path);
+      break;
+    default:
+      rdf::read_nquads(text, into, id, file.path);
+      break;
+  }
+}
+
+std::vector<ShapeFile> shape_files(app::LoadedModel& model, const std::vector<std::string>& extra,
+                                   bool use_app_constraints) {
+  std::vector<ShapeFile> out;
+  std::unordered_set<std::string> seen;
+  if (use_app_constraints) {
+    // Where each constraints IRI is written: the app node's constraints quad.
+    const rdf::Dataset& ds = model.dataset();
+    const rdf::TermTable& t = ds.terms();
+    TermId constraints_p = t.find_iri(std::string(app::kAppNs) + "constraints");
+    auto named_at = [&](const std::string& iri) {
+      SourceLoc loc;
+      TermId o = t.find_iri(iri);
+      if (constraints_p.is_any() || o.is_any()) return loc;
+      ds.scan(TermId::any(), constraints_p, o, TermId::any(), [&](const rdf::Quad&, uint32_t i) {
+        loc = ds.location(i);
+        return !loc.known();
+      });
+      return loc;
+    };
+    for (const app::AppInfo& info : model.apps()) {
+      for (const std::string& iri : info.constraints) {
+        if (!seen.insert(iri).second) continue;
+        SourceLoc at = named_at(iri);
+        std::string path = model.loader().resolve(iri);
+        if (path.empty()) {
+          std::string message = "shape file <" + iri +
+                                "> is not mapped to a local path (add an iri-map entry to " +
+                                info.file + " or pass --map IRI=DIR)";
+          if (at.known())
+            throw Error("io", message, model.files().path(at.file), at.line, at.column);
+          throw Error("io", message);
+        }
+        out.push_back(ShapeFile{path, iri, at});
+      }
+    }
+  }
+  for (const std::string& path : extra) {
+    if (!seen.insert("file:" + path).second) continue;
+    out.push_back(ShapeFile{path, std::string(), SourceLoc{}});
+  }
+  return out;
+}
+
+// ---- strict checks ---------------------------------------------------------
+
+std::vector<std::string> context_term_iris(app::LoadedModel& model) {
+  jsonld::MappedDocumentLoader& loader = model.loader();
+  jsonld::Options opts;
+  opts.loader = &loader;
+  opts.context_cache = std::make_shared<jsonld::ContextCache>();
+  std::unordered_set<std::string> iris;
+  std::unordered_set<const jsonld::ActiveContext*> visited;
+  std::unordered_set<std::string> scoped;
+
+  // Terms of an active context and of the scoped contexts its definitions hold.
+  std::function<void(const jsonld::ContextPtr&, int)> collect = [&](const jsonld::ContextPtr& ctx,
+                                                                    int depth) {
+    if (!ctx || !visited.insert(ctx.get()).second) return;
+    for (const std::string& term : ctx->terms()) {
+      const jsonld::TermDefinition* def = ctx->find(term);
+      if (def == nullptr) continue;
+      if (def->iri) iris.insert(*def->iri);
+      // Each distinct scoped context once (they nest and repeat, so walking
+      // every definition's context would grow exponentially).
+      if (def->local_context && depth < 8 &&
+          scoped.insert(json::dump(*def->local_context) + '\n' + def->base_url).second) {
+        try {
+          collect(
+              jsonld::process_context(ctx, *def->local_context,
+                                      def->base_url.empty() ? ctx->base() : def->base_url, opts),
+              depth + 1);
+        } catch (const Error&) {
+          // A scoped context that does not process contributes no terms; the
+          // loader reported anything wrong with it when the model was read.
+        }
+      }
+    }
+  };
+  // Every @context entry of a document, each processed from an initial context.
+  std::function<void(const json::Value&, const std::string&)> walk = [&](const json::Value& v,
+                                                                         const std::string& base) {
+    if (v.is_array()) {
+      for (const json::Value& item : v.as_array()) walk(item, base);
+      return;
+    }
+    if (!v.is_object()) return;
+    const json::Object& o = v.as_object();
+    for (size_t i = 0; i < o.size(); ++i) {
+      if (o.key(i) == "@context") {
+        try {
+          collect(jsonld::process_context(jsonld::ActiveContext::initial(base, opts), o.value(i),
+                                          base, opts),
+                  0);
+        } catch (const Error&) {
+        }
+      } else {
+        walk(o.value(i), base);
+      }
+    }
+  };
+  for (const app::ModelFile& file : model.model_files()) {
+    try {
+      jsonld::RemoteDocument doc = loader.load_file(file.path, file.iri);
+      walk(*doc.document, doc.document_url);
+    } catch (const Error&) {
+    }
+  }
+  std::vector<std::string> out(iris.begin(), iris.end());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& shapes) {
+  std::vector<Diagnostic> out;
+  const SourceFiles& files = model.files();
+  auto located = [&](SourceLoc loc, std::string code, std::string message) {
+    Diagnostic d;
+    d.severity = Severity::Warning;
+    if (loc.known()) {
+      d.file = files.path(loc.file);
+      d.line = loc.line;
+      d.column = loc.column;
+    }
+    d.code = std::move(code);
+    d.message = std::move(message);
+    return d;
+  };
+
+  // Shapes with targets that select nothing.
+  const rdf::Dataset& data = model.dataset();
+  std::vector<size_t> counts = count_focus_nodes(shapes, data);
+  for (uint32_t i = 0; i < shapes.shapes().size(); ++i) {
+    const Shape& s = shapes[i];
+    if (!s.has_targets() || s.deactivated || counts[i] != 0) continue;
+    out.push_back(located(
+        s.where, "shape-unused",
+        "shape " + shapes.describe(i) + " has targets but selects no focus node in the model"));
+  }
+
+  // rdf:type values that nothing defines.
+  std::unordered_set<std::string> defined;
+  for (std::string& iri : context_term_iris(model)) defined.insert(std::move(iri));
+  const rdf::Dataset& sg = shapes.graph();
+  const rdf::TermTable& st = sg.terms();
+  for (const rdf::Quad& q : sg.quads())
+    if (st[q.subject].is_iri()) defined.insert(std::string(st[q.subject].value));
+  for (std::string_view p : {vocab::targetClass, vocab::sh_class}) {
+    TermId pid = st.find_iri(p);
+    if (pid.is_any()) continue;
+    sg.scan(TermId::any(), pid, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      if (st[q.object].is_iri()) defined.insert(std::string(st[q.object].value));
+      return true;
+    });
+  }
+  const rdf::TermTable& dt = data.terms();
+  TermId type = dt.find_iri(vocab::rdf_type);
+  if (!type.is_any()) {
+    struct Use {
+      SourceLoc first;
+      size_t count = 0;
+    };
+    std::unordered_map<uint32_t, Use> uses;
+    std::vector<TermId> order;
+    data.scan(
+        TermId::any(), type, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
+          const rdf::Term& o = dt[q.object];
+          if (!o.is_iri() || defined.count(std::string(o.value)) != 0) return true;
+          auto [it, fresh] = uses.try_emplace(q.object.index);
+          if (fresh) order.push_back(q.object);
+          ++it->second.count;
+          SourceLoc loc = data.location(i);
+          SourceLoc& first = it->second.first;
+          if (loc.known() && (!first.known() || std::tie(loc.file, loc.line, loc.column) <
+                                                    std::tie(first.file, first.line, first.column)))
+            first = loc;
+          return true;
+        });
+    for (TermId t : order) {
+      const Use& u = uses[t.index];
+      std::string message = "type <" + std::string(dt[t].value) +
+                            "> is defined by no loaded JSON-LD context or shape (used " +
+                            std::to_string(u.count) + (u.count == 1 ? " time)" : " times)");
+      out.push_back(located(u.first, "undefined-type", std::move(message)));
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [&](const Diagnostic& a, const Diagnostic& b) {
+    return std::tie(a.file, a.line, a.column, a.message) <
+           std::tie(b.file, b.line, b.column, b.message);
+  });
+  return out;
+}
+
+// ---- the pipeline ----------------------------------------------------------
+
+ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOptions& options) {
+  ModelValidation out;
+  out.files = shape_files(model, options.extra_shapes, options.use_app_constraints);
+  if (out.files.empty())
+    throw Error("usage",
+                "no shapes to validate against: the app names no constraints; pass --shapes FILE");
+  out.shapes_graph = std::make_unique<rdf::Dataset>();
+  for (const ShapeFile& f : out.files)
+    read_shape_file(f, model.loader(), *out.shapes_graph, &out.shape_diagnostics);
+  out.shapes = std::make_unique<Shapes>(Shapes::compile(*out.shapes_graph, &model.files()));
+  out.report = validate(*out.shapes, model.dataset());
+  if (options.strict) out.strict_findings = strict_checks(model, *out.shapes);
+  return out;
+}
+
+}  // namespace mospec::shacl

@@ -1,0 +1,88 @@
+// Validating a loaded app model: the shape files it names (or that the caller
+// adds) are read into one shapes graph, compiled, and the model's dataset is
+// validated against them. This is what `mospec validate` runs, kept in a
+// library so tests and benchmarks run the very same pipeline in-process.
+//
+// Shape files share the model's SourceFiles table, so every location (data,
+// shapes, errors) prints as file:line:col.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/app.hpp"
+#include "rdf/dataset.hpp"
+#include "shacl/report.hpp"
+#include "shacl/shapes.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::shacl {
+
+// One shape file to read.
+struct ShapeFile {
+  std::string path;    // local path
+  std::string iri;     // base IRI for relative references inside it
+  SourceLoc named_at;  // where an app file names it (unknown for --shapes)
+};
+
+// The syntax of a shape file, from its extension (.ttl/.turtle, .trig,
+// .nt/.nq, .json/.jsonld); other extensions are sniffed: a first
+// non-blank '{' or '[' means JSON-LD, anything else Turtle.
+enum class ShapeSyntax : uint8_t { Turtle, TriG, NQuads, JsonLd };
+ShapeSyntax shape_syntax(const std::string& path, std::string_view content);
+
+// Reads one shape file into `into`, registering it in loader.files() so its
+// quads are located. A missing, unreadable or ill-formed file throws
+// mospec::Error (located at the syntax error, or at `named_at` when the file
+// cannot be read). JSON-LD shape files go through `loader` (contexts resolve
+// through its IRI mappings) and report dropped keys to `diagnostics`.
+void read_shape_file(const ShapeFile& file, jsonld::MappedDocumentLoader& loader,
+                     rdf::Dataset& into, DiagnosticSink* diagnostics = nullptr);
+
+// The shape files of a loaded model: every app's `constraints` IRIs resolved
+// through its iri-map (in order, duplicates once), then `extra` local paths
+// (the CLI's --shapes). An IRI that no mapping covers throws mospec::Error
+// located at the app file's constraints entry.
+std::vector<ShapeFile> shape_files(app::LoadedModel& model, const std::vector<std::string>& extra,
+                                   bool use_app_constraints = true);
+
+struct ModelValidationOptions {
+  std::vector<std::string> extra_shapes;  // local paths (--shapes)
+  bool use_app_constraints = true;        // read the apps' `constraints` lists
+  bool strict = false;                    // compute strict_findings
+};
+
+struct ModelValidation {
+  std::vector<ShapeFile> files;                // the shape files read, in order
+  std::unique_ptr<rdf::Dataset> shapes_graph;  // owned: `shapes` points into it
+  std::unique_ptr<Shapes> shapes;
+  Report report;
+  // Under `strict`: shapes whose targets select no node ("shape-unused"),
+  // rdf:type values that nothing defines ("undefined-type"), as warnings.
+  std::vector<Diagnostic> strict_findings;
+  // Loader-style warnings raised while reading JSON-LD shape files.
+  DiagnosticSink shape_diagnostics;
+};
+
+// The whole pipeline on a loaded model: read shape files, compile (ill-formed
+// shapes throw mospec::Error "shacl-ill-formed", located), validate every graph
+// of the model's dataset as one graph. No shape files at all throws
+// mospec::Error "usage".
+ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOptions& options);
+
+// Strict checks (also run by validate_model under `strict`).
+//  * shape-unused: a shape with targets (sh:targetClass etc., or implicit
+//    class targets) that selects no focus node in the data.
+//  * undefined-type: an IRI used as an rdf:type object in the data that is
+//    "defined" by nothing loaded. Defined means: some term of a JSON-LD
+//    context used by the model's files (their @context entries, the remote
+//    contexts those load, and the scoped contexts inside their term
+//    definitions) maps to exactly that IRI; or the shapes graph mentions it
+//    as a subject or as the object of sh:targetClass or sh:class.
+std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& shapes);
+
+// Every IRI that a term of the model files' JSON-LD contexts maps to.
+std::vector<std::string> context_term_iris(app::LoadedModel& model);
+
+}  // namespace mospec::shacl
