@@ -72,9 +72,12 @@ void read_shape_file(const ShapeFile& file, jsonld::MappedDocumentLoader& loader
     text = read_file(file.path);
   } catch (const Error& e) {
     // read_file names the path; say which shape file it was and where it is named.
-    const std::string& m = e.diagnostic().message;
-    Error plain("io", "cannot read shape file" +
-                          (file.iri.empty() ? std::string() : " <" + file.iri + ">") + ": " + m);
+    std::string m = e.diagnostic().message;
+    if (m.rfind("cannot read ", 0) == 0) m.erase(0, 12);
+    std::string message = "cannot read shape file ";
+    message += m;
+    if (!file.iri.empty()) message.append(" (named as <").append(file.iri).append(">)");
+    Error plain("io", message);
     rethrow_at(plain, files, file.named_at, "");
   }
   const std::string base = file.iri.empty() ? file_url(file.path) : file.iri;

@@ -858,7 +858,33 @@ class ShapesCompiler {
       const std::string_view prebound[] = {"this", "currentShape"};
       query->check_prebinding(prebound);
     } catch (const sparql::QueryError& e) {
-      fail(self, select.where, where_query(e.what()));
+      // Point into the shapes file: the quad is located just past the sh:select
+      // literal, so a long string (""""..."""" with its newlines written out) starts
+      // as many lines above as its value holds newlines; query line L is then
+      // file line start + L - 1 (same column for L > 1). Written with escapes,
+      // the estimate would be off, so the message also keeps the query position
+      // and where the sh:select is written.
+      std::string_view original = t_[select.object].value;
+      const auto newlines =
+          static_cast<uint32_t>(std::count(original.begin(), original.end(), '\n'));
+      SourceLoc at = select.where;
+      if (at.known() && e.line() != 0 && newlines < at.line && e.line() <= newlines + 1) {
+        at.line = at.line - newlines + (e.line() - 1);
+        at.column = e.line() > 1 ? e.column() : 0;
+      }
+      std::string what = "line " + std::to_string(e.line());
+      what += ", column " + std::to_string(e.column());
+      what += " of the query";
+      const std::string literal_at = describe_location(out_.files_, select.where);
+      if (!literal_at.empty()) what += " (sh:select ending at " + literal_at + ")";
+      what += ": ";
+      // The parser's message starts with its own "line L, column C: ".
+      std::string_view message = e.diagnostic().message;
+      if (size_t colon = message.find(": ");
+          message.rfind("line ", 0) == 0 && colon != std::string_view::npos)
+        message.remove_prefix(colon + 2);
+      what += message;
+      fail(self, at, where_query(what));
     }
     auto c = std::make_shared<SparqlConstraint>(SparqlConstraint{v.object, *query, {}, false});
     c->binds_current_shape = c->query.mentions("currentShape");
