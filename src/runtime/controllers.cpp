@@ -1,6 +1,7 @@
 #include "runtime/controllers.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -31,10 +32,27 @@ double decay_phi1(double a) noexcept {
   return -std::expm1(-a) / a;
 }
 
+namespace {
+// Taylor coefficients of φ2: (-1)^n (n+1) / (n+2)!, n = 0..17. At a = 1 the
+// first omitted term is below 1e-17.
+constexpr std::array<double, 18> kPhi2Series = [] {
+  std::array<double, 18> c{};
+  double factorial = 2.0;  // (n+2)!
+  for (int n = 0; n < 18; ++n) {
+    if (n > 0) factorial *= n + 2;
+    c[n] = (n % 2 == 0 ? 1.0 : -1.0) * (n + 1) / factorial;
+  }
+  return c;
+}();
+}  // namespace
+
 double decay_phi2(double a) noexcept {
-  if (a < 1e-2) {
-    // Σ_{n>=2} (-1)^n (n-1)/n! a^(n-2); the first omitted term is a^5/840.
-    return 0.5 + a * (-1.0 / 3.0 + a * (1.0 / 8.0 + a * (-1.0 / 30.0 + a * (1.0 / 144.0))));
+  if (a < 1.0) {
+    // The closed form cancels catastrophically for small a (1 - (1+a)e^{-a}
+    // is about a²/2); the series does not.
+    double sum = 0.0;
+    for (int n = 17; n >= 0; --n) sum = sum * a + kPhi2Series[n];
+    return sum;
   }
   return (-std::expm1(-a) - a * std::exp(-a)) / (a * a);
 }

@@ -88,7 +88,8 @@ enum class PidStatus : int8_t {
 double decay_rate_from_factor_per_tick(double factor, double period) noexcept;
 
 // φ1(a) = (1 - e^{-a})/a and φ2(a) = (1 - (1 + a) e^{-a})/a², a >= 0, with their
-// limits 1 and 1/2 at a = 0 (no cancellation for small a).
+// limits 1 and 1/2 at a = 0; accurate to a few ulp for every a (φ2 by its
+// Taylor series below a = 1, where the closed form cancels).
 double decay_phi1(double a) noexcept;
 double decay_phi2(double a) noexcept;
 
