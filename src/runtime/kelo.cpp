@@ -162,6 +162,13 @@ const KeloDriveVector& kelo_hub_torques(const KeloModel& model, KeloData& data) 
 
 const KeloDriveVector& kelo_force_step(const KeloModel& model, KeloData& data, const Vec4& q_pivot,
                                        const Vec3& F_p) noexcept {
+  data.input_fault = !q_pivot.allFinite() || !F_p.allFinite();
+  if (data.input_fault) {
+    data.F_d.setZero();
+    data.f_wheel.setZero();
+    data.tau_wheel.setZero();
+    return data.tau_wheel;
+  }
   kelo_set_pivots(model, data, q_pivot);
   kelo_alignment_reference(model, data, F_p);
   kelo_distribute(model, data, F_p, data.F_d_ref);

@@ -168,6 +168,9 @@ struct KeloData {
   double alpha = 0.0;
   KeloDriveVector F_d = KeloDriveVector::Zero();  // the distributed drive forces [N]
 
+  // kelo_force_step: the last tick's inputs were not finite (zero command).
+  bool input_fault = false;
+
   // kelo_hub_torques
   KeloDriveVector f_wheel = KeloDriveVector::Zero();    // traction forces [N]
   KeloDriveVector tau_wheel = KeloDriveVector::Zero();  // hub torques [N·m]
@@ -211,7 +214,10 @@ const KeloDriveVector& kelo_distribute(const KeloModel& model, KeloData& data, c
 const KeloDriveVector& kelo_hub_torques(const KeloModel& model, KeloData& data) noexcept;
 
 // The whole force path of one tick: set_pivots, alignment reference,
-// distribute, hub torques. \return data.tau_wheel.
+// distribute, hub torques. A non-finite pivot angle or platform wrench sets
+// data.input_fault and commands zero drive forces and hub torques for this
+// tick (the base stops pushing) instead of NaN; the next valid tick clears it.
+// \return data.tau_wheel.
 const KeloDriveVector& kelo_force_step(const KeloModel& model, KeloData& data, const Vec4& q_pivot,
                                        const Vec3& F_p) noexcept;
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -337,6 +338,26 @@ TEST(KeloAlignment, NullspaceReferenceLeavesThePlatformWrenchAlone) {
   kelo_distribute(model, data, F_p, KeloDriveVector::Zero());
   EXPECT_GT((with_reference - data.F_d).norm(), 1.0);
   EXPECT_TRUE(near(data.G * with_reference, F_p, 1e-10));
+}
+
+TEST(KeloForceStep, NonFiniteInputCommandsZeroAndFlagsIt) {
+  const KeloModel model;
+  KeloData data(model);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  kelo_force_step(model, data, Vec4::Zero(), Vec3(10, 0, 0));
+  EXPECT_FALSE(data.input_fault);
+  EXPECT_GT(data.tau_wheel.norm(), 0.0);
+  kelo_force_step(model, data, Vec4(0, nan, 0, 0), Vec3(10, 0, 0));
+  EXPECT_TRUE(data.input_fault);
+  EXPECT_EQ(data.tau_wheel, KeloDriveVector::Zero());
+  EXPECT_EQ(data.F_d, KeloDriveVector::Zero());
+  kelo_force_step(model, data, Vec4::Zero(), Vec3(10, 0, std::numeric_limits<double>::infinity()));
+  EXPECT_TRUE(data.input_fault);
+  EXPECT_EQ(data.tau_wheel, KeloDriveVector::Zero());
+  kelo_force_step(model, data, Vec4::Zero(), Vec3(10, 0, 0));
+  EXPECT_FALSE(data.input_fault);
+  EXPECT_TRUE(data.G.allFinite());  // the bad tick did not touch G
+  EXPECT_TRUE(near(data.G * data.F_d, Vec3(10, 0, 0), 1e-12));
 }
 
 TEST(KeloPlanar, ConvertsFromAndToSpatialVectors) {
