@@ -82,7 +82,7 @@ BENCHMARK_CAPTURE(BM_ValidateStages, sc1_validate_only, 1)->Unit(benchmark::kMil
 
 // ---- scaling ------------------------------------------------------------------
 
-// One unit of a generated model (~57 triples), conforming to the authors'
+// One unit of a generated model (~65 triples), conforming to the authors'
 // shapes: a pose chain composed by geom-op:ComposePose, a direction, three
 // wrenches added by dyn-op:AddWrench, a wrench rotated to the distal side, a
 // guarded motion with a handler and its evaluator, a solver.
