@@ -722,8 +722,9 @@ class Printer {
   std::string path(const Path& p) const {
     auto list = [&](const char* head) {
       std::string out = std::string("(") + head;
-      for (const PathPtr& item : p.items) out += " " + path(*item);
-      return out + ")";
+      for (const PathPtr& item : p.items) out.append(" ").append(path(*item));
+      out.append(")");
+      return out;
     };
     switch (p.kind) {
       case Path::Kind::Predicate:

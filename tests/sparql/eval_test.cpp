@@ -70,7 +70,10 @@ TEST(SparqlEval, LiteralsOfEveryForm) {
   )");
   auto one = [&](const std::string& literal) {
     auto rows = d.run("SELECT ?s { ?s ex:v " + literal + " }");
-    return rows.size() == 1 ? rows[0] : "<" + std::to_string(rows.size()) + " rows>";
+    if (rows.size() == 1) return rows[0];
+    std::string count = "<";
+    count.append(std::to_string(rows.size())).append(" rows>");
+    return count;
   };
   EXPECT_EQ(one("\"plain\""), "<http://example.org/a>");
   EXPECT_EQ(one("'plain'"), "<http://example.org/a>");
