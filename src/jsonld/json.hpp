@@ -21,9 +21,21 @@ using Array = std::vector<Value>;
 
 class Object {
  public:
-  size_t size() const { return members_.size(); }
-  bool empty() const { return members_.empty(); }
-  void reserve(size_t n) { members_.reserve(n); }
+  // Declared here, defaulted below once Member is complete: Member holds a
+  // Value, which holds an Object, so these cannot be implicit (clang needs
+  // ~vector<Member> at the point they would be generated).
+  inline Object();
+  inline ~Object();
+  inline Object(const Object&);
+  inline Object(Object&&) noexcept;
+  inline Object& operator=(const Object&);
+  inline Object& operator=(Object&&) noexcept;
+
+  // Bodies that touch members_ come after Member is complete (clang
+  // instantiates std::vector members eagerly in inline bodies).
+  inline size_t size() const;
+  inline bool empty() const;
+  inline void reserve(size_t n);
   const Value* find(std::string_view key) const;
   Value* find(std::string_view key);
   bool contains(std::string_view key) const { return find(key) != nullptr; }
@@ -46,9 +58,7 @@ class Object {
   struct Member;
   // Appends members whose keys are unique and new to this object.
   template <class It>
-  void append_members(It first, It last) {
-    members_.insert(members_.end(), first, last);
-  }
+  void append_members(It first, It last);
 
  private:
   std::vector<Member> members_;
@@ -115,6 +125,27 @@ struct Object::Member {
   Value value;
   SourceLoc key_loc{};
 };
+
+inline Object::Object() = default;
+inline Object::~Object() = default;
+inline Object::Object(const Object&) = default;
+inline Object::Object(Object&&) noexcept = default;
+inline Object& Object::operator=(const Object&) = default;
+inline Object& Object::operator=(Object&&) noexcept = default;
+
+inline size_t Object::size() const {
+  return members_.size();
+}
+inline bool Object::empty() const {
+  return members_.empty();
+}
+inline void Object::reserve(size_t n) {
+  members_.reserve(n);
+}
+template <class It>
+void Object::append_members(It first, It last) {
+  members_.insert(members_.end(), first, last);
+}
 
 inline const std::string& Object::key(size_t i) const {
   return members_[i].key;
