@@ -1,1 +1,446 @@
-// placeholder
+#include "sim/world.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <numbers>
+
+#include "support/diagnostics.hpp"
+
+namespace mospec::sim {
+namespace {
+
+using runtime::Mat3;
+using runtime::Vec3;
+
+int id_of(const mjModel* m, mjtObj type, const std::string& name) {
+  const int id = mj_name2id(m, type, name.c_str());
+  if (id < 0) {
+    throw Error("mujoco", "internal: the generated model has no object named '" + name + "'");
+  }
+  return id;
+}
+
+// A uniform draw in [-1, 1) from 53 random bits (the same on every platform,
+// unlike std::uniform_real_distribution).
+double symmetric_unit(std::uint64_t bits) {
+  return static_cast<double>(bits >> 11) * 0x1.0p-52 - 1.0;
+}
+
+// splitmix64: a small, fully specified generator.
+struct SplitMix64 {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+};
+
+double yaw_of(const Mat3& R) {
+  return std::atan2(R(1, 0), R(0, 0));
+}
+
+Mat3 mat3(const mjtNum* xmat) {
+  Mat3 R;
+  R << xmat[0], xmat[1], xmat[2], xmat[3], xmat[4], xmat[5], xmat[6], xmat[7], xmat[8];
+  return R;
+}
+
+}  // namespace
+
+World::World(const WorldConfig& config, const runtime::Chain& arm)
+    : config_(config),
+      layout_(layout_world(config, arm)),
+      mjcf_(world_mjcf(config, arm, layout_)),
+      kelo_(runtime::KeloConfig{
+          config.drives, {1.0, 1.0, 1.0, 1.0}, {1.0, 1.0, 1.0, 1.0}, {1.0, 1.0, 1.0, 1.0}, true}),
+      kelo_data_(kelo_) {
+  // Compile the generated text from memory: one virtual file.
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* name = "mospec-world.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(mjcf_.size())) != 0) {
+    throw Error("mujoco", "cannot create the in-memory model file");
+  }
+  const int f = mj_findFileVFS(vfs.get(), name);
+  std::memcpy(vfs->filedata[f], mjcf_.data(), mjcf_.size());
+  char error[1024] = {0};
+  m_ = mj_loadXML(name, vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (m_ == nullptr) {
+    throw Error("mujoco", std::string("the generated world does not compile: ") + error);
+  }
+  d_ = mj_makeData(m_);
+  if (d_ == nullptr) {
+    mj_deleteModel(m_);
+    throw Error("mujoco", "cannot allocate the simulation data");
+  }
+
+  try {
+    declare(arm);
+  } catch (...) {
+    mj_deleteData(d_);
+    mj_deleteModel(m_);
+    throw;
+  }
+  set_initial_state();
+}
+
+void World::declare(const runtime::Chain& arm) {
+  // Look everything up once.
+  for (int k = 0; k < robot::kArms; ++k) {
+    const auto ak = static_cast<size_t>(k);
+    const std::string& a = config_.arms[ak].name;
+    for (int i = 0; i < robot::kArmJoints; ++i) {
+      const std::string j = a + "_" + arm.segment(i).joint;
+      const int jid = id_of(m_, mjOBJ_JOINT, j);
+      arm_qpos_[ak][static_cast<size_t>(i)] = m_->jnt_qposadr[jid];
+      arm_dof_[ak][static_cast<size_t>(i)] = m_->jnt_dofadr[jid];
+      arm_act_[ak][static_cast<size_t>(i)] = id_of(m_, mjOBJ_ACTUATOR, j);
+    }
+    ee_geom_[ak] = id_of(m_, mjOBJ_GEOM, a + "_ee");
+    ee_site_[ak] = id_of(m_, mjOBJ_SITE, a + "_ee");
+    ee_body_[ak] = m_->geom_bodyid[ee_geom_[ak]];
+    mount_eq_[ak] = config_.table.present ? id_of(m_, mjOBJ_EQUALITY, a + "_mount") : -1;
+  }
+  platform_body_ = id_of(m_, mjOBJ_BODY, "platform");
+  floor_geom_ = id_of(m_, mjOBJ_GEOM, "floor");
+  if (config_.table.present) {
+    table_geom_ = id_of(m_, mjOBJ_GEOM, "table");
+    table_body_ = id_of(m_, mjOBJ_BODY, "table");
+  }
+  if (config_.base == BaseFidelity::Wheeled) {
+    const int b = id_of(m_, mjOBJ_JOINT, "base");
+    base_qpos_ = m_->jnt_qposadr[b];
+    base_dof_ = m_->jnt_dofadr[b];
+    for (int i = 0; i < robot::kDrives; ++i) {
+      const std::string n = "drive" + std::to_string(i);
+      const int p = id_of(m_, mjOBJ_JOINT, n + "_pivot");
+      pivot_qpos_[static_cast<size_t>(i)] = m_->jnt_qposadr[p];
+      pivot_dof_[static_cast<size_t>(i)] = m_->jnt_dofadr[p];
+      for (int side = 0; side < 2; ++side) {
+        const std::string w = n + (side == 0 ? "_left" : "_right");
+        const auto wi = static_cast<size_t>(2 * i + side);
+        wheel_dof_[wi] = m_->jnt_dofadr[id_of(m_, mjOBJ_JOINT, w)];
+        wheel_act_[wi] = id_of(m_, mjOBJ_ACTUATOR, w);
+        const int body = id_of(m_, mjOBJ_BODY, w);
+        wheel_geom_[wi] = m_->body_geomadr[body];
+      }
+    }
+  } else if (config_.base == BaseFidelity::Planar) {
+    const int b = id_of(m_, mjOBJ_JOINT, "base_x");
+    base_qpos_ = m_->jnt_qposadr[b];
+    base_dof_ = m_->jnt_dofadr[b];
+  }
+}
+
+World::~World() {
+  if (d_ != nullptr) mj_deleteData(d_);
+  if (m_ != nullptr) mj_deleteModel(m_);
+}
+
+void World::set_initial_state() {
+  mj_resetData(m_, d_);
+  // Draw every perturbation, always in this order, so that one amplitude
+  // never shifts another's draws: base x, y, yaw; pivots 0-3; right arm
+  // joints 0-6; left arm joints 0-6.
+  SplitMix64 rng{config_.seed};
+  const Perturbation& pert = config_.perturbation;
+  const double x = layout_.base_x + pert.base_xy * symmetric_unit(rng.next());
+  const double y = config_.initial.base_y + pert.base_xy * symmetric_unit(rng.next());
+  const double yaw = config_.initial.base_yaw + pert.base_yaw * symmetric_unit(rng.next());
+  robot::DriveVector pivots = config_.initial.pivot_q;
+  for (double& q : pivots) q += pert.pivot_q * symmetric_unit(rng.next());
+  std::array<robot::ArmVector, robot::kArms> arm_q;
+  for (int k = 0; k < robot::kArms; ++k) {
+    for (int i = 0; i < robot::kArmJoints; ++i) {
+      const auto ak = static_cast<size_t>(k), ji = static_cast<size_t>(i);
+      double q = config_.arms[ak].q0[ji] + pert.arm_q * symmetric_unit(rng.next());
+      q = std::min(std::max(q, config_.actuation.lower[ji]), config_.actuation.upper[ji]);
+      arm_q[ak][ji] = q;
+      d_->qpos[arm_qpos_[ak][ji]] = q;
+    }
+  }
+  switch (config_.base) {
+    case BaseFidelity::Wheeled: {
+      mjtNum* q = d_->qpos + base_qpos_;
+      q[0] = x;
+      q[1] = y;
+      q[2] = config_.platform.deck_height;
+      q[3] = std::cos(yaw / 2);
+      q[4] = 0;
+      q[5] = 0;
+      q[6] = std::sin(yaw / 2);
+      for (int i = 0; i < robot::kDrives; ++i) {
+        d_->qpos[pivot_qpos_[static_cast<size_t>(i)]] = pivots[static_cast<size_t>(i)];
+      }
+      break;
+    }
+    case BaseFidelity::Planar:
+      d_->qpos[base_qpos_] = x;
+      d_->qpos[base_qpos_ + 1] = y;
+      d_->qpos[base_qpos_ + 2] = yaw;
+      planar_pivot_q_ = pivots;
+      break;
+    case BaseFidelity::Fixed:
+      break;  // placed by the model (perturbations of the base do not apply)
+  }
+  mj_forward(m_, d_);
+  if (config_.table.present) {
+    anchor_mounts();
+    mount_active_ = config_.mount.active;
+    for (int k = 0; k < robot::kArms; ++k) {
+      m_->eq_active[mount_eq_[static_cast<size_t>(k)]] = mount_active_ ? 1 : 0;
+    }
+    mj_forward(m_, d_);
+  }
+  tick_ = 0;
+  current_ = previous_ = robot::Command{};
+}
+
+// Re-anchors each mount at the end-effector's current position: the point's
+// coordinates in body 2 (the table) are data[3..5] of a connect constraint.
+void World::anchor_mounts() noexcept {
+  if (table_body_ < 0) return;
+  const Vec3 p_WoTo_W(d_->xpos[3 * table_body_], d_->xpos[3 * table_body_ + 1],
+                      d_->xpos[3 * table_body_ + 2]);
+  const Mat3 R_WT = mat3(d_->xmat + 9 * table_body_);
+  for (int k = 0; k < robot::kArms; ++k) {
+    const Vec3 p_TE = R_WT.transpose() * (p_WoE_W(k) - p_WoTo_W);
+    mjtNum* data = m_->eq_data + mjNEQDATA * mount_eq_[static_cast<size_t>(k)];
+    data[3] = p_TE.x();
+    data[4] = p_TE.y();
+    data[5] = p_TE.z();
+  }
+}
+
+void World::set_mount_active(bool active) noexcept {
+  if (table_body_ < 0) return;
+  if (active && !mount_active_) anchor_mounts();
+  mount_active_ = active;
+  for (int k = 0; k < robot::kArms; ++k) {
+    m_->eq_active[mount_eq_[static_cast<size_t>(k)]] = active ? 1 : 0;
+  }
+}
+
+double World::time() const noexcept {
+  return static_cast<double>(tick_) * config_.control_period;
+}
+
+void World::read_true(robot::MeasuredState& s) const noexcept {
+  s.clock.tick = tick_;
+  s.clock.t = time();
+  s.clock.dt = tick_ == 0 ? 0.0 : config_.control_period;
+  for (int k = 0; k < robot::kArms; ++k) {
+    const auto ak = static_cast<size_t>(k);
+    robot::ArmMeasurement& a = s.arm[ak];
+    for (int i = 0; i < robot::kArmJoints; ++i) {
+      const auto ji = static_cast<size_t>(i);
+      a.q[ji] = d_->qpos[arm_qpos_[ak][ji]];
+      a.qd[ji] = d_->qvel[arm_dof_[ak][ji]];
+      a.tau[ji] = d_->actuator_force[arm_act_[ak][ji]];
+    }
+  }
+  switch (config_.base) {
+    case BaseFidelity::Wheeled:
+      for (int i = 0; i < robot::kDrives; ++i) {
+        s.pivot_q[static_cast<size_t>(i)] = d_->qpos[pivot_qpos_[static_cast<size_t>(i)]];
+      }
+      for (int w = 0; w < robot::kWheels; ++w) {
+        s.wheel_qd[static_cast<size_t>(w)] = d_->qvel[wheel_dof_[static_cast<size_t>(w)]];
+      }
+      break;
+    case BaseFidelity::Planar:
+      s.pivot_q = planar_pivot_q_;
+      s.wheel_qd = planar_wheel_qd_;
+      break;
+    case BaseFidelity::Fixed:
+      s.pivot_q = config_.initial.pivot_q;
+      s.wheel_qd = {};
+      break;
+  }
+  const mjtNum* p = d_->xpos + 3 * platform_body_;
+  const mjtNum* q = d_->xquat + 4 * platform_body_;
+  s.truth.p_WoPo_W = {p[0], p[1], p[2]};
+  s.truth.quat_WP = {q[0], q[1], q[2], q[3]};
+  s.truth.yaw = yaw_of(mat3(d_->xmat + 9 * platform_body_));
+}
+
+void World::read(robot::MeasuredState& s) noexcept {
+  read_true(s);
+  faults_.corrupt(s);
+}
+
+void World::write(const robot::Command& command) noexcept {
+  if (faults_.drops(tick_)) return;
+  current_ = command;
+  auto clean = [this](double& x) {
+    if (!std::isfinite(x)) {
+      x = 0.0;
+      ++rejected_;
+    }
+  };
+  for (auto& arm : current_.arm_tau) {
+    for (double& t : arm) clean(t);
+  }
+  for (double& t : current_.wheel_tau) clean(t);
+  // Before the first tick there is no earlier command: the robot starts with
+  // the first one (brakes released as the loop starts), not with zero torque.
+  if (tick_ == 0) previous_ = current_;
+}
+
+void World::apply_command(const robot::Command& c) noexcept {
+  for (int k = 0; k < robot::kArms; ++k) {
+    const auto ak = static_cast<size_t>(k);
+    for (int i = 0; i < robot::kArmJoints; ++i) {
+      d_->ctrl[arm_act_[ak][static_cast<size_t>(i)]] = c.arm_tau[ak][static_cast<size_t>(i)];
+    }
+  }
+  if (config_.base == BaseFidelity::Wheeled) {
+    for (int w = 0; w < robot::kWheels; ++w) {
+      d_->ctrl[wheel_act_[static_cast<size_t>(w)]] = c.wheel_tau[static_cast<size_t>(w)];
+    }
+  }
+}
+
+// The planar base: wheel torques -> drive forces (massless drives rolling
+// without slip, kelo.hpp) -> platform wrench G F_d, applied to the planar joints.
+void World::planar_forces() noexcept {
+  const robot::Command& c = config_.command_delay_ticks == 1 ? previous_ : current_;
+  const double r = kelo_.wheel_radius, limit = config_.platform.wheel_torque_limit;
+  runtime::KeloDriveVector F_d;
+  for (int i = 0; i < robot::kDrives; ++i) {
+    const auto l = static_cast<size_t>(2 * i), rr = l + 1;
+    const double f_l = std::clamp(c.wheel_tau[l], -limit, limit) / r;
+    const double f_r = std::clamp(c.wheel_tau[rr], -limit, limit) / r;
+    F_d[2 * i] = f_l + f_r;
+    F_d[2 * i + 1] = kelo_.lateral_ratio * (f_r - f_l);
+  }
+  Eigen::Vector4d q(planar_pivot_q_[0], planar_pivot_q_[1], planar_pivot_q_[2], planar_pivot_q_[3]);
+  runtime::kelo_set_pivots(kelo_, kelo_data_, q);
+  planar_F_p_.noalias() = kelo_data_.G * F_d;
+  const double yaw = d_->qpos[base_qpos_ + 2];
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
+  d_->qfrc_applied[base_dof_] = cy * planar_F_p_[0] - sy * planar_F_p_[1];
+  d_->qfrc_applied[base_dof_ + 1] = sy * planar_F_p_[0] + cy * planar_F_p_[1];
+  d_->qfrc_applied[base_dof_ + 2] = planar_F_p_[2];
+}
+
+// The planar base's castors follow the platform's motion (no lateral slip).
+void World::planar_drives_after_step() noexcept {
+  const double yaw = d_->qpos[base_qpos_ + 2];
+  const double cy = std::cos(yaw), sy = std::sin(yaw);
+  const double vx = d_->qvel[base_dof_], vy = d_->qvel[base_dof_ + 1];
+  const runtime::Vec3 xd_p(cy * vx + sy * vy, -sy * vx + cy * vy, d_->qvel[base_dof_ + 2]);
+  Eigen::Vector4d q(planar_pivot_q_[0], planar_pivot_q_[1], planar_pivot_q_[2], planar_pivot_q_[3]);
+  runtime::kelo_set_pivots(kelo_, kelo_data_, q);
+  runtime::kelo_wheel_rates(kelo_, kelo_data_, xd_p);
+  const double h = m_->opt.timestep;
+  for (int i = 0; i < robot::kDrives; ++i) {
+    double& p = planar_pivot_q_[static_cast<size_t>(i)];
+    p = std::remainder(p + h * kelo_data_.qd_pivot[i], 2 * std::numbers::pi);
+  }
+  for (int w = 0; w < robot::kWheels; ++w) {
+    planar_wheel_qd_[static_cast<size_t>(w)] = kelo_data_.wheel_rates[w];
+  }
+}
+
+void World::step() noexcept {
+  apply_command(config_.command_delay_ticks == 1 ? previous_ : current_);
+  for (int s = 0; s < config_.substeps; ++s) {
+    if (config_.base == BaseFidelity::Planar) planar_forces();
+    mj_step(m_, d_);
+    if (config_.base == BaseFidelity::Planar) planar_drives_after_step();
+  }
+  // mj_step leaves the positions one physics step ahead of the poses derived
+  // from them: update the poses (cheap) so that ground-truth poses match the
+  // state read. Contacts and constraint forces stay those of the last physics
+  // step: the forces that acted.
+  mj_kinematics(m_, d_);
+  previous_ = current_;
+  ++tick_;
+}
+
+ArmContact World::contact(int arm) const noexcept {
+  ArmContact out;
+  const auto ak = static_cast<size_t>(arm);
+  for (int i = 0; i < d_->ncon; ++i) {
+    const mjContact& c = d_->contact[i];
+    const bool first = c.geom1 == ee_geom_[ak] && c.geom2 == table_geom_;
+    const bool second = c.geom2 == ee_geom_[ak] && c.geom1 == table_geom_;
+    if (!first && !second) continue;
+    mjtNum f[6];
+    mj_contactForce(m_, d_, i, f);
+    // The contact frame's rows are its axes in W (normal first, from geom1
+    // to geom2); f is what geom1 exerts on geom2.
+    Vec3 f_W = Vec3::Zero();
+    for (int r = 0; r < 3; ++r) {
+      f_W += f[r] * Vec3(c.frame[3 * r], c.frame[3 * r + 1], c.frame[3 * r + 2]);
+    }
+    ++out.contacts;
+    out.normal_force += f[0];
+    out.f_E_W += second ? f_W : Vec3(-f_W);
+  }
+  if (mount_active_ && mount_eq_[ak] >= 0) {
+    for (int r = 0; r < d_->nefc; ++r) {
+      if (d_->efc_type[r] == mjCNSTR_EQUALITY && d_->efc_id[r] == mount_eq_[ak] &&
+          r + 2 < d_->nefc) {
+        // A connect constraint's three rows are the world-frame components of
+        // the force on body 1 (the end-effector).
+        out.f_mount_W = Vec3(d_->efc_force[r], d_->efc_force[r + 1], d_->efc_force[r + 2]);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+Vec3 World::p_WoE_W(int arm) const noexcept {
+  const mjtNum* p = d_->site_xpos + 3 * ee_site_[static_cast<size_t>(arm)];
+  return {p[0], p[1], p[2]};
+}
+
+runtime::Pose World::X_WP() const noexcept {
+  runtime::Pose X;
+  X.R = mat3(d_->xmat + 9 * platform_body_);
+  const mjtNum* p = d_->xpos + 3 * platform_body_;
+  X.p = Vec3(p[0], p[1], p[2]);
+  return X;
+}
+
+Vec3 World::ground_wrench_P() const noexcept {
+  if (config_.base == BaseFidelity::Planar) return planar_F_p_;
+  if (config_.base == BaseFidelity::Fixed) return Vec3::Zero();
+  const runtime::Pose X = X_WP();
+  Vec3 f_W = Vec3::Zero(), n_W = Vec3::Zero();
+  for (int i = 0; i < d_->ncon; ++i) {
+    const mjContact& c = d_->contact[i];
+    if (c.geom1 != floor_geom_ && c.geom2 != floor_geom_) continue;
+    mjtNum f[6];
+    mj_contactForce(m_, d_, i, f);
+    Vec3 fc = Vec3::Zero();
+    for (int r = 0; r < 3; ++r) {
+      fc += f[r] * Vec3(c.frame[3 * r], c.frame[3 * r + 1], c.frame[3 * r + 2]);
+    }
+    if (c.geom2 == floor_geom_) fc = -fc;  // the force on the wheel (geom 2 is the robot)
+    f_W += fc;
+    n_W += (Vec3(c.pos[0], c.pos[1], c.pos[2]) - X.p).cross(fc);
+  }
+  const Vec3 f_P = X.R.transpose() * f_W, n_P = X.R.transpose() * n_W;
+  return {f_P.x(), f_P.y(), n_P.z()};
+}
+
+double World::robot_mass() const noexcept {
+  double m = 0.0;
+  for (int b = 1; b < m_->nbody; ++b) {
+    if (b != table_body_) m += m_->body_mass[b];
+  }
+  return m;
+}
+
+}  // namespace mospec::sim

@@ -1,0 +1,321 @@
+#include "sim/config.hpp"
+
+#include <Eigen/SVD>
+#include <cmath>
+#include <filesystem>
+#include <initializer_list>
+
+#include "jsonld/json.hpp"
+#include "support/diagnostics.hpp"
+#include "support/io.hpp"
+
+#ifndef MOSPEC_DEFAULT_ROBOT_MODEL
+#define MOSPEC_DEFAULT_ROBOT_MODEL "robots/kinova-gen3.jsonld"
+#endif
+#ifndef MOSPEC_DEFAULT_METAMODELS
+#define MOSPEC_DEFAULT_METAMODELS "../shared/upstream/motion-spec-ral/comp-rob2b/metamodels"
+#endif
+
+namespace mospec::sim {
+
+std::string_view to_string(BaseFidelity b) {
+  switch (b) {
+    case BaseFidelity::Wheeled:
+      return "wheeled";
+    case BaseFidelity::Planar:
+      return "planar";
+    case BaseFidelity::Fixed:
+      return "fixed";
+  }
+  return "wheeled";
+}
+
+std::optional<BaseFidelity> parse_base_fidelity(std::string_view s) {
+  if (s == "wheeled") return BaseFidelity::Wheeled;
+  if (s == "planar") return BaseFidelity::Planar;
+  if (s == "fixed") return BaseFidelity::Fixed;
+  return {};
+}
+
+namespace {
+
+runtime::Pose pose_from_cosines(const runtime::Vec3& x, const runtime::Vec3& y,
+                                const runtime::Vec3& z, const runtime::Vec3& p) {
+  runtime::Pose X;
+  X.R.col(0) = x;
+  X.R.col(1) = y;
+  X.R.col(2) = z;
+  // The published cosines have 9 digits: re-orthonormalise.
+  Eigen::JacobiSVD<runtime::Mat3> svd(X.R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  X.R = svd.matrixU() * svd.matrixV().transpose();
+  X.p = p;
+  return X;
+}
+
+}  // namespace
+
+WorldConfig default_world() {
+  WorldConfig c;
+  c.robot.model = MOSPEC_DEFAULT_ROBOT_MODEL;
+  c.robot.chain_iri = "https://mospec.example/robots/kinova-gen3/chain";
+  c.robot.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", MOSPEC_DEFAULT_METAMODELS);
+
+  // Mount poses of the arms' base frames in the platform frame. Source: the
+  // authors' models, motion-spec-ral models/01-right-arm/00-misc.json
+  // (pose-rightarm-platform-shoulder) and models/02-left-arm/00-misc.json
+  // (pose-leftarm-platform-shoulder); direction-cosine-x/y/z are the columns
+  // of R_PB (the shoulder's axes seen by the platform), as the authors'
+  // gravity vectors in models/00-common/01-world-model.json confirm.
+  c.arms[robot::kRightArm].name = "right";
+  c.arms[robot::kRightArm].X_PB =
+      pose_from_cosines({0.130526192, 0.0, 0.991444861}, {-0.701057385, -0.707106781, 0.0922959556},
+                        {0.701057385, -0.707106781, -0.0922959556}, {0.0, -0.1, 0.1});
+  c.arms[robot::kLeftArm].name = "left";
+  c.arms[robot::kLeftArm].X_PB =
+      pose_from_cosines({0.130526192, 0.0, 0.991444861}, {0.701057385, -0.707106781, -0.0922959556},
+                        {0.701057385, 0.707106781, -0.0922959556}, {0.0, 0.1, 0.1});
+
+  // The "whisker" pose: the end-effector centres ahead of the platform at
+  // (0.6, -0.25, 0.35) m (right) and (0.6, 0.25, 0.35) m (left) in P, the
+  // flange's z axis along x_P, elbows up (found by damped least-squares IK on
+  // the Gen3 chain; 4 decimals, so the centres agree to about 1 mm).
+  c.arms[robot::kRightArm].q0 = {-0.1989, 1.7282, -0.9470, -2.1654, -0.3097, 0.4927, 0.0};
+  c.arms[robot::kLeftArm].q0 = {0.0984, 1.7898, 0.9763, -2.1188, 0.3954, 0.4859, 0.0341};
+  return c;
+}
+
+namespace {
+
+// Reads one JSON world file; every error names file:line:col.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const json::Value& v, const std::string& message) const {
+    const SourceLoc l = v.location();
+    throw Error("invalid-world", message, file_, l.line, l.column);
+  }
+
+  const json::Object& object(const json::Value& v, std::string_view what,
+                             std::initializer_list<std::string_view> keys) const {
+    if (!v.is_object()) fail(v, std::string(what) + ": expected an object");
+    const json::Object& o = v.as_object();
+    for (size_t i = 0; i < o.size(); ++i) {
+      bool known = false;
+      for (std::string_view k : keys) known = known || o.key(i) == k;
+      if (!known) {
+        std::string list;
+        for (std::string_view k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+        const SourceLoc l = o.key_location(i);
+        throw Error(
+            "invalid-world",
+            std::string(what) + ": unknown key '" + o.key(i) + "' (expected one of: " + list + ")",
+            file_, l.line, l.column);
+      }
+    }
+    return o;
+  }
+
+  double number(const json::Value& v, std::string_view what) const {
+    if (!v.is_number() || !std::isfinite(v.as_number())) {
+      fail(v, std::string(what) + ": expected a number");
+    }
+    return v.as_number();
+  }
+
+  double non_negative(const json::Value& v, std::string_view what) const {
+    const double x = number(v, what);
+    if (x < 0) fail(v, std::string(what) + ": expected a number >= 0");
+    return x;
+  }
+
+  double positive(const json::Value& v, std::string_view what) const {
+    const double x = number(v, what);
+    if (x <= 0) fail(v, std::string(what) + ": expected a number > 0");
+    return x;
+  }
+
+  bool boolean(const json::Value& v, std::string_view what) const {
+    if (!v.is_bool()) fail(v, std::string(what) + ": expected true or false");
+    return v.as_bool();
+  }
+
+  const std::string& string(const json::Value& v, std::string_view what) const {
+    if (!v.is_string()) fail(v, std::string(what) + ": expected a string");
+    return v.as_string();
+  }
+
+  template <size_t N>
+  std::array<double, N> numbers(const json::Value& v, std::string_view what) const {
+    if (!v.is_array() || v.as_array().size() != N) {
+      fail(v, std::string(what) + ": expected an array of " + std::to_string(N) + " numbers");
+    }
+    std::array<double, N> out{};
+    for (size_t i = 0; i < N; ++i) out[i] = number(v.as_array()[i], what);
+    return out;
+  }
+
+  std::string path(const std::string& p) const {
+    std::filesystem::path fp(p);
+    if (fp.is_absolute()) return p;
+    return (std::filesystem::path(file_).parent_path() / fp).lexically_normal().string();
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+WorldConfig parse_world_config(std::string_view text, const std::string& file_name) {
+  WorldConfig c = default_world();
+  const json::Value doc = json::parse(text, 1, file_name);
+  const Reader r(file_name);
+  const json::Object& top = r.object(
+      doc, "world",
+      {"base", "control_period", "substeps", "command_delay_ticks", "seed", "robot", "arms",
+       "actuation", "end_effector", "platform", "table", "mount", "initial", "perturbation"});
+  for (size_t i = 0; i < top.size(); ++i) {
+    const std::string& key = top.key(i);
+    const json::Value& v = top.value(i);
+    if (key == "base") {
+      auto b = parse_base_fidelity(r.string(v, "base"));
+      if (!b) r.fail(v, "base: expected \"wheeled\", \"planar\" or \"fixed\"");
+      c.base = *b;
+    } else if (key == "control_period") {
+      c.control_period = r.positive(v, key);
+    } else if (key == "substeps") {
+      const double n = r.positive(v, key);
+      if (n != std::floor(n) || n > 100) r.fail(v, "substeps: expected an integer 1..100");
+      c.substeps = static_cast<int>(n);
+    } else if (key == "command_delay_ticks") {
+      const double n = r.number(v, key);
+      if (n != 0 && n != 1) r.fail(v, "command_delay_ticks: expected 0 or 1");
+      c.command_delay_ticks = static_cast<int>(n);
+    } else if (key == "seed") {
+      const double n = r.non_negative(v, key);
+      if (n != std::floor(n) || n > 9007199254740992.0) {
+        r.fail(v, "seed: expected an integer 0..2^53");
+      }
+      c.seed = static_cast<std::uint64_t>(n);
+    } else if (key == "robot") {
+      const json::Object& o = r.object(v, "robot", {"model", "chain", "map"});
+      if (auto* m = o.find("model")) c.robot.model = r.path(r.string(*m, "robot.model"));
+      if (auto* m = o.find("chain")) c.robot.chain_iri = r.string(*m, "robot.chain");
+      if (auto* m = o.find("map")) {
+        if (!m->is_object()) r.fail(*m, "robot.map: expected an object of IRI prefix: directory");
+        const json::Object& mo = m->as_object();
+        for (size_t k = 0; k < mo.size(); ++k) {
+          const std::string dir = r.path(r.string(mo.value(k), "robot.map"));
+          bool replaced = false;
+          for (auto& [prefix, d] : c.robot.maps) {
+            if (prefix == mo.key(k)) {
+              d = dir;
+              replaced = true;
+            }
+          }
+          if (!replaced) c.robot.maps.emplace_back(mo.key(k), dir);
+        }
+      }
+    } else if (key == "arms") {
+      const json::Object& o = r.object(v, "arms", {"right", "left"});
+      for (size_t k = 0; k < o.size(); ++k) {
+        const int arm = o.key(k) == "right" ? robot::kRightArm : robot::kLeftArm;
+        const std::string what = "arms." + o.key(k);
+        const json::Object& a = r.object(o.value(k), what, {"q", "mount"});
+        if (auto* q = a.find("q"))
+          c.arms[static_cast<size_t>(arm)].q0 = r.numbers<7>(*q, what + ".q");
+        if (auto* m = a.find("mount")) {
+          const json::Object& mo = r.object(
+              *m, what + ".mount",
+              {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z", "x", "y", "z"});
+          runtime::Pose& X = c.arms[static_cast<size_t>(arm)].X_PB;
+          runtime::Vec3 cols[3] = {X.R.col(0), X.R.col(1), X.R.col(2)};
+          const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
+          for (int j = 0; j < 3; ++j) {
+            if (auto* d = mo.find(names[j])) {
+              auto n = r.numbers<3>(*d, what + ".mount." + names[j]);
+              cols[j] = runtime::Vec3(n[0], n[1], n[2]);
+            }
+          }
+          runtime::Vec3 p = X.p;
+          if (auto* x = mo.find("x")) p.x() = r.number(*x, "x");
+          if (auto* y = mo.find("y")) p.y() = r.number(*y, "y");
+          if (auto* z = mo.find("z")) p.z() = r.number(*z, "z");
+          const runtime::Mat3 R = (runtime::Mat3() << cols[0], cols[1], cols[2]).finished();
+          if (std::abs(R.determinant() - 1.0) > 1e-3 ||
+              !(R.transpose() * R).isApprox(runtime::Mat3::Identity(), 1e-3)) {
+            r.fail(*m, what + ".mount: the direction cosines are not a rotation");
+          }
+          X = pose_from_cosines(cols[0], cols[1], cols[2], p);
+        }
+      }
+    } else if (key == "actuation") {
+      const json::Object& o =
+          r.object(v, "actuation", {"effort_limit", "lower", "upper", "damping"});
+      if (auto* x = o.find("effort_limit"))
+        c.actuation.effort_limit = r.numbers<7>(*x, "effort_limit");
+      if (auto* x = o.find("lower")) c.actuation.lower = r.numbers<7>(*x, "lower");
+      if (auto* x = o.find("upper")) c.actuation.upper = r.numbers<7>(*x, "upper");
+      if (auto* x = o.find("damping")) c.actuation.damping = r.non_negative(*x, "damping");
+    } else if (key == "end_effector") {
+      const json::Object& o = r.object(v, "end_effector", {"radius", "friction"});
+      if (auto* x = o.find("radius")) c.end_effector.radius = r.positive(*x, "radius");
+      if (auto* x = o.find("friction")) c.end_effector.friction = r.non_negative(*x, "friction");
+    } else if (key == "platform") {
+      const json::Object& o =
+          r.object(v, "platform",
+                   {"mass", "size", "deck_height", "drive_mass", "wheel_mass", "pivot_damping",
+                    "wheel_damping", "wheel_torque_limit", "wheel_friction"});
+      PlatformParameters& p = c.platform;
+      if (auto* x = o.find("mass")) p.mass = r.positive(*x, "mass");
+      if (auto* x = o.find("size")) p.size = r.numbers<3>(*x, "size");
+      if (auto* x = o.find("deck_height")) p.deck_height = r.positive(*x, "deck_height");
+      if (auto* x = o.find("drive_mass")) p.drive_mass = r.positive(*x, "drive_mass");
+      if (auto* x = o.find("wheel_mass")) p.wheel_mass = r.positive(*x, "wheel_mass");
+      if (auto* x = o.find("pivot_damping")) p.pivot_damping = r.non_negative(*x, "pivot_damping");
+      if (auto* x = o.find("wheel_damping")) p.wheel_damping = r.non_negative(*x, "wheel_damping");
+      if (auto* x = o.find("wheel_torque_limit")) {
+        p.wheel_torque_limit = r.positive(*x, "wheel_torque_limit");
+      }
+      if (auto* x = o.find("wheel_friction")) p.wheel_friction = r.positive(*x, "wheel_friction");
+    } else if (key == "table") {
+      const json::Object& o =
+          r.object(v, "table", {"present", "depth", "width", "edge_height_offset", "friction"});
+      if (auto* x = o.find("present")) c.table.present = r.boolean(*x, "present");
+      if (auto* x = o.find("depth")) c.table.depth = r.positive(*x, "depth");
+      if (auto* x = o.find("width")) c.table.width = r.positive(*x, "width");
+      if (auto* x = o.find("edge_height_offset")) {
+        c.table.edge_height_offset = r.number(*x, "edge_height_offset");
+      }
+      if (auto* x = o.find("friction")) c.table.friction = r.non_negative(*x, "friction");
+    } else if (key == "mount") {
+      const json::Object& o = r.object(v, "mount", {"active", "time_constant"});
+      if (auto* x = o.find("active")) c.mount.active = r.boolean(*x, "active");
+      if (auto* x = o.find("time_constant"))
+        c.mount.time_constant = r.positive(*x, "time_constant");
+    } else if (key == "initial") {
+      const json::Object& o =
+          r.object(v, "initial", {"base_x", "base_y", "base_yaw", "contact_gap", "pivot_q"});
+      if (auto* x = o.find("base_x")) c.initial.base_x = r.number(*x, "base_x");
+      if (auto* x = o.find("base_y")) c.initial.base_y = r.number(*x, "base_y");
+      if (auto* x = o.find("base_yaw")) c.initial.base_yaw = r.number(*x, "base_yaw");
+      if (auto* x = o.find("contact_gap")) c.initial.contact_gap = r.number(*x, "contact_gap");
+      if (auto* x = o.find("pivot_q")) c.initial.pivot_q = r.numbers<4>(*x, "pivot_q");
+    } else if (key == "perturbation") {
+      const json::Object& o =
+          r.object(v, "perturbation", {"arm_q", "base_xy", "base_yaw", "pivot_q"});
+      if (auto* x = o.find("arm_q")) c.perturbation.arm_q = r.non_negative(*x, "arm_q");
+      if (auto* x = o.find("base_xy")) c.perturbation.base_xy = r.non_negative(*x, "base_xy");
+      if (auto* x = o.find("base_yaw")) c.perturbation.base_yaw = r.non_negative(*x, "base_yaw");
+      if (auto* x = o.find("pivot_q")) c.perturbation.pivot_q = r.non_negative(*x, "pivot_q");
+    }
+  }
+  return c;
+}
+
+WorldConfig load_world_config(const std::string& path) {
+  return parse_world_config(read_file(path), path);
+}
+
+}  // namespace mospec::sim

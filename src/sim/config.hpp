@@ -1,0 +1,159 @@
+// The simulated world's configuration: which base model, the robot's
+// parameters that no model file gives (platform mass, actuator limits), the
+// table, and the initial conditions with a seed for randomised perturbations.
+//
+// Frames (SI units): W is the world and the table frame at once: origin on the
+// floor below the middle of the table's front (top) edge, x into the table, y
+// left, z up; the table's front face is the plane x = 0. P is the platform
+// frame of src/runtime/kelo.hpp (origin at the platform centre on its top deck,
+// x forward, z up), at height platform.deck_height above the floor. B_r / B_l
+// are the arms' base frames (the chain's root link, "shoulder" in the
+// authors' models).
+//
+// Everything here is plain data; parse_world_config() reads the JSON form
+// documented in docs/simulation.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "robot/interface.hpp"
+#include "runtime/kelo.hpp"
+#include "runtime/spatial.hpp"
+
+namespace mospec::sim {
+
+// How the mobile base is simulated.
+enum class BaseFidelity : unsigned char {
+  // A free-floating platform on four castor drives: passive pivot joints, the
+  // castor offset and two driven sphere wheels each, in contact with the floor.
+  Wheeled,
+  // A planar body (slide x, slide y, hinge z) pushed by the drive forces
+  // through G(q_pivot); the drives are massless and roll without slip, their
+  // pivots follow kinematically (kelo.hpp's drive model). Fast; for tests.
+  Planar,
+  // The platform welded to the world (arm-only tests).
+  Fixed,
+};
+std::string_view to_string(BaseFidelity);
+std::optional<BaseFidelity> parse_base_fidelity(std::string_view);
+
+// The platform's own parameters. Its mass and inertia are not published for
+// the paper's robot: the values are plausible guesses, stated here and
+// nowhere else.
+struct PlatformParameters {
+  double mass = 80.0;                            // chassis without drives and arms [kg]
+  std::array<double, 3> size{0.60, 0.50, 0.25};  // chassis box below the deck [m]
+  double deck_height = 0.35;                     // P's origin above the floor [m]
+  double drive_mass = 1.5;                       // one drive's pivot housing [kg]
+  double wheel_mass = 0.6;                       // one hub wheel [kg]
+  double pivot_damping = 0.005;                  // [N·m·s/rad]
+  double wheel_damping = 0.0;                    // hub friction not modelled [N·m·s/rad]
+  double wheel_torque_limit = 10.0;              // hub motor limit (assumed) [N·m]
+  double wheel_friction = 1.0;                   // wheel-floor Coulomb coefficient
+};
+
+// A Gen3 arm's actuation. Defaults: Kinova's published limits, as in Kinova's
+// GEN3_URDF_V12.urdf <limit> tags (effort 39 N·m for actuators 1-4 and 9 N·m
+// for 5-7; position limits on actuators 2, 4, 6 only). The project's robot
+// model (robots/kinova-gen3.jsonld) carries no limits, so they live here.
+struct ArmActuation {
+  robot::ArmVector effort_limit{39, 39, 39, 39, 9, 9, 9};               // [N·m]
+  robot::ArmVector lower{-1e9, -2.41, -1e9, -2.66, -1e9, -2.23, -1e9};  // [rad]; ±1e9: none
+  robot::ArmVector upper{1e9, 2.41, 1e9, 2.66, 1e9, 2.23, 1e9};
+  double damping = 0.05;  // small viscous joint damping [N·m·s/rad]
+};
+
+// One arm's mount and initial configuration.
+struct ArmSetup {
+  std::string name;       // "right" / "left": prefixes the arm's MJCF names
+  runtime::Pose X_PB;     // the arm's base B in the platform frame P
+  robot::ArmVector q0{};  // initial joint positions [rad]
+};
+
+struct TableParameters {
+  bool present = true;
+  double depth = 0.8;  // along x [m]
+  double width = 1.6;  // along y [m]
+  // The top (and so the front edge) is at the mean end-effector centre height
+  // of the nominal initial configuration, plus this offset [m].
+  double edge_height_offset = 0.0;
+  double friction = 0.1;  // low, so contacts slide along the edge
+};
+
+struct EndEffectorParameters {
+  double radius = 0.02;  // contact sphere at the chain's tip frame [m]
+  double friction = 0.1;
+};
+
+// SC2's "custom mount": a point (connect) constraint from each end-effector
+// centre to the table, anchored at the initial pose.
+struct MountParameters {
+  bool active = false;
+  double time_constant = 0.01;  // MuJoCo solref time constant [s]
+};
+
+// Where the base starts, relative to the table (frame W).
+struct InitialConditions {
+  // Platform origin x; unset: the end-effectors of the nominal configuration
+  // stand `contact_gap` in front of the table's face at yaw 0.
+  std::optional<double> base_x;
+  double contact_gap = 0.0;      // [m]
+  double base_y = 0.0;           // [m]
+  double base_yaw = 0.0;         // [rad]
+  robot::DriveVector pivot_q{};  // [rad]
+};
+
+// Uniform random perturbations of the initial conditions, each in ±amplitude,
+// drawn from WorldConfig::seed (0 amplitudes: none).
+struct Perturbation {
+  double arm_q = 0.0;     // every arm joint [rad]
+  double base_xy = 0.0;   // platform x and y [m]
+  double base_yaw = 0.0;  // [rad]
+  double pivot_q = 0.0;   // every pivot [rad]
+};
+
+// Where the arm's kinematic chain comes from: the project's JSON-LD robot
+// description, loaded offline with IRI-prefix -> directory maps.
+struct RobotModelSource {
+  std::string model;                                      // path of the JSON-LD file
+  std::string chain_iri;                                  // the KinematicChain node to read
+  std::vector<std::pair<std::string, std::string>> maps;  // IRI prefix -> directory
+};
+
+struct WorldConfig {
+  BaseFidelity base = BaseFidelity::Wheeled;
+  double control_period = 0.001;  // one control tick [s]
+  int substeps = 2;               // physics steps per tick
+  int command_delay_ticks = 1;    // 0 or 1: a command acts from the next tick on
+  std::uint64_t seed = 0;
+
+  RobotModelSource robot;
+  std::array<ArmSetup, robot::kArms> arms;
+  ArmActuation actuation;
+  EndEffectorParameters end_effector;
+  PlatformParameters platform;
+  runtime::KeloGeometry drives = runtime::KeloGeometry::paper();
+  TableParameters table;
+  MountParameters mount;
+  InitialConditions initial;
+  Perturbation perturbation;
+};
+
+// The default world: the paper's robot (arm mounts from the authors' models)
+// in front of the table, arms in the "whisker" pose touching its edge.
+WorldConfig default_world();
+
+// Reads a world file (JSON, schema in docs/simulation.md) over the defaults.
+// Unknown keys and wrong types are errors located at file:line:col
+// (mospec::Error "invalid-world"). Relative robot paths resolve against the
+// file's directory.
+WorldConfig parse_world_config(std::string_view text, const std::string& file_name);
+WorldConfig load_world_config(const std::string& path);
+
+}  // namespace mospec::sim

@@ -1,0 +1,142 @@
+// The simulated robot and its world, in Drake's shape: declare, then step.
+//
+// The constructor declares everything once — it generates the MJCF text from
+// the arm chain and the configuration (sim/mjcf.hpp), compiles it in memory
+// (no files), looks up every joint, actuator, geom and constraint by name and
+// sets the initial state (with the seeded perturbations). After that the
+// World owns the whole state; a controller sees only the robot interface:
+// read() a MeasuredState, write() a Command, and the loop calls step().
+//
+// Timing: one step() is one control tick of config.control_period, made of
+// config.substeps physics steps. With command_delay_ticks = 1 (the default)
+// the command written during tick k acts during tick k+1, as in a real loop
+// whose command reaches the drives one cycle after the sample it was computed
+// from. A dropped command (fault) leaves the previous one in force. The
+// command written before the first step also acts during the first tick (the
+// robot holds still until the loop starts; it does not fall for one tick).
+//
+// Determinism: no wall clock, no threads, one seeded generator; two Worlds
+// made from the same configuration and driven by the same commands produce
+// bit-identical states.
+//
+// Ground truth (contact forces, end-effector positions, the ground's wrench on
+// the base) is for logs and tests; a controller must not use it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "robot/faults.hpp"
+#include "robot/interface.hpp"
+#include "runtime/chain.hpp"
+#include "runtime/kelo.hpp"
+#include "sim/config.hpp"
+#include "sim/mjcf.hpp"
+
+struct mjModel_;
+struct mjData_;
+
+namespace mospec::sim {
+
+// One arm's interaction with the table (ground truth).
+struct ArmContact {
+  int contacts = 0;                                 // end-effector–table contact points
+  double normal_force = 0.0;                        // sum of their normal forces [N]
+  runtime::Vec3 f_E_W = runtime::Vec3::Zero();      // table's force on the end-effector, in W [N]
+  runtime::Vec3 f_mount_W = runtime::Vec3::Zero();  // SC2 mount's force on the end-effector [N]
+};
+
+class World final : public robot::RobotInterface {
+ public:
+  // Throws mospec::Error("invalid-world") when the chain does not fit the
+  // robot, and ("mujoco") with MuJoCo's message when the model does not compile.
+  World(const WorldConfig& config, const runtime::Chain& arm);
+  ~World() override;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // --- The robot interface (per tick, noexcept, no allocation). ---
+  // The sample at the current tick, with the sensor faults applied.
+  void read(robot::MeasuredState& state) noexcept override;
+  // Latches the command for the coming period (unless a fault drops it).
+  // Non-finite entries are replaced by 0 and counted (rejected_entries()).
+  void write(const robot::Command& command) noexcept override;
+  // Advances one control tick.
+  void step() noexcept;
+
+  // The true sample (no faults): what logs record.
+  void read_true(robot::MeasuredState& state) const noexcept;
+
+  // --- Setup and test hooks. ---
+  robot::FaultInjector& faults() noexcept { return faults_; }
+  // Activates or releases SC2's mounts; activation anchors each end-effector
+  // to the table where it is now. No-op without a table.
+  void set_mount_active(bool active) noexcept;
+  bool mount_active() const noexcept { return mount_active_; }
+
+  std::uint64_t tick() const noexcept { return tick_; }
+  double time() const noexcept;
+  const WorldConfig& config() const noexcept { return config_; }
+  const WorldLayout& layout() const noexcept { return layout_; }
+  const std::string& mjcf() const noexcept { return mjcf_; }
+  std::uint64_t rejected_entries() const noexcept { return rejected_; }
+
+  // --- Ground truth. ---
+  ArmContact contact(int arm) const noexcept;
+  // The end-effector centre in W [m].
+  runtime::Vec3 p_WoE_W(int arm) const noexcept;
+  // The horizontal wrench [f_x, f_y, m_z] (kelo.hpp's layout) that the
+  // ground exerts on the robot through the wheels, seen by P, moment about Po:
+  // wheeled, from the wheel–floor contact forces; planar, the drive wrench
+  // G F_d applied in the last physics step; fixed, zero.
+  runtime::Vec3 ground_wrench_P() const noexcept;
+  // The platform pose X_WP.
+  runtime::Pose X_WP() const noexcept;
+  // Total mass of the simulated robot [kg].
+  double robot_mass() const noexcept;
+
+  // MuJoCo's model and data, read-only, for tests and benchmarks.
+  const mjModel_* mj_model() const noexcept { return m_; }
+  const mjData_* mj_data() const noexcept { return d_; }
+
+ private:
+  void declare(const runtime::Chain& arm);
+  void set_initial_state();
+  void apply_command(const robot::Command& command) noexcept;
+  void planar_forces() noexcept;
+  void planar_drives_after_step() noexcept;
+  void anchor_mounts() noexcept;
+
+  WorldConfig config_;
+  WorldLayout layout_;
+  std::string mjcf_;
+  mjModel_* m_ = nullptr;
+  mjData_* d_ = nullptr;
+
+  // Addresses looked up once (MuJoCo ids).
+  std::array<std::array<int, robot::kArmJoints>, robot::kArms> arm_qpos_{}, arm_dof_{}, arm_act_{};
+  std::array<int, robot::kDrives> pivot_qpos_{}, pivot_dof_{};
+  std::array<int, robot::kWheels> wheel_dof_{}, wheel_act_{};
+  std::array<int, robot::kWheels> wheel_geom_{};
+  std::array<int, robot::kArms> ee_geom_{}, ee_site_{}, mount_eq_{}, ee_body_{};
+  int base_qpos_ = -1, base_dof_ = -1, platform_body_ = -1, table_geom_ = -1, table_body_ = -1,
+      floor_geom_ = -1;
+
+  // The planar base's drives (kinematic castors) and the wrench they apply.
+  runtime::KeloModel kelo_;
+  runtime::KeloData kelo_data_;
+  robot::DriveVector planar_pivot_q_{};
+  robot::WheelVector planar_wheel_qd_{};
+  runtime::Vec3 planar_F_p_ = runtime::Vec3::Zero();
+
+  robot::FaultInjector faults_;
+  robot::Command current_{};   // the last accepted command
+  robot::Command previous_{};  // the one accepted before the last step
+  std::uint64_t tick_ = 0;
+  std::uint64_t rejected_ = 0;
+  bool mount_active_ = false;
+};
+
+}  // namespace mospec::sim

@@ -1,0 +1,53 @@
+// Shared by the simulation tests: the Gen3 chain from the project's robot
+// description (loaded once) and a small closed loop.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+
+#include "sim/config.hpp"
+#include "sim/controllers.hpp"
+#include "sim/robot_model.hpp"
+#include "sim/world.hpp"
+
+namespace mospec::sim::testing {
+
+// The chain of robots/kinova-gen3.jsonld, or nullptr when the published
+// metamodels (../shared) are not there to load it.
+inline const runtime::Chain* gen3() {
+  static const std::unique_ptr<runtime::Chain> chain = []() -> std::unique_ptr<runtime::Chain> {
+    const WorldConfig c = default_world();
+    for (const auto& [prefix, dir] : c.robot.maps) {
+      if (!std::filesystem::exists(dir)) return nullptr;
+    }
+    return std::make_unique<runtime::Chain>(load_arm_chain(c.robot));
+  }();
+  return chain.get();
+}
+
+#define NEED_GEN3()                                                            \
+  const runtime::Chain* gen3_chain = ::mospec::sim::testing::gen3();           \
+  if (gen3_chain == nullptr) GTEST_SKIP() << "needs the published metamodels"; \
+  const runtime::Chain& arm_chain = *gen3_chain
+
+inline std::array<runtime::Pose, robot::kArms> mounts(const WorldConfig& c) {
+  return {c.arms[0].X_PB, c.arms[1].X_PB};
+}
+
+// Runs `ticks` control ticks: read, let `control` fill the command, write, step.
+inline void run(World& world, int ticks,
+                const std::function<void(const robot::MeasuredState&, robot::Command&)>& control) {
+  robot::MeasuredState s;
+  robot::Command cmd;
+  for (int k = 0; k < ticks; ++k) {
+    world.read(s);
+    control(s, cmd);
+    world.write(cmd);
+    world.step();
+  }
+}
+
+}  // namespace mospec::sim::testing
