@@ -1,0 +1,281 @@
+// The World as a robot: timing (command delay), faults, seeds and determinism,
+// the CSV log and the world file.
+#include <cmath>
+#include <limits>
+
+#include "sim/log.hpp"
+#include "sim_test_util.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::sim {
+namespace {
+
+using testing::mounts;
+using testing::run;
+
+WorldConfig arm_only() {
+  WorldConfig c = default_world();
+  c.base = BaseFidelity::Fixed;
+  c.table.present = false;
+  return c;
+}
+
+// The measured joint torque is the applied motor torque; with one tick of
+// delay the command written at tick k acts from tick k+1 on.
+TEST(World, CommandsActOneTickLater) {
+  NEED_GEN3();
+  for (int delay : {0, 1}) {
+    WorldConfig c = arm_only();
+    c.command_delay_ticks = delay;
+    World w(c, arm_chain);
+    robot::MeasuredState s;
+    robot::Command cmd;
+    std::vector<double> seen;
+    for (int k = 0; k < 6; ++k) {
+      w.read(s);
+      seen.push_back(s.arm[robot::kLeftArm].tau[6]);
+      cmd.arm_tau[robot::kLeftArm][6] = k >= 2 ? 1.5 : 0.0;
+      w.write(cmd);
+      w.step();
+    }
+    // Written at tick 2; applied during tick 2 (delay 0) or 3 (delay 1);
+    // read back after that tick.
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_EQ(seen[static_cast<size_t>(k)], k >= 3 + delay ? 1.5 : 0.0)
+          << "delay " << delay << " tick " << k;
+    }
+  }
+}
+
+TEST(World, TorquesAreLimitedToThePublishedEfforts) {
+  NEED_GEN3();
+  World w(arm_only(), arm_chain);
+  robot::Command cmd;
+  cmd.arm_tau[0].fill(100.0);
+  w.write(cmd);
+  w.step();
+  w.step();
+  robot::MeasuredState s;
+  w.read(s);
+  const robot::ArmVector expected{39, 39, 39, 39, 9, 9, 9};
+  EXPECT_EQ(s.arm[0].tau, expected);
+}
+
+TEST(World, ClockCountsTicks) {
+  NEED_GEN3();
+  World w(arm_only(), arm_chain);
+  robot::MeasuredState s;
+  w.read(s);
+  EXPECT_EQ(s.clock.tick, 0u);
+  EXPECT_EQ(s.clock.dt, 0.0);
+  w.step();
+  w.step();
+  w.read(s);
+  EXPECT_EQ(s.clock.tick, 2u);
+  EXPECT_DOUBLE_EQ(s.clock.t, 0.002);
+  EXPECT_DOUBLE_EQ(s.clock.dt, 0.001);
+}
+
+TEST(World, SensorFaultsReachTheControllerNotTheTruth) {
+  NEED_GEN3();
+  World w(arm_only(), arm_chain);
+  w.faults().inject_nan("right_arm.q[1]", 2, 2);
+  w.faults().inject_stale("left_arm.tau[0]", 1);
+  GravityCompensation g(arm_chain, mounts(w.config()));
+  robot::MeasuredState s, truth;
+  robot::Command cmd;
+  double held = 0;
+  for (int k = 0; k < 6; ++k) {
+    w.read(s);
+    w.read_true(truth);
+    EXPECT_EQ(std::isnan(s.arm[0].q[1]), k == 2 || k == 3) << k;
+    EXPECT_FALSE(std::isnan(truth.arm[0].q[1]));
+    if (k == 0) held = s.arm[1].tau[0];
+    if (k >= 1) {
+      EXPECT_EQ(s.arm[1].tau[0], held) << k;
+    }
+    g.compute(s, cmd);  // a NaN reading gives a zero command for that arm
+    w.write(cmd);
+    w.step();
+  }
+  EXPECT_EQ(w.rejected_entries(), 0u);
+}
+
+TEST(World, DroppedCommandsKeepThePreviousOne) {
+  NEED_GEN3();
+  WorldConfig c = arm_only();
+  c.command_delay_ticks = 0;
+  World w(c, arm_chain);
+  w.faults().drop_commands(2, 2);
+  robot::MeasuredState s;
+  robot::Command cmd;
+  std::vector<double> applied;
+  for (int k = 0; k < 6; ++k) {
+    cmd.arm_tau[0][6] = 0.1 * k;
+    w.write(cmd);
+    w.step();
+    w.read(s);
+    applied.push_back(s.arm[0].tau[6]);
+  }
+  const std::vector<double> expected{0.0, 0.1, 0.1, 0.1, 0.4, 0.5};
+  for (size_t k = 0; k < expected.size(); ++k) EXPECT_NEAR(applied[k], expected[k], 1e-12) << k;
+}
+
+TEST(World, NonFiniteCommandsAreRejected) {
+  NEED_GEN3();
+  World w(arm_only(), arm_chain);
+  robot::Command cmd;
+  cmd.arm_tau[0][0] = std::numeric_limits<double>::quiet_NaN();
+  cmd.wheel_tau[3] = std::numeric_limits<double>::infinity();
+  w.write(cmd);
+  w.step();
+  w.step();
+  robot::MeasuredState s;
+  w.read(s);
+  EXPECT_EQ(s.arm[0].tau[0], 0.0);
+  EXPECT_EQ(w.rejected_entries(), 2u);
+}
+
+WorldConfig perturbed(std::uint64_t seed) {
+  WorldConfig c = default_world();
+  c.seed = seed;
+  c.perturbation = {0.05, 0.02, 0.05, 0.5};
+  return c;
+}
+
+std::string run_logged(const runtime::Chain& chain, const WorldConfig& c, int ticks) {
+  World w(c, chain);
+  GravityCompensation arms(chain, mounts(c));
+  PlatformWrenchController drives(c.drives);
+  drives.F_p = runtime::Vec3(10, 0, 1);
+  arms.f_E_P = {runtime::Vec3(5, 0, 0), runtime::Vec3(5, 0, 0)};
+  CsvLog log;
+  run(w, ticks, [&](const robot::MeasuredState& s, robot::Command& cmd) {
+    arms.compute(s, cmd);
+    drives.compute(s, cmd);
+    log.record(w);
+  });
+  return log.text();
+}
+
+TEST(World, SameSeedSameBytes) {
+  NEED_GEN3();
+  for (BaseFidelity b : {BaseFidelity::Wheeled, BaseFidelity::Planar}) {
+    WorldConfig c = perturbed(42);
+    c.base = b;
+    const std::string a = run_logged(arm_chain, c, 400);
+    const std::string again = run_logged(arm_chain, c, 400);
+    EXPECT_EQ(a, again) << to_string(b);
+    c.seed = 43;
+    EXPECT_NE(a, run_logged(arm_chain, c, 400)) << to_string(b);
+  }
+}
+
+TEST(World, SeedsPerturbTheInitialConditions) {
+  NEED_GEN3();
+  robot::MeasuredState nominal, s1, s2;
+  World(default_world(), arm_chain).read(nominal);
+  World(perturbed(1), arm_chain).read(s1);
+  World(perturbed(2), arm_chain).read(s2);
+  EXPECT_NE(s1.arm[0].q, nominal.arm[0].q);
+  EXPECT_NE(s1.arm[0].q, s2.arm[0].q);
+  EXPECT_NE(s1.pivot_q, s2.pivot_q);
+  for (int i = 0; i < robot::kArmJoints; ++i) {
+    const auto j = static_cast<size_t>(i);
+    EXPECT_LE(std::abs(s1.arm[1].q[j] - nominal.arm[1].q[j]), 0.05);
+  }
+  EXPECT_LE(std::abs(s1.truth.p_WoPo_W[0] - nominal.truth.p_WoPo_W[0]), 0.02);
+  EXPECT_LE(std::abs(s1.truth.yaw - nominal.truth.yaw), 0.05);
+  // Zero amplitudes: the seed changes nothing.
+  WorldConfig c = default_world();
+  c.seed = 99;
+  robot::MeasuredState s;
+  World(c, arm_chain).read(s);
+  EXPECT_EQ(s.arm[0].q, nominal.arm[0].q);
+}
+
+TEST(CsvLog, HeaderAndRowsHaveTheSameColumns) {
+  NEED_GEN3();
+  const std::string text = run_logged(arm_chain, default_world(), 3);
+  size_t lines = 0, start = 0;
+  long columns = -1;
+  while (start < text.size()) {
+    const size_t end = text.find('\n', start);
+    ASSERT_NE(end, std::string::npos);
+    const long n = std::count(text.begin() + static_cast<long>(start),
+                              text.begin() + static_cast<long>(end), ',') +
+                   1;
+    if (columns < 0) columns = n;
+    EXPECT_EQ(n, columns) << "line " << lines;
+    start = end + 1;
+    ++lines;
+  }
+  EXPECT_EQ(lines, 4u);
+  EXPECT_EQ(columns, 1 + 2 * 21 + 4 + 8 + 4 + 2 * 10 + 3);
+  EXPECT_EQ(text.substr(0, 13), "t,right_q0,ri");
+}
+
+TEST(WorldFile, OverridesTheDefaults) {
+  const WorldConfig c = parse_world_config(R"({
+    "base": "planar", "seed": 7, "substeps": 1,
+    "initial": { "base_x": -1.5, "base_yaw": 0.1, "pivot_q": [0, 0.1, 0.2, 0.3] },
+    "arms": { "left": { "q": [1, 2, 3, 4, 5, 6, 7] } },
+    "perturbation": { "arm_q": 0.01 },
+    "table": { "present": false },
+    "mount": { "active": true },
+    "robot": { "model": "robots/x.jsonld", "map": { "https://ex.org/": "ctx" } }
+  })",
+                                           "/data/worlds/w.json");
+  EXPECT_EQ(c.base, BaseFidelity::Planar);
+  EXPECT_EQ(c.seed, 7u);
+  EXPECT_EQ(c.substeps, 1);
+  EXPECT_EQ(*c.initial.base_x, -1.5);
+  EXPECT_EQ(c.initial.pivot_q[3], 0.3);
+  EXPECT_EQ(c.arms[robot::kLeftArm].q0[6], 7.0);
+  EXPECT_EQ(c.arms[robot::kRightArm].q0, default_world().arms[robot::kRightArm].q0);
+  EXPECT_EQ(c.perturbation.arm_q, 0.01);
+  EXPECT_FALSE(c.table.present);
+  EXPECT_TRUE(c.mount.active);
+  EXPECT_EQ(c.robot.model, "/data/worlds/robots/x.jsonld");  // relative to the file
+  EXPECT_EQ(c.robot.maps.back().second, "/data/worlds/ctx");
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_world_config(text, "w.json");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(WorldFile, ErrorsAreLocated) {
+  EXPECT_EQ(error_of("{\n  \"bse\": \"planar\"\n}"),
+            "w.json:2:3: error: world: unknown key 'bse' (expected one of: base, "
+            "control_period, substeps, command_delay_ticks, seed, robot, arms, actuation, "
+            "end_effector, platform, table, mount, initial, perturbation)");
+  EXPECT_EQ(error_of("{ \"base\": \"hover\" }"),
+            "w.json:1:11: error: base: expected \"wheeled\", \"planar\" or \"fixed\"");
+  EXPECT_EQ(error_of("{ \"arms\": { \"right\": { \"q\": [1, 2] } } }"),
+            "w.json:1:29: error: arms.right.q: expected an array of 7 numbers");
+  EXPECT_EQ(error_of("{ \"seed\": -1 }"), "w.json:1:11: error: seed: expected a number >= 0");
+  EXPECT_EQ(error_of("{ \"arms\": { \"left\": { \"mount\": { \"direction-cosine-x\": [1, 1, 0] } "
+                     "} } }"),
+            "w.json:1:32: error: arms.left.mount: the direction cosines are not a rotation");
+  EXPECT_NE(error_of("{ \"base\": "), "no error");  // malformed JSON, located by the parser
+}
+
+TEST(World, RejectsAChainThatIsNotAGen3) {
+  const runtime::Chain empty("base");
+  try {
+    World w(default_world(), empty);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "mospec: error: the arm chain 'base' -> 'base' has 0 joints; the robot interface "
+                 "has 7");
+  }
+}
+
+}  // namespace
+}  // namespace mospec::sim
