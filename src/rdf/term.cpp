@@ -212,6 +212,8 @@ void append_hex4(std::string& out, unsigned c) {
   for (int shift = 12; shift >= 0; shift -= 4) out += kHex[(c >> shift) & 0xF];
 }
 
+}  // namespace
+
 // Canonical literal escaping (see nquads.hpp): ECHAR for the four characters
 // that may not appear raw, UCHAR for the remaining control characters.
 void append_escaped_literal(std::string& out, std::string_view s) {
@@ -240,7 +242,6 @@ void append_escaped_literal(std::string& out, std::string_view s) {
   }
 }
 
-}  // namespace
 
 void append_ntriples(std::string& out, const TermTable& table, TermId id) {
   const Term& t = table[id];

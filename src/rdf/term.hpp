@@ -124,5 +124,8 @@ class TermTable {
 std::string to_ntriples(const TermTable&, TermId);
 // Same, appended to `out` (avoids a temporary per term when writing documents).
 void append_ntriples(std::string& out, const TermTable&, TermId);
+// The body of a quoted literal in canonical N-Triples escaping (also valid
+// Turtle): \" \\ \n \r as ECHAR, other control characters as \uXXXX.
+void append_escaped_literal(std::string& out, std::string_view text);
 
 }  // namespace mospec::rdf

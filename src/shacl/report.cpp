@@ -112,25 +112,9 @@ std::string pick_message(const Report& r, const Result& x) {
 
 std::string quote(std::string_view text) {
   std::string out = "\"";
-  for (char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out + "\"";
+  rdf::append_escaped_literal(out, text);
+  out += '"';
+  return out;
 }
 
 std::string location(const SourceFiles* files, SourceLoc loc) {
