@@ -435,6 +435,15 @@ Vec3 World::ground_wrench_P() const noexcept {
   return {f_P.x(), f_P.y(), n_P.z()};
 }
 
+int World::instabilities() const noexcept {
+  int n = 0;
+  for (int w :
+       {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC, mjWARN_CONTACTFULL, mjWARN_CNSTRFULL}) {
+    n += d_->warning[w].number;
+  }
+  return n;
+}
+
 double World::robot_mass() const noexcept {
   double m = 0.0;
   for (int b = 1; b < m_->nbody; ++b) {

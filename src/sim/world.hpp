@@ -82,6 +82,10 @@ class World final : public robot::RobotInterface {
   const WorldLayout& layout() const noexcept { return layout_; }
   const std::string& mjcf() const noexcept { return mjcf_; }
   std::uint64_t rejected_entries() const noexcept { return rejected_; }
+  // How often MuJoCo had to intervene: bad positions, velocities or
+  // accelerations (it resets the state) or a full contact or constraint
+  // buffer. Zero in a healthy run.
+  int instabilities() const noexcept;
 
   // --- Ground truth. ---
   ArmContact contact(int arm) const noexcept;
