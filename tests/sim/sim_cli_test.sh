@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Black-box tests of `mospec sim`: exit codes, located errors, atomic CSV logs
+# and byte-identical reruns. Usage: sim_cli_test.sh MOSPEC_BINARY
+set -u
+mospec=$(realpath "$1")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+passed=0
+
+# expect NAME CODE PATTERN -- COMMAND...: exit code CODE, stderr matching PATTERN.
+expect() {
+  local name=$1 code=$2 pattern=$3
+  shift 4
+  "$@" > stdout.txt 2> stderr.txt
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    echo "FAIL $name: exit $got, expected $code"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
+  fi
+  if [ -n "$pattern" ] && ! grep -Eq -- "$pattern" stderr.txt; then
+    echo "FAIL $name: stderr does not match /$pattern/"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
+  fi
+  if grep -q -i -E 'terminate called|Segmentation|AddressSanitizer|runtime error' stderr.txt; then
+    echo "FAIL $name: crashed"; cat stderr.txt; failures=$((failures+1)); return
+  fi
+  passed=$((passed+1))
+}
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then passed=$((passed+1)); else echo "FAIL $name"; failures=$((failures+1)); fi
+}
+
+cat > perturbed.json <<'J'
+{ "base": "planar",
+  "perturbation": { "arm_q": 0.05, "base_xy": 0.02, "base_yaw": 0.05, "pivot_q": 0.3 } }
+J
+cat > typo.json <<'J'
+{ "base": "planar",
+  "initial": { "base_yaw": 0.1, "pivots": [0, 0, 0, 0] } }
+J
+
+expect default-run 0 'simulated 0.2 s \(200 ticks, wheeled base, gravity controller\)' -- \
+  "$mospec" sim --duration 0.2 --log run.csv
+check header-row test "$(head -c 22 run.csv)" = "t,right_q0,right_q1,ri"
+check row-count test "$(wc -l < run.csv)" -eq 202
+expect planar-zero 0 'planar base, zero controller' -- \
+  "$mospec" sim --base planar --controller zero --duration 0.1 --log zero.csv
+expect seeded-a 0 '' -- "$mospec" sim perturbed.json --seed 5 --duration 0.3 --log a.csv
+expect seeded-b 0 '' -- "$mospec" sim perturbed.json --seed 5 --duration 0.3 --log b.csv
+expect seeded-c 0 '' -- "$mospec" sim perturbed.json --seed 6 --duration 0.3 --log c.csv
+check same-seed-same-bytes cmp -s a.csv b.csv
+check other-seed-other-bytes bash -c '! cmp -s a.csv c.csv'
+expect log-to-stdout 0 '' -- "$mospec" sim --base fixed --duration 0.01 --log -
+check stdout-csv grep -q '^t,right_q0' stdout.txt
+expect mount 0 '' -- "$mospec" sim --base fixed --mount --duration 0.05
+
+expect missing-world 2 "^mospec: error: cannot read 'nope.json'" -- "$mospec" sim nope.json
+expect located-typo 2 "^typo.json:2:33: error: initial: unknown key 'pivots'" -- \
+  "$mospec" sim typo.json
+expect bad-base 2 '^mospec: --base: hover not in' -- "$mospec" sim --base hover
+expect bad-controller 2 '^mospec: --controller' -- "$mospec" sim --controller pid
+expect negative-duration 2 '^mospec: --duration' -- "$mospec" sim --duration -1
+expect full-disk 2 "^mospec: error: cannot write '/dev/full'" -- \
+  "$mospec" sim --duration 0.01 --log /dev/full
+expect unwritable 2 '^mospec: error: ' -- "$mospec" sim --duration 0.01 --log no/such/dir/x.csv
+echo keep > kept.csv
+expect failed-run-keeps-log 2 '^typo.json' -- "$mospec" sim typo.json --log kept.csv
+check no-partial-output test "$(cat kept.csv)" = keep
+check no-temporaries test "$(ls -A | grep -c -v -E '^(perturbed|typo)\.json$|\.csv$|\.txt$')" -eq 0
+
+echo "sim_cli_test: $passed passed, $failures failed"
+[ "$failures" -eq 0 ]
