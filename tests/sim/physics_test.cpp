@@ -229,6 +229,25 @@ TEST(Physics, MountHoldsUnderTwentyNewtons) {
   }
 }
 
+// SC2: with the end-effectors mounted to the table and a passive base, the
+// arms pushing towards the table move the robot backwards.
+TEST(Physics, PushingOnTheMountMovesAPassiveBaseBack) {
+  NEED_GEN3();
+  for (BaseFidelity b : {BaseFidelity::Planar, BaseFidelity::Wheeled}) {
+    WorldConfig c = default_world();
+    c.base = b;
+    c.initial.contact_gap = 0.01;
+    c.mount.active = true;
+    World w(c, arm_chain);
+    const runtime::Vec3 p0 = w.p_WoE_W(0), base0 = w.X_WP().p;
+    GravityCompensation g(arm_chain, mounts(c));
+    g.f_E_P = {runtime::Vec3(20, 0, 0), runtime::Vec3(20, 0, 0)};
+    run(w, 500, [&](const robot::MeasuredState& s, robot::Command& cmd) { g.compute(s, cmd); });
+    EXPECT_LT(w.X_WP().p.x(), base0.x() - 0.01) << to_string(b);
+    EXPECT_LT((w.p_WoE_W(0) - p0).norm(), 2e-3) << to_string(b);
+  }
+}
+
 TEST(Physics, MountCanBeReleased) {
   NEED_GEN3();
   WorldConfig c = default_world();
