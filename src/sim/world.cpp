@@ -105,7 +105,6 @@ void World::declare(const runtime::Chain& arm) {
     }
     ee_geom_[ak] = id_of(m_, mjOBJ_GEOM, a + "_ee");
     ee_site_[ak] = id_of(m_, mjOBJ_SITE, a + "_ee");
-    ee_body_[ak] = m_->geom_bodyid[ee_geom_[ak]];
     mount_eq_[ak] = config_.table.present ? id_of(m_, mjOBJ_EQUALITY, a + "_mount") : -1;
   }
   platform_body_ = id_of(m_, mjOBJ_BODY, "platform");
@@ -128,8 +127,6 @@ void World::declare(const runtime::Chain& arm) {
         const auto wi = static_cast<size_t>(2 * i + side);
         wheel_dof_[wi] = m_->jnt_dofadr[id_of(m_, mjOBJ_JOINT, w)];
         wheel_act_[wi] = id_of(m_, mjOBJ_ACTUATOR, w);
-        const int body = id_of(m_, mjOBJ_BODY, w);
-        wheel_geom_[wi] = m_->body_geomadr[body];
       }
     }
   } else if (config_.base == BaseFidelity::Planar) {

@@ -123,8 +123,7 @@ class World final : public robot::RobotInterface {
   std::array<std::array<int, robot::kArmJoints>, robot::kArms> arm_qpos_{}, arm_dof_{}, arm_act_{};
   std::array<int, robot::kDrives> pivot_qpos_{}, pivot_dof_{};
   std::array<int, robot::kWheels> wheel_dof_{}, wheel_act_{};
-  std::array<int, robot::kWheels> wheel_geom_{};
-  std::array<int, robot::kArms> ee_geom_{}, ee_site_{}, mount_eq_{}, ee_body_{};
+  std::array<int, robot::kArms> ee_geom_{}, ee_site_{}, mount_eq_{};
   int base_qpos_ = -1, base_dof_ = -1, platform_body_ = -1, table_geom_ = -1, table_body_ = -1,
       floor_geom_ = -1;
 
