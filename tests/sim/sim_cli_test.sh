@@ -55,6 +55,12 @@ expect log-to-stdout 0 '' -- "$mospec" sim --base fixed --duration 0.01 --log -
 check stdout-csv grep -q '^t,right_q0' stdout.txt
 expect mount 0 '' -- "$mospec" sim --base fixed --mount --duration 0.05
 
+expect faults 0 '' -- "$mospec" sim --base fixed --duration 0.02 \
+  --fault 'nan:right_arm.q[1]@5+3' --fault 'stale:pivot_q[0]@2' --fault drop@3+2
+expect bad-fault-sensor 2 "^mospec: error: no sensor named 'right_arm.q\[9\]'" -- \
+  "$mospec" sim --fault 'nan:right_arm.q[9]@5'
+expect bad-fault-spec 2 "^mospec: error: --fault 'drop@x': 'x' is not a tick count" -- \
+  "$mospec" sim --fault 'drop@x'
 expect missing-world 2 "^mospec: error: cannot read 'nope.json'" -- "$mospec" sim nope.json
 expect located-typo 2 "^typo.json:2:33: error: initial: unknown key 'pivots'" -- \
   "$mospec" sim typo.json
