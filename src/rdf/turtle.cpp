@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "rdf/iri.hpp"
+#include "support/utf8.hpp"
 
 namespace mospec::rdf {
 
@@ -215,15 +216,39 @@ class TurtleReader {
   std::optional<Error> error_;
 };
 
+// Turtle and TriG documents are UTF-8; serd passes ill-formed bytes through
+// into literals, so the whole text is checked first.
+void require_utf8(std::string_view text, std::string_view file_name) {
+  const size_t bad = find_invalid_utf8(text);
+  if (bad == std::string_view::npos) return;
+  uint32_t line = 1;
+  size_t line_start = 0;
+  for (size_t i = 0; i < bad; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+  }
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const auto byte = static_cast<unsigned char>(text[bad]);
+  std::string message = "invalid UTF-8 byte 0x";
+  message += kHex[byte >> 4];
+  message += kHex[byte & 0xF];
+  throw Error("syntax", std::move(message), std::string(file_name), line,
+              static_cast<uint32_t>(bad - line_start + 1));
+}
+
 }  // namespace
 
 void read_turtle(std::string_view text, std::string_view base_iri, Dataset& into, uint32_t file_id,
                  std::string_view file_name) {
+  require_utf8(text, file_name);
   TurtleReader(text, base_iri, into, file_id, file_name).run(SERD_TURTLE);
 }
 
 void read_trig(std::string_view text, std::string_view base_iri, Dataset& into, uint32_t file_id,
                std::string_view file_name) {
+  require_utf8(text, file_name);
   TurtleReader(text, base_iri, into, file_id, file_name).run(SERD_TRIG);
 }
 

@@ -161,6 +161,17 @@ TEST(ReadTurtle, SyntaxErrorNamesFileAndLine) {
             "doc.ttl:1:33: error: invalid IRI character (escape %20)");
 }
 
+TEST(ReadTurtle, IllFormedUtf8IsAnErrorAtItsByte) {
+  // serd would copy these bytes into the literal; Turtle requires UTF-8.
+  EXPECT_EQ(turtle_error("<a> <b> \"ok\" .\n<a> <b> \"x\xC3\" .\n"),
+            "doc.ttl:2:11: error: invalid UTF-8 byte 0xC3");
+  EXPECT_EQ(turtle_error("<a> <b> \"\xED\xA0\x80\" ."),  // an encoded surrogate
+            "doc.ttl:1:10: error: invalid UTF-8 byte 0xED");
+  Dataset d;
+  read_turtle("<a> <b> \"\xC3\xA9t\xC3\xA9 \xF0\x9F\x98\x80\" .", "http://ex.org/", d);
+  EXPECT_EQ(d.size(), 1u);
+}
+
 TEST(ReadTurtle, MalformedLanguageTagIsAnError) {
   EXPECT_EQ(turtle_error("<http://e/s> <http://e/p> \"x\"@en-- .\n"),
             "doc.ttl:1:35: error: invalid language tag 'en--'");
