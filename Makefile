@@ -21,9 +21,14 @@ test: build
 conformance: build
 	@$(BIN)/jsonld-conformance ../shared/conformance/jsonld/toRdf-manifest.jsonld
 	@$(BIN)/jsonld-conformance ../shared/conformance/jsonld/expand-manifest.jsonld
+	@$(BIN)/shacl-conformance ../shared/conformance/shacl/tests/core/manifest.ttl
 
+BENCHES = mospec-bench mospec-validate-bench mospec-runtime-bench mospec-runtime-base-bench mospec-sim-bench
 bench: build
-	@$(BIN)/mospec-bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+	@for b in $(BENCHES); do \
+	  if [ -x $(BIN)/$$b ]; then echo "== $$b"; \
+	    $(BIN)/$$b --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; fi; \
+	done
 
 asan:
 	@$(MAKE) test PRESET=asan
