@@ -1,9 +1,11 @@
 #include "sim/controllers.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "runtime/kinematics.hpp"
 #include "runtime/rne.hpp"
+#include "support/diagnostics.hpp"
 
 namespace mospec::sim {
 namespace {
@@ -26,7 +28,13 @@ GravityCompensation::GravityCompensation(const runtime::Chain& arm,
                                          const std::array<runtime::Pose, robot::kArms>& X_PB)
     : X_PB_(X_PB),
       models_{gravity_model(arm, X_PB[0]), gravity_model(arm, X_PB[1])},
-      data_{runtime::AchdData(models_[0]), runtime::AchdData(models_[1])} {}
+      data_{runtime::AchdData(models_[0]), runtime::AchdData(models_[1])} {
+  if (arm.size() != robot::kArmJoints) {
+    throw Error("invalid-world", "gravity compensation: the arm chain has " +
+                                     std::to_string(arm.size()) + " joints; the robot has " +
+                                     std::to_string(robot::kArmJoints));
+  }
+}
 
 void GravityCompensation::compute(const robot::MeasuredState& state,
                                   robot::Command& command) noexcept {

@@ -20,7 +20,8 @@ namespace mospec::sim {
 // arm (a torque computed from NaN is not sent).
 class GravityCompensation {
  public:
-  // X_PB: each arm's base in the platform frame.
+  // X_PB: each arm's base in the platform frame. Throws mospec::Error when the
+  // chain does not have robot::kArmJoints joints.
   GravityCompensation(const runtime::Chain& arm,
                       const std::array<runtime::Pose, robot::kArms>& X_PB);
 
