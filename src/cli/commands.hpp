@@ -33,6 +33,7 @@ size_t print_diagnostics(const DiagnosticSink& sink);
 
 Action add_rdf_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);
+Action add_stats_command(CLI::App& app);
 Action add_sim_command(CLI::App& app);
 
 }  // namespace mospec::cli

@@ -52,6 +52,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("rdf"), rdf);
   Action validate = add_validate_command(app);
   commands.emplace_back(app.get_subcommand("validate"), validate);
+  Action stats = add_stats_command(app);
+  commands.emplace_back(app.get_subcommand("stats"), stats);
   Action sim = add_sim_command(app);
   commands.emplace_back(app.get_subcommand("sim"), sim);
 
