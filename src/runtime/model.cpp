@@ -29,6 +29,9 @@ AchdModel::AchdModel(const Chain& chain, const Vec3& g_B_in) : nq(chain.size()),
     m.axis = s.axis_J;
     m.I_So_S = s.inertia.spatial();
     m.armature = s.armature;
+    for (int k = 0; k < 3; ++k) {
+      if (m.axis == Vec3::Unit(k)) m.unit_axis = k;
+    }
   }
   X_NT = chain.X_NT();
 }

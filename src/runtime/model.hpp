@@ -15,6 +15,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <array>
+#include <cmath>
 #include <span>
 #include <string_view>
 
@@ -62,6 +63,7 @@ struct SegmentModel {
   Vec3 axis = Vec3::UnitZ();   // unit, in J and S
   Mat6 I_So_S = Mat6::Zero();  // spatial inertia about So, in S
   double armature = 0.0;
+  int unit_axis = -1;  // 0, 1, 2 when axis is +x, +y, +z exactly (a cheaper rotation)
 };
 
 class AchdModel {
@@ -80,6 +82,15 @@ class AchdModel {
 // The pose X_PS(q) of segment S in its parent P.
 inline Pose segment_pose(const SegmentModel& s, double q) {
   if (s.type == JointType::Revolute) {
+    if (s.unit_axis >= 0) {
+      // R_PJ Rot(e_k, q): columns k+1 and k+2 of R_PJ turn in their plane.
+      const int a = (s.unit_axis + 1) % 3, b = (s.unit_axis + 2) % 3;
+      const double c = std::cos(q), sn = std::sin(q);
+      Pose X{s.X_PJ.R, s.X_PJ.p};
+      X.R.col(a) = c * s.X_PJ.R.col(a) + sn * s.X_PJ.R.col(b);
+      X.R.col(b) = c * s.X_PJ.R.col(b) - sn * s.X_PJ.R.col(a);
+      return X;
+    }
     return {s.X_PJ.R * Eigen::AngleAxisd(q, s.axis).toRotationMatrix(), s.X_PJ.p};
   }
   return {s.X_PJ.R, s.X_PJ.p + s.X_PJ.R * (s.axis * q)};

@@ -88,10 +88,17 @@ inline void add_inertia_to_parent(const Pose& X_PS, const Mat6& I_S, Mat6& I_P) 
   const Mat3 A = R * I_S.topLeftCorner<3, 3>() * R.transpose();
   const Mat3 B = R * I_S.topRightCorner<3, 3>() * R.transpose();
   const Mat3 C = R * I_S.bottomRightCorner<3, 3>() * R.transpose();
-  const Mat3 Px = skew(X_PS.p);
-  const Mat3 B_P = B + Px * C;
-  const Mat3 PB = Px * B.transpose();
-  I_P.topLeftCorner<3, 3>() += A + PB + PB.transpose() - Px * C * Px;
+  const Vec3& p = X_PS.p;
+  // [p]x M and M [p]x column/row-wise as cross products (cheaper than 3x3 products).
+  Mat3 PC, PBt;
+  for (int c = 0; c < 3; ++c) {
+    PC.col(c) = p.cross(C.col(c));
+    PBt.col(c) = p.cross(B.row(c).transpose());
+  }
+  const Mat3 B_P = B + PC;
+  Mat3 PCP;  // ([p]x C) [p]x: row r is -(p x row_r)^T
+  for (int r = 0; r < 3; ++r) PCP.row(r) = -p.cross(PC.row(r).transpose()).transpose();
+  I_P.topLeftCorner<3, 3>() += A + PBt + PBt.transpose() - PCP;
   I_P.topRightCorner<3, 3>() += B_P;
   I_P.bottomLeftCorner<3, 3>() += B_P.transpose();
   I_P.bottomRightCorner<3, 3>() += C;
