@@ -90,8 +90,8 @@ TEST(SparqlConstraint, BadQueriesAreIllFormedShapes) {
   const char* cases[] = {
       "ex:S a sh:NodeShape ; sh:sparql [ sh:select \"SELECT $this WHERE { $this ex:p }\" ] .",
       "ex:S a sh:NodeShape ; sh:sparql [ sh:select \"SELECT ?x WHERE { ?x ?p ?o }\" ] .",
-      "ex:S a sh:NodeShape ; sh:sparql [ sh:select \"SELECT $this WHERE { GRAPH $shapesGraph { "
-      "$this ?p ?o } }\" ] .",
+      ("ex:S a sh:NodeShape ; sh:sparql [ sh:select \"SELECT $this WHERE { GRAPH $shapesGraph { "
+       "$this ?p ?o } }\" ] ."),
       "ex:S a sh:NodeShape ; sh:sparql [ ex:noSelect 1 ] .",
   };
   for (const char* body : cases) {
