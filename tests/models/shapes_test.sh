@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# mospec's own shapes (metamodels/**/*.ttl): each shape has a conforming and a
+# violating data graph (tests/models/data/*-good.json / *-bad.json); the bad one
+# must give exactly the expected findings, the good one none (under --strict).
+# Then the authors' four apps (skipped when ../shared is absent): mospec's shapes
+# add no violation of their own. Usage: shapes_test.sh MOSPEC_BINARY SOURCE_DIR SHARED_DIR
+set -u
+mospec=$(realpath "$1")
+src=$(realpath "$2")
+shared=$3
+data="$src/tests/models/data"
+mm="$src/metamodels"
+failures=0
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+
+fail() { echo "FAIL $1"; sed 's/^/  /' "$out"; failures=$((failures+1)); }
+
+# good NAME SHAPES: conforms with no finding even under --strict.
+good() {
+  "$mospec" validate "$data/$1-good.json" --strict --shapes "$mm/$2" > "$out" 2>&1
+  if [ $? -eq 0 ]; then echo "ok   $1 conforms"; else fail "$1-good does not conform"; fi
+}
+# bad NAME SHAPES COUNT PATTERN...: exactly COUNT violations, and each PATTERN
+# (focus node + message) is among them.
+bad() {
+  local name=$1 shapes=$2 count=$3; shift 3
+  "$mospec" validate "$data/$name-bad.json" --shapes "$mm/$shapes" > "$out" 2>&1
+  local rc=$?
+  if [ $rc -ne 1 ]; then fail "$name-bad: exit $rc, expected 1"; return; fi
+  if ! grep -q "^shacl: $count violations" "$out"; then fail "$name-bad: expected $count violations"; return; fi
+  for p in "$@"; do
+    if ! grep -Eq -- "$p" "$out"; then fail "$name-bad: no finding matches /$p/"; return; fi
+  done
+  echo "ok   $name violations ($count)"
+}
+
+good direction-cosine geometry/coordinates.ttl
+bad direction-cosine geometry/coordinates.ttl 4 \
+  '<https://ex.org/b1>: value does not conform to .*ThreeDoubles.*direction-cosine-x' \
+  '<https://ex.org/b2>: direction cosines must form a rotation matrix' \
+  '<https://ex.org/b3>: value conforms to none of the shapes of sh:or' \
+  '<https://ex.org/b4>: value does not conform to .*ThreeDoubles.*direction-cosine-z'
+
+good bilateral task/constraint.ttl
+bad bilateral task/constraint.ttl 5 \
+  '<https://ex.org/b1>: lower threshold must be less than the upper threshold' \
+  '<https://ex.org/b2>: a bilateral constraint has exactly one lower threshold' \
+  '<https://ex.org/b2>: a bilateral constraint has exactly one upper threshold' \
+  '<https://ex.org/b3>: lower and upper threshold must have the same unit' \
+  '<https://ex.org/b4>: lower and upper threshold must have the same quantity kind'
+
+good solver task/solver-specification.ttl
+bad solver task/solver-specification.ttl 3 \
+  "<https://ex.org/s1>: gravity must be expressed in the solver's root frame.*g-world" \
+  "<https://ex.org/s2>: gravity must be expressed in the solver's root frame.*g-nowhere" \
+  '<https://ex.org/s3>: a solver has exactly one root frame'
+
+# The authors' apps with their own shapes plus mospec's: only the known upstream
+# sh:xone findings on DirectionCosineXYZ remain (1/2/2/2); mospec's shapes add none.
+upstream="$shared/upstream/motion-spec-ral"
+if [ -d "$upstream/models" ]; then
+  cd "$upstream"
+  for app in sc0a-right-arm:1 sc0b-dual-arm:2 sc1:2 sc2:2; do
+    name=${app%%:*}; n=${app##*:}
+    "$mospec" validate "models/$name.json" --shapes "$mm/geometry/coordinates.ttl" \
+      --shapes "$mm/task/constraint.ttl" --shapes "$mm/task/solver-specification.ttl" > "$out" 2>/dev/null
+    total=$(grep -c 'violation:' "$out"); xone=$(grep -c 'violation:.*XoneConstraintComponent' "$out")
+    if [ "$total" -eq "$n" ] && [ "$xone" -eq "$n" ]; then
+      echo "ok   upstream $name: $n upstream sh:xone finding(s), none from mospec's shapes"
+    else
+      fail "upstream $name: $total violations ($xone sh:xone), expected $n sh:xone only"
+    fi
+  done
+else
+  echo "skip upstream apps: $upstream is absent"
+fi
+
+[ "$failures" -eq 0 ] || { echo "$failures failure(s)"; exit 1; }
