@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("stats"), stats);
   Action sim = add_sim_command(app);
   commands.emplace_back(app.get_subcommand("sim"), sim);
+  Action import_urdf = add_import_urdf_command(app);
+  commands.emplace_back(app.get_subcommand("import-urdf"), import_urdf);
 
   try {
     app.parse(argc, argv);

@@ -62,8 +62,8 @@ std::string link_list(const urdf::ModelInterface& model) {
 
 }  // namespace
 
-Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root, const std::string& tip,
-                      const std::string& source) {
+Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root_link,
+                      const std::string& tip_link, const std::string& source) {
   CapturingHandler handler;
   console_bridge::useOutputHandler(&handler);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf_xml);
@@ -73,7 +73,25 @@ Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root, cons
                 "cannot parse URDF" + (handler.messages.empty() ? "" : ": " + handler.messages),
                 source);
   }
-  for (const std::string* name : {&root, &tip}) {
+  const std::string root = root_link.empty() ? model->getRoot()->name : root_link;
+  std::string tip = tip_link;
+  if (tip.empty()) {
+    std::vector<std::string> leaves;
+    for (const auto& [name, link] : model->links_)
+      if (link->child_links.empty()) leaves.push_back(name);
+    std::sort(leaves.begin(), leaves.end());
+    if (leaves.size() != 1) {
+      std::string list;
+      for (const auto& n : leaves) list.append(list.empty() ? "" : ", ").append(n);
+      throw Error("invalid-urdf",
+                  "robot '" + model->getName() + "' has " + std::to_string(leaves.size()) +
+                      " leaf links (" + list + "); name the chain's tip link",
+                  source);
+    }
+    tip = leaves.front();
+  }
+  const std::string* const names[] = {&root, &tip};
+  for (const std::string* name : names) {
     if (!model->getLink(*name)) {
       throw Error("invalid-urdf",
                   "robot '" + model->getName() + "' has no link '" + *name +

@@ -16,7 +16,9 @@ namespace mospec::runtime {
 // when the XML does not parse (with urdfdom's own message), when `root` or `tip`
 // is not a link (listing the links), when `root` is not an ancestor of `tip`,
 // on a floating or planar joint on the path, or when the chain exceeds
-// kMaxSegments moving joints.
+// kMaxSegments moving joints. An empty `root` means the URDF's root link; an
+// empty `tip` means its only leaf link (an error listing the leaves when there
+// are several).
 Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root, const std::string& tip,
                       const std::string& source = "<urdf>");
 

@@ -88,5 +88,25 @@ expect output-file 0 '' -- "$mospec" rdf good.json --format ntriples -o out3.nt
 grep -q 'https://ex.org/name' out3.nt || { echo "FAIL output-file: content"; failures=$((failures+1)); }
 ls | grep -q '\.tmp\.' && { echo "FAIL: temporary file left behind"; failures=$((failures+1)); }
 
+# import-urdf: a URDF chain as a kinematic-chain JSON-LD model.
+cat > arm.urdf <<'U'
+<robot name="arm">
+  <link name="base"/>
+  <link name="upper"><inertial><mass value="1.5"/><origin xyz="0 0 0.1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.002"/></inertial></link>
+  <link name="tool"/>
+  <link name="camera"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 0 1"/><limit effort="10" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="flange" type="fixed"><parent link="upper"/><child link="tool"/><origin xyz="0 0 0.3"/></joint>
+  <joint name="cam" type="fixed"><parent link="base"/><child link="camera"/></joint>
+</robot>
+U
+expect urdf-two-leaves 2 "arm.urdf: error: robot 'arm' has 2 leaf links \\(camera, tool\\)" -- "$mospec" import-urdf arm.urdf
+expect urdf-bad-tip 2 "has no link 'hand'" -- "$mospec" import-urdf arm.urdf --tip hand
+expect urdf-ok 0 '' -- "$mospec" import-urdf arm.urdf --tip tool --base https://ex.org/arm/ -o arm.jsonld
+grep -q '"https://ex.org/arm/"' arm.jsonld && grep -q 'RevoluteJoint' arm.jsonld ||
+  { echo "FAIL urdf-ok: content"; failures=$((failures+1)); }
+
 echo "cli: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]
