@@ -11,6 +11,13 @@ mospec=$(realpath "$1")
 mm=$(realpath "$2")/metamodels
 upstream="$3/upstream/motion-spec-ral"
 expected="$3/upstream/expected"
+# The project's own arm model loads with no warning at all.
+if "$mospec" rdf "$mm/../robots/kinova-gen3.jsonld" --strict --format ntriples \
+     --map "https://comp-rob2b.github.io/metamodels/=$mm" > /dev/null; then
+  echo "ok   robots/kinova-gen3.jsonld loads with no warning"
+else
+  echo "FAIL robots/kinova-gen3.jsonld"; exit 1
+fi
 if [ ! -d "$upstream/models" ]; then echo "skip: $upstream is absent"; exit 0; fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
