@@ -7,10 +7,14 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
 
 #include "base_cycle.hpp"
 #include "runtime/controllers.hpp"
 #include "runtime/kelo.hpp"
+#include "runtime/urdf_import.hpp"
+#include "two_arm_base_cycle.hpp"
 
 namespace {
 
@@ -68,8 +72,29 @@ void BM_BaseCycle(benchmark::State& state) {
   }
 }
 
+// The whole controller tick: both Gen3 arms' ACHD (nc = 5 each) and the base
+// cycle. Target: <= 10 µs per tick.
+void BM_TwoArmBaseTick(benchmark::State& state) {
+  const std::string urdf = std::string(MOSPEC_SHARED_DIR) + "/upstream/kinova/GEN3_URDF_V12.urdf";
+  if (!std::filesystem::exists(urdf)) {
+    state.SkipWithError("needs the Kinova Gen3 URDF in ../shared/upstream/kinova");
+    return;
+  }
+  const auto arm = mospec::runtime::chain_from_urdf_file(urdf, "base_link", "EndEffector_Link");
+  mospec::runtime::testing::TwoArmBaseCycle cycle(arm);
+  double t = 0.0;
+  for (auto _ : state) {
+    t += 1e-3;
+    benchmark::DoNotOptimize(cycle.tick(t, 1e-3).data());
+  }
+}
+
 }  // namespace
 
+BENCHMARK(BM_TwoArmBaseTick)
+    ->Repetitions(10)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_KeloDistribution)
     ->Repetitions(10)
     ->ReportAggregatesOnly(true)

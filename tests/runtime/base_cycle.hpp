@@ -6,8 +6,9 @@
 //   with hysteresis, edge) -> PID with decaying integral -> Eq. (1) wrench ->
 //   TransformWrenchToProximal -> AddWrench -> planar projection -> KELO
 //   alignment reference, distribution, hub torques and platform twist.
-// The arm poses are synthetic (moving with t); the ACHD arms join later.
-// Used by the allocation test and the benchmark.
+// The arm poses are synthetic (moving with t) unless measured ones are given
+// with set_contact_poses (two_arm_base_cycle.hpp feeds the ACHD arms' tips).
+// Used by the allocation tests and the benchmarks.
 #pragma once
 
 #include <cmath>
@@ -77,14 +78,28 @@ class BaseCycle {
     return kelo_data_.tau_wheel;
   }
 
+  // Measured contact poses X_SE (end-effector in its shoulder frame) for the
+  // next tick, replacing the synthetic motion from then on.
+  void set_contact_poses(const Pose& X_SE_right, const Pose& X_SE_left) noexcept {
+    right_.X_SE = X_SE_right;
+    left_.X_SE = X_SE_left;
+    measured_ = true;
+  }
+  // The force each distance controller commands along its shoulder-contact
+  // direction [N] (what the arms must realise at their tips).
+  double right_force() const { return right_.distance_pid.output; }
+  double left_force() const { return left_.distance_pid.output; }
+
   const KeloData& kelo_data() const { return kelo_data_; }
   int events() const { return events_; }
 
  private:
   void step_arm(ArmSide& arm, double t, double dt, double side) noexcept {
-    // The contact point moves in the shoulder frame (synthetic arm motion).
-    arm.X_SE.p = Vec3(0.5 + 0.1 * std::sin(t + side), side * 0.05 * std::cos(t), -0.3);
-    arm.X_SE.R = Eigen::AngleAxisd(0.2 * std::sin(t), Vec3::UnitZ()).toRotationMatrix();
+    if (!measured_) {
+      // The contact point moves in the shoulder frame (synthetic arm motion).
+      arm.X_SE.p = Vec3(0.5 + 0.1 * std::sin(t + side), side * 0.05 * std::cos(t), -0.3);
+      arm.X_SE.R = Eigen::AngleAxisd(0.2 * std::sin(t), Vec3::UnitZ()).toRotationMatrix();
+    }
     const Pose X_PE = compose_pose(arm.X_PS, arm.X_SE);
 
     // 3D -> 1D.
@@ -130,6 +145,7 @@ class BaseCycle {
   KeloData kelo_data_;
   ArmSide right_, left_;
   int events_ = 0;
+  bool measured_ = false;
 };
 
 }  // namespace mospec::runtime::testing
