@@ -70,8 +70,8 @@ bad solver task/solver-specification.ttl 4 \
   "<https://ex.org/s2>: gravity must be expressed in the solver's root frame.*g-nowhere" \
   '<https://ex.org/s3>: a solver has exactly one root frame'
 
-good handler "task/constraint-handler.ttl task/motion-specification.ttl"
-bad handler "task/constraint-handler.ttl task/motion-specification.ttl" 10 \
+good handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/motion-specification.ttl"
+bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/motion-specification.ttl" 10 \
   '<https://ex.org/m1>: a post-condition \(until\) must be a constraint' \
   '<https://ex.org/m2>: value conforms to none of the shapes of sh:or' \
   '<https://ex.org/e4>: an evaluator evaluates exactly one constraint' \
