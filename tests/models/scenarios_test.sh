@@ -24,7 +24,7 @@ done
 
 # The shapes are applied: a copy whose gravity is in newtons fails.
 cp -r models metamodels robots "$work/"
-sed -i 's/"M-PER-SEC2"/"N"/' "$work/models/right-arm/01-world-model.json"
+sed -i 's/"M-PER-SEC2"/"N"/' "$work/models/sc0a/01-world-model.json"
 (cd "$work" && "$mospec" validate models/sc0a.json --strict > out 2>&1)
 if [ $? -eq 1 ] && grep -q 'gravity is an acceleration' "$work/out"; then echo "ok   changed copy is rejected"
 else fail "a copy with gravity in N was not rejected"; fi
