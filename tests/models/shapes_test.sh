@@ -63,8 +63,14 @@ bad bilateral task/constraint.ttl 5 \
   '<https://ex.org/b3>: lower and upper threshold must have the same unit' \
   '<https://ex.org/b4>: lower and upper threshold must have the same quantity kind'
 
-good solver task/solver-specification.ttl
-bad solver task/solver-specification.ttl 7 \
+good solver "task/solver-specification.ttl task/platform-solvers.ttl"
+bad solver "task/solver-specification.ttl task/platform-solvers.ttl" 13 \
+  '<https://ex.org/drv-bad>: the motion driver has no level in the prioritisation hierarchy.*ex.org/spec-frc1' \
+  '<https://ex.org/drv-bad>: the motion driver has no level in the prioritisation hierarchy.*ex.org/spec-frc2' \
+  '<https://ex.org/drv-bad>: a Cartesian-force driver must be a Cartesian force specification' \
+  '<https://ex.org/drv-bad>: the prioritisation hierarchy lists prioritisation levels' \
+  '<https://ex.org/base-bad>: a force-distribution solver has exactly one platform configuration' \
+  '<https://ex.org/base-bad>: a force-distribution solver distributes exactly one wrench' \
   "<https://ex.org/acc-bad>: the acceleration energy is no controller's control signal" \
   '<https://ex.org/spec-acc-bad>: an acceleration-constraint specification has acceleration constraints' \
   '<https://ex.org/spec-frc-bad>: nothing produces the applied wrench' \
