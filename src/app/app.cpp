@@ -1,5 +1,6 @@
 #include "app/app.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <unordered_map>
 #include <unordered_set>
@@ -68,6 +69,9 @@ class Loader {
     for (const auto& [prefix, dir] : options.maps) {
       docs_.map(prefix, dir);
       maps_.emplace_back(prefix, dir);
+    }
+    if (options.builtin_metamodels) {
+      docs_.map_fallback(std::string(kMetamodelsIri), builtin_metamodels_dir());
     }
   }
 
@@ -211,6 +215,13 @@ class Loader {
 };
 
 }  // namespace
+
+std::string builtin_metamodels_dir() {
+  if (const char* env = std::getenv("MOSPEC_METAMODELS_DIR"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  return MOSPEC_METAMODELS_DIR;
+}
 
 LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& options) {
   LoadedModel model;

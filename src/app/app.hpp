@@ -27,6 +27,9 @@ struct LoadOptions {
   // Directory that the iri-map's relative paths resolve against. Unset: the
   // current directory (what the authors' tool does).
   std::optional<std::string> root;
+  // Resolve https://comp-rob2b.github.io/metamodels/ to mospec's own metamodels
+  // (builtin_metamodels_dir()) wherever no --map or iri-map entry covers it.
+  bool builtin_metamodels = true;
 };
 
 // One loaded JSON-LD document.
@@ -73,6 +76,12 @@ class LoadedModel {
   std::vector<AppInfo> apps_;
   DiagnosticSink diagnostics_;
 };
+
+inline constexpr std::string_view kMetamodelsIri = "https://comp-rob2b.github.io/metamodels/";
+
+// Where mospec's own metamodels are: $MOSPEC_METAMODELS_DIR if set, else the
+// metamodels/ folder of the source tree mospec was built from.
+std::string builtin_metamodels_dir();
 
 // Loads each input (an app file or a plain JSON-LD model file). Warnings (dropped
 // keys, undefined types) are collected in diagnostics(); errors throw mospec::Error.

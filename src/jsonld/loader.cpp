@@ -114,14 +114,23 @@ void MappedDocumentLoader::map(std::string prefix, std::string dir) {
   prefixes_[std::move(prefix)] = std::move(dir);
 }
 
+void MappedDocumentLoader::map_fallback(std::string prefix, std::string dir) {
+  while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  fallbacks_[std::move(prefix)] = std::move(dir);
+}
+
 std::string MappedDocumentLoader::resolve(std::string_view iri) const {
-  // Longest prefix wins, so a mapping for a sub-tree overrides its parent's.
+  // Longest prefix wins, so a mapping for a sub-tree overrides its parent's;
+  // fallbacks only where no regular mapping applies.
   const std::pair<const std::string, std::string>* best = nullptr;
-  for (const auto& entry : prefixes_) {
-    if (iri.substr(0, entry.first.size()) == entry.first &&
-        (best == nullptr || entry.first.size() > best->first.size())) {
-      best = &entry;
+  for (const auto* table : {&prefixes_, &fallbacks_}) {
+    for (const auto& entry : *table) {
+      if (iri.substr(0, entry.first.size()) == entry.first &&
+          (best == nullptr || entry.first.size() > best->first.size())) {
+        best = &entry;
+      }
     }
+    if (best != nullptr) break;
   }
   if (best != nullptr) {
     std::string rest = percent_decode(strip_query_fragment(iri.substr(best->first.size())));

@@ -18,7 +18,7 @@ struct RemoteDocument {
   std::string content_type;  // "application/ld+json" unless known otherwise
   std::string context_url;   // from an HTTP Link header, if the loader models one
   std::shared_ptr<const json::Value> document;
-  uint32_t file_id = 0;      // id in the loader's SourceFiles
+  uint32_t file_id = 0;  // id in the loader's SourceFiles
 };
 
 class DocumentLoader {
@@ -44,17 +44,21 @@ class MappedDocumentLoader : public DocumentLoader {
   // `prefix` is an IRI prefix such as "https://comp-rob2b.github.io/"; `dir` a
   // local directory (a trailing '/' is optional).
   void map(std::string prefix, std::string dir);
+  // A mapping consulted only when no map() entry covers the IRI: where mospec's
+  // own metamodels live, so users need no iri-map entry for them while an app
+  // that maps the same IRIs elsewhere (e.g. to the authors' files) keeps its own.
+  void map_fallback(std::string prefix, std::string dir);
   // Local path for an IRI, or empty when no prefix maps it.
   std::string resolve(std::string_view iri) const;
-  RemoteDocument load(std::string_view iri, SourceLoc referenced_from,
-                      bool for_context) override;
+  RemoteDocument load(std::string_view iri, SourceLoc referenced_from, bool for_context) override;
   // Reads and parses a local file (cached), registering it in files().
   RemoteDocument load_file(const std::string& path, std::string document_url = {});
   size_t documents_read() const { return reads_; }
 
  private:
   std::map<std::string, std::string, std::greater<>> prefixes_;  // longest first
-  std::unordered_map<std::string, RemoteDocument> cache_;        // by path
+  std::map<std::string, std::string, std::greater<>> fallbacks_;
+  std::unordered_map<std::string, RemoteDocument> cache_;  // by path
   size_t reads_ = 0;
 };
 

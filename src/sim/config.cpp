@@ -12,9 +12,6 @@
 #ifndef MOSPEC_DEFAULT_ROBOT_MODEL
 #define MOSPEC_DEFAULT_ROBOT_MODEL "robots/kinova-gen3.jsonld"
 #endif
-#ifndef MOSPEC_DEFAULT_METAMODELS
-#define MOSPEC_DEFAULT_METAMODELS "../shared/upstream/motion-spec-ral/comp-rob2b/metamodels"
-#endif
 
 namespace mospec::sim {
 
@@ -58,7 +55,8 @@ WorldConfig default_world() {
   WorldConfig c;
   c.robot.model = MOSPEC_DEFAULT_ROBOT_MODEL;
   c.robot.chain_iri = "https://mospec.example/robots/kinova-gen3/chain";
-  c.robot.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", MOSPEC_DEFAULT_METAMODELS);
+  // The description's contexts (https://comp-rob2b.github.io/metamodels/...)
+  // resolve to mospec's own metamodels unless the world file maps them.
 
   // Mount poses of the arms' base frames in the platform frame. Source: the
   // authors' models, motion-spec-ral models/01-right-arm/00-misc.json

@@ -46,6 +46,17 @@ TEST_F(LoaderTest, LongestPrefixWins) {
   EXPECT_EQ(loader.resolve("https://other.org/x.json"), "");
 }
 
+TEST_F(LoaderTest, FallbacksApplyOnlyWhereNoMappingDoes) {
+  MappedDocumentLoader loader;
+  loader.map_fallback("https://example.org/meta/", "/builtin");
+  EXPECT_EQ(loader.resolve("https://example.org/meta/c.json"), "/builtin/c.json");
+  // A user's mapping of a parent prefix beats a longer fallback: an app that
+  // maps the metamodels elsewhere keeps its own files.
+  loader.map("https://example.org/", "/user");
+  EXPECT_EQ(loader.resolve("https://example.org/meta/c.json"), "/user/meta/c.json");
+  EXPECT_EQ(loader.resolve("https://other.org/x.json"), "");
+}
+
 TEST_F(LoaderTest, FileIrisAndPlainPaths) {
   MappedDocumentLoader loader;
   EXPECT_EQ(loader.resolve("file:///tmp/a%20b.json"), "/tmp/a b.json");

@@ -15,8 +15,8 @@
 
 namespace mospec::sim::testing {
 
-// The chain of robots/kinova-gen3.jsonld, or nullptr when the published
-// metamodels (../shared) are not there to load it.
+// The chain of robots/kinova-gen3.jsonld (its contexts resolve to mospec's own
+// metamodels), or nullptr when a world file maps them to a folder that is absent.
 inline const runtime::Chain* gen3() {
   static const std::unique_ptr<runtime::Chain> chain = []() -> std::unique_ptr<runtime::Chain> {
     const WorldConfig c = default_world();
