@@ -11,12 +11,6 @@
 namespace mospec::runtime {
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 [[noreturn]] void reject(const char* name, const std::string& what) {
   throw Error("invalid-controller", std::string(name) + ": " + what);
 }
@@ -59,19 +53,20 @@ double decay_phi2(double a) noexcept {
 
 Pid::Pid(const PidSpec& spec, const char* name) : spec_(spec) {
   if (!std::isfinite(spec.kp) || !std::isfinite(spec.ki) || !std::isfinite(spec.kd)) {
-    reject(name, "gains must be finite, got kp " + number(spec.kp) + ", ki " + number(spec.ki) +
-                     ", kd " + number(spec.kd));
+    reject(name, "gains must be finite, got kp " + exact_number(spec.kp) + ", ki " +
+                     exact_number(spec.ki) + ", kd " + exact_number(spec.kd));
   }
   if (!(spec.decay_rate >= 0.0 && spec.decay_rate <= 1.0)) {
-    reject(name, "decay rate must be in [0, 1] per second (Eq. 4), got " + number(spec.decay_rate) +
+    reject(name, "decay rate must be in [0, 1] per second (Eq. 4), got " +
+                     exact_number(spec.decay_rate) +
                      " (a per-tick factor beta at period T is -ln(beta)/T per second)");
   }
   if (!(spec.output_min < spec.output_max)) {
-    reject(name, "output limits need min < max, got min " + number(spec.output_min) + " and max " +
-                     number(spec.output_max));
+    reject(name, "output limits need min < max, got min " + exact_number(spec.output_min) +
+                     " and max " + exact_number(spec.output_max));
   }
   if (!(spec.tracking_rate >= 0.0) || !std::isfinite(spec.tracking_rate)) {
-    reject(name, "tracking rate must be finite and >= 0, got " + number(spec.tracking_rate));
+    reject(name, "tracking rate must be finite and >= 0, got " + exact_number(spec.tracking_rate));
   }
   if (spec.anti_windup == AntiWindup::BackCalculation && spec.ki != 0.0 &&
       !(spec.tracking_rate > 0.0)) {

@@ -8,18 +8,13 @@
 namespace mospec::runtime {
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 [[noreturn]] void reject(const char* name, const std::string& what) {
   throw Error("invalid-constraint", std::string(name) + ": " + what);
 }
 
 void require_finite(const char* name, const char* field, double v) {
-  if (!std::isfinite(v)) reject(name, std::string(field) + " must be finite, got " + number(v));
+  if (!std::isfinite(v))
+    reject(name, std::string(field) + " must be finite, got " + exact_number(v));
 }
 
 }  // namespace
@@ -27,7 +22,7 @@ void require_finite(const char* name, const char* field, double v) {
 ConstraintEvaluator::ConstraintEvaluator(const ConstraintSpec& spec, const char* name)
     : spec_(spec) {
   if (!(spec.tolerance >= 0.0) || !std::isfinite(spec.tolerance)) {
-    reject(name, "tolerance must be finite and >= 0, got " + number(spec.tolerance));
+    reject(name, "tolerance must be finite and >= 0, got " + exact_number(spec.tolerance));
   }
   switch (spec.kind) {
     case ConstraintKind::Equality:
@@ -42,8 +37,8 @@ ConstraintEvaluator::ConstraintEvaluator(const ConstraintSpec& spec, const char*
       require_finite(name, "lower threshold", spec.lower);
       require_finite(name, "upper threshold", spec.upper);
       if (!(spec.lower < spec.upper)) {
-        reject(name, "bilateral constraint needs lower < upper, got lower " + number(spec.lower) +
-                         " and upper " + number(spec.upper));
+        reject(name, "bilateral constraint needs lower < upper, got lower " +
+                         exact_number(spec.lower) + " and upper " + exact_number(spec.upper));
       }
       break;
   }

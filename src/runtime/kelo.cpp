@@ -11,26 +11,20 @@
 namespace mospec::runtime {
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 [[noreturn]] void reject(const std::string& what) {
   throw Error("invalid-kelo", "KELO base: " + what);
 }
 
 void require_positive(const char* field, double v) {
   if (!(v > 0.0) || !std::isfinite(v)) {
-    reject(std::string(field) + " must be finite and > 0, got " + number(v));
+    reject(std::string(field) + " must be finite and > 0, got " + exact_number(v));
   }
 }
 
 void require_weight(const char* field, int i, double v) {
   if (!(v >= 0.0) || !std::isfinite(v)) {
     reject(std::string(field) + " of drive " + std::to_string(i) +
-           " must be finite and >= 0, got " + number(v));
+           " must be finite and >= 0, got " + exact_number(v));
   }
 }
 

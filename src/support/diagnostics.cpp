@@ -1,6 +1,7 @@
 #include "support/diagnostics.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace mospec {
 
@@ -47,6 +48,12 @@ std::string format(const Diagnostic& d) {
   out += ": ";
   out += d.message;
   return out;
+}
+
+std::string exact_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
 }
 
 size_t DiagnosticSink::count(Severity s) const {

@@ -51,6 +51,10 @@ struct Diagnostic {
 // diagnostic with no file starts with "mospec:").
 std::string format(const Diagnostic&);
 
+// A number as messages quote it: every digit needed to read the same double
+// back ("%.17g"), so a message never hides the value that was rejected.
+std::string exact_number(double value);
+
 // Collects diagnostics; the caller inspects or prints them.
 class DiagnosticSink {
  public:

@@ -6,14 +6,10 @@
 // AddressSanitizer, which owns malloc itself.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cerrno>
-#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <kdl/chainhdsolver_vereshchagin.hpp>
-#include <new>
 #include <vector>
 
 #include "kdl_reference.hpp"
@@ -23,114 +19,11 @@
 #include "runtime/rne.hpp"
 #include "runtime/urdf_import.hpp"
 #include "test_robots.hpp"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define MOSPEC_NO_ALLOC_COUNTING 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define MOSPEC_NO_ALLOC_COUNTING 1
-#endif
-#endif
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-[[maybe_unused]] void note_allocation() {
-  if (g_counting.load(std::memory_order_relaxed)) {
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-  }
-}
-}  // namespace
-
-#ifndef MOSPEC_NO_ALLOC_COUNTING
-// glibc's own entry points, so the replacements below can forward to them.
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-
-void* malloc(std::size_t n) {
-  note_allocation();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t n, std::size_t size) {
-  note_allocation();
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t n) {
-  note_allocation();
-  return __libc_realloc(p, n);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t n) {
-  note_allocation();
-  return __libc_memalign(alignment, n);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t n) {
-  note_allocation();
-  *out = __libc_memalign(alignment, n);
-  return *out != nullptr ? 0 : ENOMEM;
-}
-void free(void* p) {
-  __libc_free(p);
-}
-}
-
-void* operator new(std::size_t n) {
-  note_allocation();
-  if (void* p = __libc_malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) {
-  return operator new(n);
-}
-void* operator new(std::size_t n, std::align_val_t a) {
-  note_allocation();
-  if (void* p = __libc_memalign(static_cast<std::size_t>(a), n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n, std::align_val_t a) {
-  return operator new(n, a);
-}
-void operator delete(void* p) noexcept {
-  __libc_free(p);
-}
-void operator delete[](void* p) noexcept {
-  __libc_free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  __libc_free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  __libc_free(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept {
-  __libc_free(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept {
-  __libc_free(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  __libc_free(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  __libc_free(p);
-}
-#endif
+// Defines the replacement allocator: this translation unit only, and last.
+#include "alloc_counter.hpp"  // NOLINT(llvm-include-order)
 
 namespace mospec::runtime {
 namespace {
-
-// Counts the allocations made while f runs.
-template <typename F>
-long allocations_during(F&& f) {
-  g_allocations = 0;
-  g_counting = true;
-  f();
-  g_counting = false;
-  return g_allocations.load();
-}
 
 class NoAllocation : public ::testing::Test {
  protected:
@@ -142,11 +35,11 @@ class NoAllocation : public ::testing::Test {
 };
 
 TEST_F(NoAllocation, TheCounterSeesEveryKindOfAllocation) {
-  EXPECT_EQ(allocations_during([] { std::vector<int> v(10); }), 1);
-  EXPECT_EQ(allocations_during([] { Eigen::VectorXd v(10); }), 1);
-  EXPECT_EQ(allocations_during([] { std::free(std::malloc(8)); }), 1);
-  EXPECT_EQ(allocations_during([] { Eigen::Matrix<double, 6, Eigen::Dynamic> m(6, 20); }), 1);
-  EXPECT_EQ(allocations_during([] {}), 0);
+  EXPECT_EQ(alloc_counter::during([] { std::vector<int> v(10); }), 1);
+  EXPECT_EQ(alloc_counter::during([] { Eigen::VectorXd v(10); }), 1);
+  EXPECT_EQ(alloc_counter::during([] { std::free(std::malloc(8)); }), 1);
+  EXPECT_EQ(alloc_counter::during([] { Eigen::Matrix<double, 6, Eigen::Dynamic> m(6, 20); }), 1);
+  EXPECT_EQ(alloc_counter::during([] {}), 0);
 }
 
 void run_all_algorithms(const Chain& chain, int nc) {
@@ -164,7 +57,7 @@ void run_all_algorithms(const Chain& chain, int nc) {
   const Eigen::VectorXd no_beta(0);
   JointVector q = s.q, qd = s.qd, tau = s.tau;
   int statuses_ok = 0;
-  const long n = allocations_during([&] {
+  const long n = alloc_counter::during([&] {
     for (int k = 0; k < 10000; ++k) {
       q[k % model.nq] += 1e-4;  // a moving state, as in a control loop
       statuses_ok += achd(model, data, q, qd, tau, s.F_ext, alpha, beta) == Status::Ok;
@@ -172,7 +65,7 @@ void run_all_algorithms(const Chain& chain, int nc) {
   });
   EXPECT_EQ(n, 0) << "achd, nc = " << nc;
   EXPECT_EQ(statuses_ok, 10000);
-  EXPECT_EQ(allocations_during([&] {
+  EXPECT_EQ(alloc_counter::during([&] {
               for (int k = 0; k < 10000; ++k) {
                 achd(model, data, q, qd, tau, {}, none, no_beta);
                 achd(model, data, q, qd, tau, s.F_ext, singular, singular_beta);
@@ -180,7 +73,7 @@ void run_all_algorithms(const Chain& chain, int nc) {
             }),
             0)
       << "achd without constraints / singular";
-  EXPECT_EQ(allocations_during([&] {
+  EXPECT_EQ(alloc_counter::during([&] {
               for (int k = 0; k < 10000; ++k) {
                 rne(model, data, q, qd, s.qdd, s.F_ext);
                 forward_kinematics(model, data, q);
@@ -219,7 +112,7 @@ TEST_F(NoAllocation, KdlVereshchaginForComparison) {
   KDL::Jacobian alpha(nc);
   alpha.data.setIdentity();
   KDL::Wrenches f_ext(chain.getNrOfSegments());
-  const long total = allocations_during([&] {
+  const long total = alloc_counter::during([&] {
     for (int k = 0; k < 100; ++k) solver.CartToJnt(q, qd, qdd, alpha, beta, f_ext, ff, tc);
   });
   RecordProperty("kdl_allocations_per_call", std::to_string(total / 100));
