@@ -1,32 +1,8 @@
 #!/usr/bin/env bash
 # Black-box tests of the mospec CLI: exit codes, located one-line errors, and no
 # partial outputs. Usage: cli_test.sh MOSPEC_BINARY
-set -u
-mospec=$(realpath "$1")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/../support/cli_lib.sh"
 cd "$work"
-failures=0
-passed=0
-
-# expect NAME CODE PATTERN -- COMMAND...: exit code must be CODE and stderr must
-# match the extended regex PATTERN (empty: anything).
-expect() {
-  local name=$1 code=$2 pattern=$3
-  shift 4
-  "$@" > stdout.txt 2> stderr.txt
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    echo "FAIL $name: exit $got, expected $code"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
-  fi
-  if [ -n "$pattern" ] && ! grep -Eq -- "$pattern" stderr.txt; then
-    echo "FAIL $name: stderr does not match /$pattern/"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
-  fi
-  if grep -q -i -E 'terminate called|Segmentation|AddressSanitizer|runtime error' stderr.txt; then
-    echo "FAIL $name: crashed"; cat stderr.txt; failures=$((failures+1)); return
-  fi
-  passed=$((passed+1))
-}
 
 mkdir -p ctx
 cat > good.json <<'J'
@@ -108,5 +84,4 @@ expect urdf-ok 0 '' -- "$mospec" import-urdf arm.urdf --tip tool --base https://
 grep -q '"https://ex.org/arm/"' arm.jsonld && grep -q 'RevoluteJoint' arm.jsonld ||
   { echo "FAIL urdf-ok: content"; failures=$((failures+1)); }
 
-echo "cli: $passed passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish cli

@@ -4,39 +4,10 @@
 # Usage: validate_test.sh MOSPEC_BINARY
 # Run from ../shared/upstream/motion-spec-ral (ctest sets WORKING_DIRECTORY) for
 # the authors' scenario verdicts; elsewhere those are skipped with a message.
-set -u
-mospec=$(realpath "$1")
+source "$(dirname "$0")/../support/cli_lib.sh"
 upstream=$PWD
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-passed=0
 
-fail() { echo "FAIL $1"; failures=$((failures+1)); }
 
-# expect NAME CODE PATTERN -- COMMAND...: exit code must be CODE and stderr must
-# match the extended regex PATTERN (empty: anything). stdout goes to $out.
-expect() {
-  local name=$1 code=$2 pattern=$3
-  shift 4
-  "$@" > "$work/stdout.txt" 2> "$work/stderr.txt"
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    fail "$name: exit $got, expected $code"; sed 's/^/  stderr: /' "$work/stderr.txt" | head -20; return
-  fi
-  if [ -n "$pattern" ] && ! grep -Eq -- "$pattern" "$work/stderr.txt"; then
-    fail "$name: stderr does not match /$pattern/"; sed 's/^/  stderr: /' "$work/stderr.txt" | head -20; return
-  fi
-  if grep -q -i -E 'terminate called|Segmentation|AddressSanitizer|runtime error|internal error' "$work/stderr.txt"; then
-    fail "$name: crashed"; cat "$work/stderr.txt"; return
-  fi
-  passed=$((passed+1))
-}
-
-# stdout_has NAME PATTERN: the last command's stdout matches the extended regex.
-stdout_has() {
-  grep -Eq -- "$2" "$work/stdout.txt" || { fail "$1: stdout does not match /$2/"; sed 's/^/  stdout: /' "$work/stdout.txt" | head -20; }
-}
 
 # ---- the authors' scenarios --------------------------------------------------
 if [ -f models/sc1.json ] && [ -d comp-rob2b/metamodels ]; then
@@ -253,5 +224,4 @@ if [ -w /dev/full ]; then
 fi
 ls | grep -q '\.tmp\.' && fail "temporary file left behind"
 
-echo "cli: $passed passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish validate

@@ -1,35 +1,8 @@
 #!/usr/bin/env bash
 # Black-box tests of `mospec sim`: exit codes, located errors, atomic CSV logs
 # and byte-identical reruns. Usage: sim_cli_test.sh MOSPEC_BINARY
-set -u
-mospec=$(realpath "$1")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/../support/cli_lib.sh"
 cd "$work"
-failures=0
-passed=0
-
-# expect NAME CODE PATTERN -- COMMAND...: exit code CODE, stderr matching PATTERN.
-expect() {
-  local name=$1 code=$2 pattern=$3
-  shift 4
-  "$@" > stdout.txt 2> stderr.txt
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    echo "FAIL $name: exit $got, expected $code"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
-  fi
-  if [ -n "$pattern" ] && ! grep -Eq -- "$pattern" stderr.txt; then
-    echo "FAIL $name: stderr does not match /$pattern/"; sed 's/^/  stderr: /' stderr.txt; failures=$((failures+1)); return
-  fi
-  if grep -q -i -E 'terminate called|Segmentation|AddressSanitizer|runtime error' stderr.txt; then
-    echo "FAIL $name: crashed"; cat stderr.txt; failures=$((failures+1)); return
-  fi
-  passed=$((passed+1))
-}
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then passed=$((passed+1)); else echo "FAIL $name"; failures=$((failures+1)); fi
-}
 
 cat > perturbed.json <<'J'
 { "base": "planar",
@@ -75,5 +48,4 @@ expect failed-run-keeps-log 2 '^typo.json' -- "$mospec" sim typo.json --log kept
 check no-partial-output test "$(cat kept.csv)" = keep
 check no-temporaries test "$(ls -A | grep -c -v -E '^(perturbed|typo)\.json$|\.csv$|\.txt$')" -eq 0
 
-echo "sim_cli_test: $passed passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish sim_cli_test

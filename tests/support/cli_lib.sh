@@ -1,0 +1,50 @@
+# Shared by the black-box CLI tests (sourced). Sets up:
+#   mospec   absolute path of the binary under test ($1 of the test script)
+#   work     a scratch directory, removed on exit
+# and the checks below, which count into $passed / $failures; finish prints the
+# closing "NAME: N passed, M failed" line and sets the exit status.
+set -u
+mospec=$(realpath "$1")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+passed=0
+
+fail() { echo "FAIL $1"; failures=$((failures+1)); }
+
+# expect NAME CODE PATTERN -- COMMAND...: exit code must be CODE and stderr must
+# match the extended regex PATTERN (empty: anything); never a crash. The
+# command's output is kept in $work/stdout.txt and $work/stderr.txt.
+expect() {
+  local name=$1 code=$2 pattern=$3
+  shift 4
+  "$@" > "$work/stdout.txt" 2> "$work/stderr.txt"
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    fail "$name: exit $got, expected $code"; sed 's/^/  stderr: /' "$work/stderr.txt" | head -20; return
+  fi
+  if [ -n "$pattern" ] && ! grep -Eq -- "$pattern" "$work/stderr.txt"; then
+    fail "$name: stderr does not match /$pattern/"; sed 's/^/  stderr: /' "$work/stderr.txt" | head -20; return
+  fi
+  if grep -q -i -E 'terminate called|Segmentation|AddressSanitizer|runtime error|internal error' "$work/stderr.txt"; then
+    fail "$name: crashed"; cat "$work/stderr.txt"; return
+  fi
+  passed=$((passed+1))
+}
+
+# check NAME COMMAND...: the command succeeds.
+check() {
+  local name=$1; shift
+  if "$@"; then passed=$((passed+1)); else fail "$name"; fi
+}
+
+# stdout_has NAME PATTERN: the last command's stdout matches the extended regex.
+stdout_has() {
+  grep -Eq -- "$2" "$work/stdout.txt" || { fail "$1: stdout does not match /$2/"; sed 's/^/  stdout: /' "$work/stdout.txt" | head -20; }
+}
+
+# finish SUITE: the closing summary line; exit status 0 only without failures.
+finish() {
+  echo "$1: $passed passed, $failures failed"
+  [ "$failures" -eq 0 ]
+}
