@@ -242,7 +242,6 @@ void append_escaped_literal(std::string& out, std::string_view s) {
   }
 }
 
-
 void append_ntriples(std::string& out, const TermTable& table, TermId id) {
   const Term& t = table[id];
   switch (t.kind) {

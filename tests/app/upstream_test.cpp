@@ -19,10 +19,10 @@ namespace {
 const fs::path kUpstream = fs::path(MOSPEC_SHARED_DIR) / "upstream";
 const fs::path kModels = kUpstream / "motion-spec-ral";
 
-#define SKIP_WITHOUT_SHARED()                                                          \
-  if (!fs::exists(kModels / "models")) {                                               \
+#define SKIP_WITHOUT_SHARED()                                                            \
+  if (!fs::exists(kModels / "models")) {                                                 \
     GTEST_SKIP() << "../shared/upstream/motion-spec-ral is absent (" << kModels.string() \
-                 << "); the upstream compatibility corpus is needed for this test";   \
+                 << "); the upstream compatibility corpus is needed for this test";      \
   }
 
 app::LoadedModel load_app(const std::string& app_file) {
@@ -88,11 +88,11 @@ TEST(UpstreamApp, SilentDropsAreReportedWithTheirLocation) {
   EXPECT_TRUE(has_diagnostic(model, "01-right-arm/00-misc.json", "undefined-type",
                              "RotateWrenchToProximalWithPose", 78))
       << all_diagnostics(model);
-  EXPECT_TRUE(has_diagnostic(model, "04-sc1/07-scenario.json", "dropped-key", "kinematic-chain",
-                             66))
+  EXPECT_TRUE(
+      has_diagnostic(model, "04-sc1/07-scenario.json", "dropped-key", "kinematic-chain", 66))
       << all_diagnostics(model);
-  EXPECT_TRUE(has_diagnostic(model, "04-sc1/07-scenario.json", "dropped-key", "kinematic-chain",
-                             120))
+  EXPECT_TRUE(
+      has_diagnostic(model, "04-sc1/07-scenario.json", "dropped-key", "kinematic-chain", 120))
       << all_diagnostics(model);
   for (const Diagnostic& d : model.diagnostics().diagnostics()) {
     EXPECT_EQ(d.severity, Severity::Warning) << format(d);
