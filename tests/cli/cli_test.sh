@@ -64,6 +64,17 @@ expect output-file 0 '' -- "$mospec" rdf good.json --format ntriples -o out3.nt
 grep -q 'https://ex.org/name' out3.nt || { echo "FAIL output-file: content"; failures=$((failures+1)); }
 ls | grep -q '\.tmp\.' && { echo "FAIL: temporary file left behind"; failures=$((failures+1)); }
 
+# Determinism: the same input gives byte-identical output (blank nodes included).
+cat > blanks.json <<'J'
+{ "@context": { "ex": "https://ex.org/" },
+  "@graph": [ { "ex:p": { "ex:q": [ { "@list": [1, 2.5, "x"] } ] } },
+              { "@id": "ex:a", "ex:r": { "ex:s": true } } ] }
+J
+expect determinism-1 0 '' -- "$mospec" rdf blanks.json -o det1.nq
+expect determinism-2 0 '' -- "$mospec" rdf blanks.json -o det2.nq
+check determinism-identical cmp -s det1.nq det2.nq
+check determinism-has-blank-nodes grep -q '^_:' det1.nq
+
 # import-urdf: a URDF chain as a kinematic-chain JSON-LD model.
 cat > arm.urdf <<'U'
 <robot name="arm">
