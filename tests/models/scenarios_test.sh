@@ -39,4 +39,17 @@ if [ -f models/sc1.json ]; then
   else fail "sc1 with lower > upper was not rejected twice"; fi
 fi
 
+# SC1's distance and direction operators are checked (the spatial-operators
+# family files sc1 lists): an operator with two poses is rejected.
+if [ -f models/sc1.json ]; then
+  rm -rf "$work/models" && cp -r models "$work/"
+  sed -i 's/"pose": "pose-rightarm-shoulder-ee",/"pose": ["pose-rightarm-shoulder-ee", "pose-leftarm-shoulder-ee"],/' \
+    "$work/models/sc1/02-map.json"
+  (cd "$work" && "$mospec" validate models/sc1.json --strict > out 2>&1)
+  if [ $? -eq 1 ] && grep -q 'violation: <[^>]*pose-to-dist-rightarm>' "$work/out" \
+     && grep -q 'violation: <[^>]*pose-to-dir-rightarm>' "$work/out"; then
+    echo "ok   sc1 with a two-pose distance and direction operator is rejected"
+  else fail "sc1's distance/direction operators with two poses were not rejected"; fi
+fi
+
 [ "$failures" -eq 0 ] || { echo "$failures failure(s)"; exit 1; }

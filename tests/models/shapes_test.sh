@@ -96,7 +96,12 @@ bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/mo
   '<https://ex.org/h>: every constraint of the handled motion must be evaluated.*not-a-constraint' \
   'warning: <https://ex.org/h>: the handler evaluates a constraint that is not part of its motion.*ex.org/c3'
 
-ops="geometry/spatial-relations.ttl geometry/spatial-operators.ttl newtonian-rigid-body-dynamics/operators.ttl task/map.ttl"
+# The operators' shapes both as the four family files apps list and as
+# geometry/spatial-operators.ttl (for apps naming the published file): same findings.
+families="geometry/spatial-operators/distance.ttl geometry/spatial-operators/direction.ttl"
+families="$families geometry/spatial-operators/angle.ttl geometry/spatial-operators/pose.ttl"
+for geom_ops in geometry/spatial-operators.ttl "$families"; do
+ops="geometry/spatial-relations.ttl $geom_ops newtonian-rigid-body-dynamics/operators.ttl task/map.ttl"
 good operators "$ops"
 bad operators "$ops" 9 \
   '<https://ex.org/view2>: the view feeds a constrained quantity but nothing computes what it reads' \
@@ -108,6 +113,18 @@ bad operators "$ops" 9 \
   "<https://ex.org/rotw>: the rotated wrench must come out seen by the pose's proximal frame" \
   '<https://ex.org/view>: a view yields exactly one 1D quantity' \
   '<https://ex.org/view>: a view selects exactly one of the axes x, y, z'
+done
+
+# geometry/spatial-operators.ttl is exactly the family files' shapes: its text
+# after the prefixes is theirs, concatenated in the order above.
+body() { sed -e '/^#/d' -e '/^@prefix/d' -e '/^$/d' "$@"; }
+if diff <(body "$mm/geometry/spatial-operators.ttl") \
+        <(for f in $families; do body "$mm/$f"; done) > "$out"; then
+  echo "ok   spatial-operators.ttl = its family files"
+else fail "geometry/spatial-operators.ttl differs from spatial-operators/*.ttl"; fi
+for f in $families; do
+  if grep -q '^@prefix mos:' "$mm/$f" && grep -q '^mos:' "$mm/$f"; then :; else fail "$f holds no shape"; fi
+done
 
 # The authors' apps with their own contexts and shapes plus three of mospec's
 # shape files: the known upstream sh:xone findings on DirectionCosineXYZ (1/2/2/2)
