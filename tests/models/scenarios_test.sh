@@ -52,4 +52,16 @@ if [ -f models/sc1.json ]; then
   else fail "sc1's distance/direction operators with two poses were not rejected"; fi
 fi
 
+# SC1's wrench transforms to the platform are checked: platform wrenches that act
+# at the shoulder's origin instead of the platform's are rejected (one per arm).
+if [ -f models/sc1.json ]; then
+  rm -rf "$work/models" && cp -r models "$work/"
+  sed -i 's|"reference-point": "point-platform-origin"|"reference-point": "https://mospec.example/robots/kinova-gen3/point-base_link-origin"|' \
+    "$work/models/sc1/01-world-model.json"
+  (cd "$work" && "$mospec" validate models/sc1.json --strict > out 2>&1)
+  if [ $? -eq 1 ] && [ "$(grep -c "the transformed wrench must come out acting at the origin of the pose's proximal frame" "$work/out")" -eq 2 ]; then
+    echo "ok   sc1 with platform wrenches at the wrong point is rejected"
+  else fail "sc1's wrench transforms to a wrong reference point were not rejected twice"; fi
+fi
+
 [ "$failures" -eq 0 ] || { echo "$failures failure(s)"; exit 1; }

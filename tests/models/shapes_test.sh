@@ -96,6 +96,24 @@ bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/mo
   '<https://ex.org/h>: every constraint of the handled motion must be evaluated.*not-a-constraint' \
   'warning: <https://ex.org/h>: the handler evaluates a constraint that is not part of its motion.*ex.org/c3'
 
+good monitors task/monitors.ttl
+bad monitors task/monitors.ttl 8 \
+  '<https://ex.org/b1>: a monitor watches exactly one error signal' \
+  '<https://ex.org/b1>: a level-triggered monitor raises exactly one flag' \
+  "<https://ex.org/b2>: the monitor's error signal is produced by no error evaluator.*err-nowhere" \
+  "<https://ex.org/b2>: the monitor's error signal has no unit" \
+  '<https://ex.org/b2>: an edge-triggered monitor emits on exactly one event queue' \
+  "<https://ex.org/b3>: a threshold of the watched constraint has a unit the monitor's error signal does not have.*ex.org/lo>" \
+  "<https://ex.org/b3>: a threshold of the watched constraint has a unit the monitor's error signal does not have.*ex.org/hi>" \
+  "<https://ex.org/h>: a handler's monitors are monitors.*not-a-monitor"
+
+good wrench-transform newtonian-rigid-body-dynamics/operators.ttl
+bad wrench-transform newtonian-rigid-body-dynamics/operators.ttl 4 \
+  "<https://ex.org/t1>: the transformed wrench must be seen by the pose's distal frame" \
+  "<https://ex.org/t2>: the transformed wrench must act at the origin of the pose's distal frame" \
+  "<https://ex.org/t2>: the transformed wrench must come out acting at the origin of the pose's proximal frame" \
+  "<https://ex.org/t3>: the transformed wrench must come out seen by the pose's proximal frame"
+
 # The operators' shapes both as the four family files apps list and as
 # geometry/spatial-operators.ttl (for apps naming the published file): same findings.
 families="geometry/spatial-operators/distance.ttl geometry/spatial-operators/direction.ttl"
