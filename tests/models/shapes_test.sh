@@ -107,6 +107,15 @@ bad monitors task/monitors.ttl 8 \
   "<https://ex.org/b3>: a threshold of the watched constraint has a unit the monitor's error signal does not have.*ex.org/hi>" \
   "<https://ex.org/h>: a handler's monitors are monitors.*not-a-monitor"
 
+good joint-force task/joint-force-drivers.ttl
+bad joint-force task/joint-force-drivers.ttl 6 \
+  '<https://ex.org/jf-none>: a joint-force specification applies exactly one joint force' \
+  '<https://ex.org/jf-none>: a joint-force driver is attached to exactly one joint' \
+  "<https://ex.org/jf-link>: nothing produces the joint force.*tau-nowhere" \
+  '<https://ex.org/jf-link>: a joint-force driver is attached to exactly one joint' \
+  '<https://ex.org/jf-unit>: a force on a revolute joint is a torque: its unit must be N-M' \
+  '<https://ex.org/drv>: a joint-force driver must be a joint-force specification.*not-a-driver'
+
 good wrench-transform newtonian-rigid-body-dynamics/operators.ttl
 bad wrench-transform newtonian-rigid-body-dynamics/operators.ttl 4 \
   "<https://ex.org/t1>: the transformed wrench must be seen by the pose's distal frame" \
