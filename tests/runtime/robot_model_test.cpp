@@ -1,6 +1,8 @@
 // robots/kinova-gen3.jsonld: it is exactly what the generator makes from
 // Kinova's URDF, it loads through the project's JSON-LD loader with every term
-// defined, and it reads back into the same chain (same kinematics and dynamics).
+// defined, and it reads back into the same chain (same kinematics and dynamics),
+// both against the authors' metamodels (../shared) and against mospec's own
+// (metamodels/, needing nothing from ../shared).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -60,10 +62,43 @@ TEST(RobotModel, PrismaticJointsHaveNoPublishedTerm) {
   }
 }
 
-app::LoadedModel load_gen3() {
+// mospec's own metamodels (metamodels/): the model needs nothing from ../shared.
+const std::string kOwnMetamodels = std::string(MOSPEC_SOURCE_DIR) + "/metamodels";
+
+// The committed model loaded against the given metamodels (default: the authors').
+app::LoadedModel load_gen3(const std::string& metamodels = kMetamodels) {
   app::LoadOptions options;
-  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kMetamodels);
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", metamodels);
   return app::load({kModel}, options);
+}
+
+// Same links and joints, and the same kinematics (tip pose and Jacobian) and
+// dynamics (mass matrix, inverse dynamics) at random states.
+void expect_same_chain(const Chain& loaded, const Chain& expected, double tolerance) {
+  ASSERT_EQ(loaded.size(), expected.size());
+  EXPECT_EQ(loaded.root(), expected.root());
+  EXPECT_EQ(loaded.tip(), expected.tip());
+  for (int i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(loaded.segment(i).link, expected.segment(i).link);
+    EXPECT_EQ(loaded.segment(i).joint, expected.segment(i).joint);
+  }
+  const AchdModel a(loaded), b(expected);
+  AchdData da(a), db(b);
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 20; ++trial) {
+    const auto s = testing::random_state(rng, a.nq);
+    tip_jacobian(a, da, s.q);
+    tip_jacobian(b, db, s.q);
+    EXPECT_TRUE(near(da.X_BT.p, db.X_BT.p, tolerance));
+    EXPECT_TRUE(near(da.X_BT.R, db.X_BT.R, tolerance));
+    EXPECT_TRUE(near(Eigen::MatrixXd(da.J_To_B), Eigen::MatrixXd(db.J_To_B), tolerance));
+    mass_matrix(a, da, s.q);
+    mass_matrix(b, db, s.q);
+    EXPECT_TRUE(near(Eigen::MatrixXd(da.H), Eigen::MatrixXd(db.H), tolerance));
+    rne(a, da, s.q, s.qd, s.qdd, s.F_ext);
+    rne(b, db, s.q, s.qd, s.qdd, s.F_ext);
+    EXPECT_TRUE(near(Eigen::VectorXd(da.tau), Eigen::VectorXd(db.tau), tolerance));
+  }
 }
 
 TEST(RobotModel, LoadsWithEveryTermDefined) {
@@ -81,30 +116,73 @@ TEST(RobotModel, ReadsBackIntoTheSameChain) {
   const rdf::Dataset graph = load_gen3().flattened();
   const Chain loaded = chain_from_rdf(graph, kBase + "chain");
   const Chain urdf = gen3_from_urdf();
-  ASSERT_EQ(loaded.size(), urdf.size());
   EXPECT_EQ(loaded.root(), "base_link");
   EXPECT_EQ(loaded.tip(), "EndEffector_Link");
-  for (int i = 0; i < urdf.size(); ++i) {
-    EXPECT_EQ(loaded.segment(i).link, urdf.segment(i).link);
-    EXPECT_EQ(loaded.segment(i).joint, urdf.segment(i).joint);
+  expect_same_chain(loaded, urdf, 1e-12);
+}
+
+// The same model against mospec's own metamodels (no ../shared needed): every
+// term defined, and it reads back into the URDF's chain: its links, joints and
+// masses, and its tip position and joint-space inertia at q = 0 (reference values
+// from the URDF chain; with ../shared present the test also compares the whole
+// chain with the URDF's and with the one read through the authors' metamodels).
+TEST(RobotModelOwnMetamodels, LoadsWithEveryTermDefined) {
+  const app::LoadedModel model = load_gen3(kOwnMetamodels);
+  for (const auto& d : model.diagnostics().diagnostics()) ADD_FAILURE() << format(d);
+  EXPECT_GT(model.dataset().size(), 600u);
+}
+
+TEST(RobotModelOwnMetamodels, ReadsBackIntoTheSameChain) {
+  const Chain loaded = chain_from_rdf(load_gen3(kOwnMetamodels).flattened(), kBase + "chain");
+  struct Expected {
+    const char* link;
+    const char* joint;
+    double mass;  // kg, the URDF's link masses
+  };
+  const Expected segments[] = {
+      {"Shoulder_Link", "Actuator1", 1.3773},        {"HalfArm1_Link", "Actuator2", 1.1636},
+      {"HalfArm2_Link", "Actuator3", 1.1636},        {"ForeArm_Link", "Actuator4", 0.9302},
+      {"SphericalWrist1_Link", "Actuator5", 0.6781}, {"SphericalWrist2_Link", "Actuator6", 0.6781},
+      {"Bracelet_Link", "Actuator7", 0.5006},
+  };
+  ASSERT_EQ(loaded.size(), 7);
+  EXPECT_EQ(loaded.root(), "base_link");
+  EXPECT_EQ(loaded.tip(), "EndEffector_Link");
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_EQ(loaded.segment(i).link, segments[i].link);
+    EXPECT_EQ(loaded.segment(i).joint, segments[i].joint);
+    EXPECT_EQ(loaded.segment(i).type, JointType::Revolute);
+    EXPECT_NEAR(loaded.segment(i).inertia.mass, segments[i].mass, 1e-12);
   }
-  const AchdModel a(loaded), b(urdf);
-  AchdData da(a), db(b);
-  std::mt19937 rng(17);
-  for (int trial = 0; trial < 20; ++trial) {
-    const auto s = testing::random_state(rng, a.nq);
-    tip_jacobian(a, da, s.q);
-    tip_jacobian(b, db, s.q);
-    EXPECT_TRUE(near(da.X_BT.p, db.X_BT.p, 1e-12));
-    EXPECT_TRUE(near(da.X_BT.R, db.X_BT.R, 1e-12));
-    EXPECT_TRUE(near(Eigen::MatrixXd(da.J_To_B), Eigen::MatrixXd(db.J_To_B), 1e-12));
-    mass_matrix(a, da, s.q);
-    mass_matrix(b, db, s.q);
-    EXPECT_TRUE(near(Eigen::MatrixXd(da.H), Eigen::MatrixXd(db.H), 1e-12));
-    rne(a, da, s.q, s.qd, s.qdd, s.F_ext);
-    rne(b, db, s.q, s.qd, s.qdd, s.F_ext);
-    EXPECT_TRUE(near(Eigen::VectorXd(da.tau), Eigen::VectorXd(db.tau), 1e-12));
+  const AchdModel model(loaded);
+  AchdData data(model);
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(model.nq);
+  tip_jacobian(model, data, q);
+  mass_matrix(model, data, q);
+  EXPECT_TRUE(near(data.X_BT.p, Vec3(0.0, -0.024859601294874054, 1.1873847699190927), 1e-12));
+  const double diagonal[] = {0.0082209332893274176, 1.5188724873808117,    0.0039231400401279837,
+                             0.25673264835153947,   0.0016049686641863529, 0.012634920650303319,
+                             0.00067412033323899993};
+  for (int i = 0; i < 7; ++i)
+    EXPECT_NEAR(data.H(i, i), diagonal[i], 1e-12) << "H(" << i << ", " << i << ")";
+  if (std::filesystem::exists(kMetamodels)) {
+    expect_same_chain(loaded, chain_from_rdf(load_gen3().flattened(), kBase + "chain"), 0.0);
   }
+  if (std::filesystem::exists(kUrdf)) expect_same_chain(loaded, gen3_from_urdf(), 1e-12);
+}
+
+// Without any mapping the model resolves the published IRIs to mospec's
+// metamodels by itself (app::builtin_metamodels_dir()) and gives the same graph.
+TEST(RobotModelOwnMetamodels, BuiltinFallbackGivesTheSameGraph) {
+  if (const char* env = std::getenv("MOSPEC_METAMODELS_DIR"); env != nullptr && *env != '\0') {
+    GTEST_SKIP() << "MOSPEC_METAMODELS_DIR is set";
+  }
+  const app::LoadedModel builtin = app::load({kModel}, app::LoadOptions{});
+  for (const auto& d : builtin.diagnostics().diagnostics()) ADD_FAILURE() << format(d);
+  const Chain a = chain_from_rdf(builtin.flattened(), kBase + "chain");
+  const Chain b = chain_from_rdf(load_gen3(kOwnMetamodels).flattened(), kBase + "chain");
+  EXPECT_EQ(builtin.dataset().size(), load_gen3(kOwnMetamodels).dataset().size());
+  expect_same_chain(a, b, 0.0);
 }
 
 TEST(RobotModel, ReadingNamesWhatIsWrong) {
