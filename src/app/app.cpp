@@ -1,5 +1,6 @@
 #include "app/app.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <unordered_map>
@@ -200,7 +201,69 @@ class Loader {
     }
     app.imports = unique;
     apps_.push_back(app);
-    for (size_t i = 0; i < unique.size(); ++i) load_import(unique[i], unique_locs[i]);
+    // A missing import does not stop the others from loading, so the error can
+    // name what the rest of the model points at in it.
+    std::vector<Error> missing;
+    for (size_t i = 0; i < unique.size(); ++i) {
+      try {
+        load_import(unique[i], unique_locs[i]);
+      } catch (const Error& e) {
+        if (e.code() != "loading document failed") throw;
+        missing.push_back(e);
+      }
+    }
+    if (!missing.empty()) throw with_dangling_references(missing);
+  }
+
+  // The first missing import's error, extended with the references the loaded
+  // files make to model entities (IRIs under the app's iri-map, outside the
+  // metamodels) that no loaded file describes: what the missing files held.
+  Error with_dangling_references(const std::vector<Error>& missing) const {
+    const rdf::TermTable& t = dataset_.terms();
+    std::unordered_set<uint32_t> described;
+    for (const rdf::Quad& q : dataset_.quads()) described.insert(q.subject.index);
+    const rdf::TermId type = t.find_iri("http://www.w3.org/1999/02/22-rdf-syntax-ns#type");
+    std::unordered_set<uint32_t> app_files;  // their import lists are not references
+    for (const ModelFile& f : files_)
+      if (f.is_app) app_files.insert(f.file_id);
+    std::vector<std::string> dangling;
+    std::unordered_set<uint32_t> seen;
+    for (size_t i = 0; i < dataset_.size(); ++i) {
+      if (app_files.count(dataset_.location(i).file)) continue;
+      const rdf::Quad& q = dataset_.quads()[i];
+      const rdf::Term& o = t[q.object];
+      if (o.kind != rdf::TermKind::Iri || q.predicate == type || described.count(q.object.index) ||
+          o.value.starts_with(kMetamodelsIri) || !seen.insert(q.object.index).second) {
+        continue;
+      }
+      bool in_model_namespace = false;
+      for (const auto& [prefix, dir] : maps_) in_model_namespace |= o.value.starts_with(prefix);
+      if (!in_model_namespace) continue;
+      const SourceLoc at = dataset_.location(i);
+      std::string entry = "<";
+      entry.append(o.value).append(">");
+      if (at.known()) {
+        entry.append(" (").append(docs_.files().path(at.file)).append(":");
+        entry.append(std::to_string(at.line)).append(")");
+      }
+      dangling.push_back(std::move(entry));
+    }
+    const Diagnostic& first = missing.front().diagnostic();
+    std::string message = first.message;
+    if (missing.size() > 1) {
+      message.append(" (and ").append(std::to_string(missing.size() - 1));
+      message.append(" more missing import(s))");
+    }
+    if (dangling.empty()) {
+      message += "; no loaded file refers to what it would define";
+    } else {
+      message.append("; ").append(std::to_string(dangling.size()));
+      message += " reference(s) now dangle: ";
+      const size_t shown = std::min<size_t>(dangling.size(), 10);
+      for (size_t k = 0; k < shown; ++k) message.append(k ? ", " : "").append(dangling[k]);
+      if (shown < dangling.size()) message += ", ...";
+    }
+    return Error(missing.front().code(), message, first.file, first.line, first.column);
   }
 
   const LoadOptions& options_;

@@ -108,29 +108,55 @@ TEST(Composability, AScenarioOnlyAddsToTheOneItExtends) {
   }
 }
 
-TEST(Composability, AMissingImportIsALocatedErrorNamingIt) {
-  // A copy of sc0a whose import list names a file that does not exist.
+// Loads a copy of sc0a whose import `from` is renamed to `to`; returns the error text.
+std::string load_with_renamed_import(const std::string& from, const std::string& to) {
   const fs::path dir = fs::temp_directory_path() / "mospec-composability";
   fs::create_directories(dir);
   std::ifstream in(kRoot / "models" / "sc0a.json");
   std::string app((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string good = "https://mospec.example/models/sc0a/07-scenario.json";
-  const size_t at = app.find(good);
-  ASSERT_NE(at, std::string::npos);
-  app.replace(at, good.size(), "https://mospec.example/models/sc0a/07-renamed.json");
+  const size_t at = app.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at == std::string::npos) return {};
+  app.replace(at, from.size(), to);
   const fs::path copy = dir / "sc0a-renamed.json";
   std::ofstream(copy) << app;
   app::LoadOptions options;
   options.root = kRoot.string();
+  std::string what = "no error";
   try {
     app::load({copy.string()}, options);
-    ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(copy.string() + ":"), std::string::npos) << what;
-    EXPECT_NE(what.find("07-renamed.json"), std::string::npos) << what;
+    what = e.what();
+    EXPECT_EQ(e.code(), "loading document failed");
+    EXPECT_NE(what.find(copy.string() + ":"), std::string::npos) << what;  // located at the import
   }
   fs::remove_all(dir);
+  return what;
+}
+
+TEST(Composability, AMissingImportIsALocatedErrorNamingIt) {
+  const std::string what =
+      load_with_renamed_import("https://mospec.example/models/sc0a/07-scenario.json",
+                               "https://mospec.example/models/sc0a/07-renamed.json");
+  EXPECT_NE(what.find("07-renamed.json"), std::string::npos) << what;
+}
+
+TEST(Composability, AMissingImportNamesTheReferencesThatNowDangle) {
+  // The right arm's world model defines the poses, twists and wrenches that its
+  // map file reads: without it those references dangle, each named with the
+  // place that makes it.
+  const std::string what =
+      load_with_renamed_import("https://mospec.example/models/right-arm/01-world-model.json",
+                               "https://mospec.example/models/right-arm/01-renamed.json");
+  EXPECT_NE(what.find("01-renamed.json"), std::string::npos) << what;
+  EXPECT_NE(what.find("reference(s) now dangle"), std::string::npos) << what;
+  EXPECT_NE(what.find("<https://mospec.example/models/pose-rightarm-shoulder-elbow> (" +
+                      (kRoot / "models/right-arm/02-map.json:").string()),
+            std::string::npos)
+      << what;
+  // The app file's own import list is not a reference.
+  EXPECT_EQ(what.find("<https://mospec.example/models/right-arm/00-misc.json>"), std::string::npos)
+      << what;
 }
 
 }  // namespace
