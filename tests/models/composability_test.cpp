@@ -2,6 +2,7 @@
 // same triples (up to blank-node renaming) whichever scenario imports it, and a
 // scenario's own files only add. A missing import is a located error naming it.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -110,7 +111,9 @@ TEST(Composability, AScenarioOnlyAddsToTheOneItExtends) {
 
 // Loads a copy of sc0a whose import `from` is renamed to `to`; returns the error text.
 std::string load_with_renamed_import(const std::string& from, const std::string& to) {
-  const fs::path dir = fs::temp_directory_path() / "mospec-composability";
+  // One folder per process: ctest runs this executable's cases in parallel.
+  const fs::path dir =
+      fs::temp_directory_path() / ("mospec-composability-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::ifstream in(kRoot / "models" / "sc0a.json");
   std::string app((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

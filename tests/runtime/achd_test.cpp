@@ -4,6 +4,7 @@
 #include "runtime/achd.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainhdsolver_vereshchagin.hpp>
@@ -33,12 +34,15 @@ struct Robot {
 };
 
 Robot toy() {
-  const std::string path = ::testing::TempDir() + "/mospec_achd_toy.urdf";
+  // One file per process: ctest runs the cases of this executable in parallel.
+  const std::string path =
+      ::testing::TempDir() + "/mospec_achd_toy_" + std::to_string(::getpid()) + ".urdf";
   std::FILE* f = std::fopen(path.c_str(), "w");
   std::fputs(testing::kToyUrdf.c_str(), f);
   std::fclose(f);
   const KDL::Chain kdl =
       testing::kdl_chain(testing::kdl_tree_from_urdf_file(path), "world", "tool");
+  std::remove(path.c_str());
   return {chain_from_urdf(testing::kToyUrdf, "world", "tool"), kdl,
           testing::fold_fixed_segments(kdl)};
 }

@@ -1,6 +1,7 @@
 // Chain model and URDF import: unit checks, then forward kinematics, Jacobians
 // and mass matrices against KDL built from the same URDF.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <kdl/chaindynparam.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -154,7 +155,8 @@ void compare_with_kdl(const Chain& chain, const KDL::Chain& kdl, unsigned seed) 
 
 TEST(ChainVsKdl, ToyArmWithFixedAndPrismaticJoints) {
   const Chain chain = chain_from_urdf(testing::kToyUrdf, "world", "tool");
-  const std::string path = ::testing::TempDir() + "/mospec_toy.urdf";
+  const std::string path =
+      ::testing::TempDir() + "/mospec_toy_" + std::to_string(::getpid()) + ".urdf";
   {
     std::FILE* f = std::fopen(path.c_str(), "w");
     ASSERT_NE(f, nullptr);

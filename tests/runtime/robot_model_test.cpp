@@ -4,6 +4,7 @@
 // both against the authors' metamodels (../shared) and against mospec's own
 // (metamodels/, needing nothing from ../shared).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -203,7 +204,8 @@ TEST(RobotModel, WrongUnitsAreRejectedNotConverted) {
   std::string text = read_file(kModel);
   const std::string from = "\"unit\": \"KiloGM\"";
   text.replace(text.find(from), from.size(), "\"unit\": \"GM\"");
-  const std::string path = ::testing::TempDir() + "/mospec-gen3-grams.jsonld";
+  const std::string path =
+      ::testing::TempDir() + "/mospec-gen3-grams-" + std::to_string(::getpid()) + ".jsonld";
   write_output(path, text);
   app::LoadOptions options;
   options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kMetamodels);
