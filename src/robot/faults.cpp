@@ -15,24 +15,24 @@ void FaultInjector::add(const Fault& fault) {
   faults_[static_cast<std::size_t>(count_++)] = fault;
 }
 
-void FaultInjector::inject_nan(std::string_view sensor_name, std::uint64_t from_tick,
-                               std::uint64_t ticks) {
+void FaultInjector::add_sensor_fault(FaultKind kind, std::string_view sensor_name,
+                                     std::uint64_t from_tick, std::uint64_t ticks) {
   Fault f;
-  f.kind = FaultKind::Nan;
+  f.kind = kind;
   f.sensor = sensor(sensor_name);
   f.from_tick = from_tick;
   f.ticks = ticks;
   add(f);
 }
 
+void FaultInjector::inject_nan(std::string_view sensor_name, std::uint64_t from_tick,
+                               std::uint64_t ticks) {
+  add_sensor_fault(FaultKind::Nan, sensor_name, from_tick, ticks);
+}
+
 void FaultInjector::inject_stale(std::string_view sensor_name, std::uint64_t from_tick,
                                  std::uint64_t ticks) {
-  Fault f;
-  f.kind = FaultKind::Stale;
-  f.sensor = sensor(sensor_name);
-  f.from_tick = from_tick;
-  f.ticks = ticks;
-  add(f);
+  add_sensor_fault(FaultKind::Stale, sensor_name, from_tick, ticks);
 }
 
 void FaultInjector::drop_commands(std::uint64_t from_tick, std::uint64_t count) {

@@ -58,6 +58,8 @@ class FaultInjector {
 
  private:
   void add(const Fault& fault);
+  void add_sensor_fault(FaultKind kind, std::string_view sensor_name, std::uint64_t from_tick,
+                        std::uint64_t ticks);
   std::array<Fault, kCapacity> faults_{};
   int count_ = 0;
 };
