@@ -96,15 +96,36 @@ bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/mo
   '<https://ex.org/h>: every constraint of the handled motion must be evaluated.*not-a-constraint' \
   'warning: <https://ex.org/h>: the handler evaluates a constraint that is not part of its motion.*ex.org/c3'
 
+good unilateral task/unilateral-constraint.ttl
+bad unilateral task/unilateral-constraint.ttl 8 \
+  '<https://ex.org/u1>: a unilateral constraint has exactly one threshold' \
+  '<https://ex.org/u2>: a unilateral constraint has exactly one threshold' \
+  '<https://ex.org/u3>: the threshold has a unit the constrained quantity does not have.*ex.org/z-mm>' \
+  '<https://ex.org/u4>: the threshold has a quantity kind the constrained quantity does not have.*ex.org/z-len>' \
+  '<https://ex.org/u5>: the constrained quantity has no unit' \
+  '<https://ex.org/u6>: a unilateral constraint is exactly one of a greater-than and a less-than constraint' \
+  '<https://ex.org/u7>: a unilateral constraint is exactly one of a greater-than and a less-than constraint' \
+  '<https://ex.org/u8>: a threshold is a quantity with exactly one value and one unit'
+
+good time mospec/time.ttl
+bad time mospec/time.ttl 6 \
+  '<https://ex.org/c1>: a clock gives exactly one time' \
+  "<https://ex.org/c1>: a clock's time is in seconds: exactly one unit, SEC" \
+  '<https://ex.org/c2>: a clock gives exactly one time' \
+  "<https://ex.org/c3>: a clock's time is in seconds: exactly one unit, SEC" \
+  "<https://ex.org/c4>: a clock's time is a quantity \\(qudt:Quantity\\)" \
+  "<https://ex.org/c5>: a clock's time is in seconds: exactly one unit, SEC"
+
 good monitors task/monitors.ttl
-bad monitors task/monitors.ttl 8 \
+bad monitors task/monitors.ttl 9 \
   '<https://ex.org/b1>: a monitor watches exactly one error signal' \
   '<https://ex.org/b1>: a level-triggered monitor raises exactly one flag' \
   "<https://ex.org/b2>: the monitor's error signal is produced by no error evaluator.*err-nowhere" \
   "<https://ex.org/b2>: the monitor's error signal has no unit" \
-  '<https://ex.org/b2>: an edge-triggered monitor emits on exactly one event queue' \
   "<https://ex.org/b3>: a threshold of the watched constraint has a unit the monitor's error signal does not have.*ex.org/lo>" \
   "<https://ex.org/b3>: a threshold of the watched constraint has a unit the monitor's error signal does not have.*ex.org/hi>" \
+  '<https://ex.org/b4>: an edge-triggered monitor emits on at most one event queue' \
+  "<https://ex.org/b5>: a threshold of the watched constraint has a unit the monitor's error signal does not have.*ex.org/t-max>" \
   "<https://ex.org/h>: a handler's monitors are monitors.*not-a-monitor"
 
 good joint-force task/joint-force-drivers.ttl
@@ -130,7 +151,7 @@ families="$families geometry/spatial-operators/angle.ttl geometry/spatial-operat
 for geom_ops in geometry/spatial-operators.ttl "$families"; do
 ops="geometry/spatial-relations.ttl $geom_ops newtonian-rigid-body-dynamics/operators.ttl task/map.ttl"
 good operators "$ops"
-bad operators "$ops" 9 \
+bad operators "$ops" 15 \
   '<https://ex.org/view2>: the view feeds a constrained quantity but nothing computes what it reads' \
   '<https://ex.org/d1>: a linear distance is between exactly two entities' \
   '<https://ex.org/d2>: a point-to-point distance is between points' \
@@ -139,7 +160,13 @@ bad operators "$ops" 9 \
   "<https://ex.org/rot>: the rotated output must be seen by the pose's proximal frame" \
   "<https://ex.org/rotw>: the rotated wrench must come out seen by the pose's proximal frame" \
   '<https://ex.org/view>: a view yields exactly one 1D quantity' \
-  '<https://ex.org/view>: a view selects exactly one of the axes x, y, z'
+  '<https://ex.org/view>: a view selects exactly one of the axes x, y, z' \
+  '<https://ex.org/compose>: a pose composition has exactly one second input pose \(in2\)' \
+  '<https://ex.org/compose>: a pose composition has exactly one composite pose' \
+  '<https://ex.org/angle>: a planar angle is between exactly two directions' \
+  '<https://ex.org/angle>: a planar angle operator gives exactly one angle' \
+  '<https://ex.org/invert>: an angle inversion has exactly one input angle' \
+  '<https://ex.org/invert>: an angle inversion has exactly one output angle'
 done
 
 # geometry/spatial-operators.ttl is exactly the family files' shapes: its text
