@@ -64,4 +64,33 @@ if [ -f models/sc1.json ]; then
   else fail "sc1's wrench transforms to a wrong reference point were not rejected twice"; fi
 fi
 
+# sc0a's contact-lost guard is checked: its threshold in millimetres (the height
+# is in metres) is rejected by the unilateral-constraint and the monitor shapes.
+rm -rf "$work/models" && cp -r models "$work/"
+sed -i '/"@id": "pos-rightarm-ee-height-contact-lost"/,/}/ s/"unit": "M"/"unit": "MilliM"/' "$work/models/sc0a/00-misc.json"
+(cd "$work" && "$mospec" validate models/sc0a.json --strict > out 2>&1)
+if [ $? -eq 1 ] && grep -q 'violation: <[^>]*cstr-pos-rightarm-contact-lost>: the threshold has a unit the constrained quantity does not have' "$work/out" \
+   && grep -q "violation: <[^>]*mon-rightarm-contact-lost>: a threshold of the watched constraint has a unit the monitor's error signal does not have" "$work/out"; then
+  echo "ok   sc0a with a contact-lost threshold in mm is rejected"
+else fail "sc0a's contact-lost threshold in mm was not rejected"; fi
+
+# The shared clock is checked: a time in minutes is rejected.
+rm -rf "$work/models" && cp -r models "$work/"
+sed -i 's/"unit": "SEC"/"unit": "MIN"/' "$work/models/common/clock.json"
+(cd "$work" && "$mospec" validate models/sc0a.json --strict > out 2>&1)
+if [ $? -eq 1 ] && grep -q "violation: <[^>]*clock-controller>: a clock's time is in seconds" "$work/out"; then
+  echo "ok   a clock whose time is in minutes is rejected"
+else fail "a clock whose time is in minutes was not rejected"; fi
+
+# A post-condition is satisfied when its error is 0: SC1's motion ending on the
+# contact force (an assignment, no error) is rejected.
+if [ -f models/sc1.json ]; then
+  rm -rf "$work/models" && cp -r models "$work/"
+  sed -i 's/"cstr-time-sc1-rightarm-timeout"/"cstr-frc-rightarm-ee-contact"/' "$work/models/sc1/04-motion-specification.json"
+  (cd "$work" && "$mospec" validate models/sc1.json --strict > out 2>&1)
+  if [ $? -eq 1 ] && grep -q 'violation: <[^>]*cstr-hdl-sc1-rightarm>: a pre- or post-condition (when, until) must be evaluated by an error evaluator.*cstr-frc-rightarm-ee-contact' "$work/out"; then
+    echo "ok   sc1 ending on a constraint without an error evaluator is rejected"
+  else fail "sc1 with an until constraint evaluated by no error evaluator was not rejected"; fi
+fi
+
 [ "$failures" -eq 0 ] || { echo "$failures failure(s)"; exit 1; }

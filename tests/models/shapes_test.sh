@@ -83,7 +83,7 @@ bad solver "task/solver-specification.ttl task/platform-solvers.ttl" 13 \
   '<https://ex.org/s3>: a solver has exactly one root frame'
 
 good handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/motion-specification.ttl"
-bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/motion-specification.ttl" 10 \
+bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/motion-specification.ttl" 11 \
   '<https://ex.org/m1>: a post-condition \(until\) must be a constraint' \
   '<https://ex.org/m2>: value conforms to none of the shapes of sh:or' \
   '<https://ex.org/e4>: an evaluator evaluates exactly one constraint' \
@@ -94,7 +94,8 @@ bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/mo
   '<https://ex.org/k2>: a PID controller has exactly one integral gain' \
   '<https://ex.org/k2>: a PID controller has exactly one derivative gain' \
   '<https://ex.org/h>: every constraint of the handled motion must be evaluated.*not-a-constraint' \
-  'warning: <https://ex.org/h>: the handler evaluates a constraint that is not part of its motion.*ex.org/c3'
+  'warning: <https://ex.org/h>: the handler evaluates a constraint that is not part of its motion.*ex.org/c3' \
+  '<https://ex.org/h3>: a pre- or post-condition \(when, until\) must be evaluated by an error evaluator of the handler.*ex.org/c4>'
 
 good unilateral task/unilateral-constraint.ttl
 bad unilateral task/unilateral-constraint.ttl 8 \
