@@ -36,5 +36,6 @@ Action add_validate_command(CLI::App& app);
 Action add_stats_command(CLI::App& app);
 Action add_sim_command(CLI::App& app);
 Action add_import_urdf_command(CLI::App& app);
+Action add_ir_command(CLI::App& app);
 
 }  // namespace mospec::cli

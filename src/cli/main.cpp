@@ -58,6 +58,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("sim"), sim);
   Action import_urdf = add_import_urdf_command(app);
   commands.emplace_back(app.get_subcommand("import-urdf"), import_urdf);
+  Action ir = add_ir_command(app);
+  commands.emplace_back(app.get_subcommand("ir"), ir);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,29 @@
+// The front half every code-producing command shares: load the app, validate
+// it (the verdict gates everything after it), lower it to the IR.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "ir/ir.hpp"
+#include "ir/lower.hpp"
+
+namespace mospec::cli {
+
+struct PipelineFlags {
+  std::vector<std::string> inputs;
+  std::vector<std::string> binds;  // CHAIN=right|left
+  LoadFlags load;
+  void add_to(CLI::App& cmd);
+};
+
+// Loads, validates and lowers. On failure prints every finding (located) to
+// stderr and returns the exit code in `exit_code`: 1 when the model does not
+// validate or lower, 2 on bad input. `files` receives the source files (for
+// locations in the IR's JSON) when non-null.
+std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& exit_code,
+                                               SourceFiles* files = nullptr);
+
+}  // namespace mospec::cli

@@ -1,0 +1,243 @@
+#include "ir/interpreter.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "runtime/model.hpp"
+
+namespace mospec::ir {
+
+using runtime::Pose;
+using runtime::Vec3;
+using runtime::Vec6;
+
+struct Interpreter::Arm {
+  explicit Arm(const ArmSolver& s)
+      : model(achd_model(s)),
+        data(model),
+        ws(model, static_cast<int>(s.acceleration_constraints.size())) {
+    for (size_t k = 0; k < s.acceleration_constraints.size(); ++k) {
+      ws.alpha_To_B(s.acceleration_constraints[k].component, static_cast<Eigen::Index>(k)) = 1.0;
+    }
+  }
+  runtime::AchdModel model;
+  runtime::AchdData data;
+  runtime::steps::ArmWorkspace ws;
+};
+
+struct Interpreter::Base {
+  explicit Base(const BaseSolver& s) : model(kelo_config(s)), data(model) {}
+  runtime::KeloModel model;
+  runtime::KeloData data;
+};
+
+Interpreter::Interpreter(Program program) : program_(std::move(program)) {
+  verify(program_);
+  scalars_.assign(static_cast<size_t>(program_.count(DataType::Scalar)), 0.0);
+  vec3s_.assign(static_cast<size_t>(program_.count(DataType::Vector3)), Vec3::Zero());
+  poses_.assign(static_cast<size_t>(program_.count(DataType::Pose)), Pose{});
+  twists_.assign(static_cast<size_t>(program_.count(DataType::Twist)), Vec6::Zero());
+  wrenches_.assign(static_cast<size_t>(program_.count(DataType::Wrench)), Vec6::Zero());
+  flags_.assign(static_cast<size_t>(program_.count(DataType::Flag)), 0);
+  events_.assign(static_cast<size_t>(program_.count(DataType::Event)), 0);
+  for (const Data& d : program_.data) {
+    if (d.value.empty()) continue;
+    const auto s = static_cast<size_t>(d.slot);
+    switch (d.type) {
+      case DataType::Scalar: scalars_[s] = d.value[0]; break;
+      case DataType::Vector3: vec3s_[s] = Vec3(d.value[0], d.value[1], d.value[2]); break;
+      case DataType::Pose: poses_[s] = constant_pose(d.value); break;
+      case DataType::Twist:
+      case DataType::Wrench: {
+        Vec6 v;
+        for (int i = 0; i < 6; ++i) v[i] = d.value[static_cast<size_t>(i)];
+        (d.type == DataType::Twist ? twists_ : wrenches_)[s] = v;
+        break;
+      }
+      case DataType::Flag: flags_[s] = d.value[0] != 0.0; break;
+      case DataType::Event: break;
+    }
+  }
+  pid_states_.resize(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Pid)]));
+  monitor_states_.resize(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Monitor)]));
+  motion_states_.assign(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Motion)]),
+                        runtime::steps::MotionState::Idle);
+  evaluators_.resize(program_.steps.size());
+  for (size_t i = 0; i < program_.steps.size(); ++i) {
+    const Step& st = program_.steps[i];
+    if (st.kind == StepKind::Evaluate) {
+      evaluators_[i] = std::make_unique<runtime::ConstraintEvaluator>(st.constraint, st.name.c_str());
+    } else if (st.kind == StepKind::Pid) {
+      if (pids_.size() <= static_cast<size_t>(st.state)) pids_.resize(static_cast<size_t>(st.state) + 1, runtime::Pid(runtime::PidSpec{}));
+      pids_[static_cast<size_t>(st.state)] = runtime::Pid(st.pid, st.name.c_str());
+    }
+  }
+  for (const ArmSolver& a : program_.arms) arms_.push_back(std::make_unique<Arm>(a));
+  if (program_.base) base_ = std::make_unique<Base>(*program_.base);
+  for (const LogColumn& c : program_.log) {
+    column_names_.push_back(c.name);
+    column_units_.push_back(c.unit);
+  }
+  for (size_t i = 0; i < column_names_.size(); ++i) {
+    columns_.push_back({column_names_[i].c_str(), column_units_[i].c_str()});
+  }
+}
+
+Interpreter::~Interpreter() = default;
+
+void Interpreter::tick(const robot::MeasuredState& state, robot::Command& command) noexcept {
+  command = robot::Command{};
+  command.tick = state.clock.tick;
+  std::fill(events_.begin(), events_.end(), 0);
+  for (size_t i = 0; i < program_.steps.size(); ++i) execute(program_.steps[i], i, state, command);
+}
+
+void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredState& state,
+                          robot::Command& command) noexcept {
+  namespace rt = runtime;
+  namespace steps = runtime::steps;
+  const auto in = [&](size_t k) { return slot(st.in[k]); };
+  const auto out = [&](size_t k) { return slot(st.out[k]); };
+  switch (st.kind) {
+    case StepKind::ReadClock:
+      scalars_[out(0)] = state.clock.t;
+      break;
+    case StepKind::ArmKinematics: {
+      const ArmSolver& solver = program_.arms[static_cast<size_t>(st.solver)];
+      Arm& arm = *arms_[static_cast<size_t>(st.solver)];
+      const robot::ArmMeasurement& m = state.arm[static_cast<size_t>(solver.port)];
+      steps::arm_kinematics(arm.model, arm.data, arm.ws, m.q, m.qd);
+      for (const ArmOutput& o : solver.outputs) {
+        if (o.what == ArmOutput::What::SegmentPose) {
+          poses_[slot(o.data)] = steps::segment_pose(arm.data, o.segment);
+        } else {
+          twists_[slot(o.data)] = steps::segment_twist(arm.data, o.segment);
+        }
+      }
+      break;
+    }
+    case StepKind::ViewRead: {
+      const Data& super = program_.data[static_cast<size_t>(st.in[0])];
+      const int v = st.views[0];
+      if (super.type == DataType::Pose) {
+        scalars_[out(0)] = steps::view_pose(poses_[in(0)], v);
+      } else {
+        scalars_[out(0)] = steps::view_vec6(
+            super.type == DataType::Twist ? twists_[in(0)] : wrenches_[in(0)], v);
+      }
+      break;
+    }
+    case StepKind::ViewWrite: {
+      Vec6& target = program_.data[static_cast<size_t>(st.out[0])].type == DataType::Twist
+                         ? twists_[out(0)]
+                         : wrenches_[out(0)];
+      target.setZero();
+      for (size_t k = 0; k < st.in.size(); ++k) target[st.views[k]] = scalars_[in(k)];
+      break;
+    }
+    case StepKind::ComposePose:
+      poses_[out(0)] = rt::compose_pose(poses_[in(0)], poses_[in(1)]);
+      break;
+    case StepKind::PoseToLinearDistance:
+      scalars_[out(0)] = rt::pose_to_linear_distance(poses_[in(0)]);
+      break;
+    case StepKind::PoseToDirection:
+      rt::pose_to_direction(poses_[in(0)], vec3s_[out(0)]);
+      break;
+    case StepKind::RotateWrenchToProximal:
+      wrenches_[out(0)] = rt::rotate_wrench_to_proximal(poses_[in(0)], wrenches_[in(1)]);
+      break;
+    case StepKind::RotateTwistToProximal:
+      twists_[out(0)] = rt::rotate_twist_to_proximal(poses_[in(0)], twists_[in(1)]);
+      break;
+    case StepKind::RotateDirectionToProximal:
+      vec3s_[out(0)] = rt::rotate_direction_to_proximal(poses_[in(0)], vec3s_[in(1)]);
+      break;
+    case StepKind::TransformWrenchToProximal:
+      wrenches_[out(0)] = rt::transform_wrench_to_proximal(poses_[in(0)], wrenches_[in(1)]);
+      break;
+    case StepKind::WrenchFromPositionDirectionAndMagnitude:
+      wrenches_[out(0)] = rt::wrench_from_position_direction_and_magnitude(
+          vec3s_[in(0)], vec3s_[in(1)], scalars_[in(2)]);
+      break;
+    case StepKind::AddWrench:
+      wrenches_[out(0)] = wrenches_[in(0)] + wrenches_[in(1)];
+      break;
+    case StepKind::PlanarAngleFromDirections:
+      rt::planar_angle_from_directions(vec3s_[in(0)], vec3s_[in(1)], vec3s_[in(2)],
+                                       scalars_[out(0)]);
+      break;
+    case StepKind::InvertAngle:
+      scalars_[out(0)] = rt::invert_angle(scalars_[in(0)]);
+      break;
+    case StepKind::Evaluate: {
+      bool satisfied = false;
+      const bool active = st.in.size() < 2 || flags_[in(1)] != 0;
+      steps::evaluate(*evaluators_[index], scalars_[in(0)], active, satisfied, scalars_[out(1)]);
+      flags_[out(0)] = satisfied;
+      break;
+    }
+    case StepKind::LevelMonitor:
+      flags_[out(0)] = steps::level_monitor(monitor_states_[static_cast<size_t>(st.state)],
+                                            scalars_[in(0)], st.constraint.tolerance);
+      break;
+    case StepKind::EdgeMonitor:
+      events_[out(0)] = steps::edge_monitor(monitor_states_[static_cast<size_t>(st.state)],
+                                            scalars_[in(0)], st.constraint.tolerance);
+      break;
+    case StepKind::GuardedMotion: {
+      std::array<bool, kMaxGuards> when{}, until{};
+      const auto n_when = static_cast<size_t>(st.n_when);
+      for (size_t k = 0; k < n_when; ++k) when[k] = flags_[in(k)] != 0;
+      for (size_t k = n_when; k < st.in.size(); ++k) until[k - n_when] = flags_[in(k)] != 0;
+      flags_[out(0)] = steps::guarded_motion(motion_states_[static_cast<size_t>(st.state)],
+                                             std::span<const bool>(when.data(), n_when),
+                                             std::span<const bool>(until.data(), st.in.size() - n_when));
+      break;
+    }
+    case StepKind::Pid: {
+      const bool active = st.in.size() < 2 || flags_[in(1)] != 0;
+      scalars_[out(0)] = steps::pid(pids_[static_cast<size_t>(st.state)],
+                                    pid_states_[static_cast<size_t>(st.state)], scalars_[in(0)],
+                                    state.clock.dt, active);
+      break;
+    }
+    case StepKind::ArmSolve: {
+      const ArmSolver& solver = program_.arms[static_cast<size_t>(st.solver)];
+      Arm& arm = *arms_[static_cast<size_t>(st.solver)];
+      arm.ws.F_ext.fill(Vec6::Zero());
+      for (const CartesianForce& f : solver.cartesian_forces) {
+        arm.ws.F_ext[static_cast<size_t>(f.segment)] += wrenches_[slot(f.wrench)];
+      }
+      arm.ws.tau_ff.setZero();
+      for (const JointForce& f : solver.joint_forces) arm.ws.tau_ff[f.joint] += scalars_[slot(f.force)];
+      for (size_t k = 0; k < solver.acceleration_constraints.size(); ++k) {
+        arm.ws.beta[static_cast<Eigen::Index>(k)] =
+            scalars_[slot(solver.acceleration_constraints[k].energy)];
+      }
+      steps::arm_solve(arm.model, arm.data, arm.ws, command.arm_tau[static_cast<size_t>(solver.port)]);
+      break;
+    }
+    case StepKind::BaseForceDistribution:
+      steps::base_force_distribution(base_->model, base_->data, state.pivot_q, wrenches_[in(0)],
+                                     command.wheel_tau);
+      break;
+  }
+}
+
+double Interpreter::value(int data) const noexcept {
+  const Data& d = program_.data[static_cast<size_t>(data)];
+  const auto s = static_cast<size_t>(d.slot);
+  switch (d.type) {
+    case DataType::Scalar: return scalars_[s];
+    case DataType::Flag: return flags_[s] ? 1.0 : 0.0;
+    case DataType::Event: return events_[s] ? 1.0 : 0.0;
+    default: return std::nan("");
+  }
+}
+
+void Interpreter::log_values(std::span<double> out) const noexcept {
+  for (size_t i = 0; i < out.size() && i < program_.log.size(); ++i) out[i] = value(program_.log[i].data);
+}
+
+}  // namespace mospec::ir

@@ -1,0 +1,61 @@
+// Executes an IR Program directly, without generating code: the reference
+// semantics of every step kind. Generated controllers (src/codegen) make the
+// same runtime calls in the same order and must log bit-identical values.
+//
+// Construction allocates everything (slots, solver workspaces, log columns);
+// tick() allocates nothing and throws nothing.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ir/ir.hpp"
+#include "robot/controller.hpp"
+#include "runtime/monitors.hpp"
+#include "runtime/steps.hpp"
+
+namespace mospec::ir {
+
+class Interpreter final : public robot::Controller {
+ public:
+  // Throws mospec::Error when the program does not verify or a constant is
+  // invalid (e.g. a PID gain out of range), naming the step.
+  explicit Interpreter(Program program);
+  ~Interpreter() override;
+
+  const char* app() const noexcept override { return program_.app.c_str(); }
+  void tick(const robot::MeasuredState& state, robot::Command& command) noexcept override;
+  std::span<const robot::LogColumnInfo> log_columns() const noexcept override { return columns_; }
+  void log_values(std::span<double> out) const noexcept override;
+
+  const Program& program() const { return program_; }
+  // The current value of a datum (flags and events as 0/1); for tests.
+  double scalar(int data) const { return scalars_[static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot)]; }
+  double value(int data) const noexcept;
+
+ private:
+  struct Arm;
+  struct Base;
+  void execute(const Step& step, size_t index, const robot::MeasuredState& state,
+               robot::Command& command) noexcept;
+  size_t slot(int data) const { return static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot); }
+
+  Program program_;
+  std::vector<double> scalars_;
+  std::vector<runtime::Vec3> vec3s_;
+  std::vector<runtime::Pose> poses_;
+  std::vector<runtime::Vec6> twists_, wrenches_;
+  std::vector<char> flags_, events_;
+  std::vector<runtime::Pid> pids_;  // by Step::state
+  std::vector<runtime::PidState> pid_states_;
+  std::vector<runtime::MonitorState> monitor_states_;
+  std::vector<runtime::steps::MotionState> motion_states_;
+  std::vector<std::unique_ptr<runtime::ConstraintEvaluator>> evaluators_;  // by step index
+  std::vector<std::unique_ptr<Arm>> arms_;
+  std::unique_ptr<Base> base_;
+  std::vector<std::string> column_names_, column_units_;
+  std::vector<robot::LogColumnInfo> columns_;
+};
+
+}  // namespace mospec::ir

@@ -1,0 +1,204 @@
+// The IR: a validated task model lowered to what one control tick executes.
+//
+// Lowering (lower.hpp) makes every decision: which runtime function computes
+// each quantity, in which frame, from which inputs, in which order. What is
+// left is a flat program over typed storage slots that two back-ends read
+// without deciding anything: the interpreter (src/ir/interpreter.hpp) and the
+// code generator's logic-less templates (src/codegen).
+//
+//   Data    a quantity of the model (a pose, a twist, a wrench, a direction or
+//           position vector, a scalar, a flag, an event) with its frames and
+//           units; each lives in one slot of the array for its type.
+//   Step    one call of the runtime in schedule order: read the clock, arm
+//           kinematics, a view, an operator, a constraint evaluation, a monitor,
+//           a guarded motion's state update, a controller, an arm's ACHD solve,
+//           the base's force distribution. Steps consume data that earlier
+//           steps produce (a topological order, checked by verify()).
+//   Solver  the constants of an arm's ACHD (chain, root, gravity, motion
+//           drivers with their priority levels) and of the base.
+//
+// Units are SI throughout; lowering rejects anything else. Ids are the
+// model's IRIs; names are unique C++ identifiers derived from them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "runtime/chain.hpp"
+#include "runtime/controllers.hpp"
+#include "runtime/evaluators.hpp"
+#include "runtime/kelo.hpp"
+#include "runtime/model.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::ir {
+
+enum class DataType : uint8_t { Scalar, Vector3, Pose, Twist, Wrench, Flag, Event };
+inline constexpr int kDataTypes = 7;
+std::string_view to_string(DataType);
+
+struct Data {
+  std::string iri;
+  std::string name;  // C++ identifier, unique in the program
+  DataType type = DataType::Scalar;
+  int slot = 0;  // index into the storage array of its type
+  // Frames (IRIs, empty when they do not apply to the type).
+  std::string of, with_respect_to, reference_point, as_seen_by;
+  std::string quantity_kind;  // QUDT local names joined by ',' (angular part first)
+  std::string unit;           // QUDT local names joined by ','
+  // A model constant (a reference value, a fixed pose): Scalar 1 value, Vector3
+  // 3, Pose 12 (R row-major, then p). Empty for data a step produces.
+  std::vector<double> value;
+  SourceLoc where;
+};
+
+enum class StepKind : uint8_t {
+  ReadClock,            // out: [time]
+  ArmKinematics,        // solver; outs: the solver's outputs (arm_outputs)
+  ViewRead,             // in: [pose|twist|wrench]; out: [scalar]; view
+  ViewWrite,            // ins: [scalar...]; out: [twist|wrench] (others zero); views
+  ComposePose,          // ins: [X_AB, X_BC]; out: [X_AC]
+  PoseToLinearDistance, // in: [pose]; out: [scalar]
+  PoseToDirection,      // in: [pose]; out: [vector3]
+  RotateWrenchToProximal,     // ins: [pose, wrench]; out: [wrench]
+  RotateTwistToProximal,      // ins: [pose, twist]; out: [twist]
+  RotateDirectionToProximal,  // ins: [pose, vector3]; out: [vector3]
+  TransformWrenchToProximal,  // ins: [pose, wrench]; out: [wrench]
+  WrenchFromPositionDirectionAndMagnitude,  // ins: [position, direction, magnitude]; out: [wrench]
+  AddWrench,                  // ins: [wrench, wrench]; out: [wrench]
+  PlanarAngleFromDirections,  // ins: [d1, d2, normal]; out: [scalar]
+  InvertAngle,                // in: [scalar]; out: [scalar]
+  Evaluate,         // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
+  LevelMonitor,     // in: [error]; out: [flag]
+  EdgeMonitor,      // in: [error]; out: [event]
+  GuardedMotion,    // ins: [when flags..., until flags...]; out: [active flag]
+  Pid,              // ins: [error, active flag]; out: [control signal]
+  ArmSolve,         // solver; ins: drivers' data; writes the arm's joint torques
+  BaseForceDistribution,  // base solver; in: [platform wrench]; writes the hub torques
+};
+std::string_view to_string(StepKind);
+
+struct ViewSpec {
+  int index = 0;  // component: 0..5 of an angular-first 6-vector; 0..5 of a pose
+                  // (0..2 rotation vector, 3..5 position)
+};
+
+struct Step {
+  StepKind kind = StepKind::ReadClock;
+  std::string iri;   // the model entity that asked for it
+  std::string name;  // C++ identifier
+  std::vector<int> in, out;  // data indices
+  SourceLoc where;
+  // Per kind (unused fields stay default):
+  int solver = -1;             // ArmKinematics, ArmSolve: arm solver index
+  std::vector<int> views;      // ViewRead: 1 component; ViewWrite: one per input
+  runtime::ConstraintSpec constraint;   // Evaluate
+  bool has_error_output = false;        // Evaluate: out[1] is the error (else none/output)
+  int n_when = 0;                       // GuardedMotion: ins[0, n_when) are `when`
+  runtime::PidSpec pid;                 // Pid
+  int state = -1;                       // Pid, monitors, motions: their state slot
+};
+
+// What ArmKinematics writes into each output: the pose of segment frame S_i
+// w.r.t. the root (as seen by the root), or the twist of S_i w.r.t. the root at
+// So_i as seen by the root.
+struct ArmOutput {
+  enum class What : uint8_t { SegmentPose, SegmentTwist } what = What::SegmentPose;
+  int segment = 0;
+  int data = 0;
+};
+
+struct AccelerationConstraint {
+  std::string iri;
+  int component = 0;  // 0..5 of the root-frame spatial acceleration of the tip (angular first)
+  int energy = -1;    // scalar data: the constraint's value (beta)
+  int level = 0;      // priority level (0 = highest)
+};
+struct CartesianForce {
+  std::string iri;
+  int segment = 0;  // the segment the wrench acts on
+  int wrench = -1;  // wrench data: at the segment origin, as seen by the root
+  int level = 0;
+};
+struct JointForce {
+  std::string iri;
+  int joint = 0;
+  int force = -1;  // scalar data
+  int level = 0;
+};
+
+struct ArmSolver {
+  std::string iri, name;
+  std::string chain_iri, root_frame;
+  int port = 0;  // robot::kRightArm / kLeftArm: which arm's sensors and actuators
+  runtime::Chain chain{""};
+  bool tip_is_last_segment = true;  // constraints act on the last segment's origin
+  std::array<double, 3> gravity{};  // in the root frame [m/s^2]
+  std::vector<ArmOutput> outputs;
+  std::vector<AccelerationConstraint> acceleration_constraints;  // column order
+  std::vector<CartesianForce> cartesian_forces;
+  std::vector<JointForce> joint_forces;
+  std::vector<std::vector<std::string>> priority_levels;  // driver IRIs per level
+  SourceLoc where;
+};
+
+struct BaseSolver {
+  std::string iri, name;
+  runtime::KeloGeometry geometry;
+  int wrench = -1;  // platform wrench: at the platform origin, as seen by the platform
+  SourceLoc where;
+};
+
+// Per-step state the tick keeps across ticks (controllers, monitors, motions).
+enum class StateKind : uint8_t { Pid, Monitor, Motion };
+
+// One column of the per-tick log: the value of a datum after the tick (a flag
+// or event as 0/1). Chosen by lowering: every constraint's measured value,
+// error and satisfaction, every monitor, every motion's state, every
+// controller's output.
+struct LogColumn {
+  std::string name;  // e.g. "cstr-dist-rightarm-shoulder-ee.error"
+  std::string unit;  // QUDT local name, "" for flags
+  int data = 0;
+};
+
+struct Program {
+  std::string app;  // the app model's IRI
+  std::vector<Data> data;
+  std::array<int, kDataTypes> slots{};  // number of slots per DataType
+  std::vector<Step> steps;              // schedule order
+  std::array<int, 3> states{};          // number of state slots per StateKind
+  std::vector<ArmSolver> arms;
+  std::optional<BaseSolver> base;
+  std::vector<LogColumn> log;
+
+  int count(DataType t) const { return slots[static_cast<int>(t)]; }
+};
+
+// Most `when` or `until` guards one guarded motion may have.
+inline constexpr int kMaxGuards = 16;
+
+// Setup-time constants every back-end builds the same way:
+// the arm's ACHD model: the chain with the solver's gravity; when the motion
+// drivers act on the last segment (tip_is_last_segment), its tip frame is that
+// segment's frame (X_NT = identity), so acceleration constraints act at its
+// origin.
+runtime::AchdModel achd_model(const ArmSolver& arm);
+// The base's KELO configuration: the geometry with unit weights.
+runtime::KeloConfig kelo_config(const BaseSolver& base);
+// A constant pose from Data::value (R row-major, then p).
+runtime::Pose constant_pose(const std::vector<double>& value);
+
+// Checks the invariants the back-ends rely on: every input of a step is a
+// constant or produced by an earlier step, every datum has at most one
+// producer, slots are dense, types match each step's signature. Throws
+// mospec::Error("ir-invalid") naming the step.
+void verify(const Program& program);
+
+// The program as deterministic JSON (fixed key order, %.17g numbers).
+std::string to_json(const Program& program, const SourceFiles* files = nullptr);
+
+}  // namespace mospec::ir

@@ -1,0 +1,1180 @@
+#include "ir/lower.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <set>
+#include <unordered_map>
+
+#include "runtime/chain_rdf.hpp"
+
+namespace mospec::ir {
+
+std::map<std::string, int> LowerOptions::default_ports() {
+  return {{"https://mospec.example/robots/kinova-gen3/chain", 0},
+          {"https://mospec.example/robots/kinova-gen3-left/chain", 1}};
+}
+
+namespace {
+
+std::string join_lines(const std::vector<Diagnostic>& ds) {
+  std::string out;
+  for (size_t i = 0; i < ds.size(); ++i) {
+    if (i) out.push_back('\n');
+    out.append(format(ds[i]));
+  }
+  return out;
+}
+
+}  // namespace
+
+LowerError::LowerError(std::vector<Diagnostic> diagnostics)
+    : Error("lowering-failed", join_lines(diagnostics)), diagnostics_(std::move(diagnostics)) {}
+
+std::string content_hash(const std::string& text) {
+  uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+namespace {
+
+using rdf::TermId;
+
+const std::string kMM = "https://comp-rob2b.github.io/metamodels/";
+std::string vocab(std::string_view domain, std::string_view local) {
+  std::string s = kMM;
+  s.append(domain).append("#").append(local);
+  return s;
+}
+const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
+const std::string kRdfFirst = "http://www.w3.org/1999/02/22-rdf-syntax-ns#first";
+const std::string kRdfRest = "http://www.w3.org/1999/02/22-rdf-syntax-ns#rest";
+const std::string kRdfNil = "http://www.w3.org/1999/02/22-rdf-syntax-ns#nil";
+const std::string kQudt = "http://qudt.org/schema/qudt/";
+
+std::string local_name(std::string_view iri) {
+  const size_t k = iri.find_last_of("#/");
+  return std::string(k == std::string_view::npos ? iri : iri.substr(k + 1));
+}
+
+std::string identifier(std::string_view s) {
+  std::string out;
+  for (char c : s) out.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
+  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out.insert(0, "q_");
+  return out;
+}
+
+class Lowerer {
+ public:
+  Lowerer(const app::LoadedModel& model, const LowerOptions& options)
+      : model_(model), g_(model.flattened()), options_(options) {}
+
+  Program run();
+
+ private:
+  // --- graph access -------------------------------------------------------
+  TermId term(const std::string& iri) const { return g_.terms().find_iri(iri); }
+  static bool absent(TermId t) { return t.is_any(); }
+  std::string str(TermId t) const { return std::string(g_.terms()[t].value); }
+  std::vector<TermId> objects(TermId s, const std::string& p) const {
+    std::vector<TermId> out;
+    const TermId pt = term(p);
+    if (absent(s) || absent(pt)) return out;
+    for (uint32_t i : g_.match(s, pt, TermId::any())) out.push_back(g_.quads()[i].object);
+    std::sort(out.begin(), out.end(), [&](TermId a, TermId b) { return str(a) < str(b); });
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  std::optional<TermId> object(TermId s, const std::string& p) const {
+    auto o = objects(s, p);
+    if (o.empty()) return std::nullopt;
+    return o.front();
+  }
+  bool has_type(TermId s, const std::string& type) const {
+    const TermId t = term(type), p = term(kRdfType);
+    return !absent(t) && !absent(p) && g_.count(s, p, t) > 0;
+  }
+  std::vector<TermId> instances(const std::string& type) const {
+    std::vector<TermId> out;
+    const TermId t = term(type), p = term(kRdfType);
+    if (absent(t) || absent(p)) return out;
+    for (uint32_t i : g_.match(TermId::any(), p, t)) out.push_back(g_.quads()[i].subject);
+    std::sort(out.begin(), out.end(), [&](TermId a, TermId b) { return str(a) < str(b); });
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  bool defined(TermId s) const { return !absent(s) && g_.count(s, TermId::any(), TermId::any()) > 0; }
+  SourceLoc where(TermId s) const {
+    if (absent(s)) return {};
+    for (uint32_t i : g_.match(s, TermId::any(), TermId::any())) {
+      if (g_.location(i).known()) return g_.location(i);
+    }
+    return {};
+  }
+  SourceLoc where(TermId s, const std::string& p, TermId o) const {
+    const TermId pt = term(p);
+    if (!absent(pt)) {
+      for (uint32_t i : g_.match(s, pt, o)) {
+        if (g_.location(i).known()) return g_.location(i);
+      }
+    }
+    return where(s);
+  }
+  std::vector<TermId> list(TermId head) const {
+    std::vector<TermId> out;
+    const TermId nil = term(kRdfNil);
+    for (int guard = 0; guard < 10000 && !absent(head) && head != nil; ++guard) {
+      auto first = objects(head, kRdfFirst);
+      if (first.empty()) break;
+      out.push_back(first.front());
+      auto rest = objects(head, kRdfRest);
+      if (rest.empty()) break;
+      head = rest.front();
+    }
+    return out;
+  }
+  std::optional<double> number(TermId lit) const {
+    if (absent(lit) || !g_.terms()[lit].is_literal()) return std::nullopt;
+    const std::string s = str(lit);
+    double v = 0;
+    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
+  }
+  std::optional<double> number(TermId s, const std::string& p) const {
+    auto o = object(s, p);
+    return o ? number(*o) : std::nullopt;
+  }
+
+  // The graph of the file that describes a chain: other files' poses between
+  // the robot's frames (task quantities) are not part of its structure.
+  rdf::Dataset chain_graph(const std::string& chain_iri) const {
+    const rdf::Dataset& all = model_.dataset();
+    rdf::Dataset out;
+    const TermId chain = all.terms().find_iri(chain_iri);
+    if (chain.is_any()) return out;
+    std::set<uint32_t> graphs;
+    for (uint32_t i : all.match(chain, TermId::any(), TermId::any())) graphs.insert(all.quads()[i].graph.index);
+    for (uint32_t i = 0; i < all.size(); ++i) {
+      const rdf::Quad& q = all.quads()[i];
+      if (!graphs.count(q.graph.index)) continue;
+      rdf::Quad copy{out.terms().import(all.terms(), q.subject), out.terms().import(all.terms(), q.predicate),
+                     out.terms().import(all.terms(), q.object), TermId::default_graph()};
+      out.add(copy, all.location(i));
+    }
+    return out;
+  }
+
+  // --- diagnostics --------------------------------------------------------
+  void error(SourceLoc loc, std::string code, std::string message) {
+    Diagnostic d;
+    d.severity = Severity::Error;
+    if (loc.known()) {
+      d.file = model_.files().path(loc.file);
+      d.line = loc.line;
+      d.column = loc.column;
+    }
+    d.code = std::move(code);
+    d.message = std::move(message);
+    errors_.push_back(std::move(d));
+  }
+  void error(TermId at, std::string code, std::string message) {
+    error(where(at), std::move(code), std::move(message));
+  }
+
+  // --- data ---------------------------------------------------------------
+  std::optional<DataType> type_of(TermId e) const;
+  int datum(TermId e, DataType expected, TermId referenced_by, const std::string& role);
+  int synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
+                const std::string& unit = {});
+  std::string unique_name(const std::string& base, std::set<std::string>& used) {
+    std::string n = identifier(base);
+    std::string candidate = n;
+    for (int k = 2; used.count(candidate); ++k) candidate = n + "_" + std::to_string(k);
+    used.insert(candidate);
+    return candidate;
+  }
+  void fill_constant(Data& d, TermId e);
+
+  // --- steps --------------------------------------------------------------
+  int add_step(Step step) {
+    step.name = unique_name(step.name, step_names_);
+    const int index = static_cast<int>(steps_.size());
+    for (int d : step.out) produce(d, index);
+    steps_.push_back(std::move(step));
+    return index;
+  }
+  void produce(int d, int step) {
+    auto [it, fresh] = producer_.emplace(d, step);
+    if (!fresh) {
+      const Data& dd = prog_.data[static_cast<size_t>(d)];
+      std::string msg = "'";
+      msg.append(dd.iri).append("' is produced twice: by '").append(steps_[static_cast<size_t>(it->second)].iri)
+          .append("' and by '").append(pending_iri_).append("'");
+      error(dd.where, "produced-twice", msg);
+    }
+  }
+  bool produced(int d) const {
+    return producer_.count(d) || !prog_.data[static_cast<size_t>(d)].value.empty();
+  }
+
+  void lower_clocks();
+  void lower_arm(TermId solver);
+  void lower_operators();
+  void lower_evaluators();
+  void lower_monitors();
+  void lower_handlers();
+  void lower_controllers();
+  void lower_base();
+  void lower_views();
+  void check_inputs();
+  void schedule();
+  void build_log();
+
+  const app::LoadedModel& model_;
+  rdf::Dataset g_;
+  const LowerOptions& options_;
+  Program prog_;
+  std::vector<Diagnostic> errors_;
+  std::unordered_map<uint32_t, int> data_of_;  // entity term index -> data
+  std::set<std::string> data_names_, step_names_;
+  std::vector<Step> steps_;            // unscheduled
+  std::map<int, int> producer_;        // data -> step
+  std::string pending_iri_;            // the entity being lowered (for messages)
+  std::map<uint32_t, int> evaluator_of_constraint_;  // constraint term -> step
+  std::map<uint32_t, int> active_of_controller_;     // controller term -> active flag data
+  std::map<uint32_t, int> active_of_evaluator_;      // evaluator term -> active flag data
+  std::map<uint32_t, int> evaluate_step_of_evaluator_;
+};
+
+std::optional<DataType> Lowerer::type_of(TermId e) const {
+  if (has_type(e, vocab("geometry/spatial-relations", "Pose")) ||
+      has_type(e, vocab("geometry/coordinates", "PoseCoordinate")))
+    return DataType::Pose;
+  if (has_type(e, vocab("geometry/spatial-relations", "VelocityTwist")) ||
+      has_type(e, vocab("geometry/coordinates", "VelocityTwistCoordinate")))
+    return DataType::Twist;
+  if (has_type(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "Wrench")) ||
+      has_type(e, vocab("newtonian-rigid-body-dynamics/coordinates", "WrenchCoordinate")))
+    return DataType::Wrench;
+  if (has_type(e, vocab("geometry/coordinates", "DirectionCoordinate")) ||
+      has_type(e, vocab("geometry/spatial-relations", "Position")) ||
+      has_type(e, vocab("geometry/coordinates", "PositionCoordinate")))
+    return DataType::Vector3;
+  if (has_type(e, kQudt + "Quantity") || has_type(e, vocab("geometry/spatial-relations", "LinearDistance")) ||
+      !objects(e, kQudt + "hasQuantityKind").empty())
+    return DataType::Scalar;
+  return std::nullopt;
+}
+
+void Lowerer::fill_constant(Data& d, TermId e) {
+  const std::string gc = "geometry/coordinates";
+  switch (d.type) {
+    case DataType::Scalar:
+      if (auto v = number(e, kQudt + "value")) d.value = {*v};
+      break;
+    case DataType::Vector3: {
+      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")), z = number(e, vocab(gc, "z"));
+      if (x && y && z) d.value = {*x, *y, *z};
+      break;
+    }
+    case DataType::Pose: {
+      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")), z = number(e, vocab(gc, "z"));
+      std::array<std::vector<double>, 3> cols;
+      bool ok = x && y && z;
+      const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
+      for (int c = 0; c < 3 && ok; ++c) {
+        auto head = object(e, vocab(gc, names[c]));
+        if (!head) {
+          ok = false;
+          break;
+        }
+        for (TermId t : list(*head)) {
+          if (auto v = number(t)) cols[static_cast<size_t>(c)].push_back(*v);
+        }
+        ok = cols[static_cast<size_t>(c)].size() == 3;
+      }
+      if (!ok) break;
+      // direction-cosine-x is the x axis of the distal frame seen by the
+      // proximal one: the first column of R.
+      runtime::Mat3 R;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) R(r, c) = cols[static_cast<size_t>(c)][static_cast<size_t>(r)];
+      if (!((R.transpose() * R - runtime::Mat3::Identity()).cwiseAbs().maxCoeff() < 1e-6) ||
+          R.determinant() < 0) {
+        error(e, "invalid-pose", "the direction cosines of '" + d.iri + "' are not a rotation (orthonormal, right-handed to 1e-6)");
+        break;
+      }
+      d.value = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2), *x, *y, *z};
+      break;
+    }
+    default:
+      break;
+  }
+}
+
+int Lowerer::datum(TermId e, DataType expected, TermId referenced_by, const std::string& role) {
+  if (auto it = data_of_.find(e.index); it != data_of_.end()) {
+    const Data& d = prog_.data[static_cast<size_t>(it->second)];
+    if (d.type != expected) {
+      std::string msg = "'";
+      msg.append(str(referenced_by)).append("' uses '").append(d.iri).append("' as its ").append(role)
+          .append(", which must be a ").append(to_string(expected)).append(", but it is a ")
+          .append(to_string(d.type));
+      error(referenced_by, "type-mismatch", msg);
+    }
+    return it->second;
+  }
+  Data d;
+  d.iri = str(e);
+  d.type = expected;
+  d.where = where(e);
+  if (!defined(e)) {
+    std::string msg = "'";
+    msg.append(str(referenced_by)).append("' names '").append(d.iri).append("' as its ").append(role)
+        .append(", but no model file defines it");
+    error(where(referenced_by), "undefined-quantity", msg);
+  } else if (auto t = type_of(e); t && *t != expected) {
+    std::string msg = "'";
+    msg.append(str(referenced_by)).append("' uses '").append(d.iri).append("' as its ").append(role)
+        .append(", which must be a ").append(to_string(expected)).append(", but it is a ")
+        .append(to_string(*t));
+    error(referenced_by, "type-mismatch", msg);
+  }
+  const std::string gr = "geometry/spatial-relations";
+  if (auto o = object(e, vocab(gr, "of"))) d.of = str(*o);
+  if (auto o = object(e, vocab(gr, "with-respect-to"))) d.with_respect_to = str(*o);
+  if (auto o = object(e, vocab(gr, "reference-point"))) d.reference_point = str(*o);
+  if (auto o = object(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "reference-point")))
+    d.reference_point = str(*o);
+  if (auto o = object(e, vocab("geometry/coordinates", "as-seen-by"))) d.as_seen_by = str(*o);
+  if (auto o = object(e, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by")))
+    d.as_seen_by = str(*o);
+  std::vector<std::string> kinds, units;
+  for (TermId k : objects(e, kQudt + "hasQuantityKind")) kinds.push_back(local_name(str(k)));
+  for (TermId u : objects(e, kQudt + "unit")) units.push_back(local_name(str(u)));
+  for (size_t i = 0; i < kinds.size(); ++i) d.quantity_kind.append(i ? "," : "").append(kinds[i]);
+  for (size_t i = 0; i < units.size(); ++i) d.unit.append(i ? "," : "").append(units[i]);
+  fill_constant(d, e);
+  d.name = unique_name(local_name(d.iri), data_names_);
+  d.slot = prog_.slots[static_cast<size_t>(d.type)]++;
+  const int index = static_cast<int>(prog_.data.size());
+  prog_.data.push_back(std::move(d));
+  data_of_[e.index] = index;
+  return index;
+}
+
+int Lowerer::synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
+                       const std::string& unit) {
+  Data d;
+  d.iri = iri;
+  d.type = type;
+  d.where = loc;
+  d.unit = unit;
+  d.name = unique_name(name, data_names_);
+  d.slot = prog_.slots[static_cast<size_t>(type)]++;
+  prog_.data.push_back(std::move(d));
+  return static_cast<int>(prog_.data.size()) - 1;
+}
+
+// ---------------------------------------------------------------------------
+void Lowerer::lower_clocks() {
+  for (TermId c : instances(vocab("mospec/time", "Clock"))) {
+    pending_iri_ = str(c);
+    auto t = object(c, vocab("mospec/time", "time"));
+    if (!t) {
+      error(c, "missing-property", "the clock '" + str(c) + "' names no `time` quantity");
+      continue;
+    }
+    Step s;
+    s.kind = StepKind::ReadClock;
+    s.iri = str(c);
+    s.name = local_name(s.iri);
+    s.where = where(c);
+    s.out = {datum(*t, DataType::Scalar, c, "time")};
+    if (prog_.data[static_cast<size_t>(s.out[0])].unit != "SEC")
+      error(*t, "wrong-unit", "the clock's time '" + str(*t) + "' must be in SEC");
+    add_step(std::move(s));
+  }
+}
+
+void Lowerer::lower_arm(TermId solver) {
+  const std::string slv = "task/solver-specification";
+  pending_iri_ = str(solver);
+  ArmSolver arm;
+  arm.iri = str(solver);
+  arm.name = identifier(local_name(arm.iri));
+  arm.where = where(solver);
+  auto chain_t = object(solver, vocab(slv, "kinematic-chain"));
+  if (!chain_t) {
+    error(solver, "missing-property", "the solver '" + arm.iri + "' names no kinematic-chain");
+    return;
+  }
+  arm.chain_iri = str(*chain_t);
+  try {
+    arm.chain = runtime::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
+  } catch (const Error& e) {
+    error(where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
+          "the solver '" + arm.iri + "': " + e.what());
+    return;
+  }
+  if (auto it = options_.ports.find(arm.chain_iri); it != options_.ports.end()) {
+    arm.port = it->second;
+  } else {
+    error(solver, "unbound-chain",
+          "no robot arm is bound to the chain '" + arm.chain_iri +
+              "' (mospec's robot has a right and a left Gen3; bind it with --bind CHAIN=right|left)");
+  }
+  std::string prefix = arm.chain_iri;
+  if (prefix.size() >= 5 && prefix.compare(prefix.size() - 5, 5, "chain") == 0) prefix.resize(prefix.size() - 5);
+  const auto frame_of = [&](const std::string& link) { return prefix + "frame-" + link; };
+  const auto link_of = [&](const std::string& link) { return prefix + "link-" + link; };
+  const auto origin_of = [&](const std::string& link) { return prefix + "point-" + link + "-origin"; };
+  const auto segment_by = [&](const std::string& iri, const std::function<std::string(const std::string&)>& f) {
+    for (int i = 0; i < arm.chain.size(); ++i) {
+      if (f(arm.chain.segment(i).link) == iri) return i;
+    }
+    return -1;
+  };
+  arm.root_frame = frame_of(arm.chain.root());
+  if (auto root = object(solver, vocab(slv, "root")); !root || str(*root) != arm.root_frame) {
+    error(solver, "unsupported-root",
+          "the solver '" + arm.iri + "' must have the chain's root frame '" + arm.root_frame +
+              "' as its root (ACHD solves in the root of the chain)");
+  }
+  // Gravity: a uniform field in the root frame.
+  if (auto grav = object(solver, vocab(slv, "gravity"))) {
+    const std::string gc = "geometry/coordinates";
+    auto x = number(*grav, vocab(gc, "x")), y = number(*grav, vocab(gc, "y")), z = number(*grav, vocab(gc, "z"));
+    std::string seen;
+    if (auto s = object(*grav, vocab(gc, "as-seen-by"))) seen = str(*s);
+    if (auto s = object(*grav, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by"))) seen = str(*s);
+    std::string unit;
+    if (auto u = object(*grav, kQudt + "unit")) unit = local_name(str(*u));
+    if (!x || !y || !z) {
+      error(*grav, "missing-property", "the gravity '" + str(*grav) + "' needs x, y and z");
+    } else if (seen != arm.root_frame) {
+      error(*grav, "frame-mismatch",
+            "the gravity '" + str(*grav) + "' is seen by '" + seen + "', but the solver '" + arm.iri +
+                "' needs it in its root frame '" + arm.root_frame + "'");
+    } else if (unit != "M-PER-SEC2") {
+      error(*grav, "wrong-unit", "the gravity '" + str(*grav) + "' must be in M-PER-SEC2, not '" + unit + "'");
+    } else {
+      arm.gravity = {*x, *y, *z};
+    }
+  } else {
+    error(solver, "missing-property", "the solver '" + arm.iri + "' names no gravity");
+  }
+  const int arm_index = static_cast<int>(prog_.arms.size());
+  // Outputs.
+  Step kin;
+  kin.kind = StepKind::ArmKinematics;
+  kin.iri = arm.iri;
+  kin.name = arm.name + "_kinematics";
+  kin.where = arm.where;
+  kin.solver = arm_index;
+  for (TermId o : objects(solver, vocab(slv, "output"))) {
+    const auto t = type_of(o);
+    if (t == DataType::Pose) {
+      const int d = datum(o, DataType::Pose, solver, "output");
+      const Data& dd = prog_.data[static_cast<size_t>(d)];
+      const int seg = segment_by(dd.of, frame_of);
+      if (seg < 0 || dd.with_respect_to != arm.root_frame || dd.as_seen_by != arm.root_frame) {
+        error(o, "unsupported-output",
+              "the solver '" + arm.iri + "' outputs poses of the chain's segment frames w.r.t. and seen by its root '" +
+                  arm.root_frame + "'; '" + dd.iri + "' is of '" + dd.of + "' w.r.t. '" + dd.with_respect_to +
+                  "' seen by '" + dd.as_seen_by + "'");
+        continue;
+      }
+      arm.outputs.push_back({ArmOutput::What::SegmentPose, seg, d});
+      kin.out.push_back(d);
+    } else if (t == DataType::Twist) {
+      const int d = datum(o, DataType::Twist, solver, "output");
+      const Data& dd = prog_.data[static_cast<size_t>(d)];
+      int seg = segment_by(dd.of, link_of);
+      if (seg < 0) seg = segment_by(dd.of, frame_of);
+      const bool wrt_root = dd.with_respect_to == link_of(arm.chain.root()) || dd.with_respect_to == arm.root_frame;
+      if (seg < 0 || !wrt_root || dd.as_seen_by != arm.root_frame ||
+          dd.reference_point != origin_of(arm.chain.segment(seg).link)) {
+        error(o, "unsupported-output",
+              "the solver '" + arm.iri + "' outputs twists of a segment w.r.t. the root, at the segment's origin, seen by the root '" +
+                  arm.root_frame + "'; '" + dd.iri + "' does not fit");
+        continue;
+      }
+      arm.outputs.push_back({ArmOutput::What::SegmentTwist, seg, d});
+      kin.out.push_back(d);
+    } else {
+      error(o, "unsupported-output", "the solver '" + arm.iri + "' cannot output '" + str(o) + "' (poses and twists only)");
+    }
+  }
+  // Motion drivers and their priority levels.
+  auto drivers = object(solver, vocab(slv, "motion-drivers"));
+  Step solve;
+  solve.kind = StepKind::ArmSolve;
+  solve.iri = arm.iri;
+  solve.name = arm.name + "_solve";
+  solve.where = arm.where;
+  solve.solver = arm_index;
+  const std::string last_link = arm.chain.size() ? arm.chain.segment(arm.chain.size() - 1).link : "";
+  if (!drivers) {
+    error(solver, "missing-property", "the solver '" + arm.iri + "' names no motion-drivers");
+  } else {
+    std::map<uint32_t, int> level_of;
+    int level = 0;
+    for (TermId head : objects(*drivers, vocab(slv, "prioritization-hierarchy"))) {
+      for (TermId lv : list(head)) {
+        std::vector<std::string> names;
+        for (TermId d : objects(lv, vocab(slv, "motion-drivers"))) {
+          level_of[d.index] = level;
+          names.push_back(str(d));
+        }
+        arm.priority_levels.push_back(names);
+        ++level;
+      }
+    }
+    const auto level_for = [&](TermId spec) {
+      auto it = level_of.find(spec.index);
+      if (it == level_of.end()) {
+        if (!arm.priority_levels.empty())
+          error(spec, "unprioritised-driver", "the motion driver '" + str(spec) + "' is in no prioritization level of '" + str(*drivers) + "'");
+        return 0;
+      }
+      return it->second;
+    };
+    for (TermId spec : objects(*drivers, vocab(slv, "acceleration-constraint"))) {
+      pending_iri_ = str(spec);
+      const int lv = level_for(spec);
+      if (lv != 0) {
+        error(spec, "unsupported-priority",
+              "acceleration constraints must be in the highest priority level: one ACHD solve "
+              "honours one level of constraints; '" + str(spec) + "' is in level " + std::to_string(lv + 1));
+      }
+      auto link = object(spec, vocab(slv, "attached-to"));
+      if (!link || str(*link) != link_of(last_link)) {
+        error(spec, "unsupported-attachment",
+              "ACHD constrains the chain's last segment '" + link_of(last_link) + "'; '" + str(spec) +
+                  "' is attached to '" + (link ? str(*link) : std::string("nothing")) + "'");
+      }
+      for (TermId c : objects(spec, vocab(slv, "constraints"))) {
+        AccelerationConstraint ac;
+        ac.iri = str(c);
+        ac.level = lv;
+        auto sub = object(c, vocab(slv, "subspace"));
+        auto axis = object(c, vocab(slv, "axis"));
+        const std::string sn = sub ? local_name(str(*sub)) : "", an = axis ? local_name(str(*axis)) : "";
+        const int base = sn == "angular-acceleration" ? 0 : sn == "linear-acceleration" ? 3 : -1;
+        const int ax = an == "x" ? 0 : an == "y" ? 1 : an == "z" ? 2 : -1;
+        if (base < 0 || ax < 0) {
+          error(c, "invalid-constraint", "the acceleration constraint '" + ac.iri + "' needs subspace linear-/angular-acceleration and axis x, y or z");
+          continue;
+        }
+        ac.component = base + ax;
+        auto energy = object(c, vocab(slv, "acceleration-energy"));
+        if (!energy) {
+          error(c, "missing-property", "the acceleration constraint '" + ac.iri + "' names no acceleration-energy");
+          continue;
+        }
+        ac.energy = datum(*energy, DataType::Scalar, c, "acceleration-energy");
+        solve.in.push_back(ac.energy);
+        arm.acceleration_constraints.push_back(ac);
+      }
+    }
+    if (arm.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints)) {
+      error(solver, "too-many-constraints", "the solver '" + arm.iri + "' has more than 6 acceleration constraints");
+    }
+    for (TermId spec : objects(*drivers, vocab(slv, "cartesian-force"))) {
+      pending_iri_ = str(spec);
+      CartesianForce cf;
+      cf.iri = str(spec);
+      cf.level = level_for(spec);
+      auto link = object(spec, vocab(slv, "attached-to"));
+      auto force = object(spec, vocab(slv, "force"));
+      if (!link || !force) {
+        error(spec, "missing-property", "the Cartesian force '" + cf.iri + "' needs `force` and `attached-to`");
+        continue;
+      }
+      cf.segment = segment_by(str(*link), link_of);
+      if (cf.segment < 0) {
+        error(spec, "unknown-link", "'" + cf.iri + "' is attached to '" + str(*link) + "', which is no moving link of '" + arm.chain_iri + "'");
+        continue;
+      }
+      cf.wrench = datum(*force, DataType::Wrench, spec, "force");
+      const Data& w = prog_.data[static_cast<size_t>(cf.wrench)];
+      const std::string origin = origin_of(arm.chain.segment(cf.segment).link);
+      if (w.reference_point != origin || w.as_seen_by != arm.root_frame) {
+        error(*force, "frame-mismatch",
+              "the wrench '" + w.iri + "' drives '" + str(*link) + "' through '" + cf.iri +
+                  "', so ACHD needs it at that link's origin '" + origin + "' and seen by the root '" +
+                  arm.root_frame + "'; it is at '" + w.reference_point + "' seen by '" + w.as_seen_by +
+                  "' (transform it with TransformWrenchToProximal/RotateWrenchToProximalWithPose)");
+      }
+      solve.in.push_back(cf.wrench);
+      arm.cartesian_forces.push_back(cf);
+    }
+    for (TermId spec : objects(*drivers, vocab(slv, "joint-force"))) {
+      error(spec, "unsupported-driver", "joint-force motion drivers ('" + str(spec) + "') are not supported yet");
+    }
+  }
+  // Drivers a level lists but the solver's drivers do not.
+  pending_iri_ = arm.iri;
+  prog_.arms.push_back(std::move(arm));
+  add_step(std::move(kin));
+  add_step(std::move(solve));
+}
+
+void Lowerer::lower_operators() {
+  const std::string op = "newtonian-rigid-body-dynamics/operators";
+  const std::string gop = "geometry/spatial-operators";
+  struct Spec {
+    std::string domain, type;
+    StepKind kind;
+    std::vector<std::pair<std::string, DataType>> in;
+    std::pair<std::string, DataType> out;
+  };
+  using T = DataType;
+  const std::vector<Spec> specs = {
+      {gop, "ComposePose", StepKind::ComposePose, {{"in1", T::Pose}, {"in2", T::Pose}}, {"composite", T::Pose}},
+      {gop, "PoseToLinearDistance", StepKind::PoseToLinearDistance, {{"pose", T::Pose}}, {"distance", T::Scalar}},
+      {gop, "PoseToDirection", StepKind::PoseToDirection, {{"pose", T::Pose}}, {"direction", T::Vector3}},
+      {gop, "PlanarAngleFromDirections", StepKind::PlanarAngleFromDirections,
+       {{"direction1", T::Vector3}, {"direction2", T::Vector3}, {"normal", T::Vector3}}, {"angle", T::Scalar}},
+      {gop, "InvertAngle", StepKind::InvertAngle, {{"angle", T::Scalar}}, {"inverted", T::Scalar}},
+      {op, "RotateWrenchToProximalWithPose", StepKind::RotateWrenchToProximal, {{"pose", T::Pose}, {"from", T::Wrench}}, {"to", T::Wrench}},
+      {op, "RotateVelocityTwistToProximalWithPose", StepKind::RotateTwistToProximal, {{"pose", T::Pose}, {"from", T::Twist}}, {"to", T::Twist}},
+      {op, "RotateDirectionDistalToProximalWithPose", StepKind::RotateDirectionToProximal, {{"pose", T::Pose}, {"from", T::Vector3}}, {"to", T::Vector3}},
+      {op, "TransformWrenchToProximal", StepKind::TransformWrenchToProximal, {{"pose", T::Pose}, {"from", T::Wrench}}, {"to", T::Wrench}},
+      {op, "WrenchFromPositionDirectionAndMagnitude", StepKind::WrenchFromPositionDirectionAndMagnitude,
+       {{"position", T::Vector3}, {"direction", T::Vector3}, {"magnitude", T::Scalar}}, {"wrench", T::Wrench}},
+      {op, "AddWrench", StepKind::AddWrench, {{"in1", T::Wrench}, {"in2", T::Wrench}}, {"out", T::Wrench}},
+  };
+  for (const Spec& spec : specs) {
+    const std::string type_iri = vocab(spec.domain, spec.type);
+    for (TermId e : instances(type_iri)) {
+      pending_iri_ = str(e);
+      Step s;
+      s.kind = spec.kind;
+      s.iri = str(e);
+      s.name = local_name(s.iri);
+      s.where = where(e);
+      bool ok = true;
+      for (const auto& [prop, type] : spec.in) {
+        auto o = object(e, vocab(spec.domain, prop));
+        if (!o) {
+          error(e, "missing-property", "the " + spec.type + " '" + s.iri + "' names no `" + prop + "`");
+          ok = false;
+          continue;
+        }
+        s.in.push_back(datum(*o, type, e, prop));
+      }
+      auto o = object(e, vocab(spec.domain, spec.out.first));
+      if (!o) {
+        error(e, "missing-property", "the " + spec.type + " '" + s.iri + "' names no `" + spec.out.first + "`");
+        ok = false;
+      } else {
+        s.out.push_back(datum(*o, spec.out.second, e, spec.out.first));
+      }
+      if (!ok) continue;
+      // Frame rules the runtime's arithmetic relies on.
+      if (spec.kind == StepKind::AddWrench) {
+        const Data& a = prog_.data[static_cast<size_t>(s.in[0])];
+        const Data& b = prog_.data[static_cast<size_t>(s.in[1])];
+        if (a.reference_point != b.reference_point || a.as_seen_by != b.as_seen_by) {
+          error(e, "frame-mismatch", "AddWrench '" + s.iri + "' adds '" + a.iri + "' (at '" + a.reference_point + "', seen by '" +
+                                         a.as_seen_by + "') and '" + b.iri + "' (at '" + b.reference_point + "', seen by '" +
+                                         b.as_seen_by + "'): both must have one reference point and frame");
+        }
+      }
+      add_step(std::move(s));
+    }
+  }
+}
+
+void Lowerer::lower_evaluators() {
+  const std::string ch = "task/constraint-handler";
+  const std::string cs = "task/constraint";
+  std::vector<TermId> evals = instances(vocab(ch, "ErrorEvaluator"));
+  for (TermId a : instances(vocab(ch, "AssignmentEvaluator"))) evals.push_back(a);
+  for (TermId e : evals) {
+    pending_iri_ = str(e);
+    const bool assignment = has_type(e, vocab(ch, "AssignmentEvaluator"));
+    auto c = object(e, vocab(ch, "constraint"));
+    if (!c) {
+      error(e, "missing-property", "the evaluator '" + str(e) + "' names no constraint");
+      continue;
+    }
+    if (!defined(*c)) {
+      error(where(e, vocab(ch, "constraint"), *c), "undefined-constraint",
+            "the evaluator '" + str(e) + "' evaluates '" + str(*c) + "', which no model file defines");
+      continue;
+    }
+    auto q = object(*c, vocab(cs, "quantity"));
+    if (!q) {
+      error(*c, "missing-property", "the constraint '" + str(*c) + "' names no quantity");
+      continue;
+    }
+    Step s;
+    s.kind = StepKind::Evaluate;
+    s.iri = str(e);
+    s.name = local_name(s.iri);
+    s.where = where(e);
+    const int quantity = datum(*q, DataType::Scalar, *c, "quantity");
+    const std::string unit = prog_.data[static_cast<size_t>(quantity)].unit;
+    // A threshold/reference: a constant with the quantity's unit.
+    const auto constant = [&](const std::string& prop) -> std::optional<double> {
+      auto t = object(*c, vocab(cs, prop));
+      if (!t) return std::nullopt;
+      const int d = datum(*t, DataType::Scalar, *c, prop);
+      const Data& dd = prog_.data[static_cast<size_t>(d)];
+      if (dd.value.empty()) {
+        error(*t, "not-a-constant", "the " + prop + " '" + dd.iri + "' of '" + str(*c) + "' has no value");
+        return std::nullopt;
+      }
+      if (dd.unit != unit) {
+        error(*t, "wrong-unit", "the " + prop + " '" + dd.iri + "' is in '" + dd.unit + "' but the constrained quantity '" +
+                                    prog_.data[static_cast<size_t>(quantity)].iri + "' is in '" + unit + "'");
+      }
+      return dd.value[0];
+    };
+    runtime::ConstraintSpec spec;
+    std::optional<int> reference_datum;
+    if (has_type(*c, vocab(cs, "BilateralConstraint"))) {
+      spec.kind = runtime::ConstraintKind::Bilateral;
+      auto lo = constant("lower-threshold"), hi = constant("upper-threshold");
+      if (!lo || !hi) {
+        error(*c, "missing-property", "the bilateral constraint '" + str(*c) + "' needs a lower and an upper threshold");
+        continue;
+      }
+      spec.lower = *lo;
+      spec.upper = *hi;
+      if (!(spec.lower < spec.upper)) {
+        error(*c, "invalid-constraint", "the bilateral constraint '" + str(*c) + "' needs lower < upper");
+        continue;
+      }
+    } else if (has_type(*c, vocab(cs, "GreaterThanConstraint")) || has_type(*c, vocab(cs, "LessThanConstraint"))) {
+      spec.kind = has_type(*c, vocab(cs, "GreaterThanConstraint")) ? runtime::ConstraintKind::GreaterThan
+                                                                    : runtime::ConstraintKind::LessThan;
+      auto t = constant("threshold");
+      if (!t) {
+        error(*c, "missing-property", "the constraint '" + str(*c) + "' needs a threshold");
+        continue;
+      }
+      spec.threshold = *t;
+    } else if (has_type(*c, vocab(cs, "EqualityConstraint"))) {
+      spec.kind = assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
+      auto r = constant("reference-value");
+      if (!r) {
+        error(*c, "missing-property", "the equality constraint '" + str(*c) + "' needs a reference-value");
+        continue;
+      }
+      spec.reference = *r;
+      if (auto t = object(*c, vocab(cs, "reference-value"))) reference_datum = data_of_.at(t->index);
+    } else {
+      error(*c, "unsupported-constraint", "'" + str(*c) + "' is not an equality, bilateral, greater-than or less-than constraint");
+      continue;
+    }
+    if (assignment && spec.kind != runtime::ConstraintKind::Assignment) {
+      error(e, "invalid-evaluator", "the assignment evaluator '" + str(e) + "' needs an equality constraint");
+      continue;
+    }
+    s.constraint = spec;
+    const int satisfied = synthetic(str(*c) + "#satisfied", local_name(str(*c)) + "_satisfied", DataType::Flag, where(*c));
+    if (assignment) {
+      // The quantity is what the evaluator writes: the reference value.
+      s.in = {*reference_datum};
+      s.out = {satisfied, quantity};
+    } else {
+      int err = -1;
+      if (auto eo = object(e, vocab(ch, "error"))) {
+        err = datum(*eo, DataType::Scalar, e, "error");
+        s.has_error_output = true;
+      } else {
+        err = synthetic(str(e) + "#error", local_name(str(e)) + "_error", DataType::Scalar, where(e), unit);
+      }
+      s.in = {quantity};
+      s.out = {satisfied, err};
+    }
+    const int index = add_step(std::move(s));
+    if (evaluator_of_constraint_.count(c->index)) {
+      error(e, "evaluated-twice", "the constraint '" + str(*c) + "' has two evaluators");
+    }
+    evaluator_of_constraint_[c->index] = index;
+    evaluate_step_of_evaluator_[e.index] = index;
+  }
+}
+
+void Lowerer::lower_monitors() {
+  const std::string ch = "task/constraint-handler";
+  for (const bool edge : {false, true}) {
+    for (TermId m : instances(vocab(ch, edge ? "EdgeTriggeredMonitor" : "LevelTriggeredMonitor"))) {
+      pending_iri_ = str(m);
+      auto err = object(m, vocab(ch, "error"));
+      auto out = object(m, vocab(ch, edge ? "event" : "flag"));
+      if (!err || !out) {
+        error(m, "missing-property", std::string("the monitor '") + str(m) + "' needs `error` and `" + (edge ? "event" : "flag") + "`");
+        continue;
+      }
+      Step s;
+      s.kind = edge ? StepKind::EdgeMonitor : StepKind::LevelMonitor;
+      s.iri = str(m);
+      s.name = local_name(s.iri);
+      s.where = where(m);
+      s.in = {datum(*err, DataType::Scalar, m, "error")};
+      // The watched constraint's tolerance (via the evaluator producing the error).
+      for (const auto& [eval_term, step] : evaluate_step_of_evaluator_) {
+        const Step& ev = steps_[static_cast<size_t>(step)];
+        if (ev.out.size() > 1 && ev.out[1] == s.in[0]) s.constraint = ev.constraint;
+      }
+      Data flag;
+      const int d = synthetic(str(*out), local_name(str(*out)), edge ? DataType::Event : DataType::Flag, where(*out));
+      data_of_[out->index] = d;
+      s.out = {d};
+      s.state = prog_.states[static_cast<int>(StateKind::Monitor)]++;
+      add_step(std::move(s));
+    }
+  }
+}
+
+void Lowerer::lower_handlers() {
+  const std::string ch = "task/constraint-handler";
+  const std::string mot = "task/motion-specification";
+  std::map<uint32_t, int> active_of_motion;
+  for (TermId h : instances(vocab(ch, "ConstraintHandler"))) {
+    pending_iri_ = str(h);
+    auto m = object(h, vocab(ch, "motion"));
+    if (!m) continue;
+    int active = -1;
+    if (auto it = active_of_motion.find(m->index); it != active_of_motion.end()) {
+      active = it->second;
+    } else {
+      Step s;
+      s.kind = StepKind::GuardedMotion;
+      s.iri = str(*m);
+      s.name = local_name(s.iri);
+      s.where = where(*m);
+      const auto guards = [&](const std::string& prop) {
+        std::vector<int> flags;
+        for (TermId c : objects(*m, vocab(mot, prop))) {
+          auto it = evaluator_of_constraint_.find(c.index);
+          if (it == evaluator_of_constraint_.end()) {
+            error(where(*m, vocab(mot, prop), c), "unevaluated-constraint",
+                  "the motion '" + str(*m) + "' lists '" + str(c) + "' in `" + prop + "`, but no evaluator evaluates it");
+            continue;
+          }
+          if (prop != "while") flags.push_back(steps_[static_cast<size_t>(it->second)].out[0]);
+        }
+        return flags;
+      };
+      const std::vector<int> when = guards("when");
+      guards("while");
+      const std::vector<int> until = guards("until");
+      s.in = when;
+      s.in.insert(s.in.end(), until.begin(), until.end());
+      s.n_when = static_cast<int>(when.size());
+      if (when.size() > static_cast<size_t>(kMaxGuards) || until.size() > static_cast<size_t>(kMaxGuards)) {
+        error(*m, "too-many-guards", "the motion '" + str(*m) + "' has more than 16 when or until guards");
+        continue;
+      }
+      active = synthetic(str(*m) + "#running", local_name(str(*m)) + "_running", DataType::Flag, where(*m));
+      s.out = {active};
+      s.state = prog_.states[static_cast<int>(StateKind::Motion)]++;
+      add_step(std::move(s));
+      active_of_motion[m->index] = active;
+    }
+    for (TermId c : objects(h, vocab(ch, "controllers"))) active_of_controller_[c.index] = active;
+    for (TermId e : objects(h, vocab(ch, "evaluators"))) active_of_evaluator_[e.index] = active;
+  }
+  // Assignments write only while their motion runs.
+  for (auto& [eval, step] : evaluate_step_of_evaluator_) {
+    Step& s = steps_[static_cast<size_t>(step)];
+    if (s.constraint.kind != runtime::ConstraintKind::Assignment) continue;
+    if (auto it = active_of_evaluator_.find(eval); it != active_of_evaluator_.end()) s.in.push_back(it->second);
+  }
+}
+
+void Lowerer::lower_controllers() {
+  const std::string ch = "task/constraint-handler";
+  for (TermId c : instances(vocab(ch, "ProportionalIntegralDerivative"))) {
+    pending_iri_ = str(c);
+    auto err = object(c, vocab(ch, "error-signal"));
+    auto sig = object(c, vocab(ch, "control-signal"));
+    if (!err || !sig) {
+      error(c, "missing-property", "the controller '" + str(c) + "' needs an error-signal and a control-signal");
+      continue;
+    }
+    Step s;
+    s.kind = StepKind::Pid;
+    s.iri = str(c);
+    s.name = local_name(s.iri);
+    s.where = where(c);
+    const auto gain = [&](const std::string& p, bool required) {
+      auto v = number(c, vocab(ch, p));
+      if (!v && required) error(c, "missing-property", "the controller '" + str(c) + "' needs a numeric " + p);
+      return v.value_or(0.0);
+    };
+    s.pid.kp = gain("proportional-gain", true);
+    s.pid.ki = gain("integral-gain", true);
+    s.pid.kd = gain("derivative-gain", true);
+    if (has_type(c, vocab(ch, "DecayingIntegralTerm"))) s.pid.decay_rate = gain("decay-rate", true);
+    try {
+      runtime::Pid check(s.pid, s.iri.c_str());
+    } catch (const Error& e) {
+      error(c, "invalid-controller", e.what());
+    }
+    s.in = {datum(*err, DataType::Scalar, c, "error-signal")};
+    if (auto it = active_of_controller_.find(c.index); it != active_of_controller_.end()) s.in.push_back(it->second);
+    s.out = {datum(*sig, DataType::Scalar, c, "control-signal")};
+    s.state = prog_.states[static_cast<int>(StateKind::Pid)]++;
+    add_step(std::move(s));
+  }
+}
+
+void Lowerer::lower_base() {
+  const std::string slv = "task/solver-specification";
+  const auto solvers = instances(vocab(slv, "ForceDistributionSolver"));
+  if (solvers.size() > 1) error(solvers[1], "too-many-bases", "mospec's robot has one base; a second force distribution solver '" + str(solvers[1]) + "' has nothing to drive");
+  if (solvers.empty()) return;
+  const TermId b = solvers.front();
+  pending_iri_ = str(b);
+  BaseSolver base;
+  base.iri = str(b);
+  base.name = identifier(local_name(base.iri));
+  base.where = where(b);
+  base.geometry = runtime::KeloGeometry::paper();
+  auto f = object(b, vocab(slv, "force"));
+  if (!f) {
+    error(b, "missing-property", "the force distribution solver '" + base.iri + "' names no force");
+    return;
+  }
+  base.wrench = datum(*f, DataType::Wrench, b, "force");
+  const Data& w = prog_.data[static_cast<size_t>(base.wrench)];
+  std::string origin;
+  if (auto frame = term(w.as_seen_by); !absent(frame)) {
+    if (auto o = object(frame, vocab("geometry/structural-entities", "origin"))) origin = str(*o);
+  }
+  if (origin.empty() || w.reference_point != origin) {
+    error(*f, "frame-mismatch",
+          "the platform wrench '" + w.iri + "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
+              w.reference_point + "' seen by '" + w.as_seen_by + "'");
+  }
+  Step s;
+  s.kind = StepKind::BaseForceDistribution;
+  s.iri = base.iri;
+  s.name = base.name;
+  s.where = base.where;
+  s.in = {base.wrench};
+  prog_.base = std::move(base);
+  add_step(std::move(s));
+}
+
+void Lowerer::lower_views() {
+  const std::string map = "task/map";
+  struct ViewInfo {
+    TermId view, super, sub;
+    int index = 0;
+    DataType super_type = DataType::Pose;
+  };
+  std::vector<ViewInfo> views;
+  for (TermId v : instances(vocab(map, "View"))) {
+    auto super = object(v, vocab(map, "superobject"));
+    auto sub = object(v, vocab(map, "subobject"));
+    auto space = object(v, vocab(map, "subspace"));
+    auto axis = object(v, vocab(map, "axis"));
+    if (!super || !sub || !space || !axis) {
+      error(v, "missing-property", "the view '" + str(v) + "' needs superobject, subobject, subspace and axis");
+      continue;
+    }
+    ViewInfo info{v, *super, *sub};
+    const std::string sp = local_name(str(*space)), ax = local_name(str(*axis));
+    const int a = ax == "x" ? 0 : ax == "y" ? 1 : ax == "z" ? 2 : -1;
+    int base = -1;
+    if (has_type(v, vocab(map, "PoseCoordinateView"))) {
+      info.super_type = DataType::Pose;
+      base = sp == "orientation" || sp == "rotation" ? 0 : sp == "position" ? 3 : -1;
+    } else if (has_type(v, vocab(map, "VelocityTwistCoordinateView"))) {
+      info.super_type = DataType::Twist;
+      base = sp == "angular-velocity" ? 0 : sp == "linear-velocity" ? 3 : -1;
+    } else if (has_type(v, vocab(map, "WrenchCoordinateView"))) {
+      info.super_type = DataType::Wrench;
+      base = sp == "torque" || sp == "moment" ? 0 : sp == "force" ? 3 : -1;
+    }
+    if (base < 0 || a < 0) {
+      error(v, "invalid-view", "the view '" + str(v) + "' has subspace '" + sp + "' and axis '" + ax + "', which mospec cannot read");
+      continue;
+    }
+    info.index = base + a;
+    views.push_back(info);
+  }
+  // Direction: a view reads when its superobject is produced, writes when its
+  // subobject is. Writes into one superobject become one step.
+  std::vector<char> done(views.size(), 0);
+  for (bool progress = true; progress;) {
+    progress = false;
+    std::map<uint32_t, std::vector<size_t>> writes;
+    for (size_t i = 0; i < views.size(); ++i) {
+      if (done[i]) continue;
+      const ViewInfo& v = views[i];
+      pending_iri_ = str(v.view);
+      const int super = datum(v.super, v.super_type, v.view, "superobject");
+      const int sub = datum(v.sub, DataType::Scalar, v.view, "subobject");
+      if (produced(super)) {
+        Step s;
+        s.kind = StepKind::ViewRead;
+        s.iri = str(v.view);
+        s.name = local_name(s.iri);
+        s.where = where(v.view);
+        s.in = {super};
+        s.out = {sub};
+        s.views = {v.index};
+        add_step(std::move(s));
+        done[i] = 1;
+        progress = true;
+      } else if (produced(sub) && v.super_type != DataType::Pose) {
+        writes[v.super.index].push_back(i);
+      }
+    }
+    for (auto& [super_term, list] : writes) {
+      Step s;
+      s.kind = StepKind::ViewWrite;
+      const ViewInfo& first = views[list.front()];
+      s.iri = str(first.super);
+      s.name = "assemble_" + local_name(s.iri);
+      s.where = where(first.view);
+      for (size_t i : list) {
+        s.in.push_back(datum(views[i].sub, DataType::Scalar, views[i].view, "subobject"));
+        s.views.push_back(views[i].index);
+        done[i] = 1;
+      }
+      s.out = {datum(first.super, first.super_type, first.view, "superobject")};
+      add_step(std::move(s));
+      progress = true;
+    }
+  }
+  for (size_t i = 0; i < views.size(); ++i) {
+    if (done[i]) continue;
+    error(views[i].view, "unproduced-quantity",
+          "the view '" + str(views[i].view) + "': nothing produces its superobject '" + str(views[i].super) +
+              "' or its subobject '" + str(views[i].sub) + "'");
+    done[i] = 1;
+  }
+}
+
+void Lowerer::check_inputs() {
+  for (const Step& s : steps_) {
+    for (int d : s.in) {
+      if (produced(d)) continue;
+      const Data& dd = prog_.data[static_cast<size_t>(d)];
+      std::string msg = "nothing produces '";
+      msg.append(dd.iri).append("', which '").append(s.iri).append("' needs");
+      error(dd.where.known() ? dd.where : s.where, "unproduced-quantity", msg);
+      producer_.emplace(d, -1);  // report once
+    }
+  }
+}
+
+void Lowerer::schedule() {
+  const size_t n = steps_.size();
+  std::vector<std::vector<size_t>> next(n);
+  std::vector<int> waiting(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    for (int d : steps_[i].in) {
+      auto it = producer_.find(d);
+      if (it == producer_.end() || it->second < 0) continue;
+      next[static_cast<size_t>(it->second)].push_back(i);
+      ++waiting[i];
+    }
+  }
+  // Kahn's algorithm, always taking the earliest-declared ready step: the
+  // order is a function of the model only.
+  std::set<size_t> ready;
+  for (size_t i = 0; i < n; ++i) {
+    if (waiting[i] == 0) ready.insert(i);
+  }
+  std::vector<size_t> order;
+  while (!ready.empty()) {
+    const size_t i = *ready.begin();
+    ready.erase(ready.begin());
+    order.push_back(i);
+    for (size_t j : next[i]) {
+      if (--waiting[j] == 0) ready.insert(j);
+    }
+  }
+  if (order.size() != n) {
+    for (size_t i = 0; i < n; ++i) {
+      if (waiting[i] > 0) {
+        error(steps_[i].where, "cycle",
+              "'" + steps_[i].iri + "' (" + std::string(to_string(steps_[i].kind)) +
+                  ") is on a dependency cycle: each quantity on it needs another one of them in the same tick");
+      }
+    }
+    return;
+  }
+  for (size_t i : order) prog_.steps.push_back(steps_[i]);
+}
+
+void Lowerer::build_log() {
+  for (const Step& s : prog_.steps) {
+    const auto add = [&](const std::string& suffix, int d) {
+      const Data& dd = prog_.data[static_cast<size_t>(d)];
+      std::string name = local_name(s.iri);
+      if (s.kind == StepKind::Evaluate) name = local_name(dd.iri.substr(0, dd.iri.find('#')));
+      prog_.log.push_back({name + suffix, dd.unit, d});
+    };
+    switch (s.kind) {
+      case StepKind::Evaluate: {
+        const bool assignment = s.constraint.kind == runtime::ConstraintKind::Assignment;
+        const Data& sat = prog_.data[static_cast<size_t>(s.out[0])];
+        const std::string cname = local_name(sat.iri.substr(0, sat.iri.find('#')));
+        const Data& value = prog_.data[static_cast<size_t>(assignment ? s.out[1] : s.in[0])];
+        prog_.log.push_back({cname + ".value", value.unit, assignment ? s.out[1] : s.in[0]});
+        if (!assignment) prog_.log.push_back({cname + ".error", prog_.data[static_cast<size_t>(s.out[1])].unit, s.out[1]});
+        prog_.log.push_back({cname + ".satisfied", "", s.out[0]});
+        break;
+      }
+      case StepKind::LevelMonitor: add(".flag", s.out[0]); break;
+      case StepKind::EdgeMonitor: add(".event", s.out[0]); break;
+      case StepKind::GuardedMotion: add(".running", s.out[0]); break;
+      case StepKind::Pid: add(".output", s.out[0]); break;
+      default: break;
+    }
+  }
+}
+
+Program Lowerer::run() {
+  for (const app::ModelFile& f : model_.model_files()) {
+    if (f.is_app) {
+      prog_.app = f.iri;
+      break;
+    }
+  }
+  lower_clocks();
+  for (TermId s : instances(vocab("task/solver-specification", "SolverWithInputAndOutput"))) lower_arm(s);
+  lower_operators();
+  lower_base();
+  lower_evaluators();
+  lower_monitors();
+  lower_handlers();
+  lower_controllers();
+  lower_views();
+  check_inputs();
+  if (errors_.empty()) schedule();
+  if (!errors_.empty()) throw LowerError(std::move(errors_));
+  build_log();
+  verify(prog_);
+  return std::move(prog_);
+}
+
+}  // namespace
+
+Program lower(const app::LoadedModel& model, const LowerOptions& options) {
+  return Lowerer(model, options).run();
+}
+
+}  // namespace mospec::ir

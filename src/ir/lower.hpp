@@ -1,0 +1,54 @@
+// Lowering: a loaded, validated task model -> the IR Program (ir.hpp).
+//
+// Every decision the back-ends need is made here: the data type, frames and
+// unit of each quantity; which runtime operator computes it; whether a view
+// reads a component of a 3D quantity or writes one into it (by what produces
+// the superobject or the subobject); how each arm's motion drivers map onto
+// ACHD's inputs (acceleration constraints on the tip, wrenches on segments,
+// joint forces) and which priority level each belongs to; which motion gates
+// which controller; and the schedule, a topological order from sensor reads
+// to actuator writes.
+//
+// Errors are collected, not thrown one by one: every quantity that nothing
+// produces, every datum produced twice, every cycle, every frame or unit the
+// runtime cannot honour, each located at the entity's file:line.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/app.hpp"
+#include "ir/ir.hpp"
+#include "support/diagnostics.hpp"
+
+namespace mospec::ir {
+
+struct LowerOptions {
+  // Which robot arm (robot::kRightArm = 0, kLeftArm = 1) each kinematic chain
+  // drives. Defaults bind mospec's robot descriptions
+  // (robots/kinova-gen3.jsonld -> right, its left twin -> left).
+  std::map<std::string, int> ports = default_ports();
+  static std::map<std::string, int> default_ports();
+};
+
+// Thrown by lower(): all the problems found, each a located Diagnostic;
+// what() is them formatted one per line.
+class LowerError : public Error {
+ public:
+  explicit LowerError(std::vector<Diagnostic> diagnostics);
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+
+// Lowers the flattened graph of `model`. The caller validates first (the CLI
+// refuses models with violations before lowering). Throws LowerError.
+Program lower(const app::LoadedModel& model, const LowerOptions& options = {});
+
+// The content hash of a program's JSON (hex FNV-1a 64): the cache key for
+// generated and built controllers.
+std::string content_hash(const std::string& text);
+
+}  // namespace mospec::ir

@@ -1,0 +1,47 @@
+// What a control loop runs: one tick from the measured state to the command,
+// plus the per-tick log of the task's quantities. Implemented by the IR
+// interpreter (src/ir/interpreter.hpp) and by every generated controller
+// (src/codegen), so one loop (src/sim/run.hpp) drives either and writes the
+// same log.
+//
+// A generated controller is built as a shared library that exports
+//   extern "C" mospec::robot::Controller* mospec_create_controller();
+// (kControllerFactorySymbol); the caller owns the returned object. Both sides
+// must be built against the same mospec headers: kControllerAbiVersion is
+// checked on load.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "robot/interface.hpp"
+
+namespace mospec::robot {
+
+inline constexpr int kControllerAbiVersion = 1;
+inline constexpr const char* kControllerFactorySymbol = "mospec_create_controller";
+
+struct LogColumnInfo {
+  const char* name;  // "cstr-dist-rightarm-shoulder-ee.error"
+  const char* unit;  // QUDT local name; "" for flags and events
+};
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  virtual int abi_version() const noexcept { return kControllerAbiVersion; }
+  // The model this controller was generated from (the app's IRI) and the
+  // content hash of its IR.
+  virtual const char* app() const noexcept = 0;
+  // One control tick: reads `state`, writes every field of `command`.
+  // Allocation-free and noexcept.
+  virtual void tick(const MeasuredState& state, Command& command) noexcept = 0;
+  // The log's columns, fixed at construction.
+  virtual std::span<const LogColumnInfo> log_columns() const noexcept = 0;
+  // The values after the last tick, one per column (out.size() == columns).
+  virtual void log_values(std::span<double> out) const noexcept = 0;
+};
+
+using ControllerFactory = Controller* (*)();
+
+}  // namespace mospec::robot

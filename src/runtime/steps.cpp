@@ -1,0 +1,89 @@
+#include "runtime/steps.hpp"
+
+#include <cmath>
+
+#include "runtime/rne.hpp"
+
+namespace mospec::runtime::steps {
+
+ArmWorkspace::ArmWorkspace(const AchdModel& model, int constraints)
+    : q(JointVector::Zero(model.nq)),
+      qd(JointVector::Zero(model.nq)),
+      tau_ff(JointVector::Zero(model.nq)),
+      alpha_To_B(ConstraintMatrix::Zero(6, constraints)),
+      beta(ConstraintVector::Zero(constraints)),
+      tau_command(JointVector::Zero(model.nq)) {
+  F_ext.fill(Vec6::Zero());
+}
+
+void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
+                    std::span<const double> q_measured,
+                    std::span<const double> qd_measured) noexcept {
+  ws.input_fault = false;
+  for (int i = 0; i < model.nq; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double qi = k < q_measured.size() ? q_measured[k] : 0.0;
+    const double qdi = k < qd_measured.size() ? qd_measured[k] : 0.0;
+    const bool ok = std::isfinite(qi) && std::isfinite(qdi) && k < q_measured.size() &&
+                    k < qd_measured.size();
+    ws.input_fault = ws.input_fault || !ok;
+    ws.q[i] = std::isfinite(qi) ? qi : 0.0;
+    ws.qd[i] = std::isfinite(qdi) ? qdi : 0.0;
+  }
+  // The outward velocity sweep of ACHD/RNE, without the dynamics.
+  Vec6 V_P = Vec6::Zero();
+  Pose X_BP;
+  for (int i = 0; i < model.nq; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const SegmentModel& s = model.segments[k];
+    data.X_PS[k] = runtime::segment_pose(s, ws.q[i]);
+    data.X_BS[k] = X_BP * data.X_PS[k];
+    data.V[k] = motion_to_child(data.X_PS[k], V_P) + motion_subspace(s) * ws.qd[i];
+    V_P = data.V[k];
+    X_BP = data.X_BS[k];
+  }
+  data.X_BT = X_BP * model.X_NT;
+}
+
+void arm_solve(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
+               std::span<double> tau_out) noexcept {
+  const auto n = static_cast<std::size_t>(model.nq);
+  bool finite = !ws.input_fault && ws.tau_ff.allFinite() && ws.beta.allFinite();
+  for (std::size_t i = 0; i < n; ++i) finite = finite && ws.F_ext[i].allFinite();
+  if (finite) {
+    ws.status = achd(model, data, ws.q, ws.qd, ws.tau_ff,
+                     SegmentWrenches(ws.F_ext.data(), n), ws.alpha_To_B, ws.beta);
+  } else {
+    ws.status = Status::SizeMismatch;  // reported as a fault: nothing solved
+  }
+  const bool solved = ws.status == Status::Ok || ws.status == Status::ConstraintsDegraded;
+  if (solved) {
+    const JointIn qdd(data.qdd);
+    impl::rne_into(model, data, ws.q, ws.qd, &qdd, {}, ws.tau_command);
+  }
+  if (!solved || !ws.tau_command.allFinite()) ws.tau_command.setZero();
+  for (std::size_t i = 0; i < tau_out.size(); ++i) {
+    tau_out[i] = i < n ? ws.tau_command[static_cast<Eigen::Index>(i)] : 0.0;
+  }
+}
+
+void base_force_distribution(const KeloModel& model, KeloData& data,
+                             std::span<const double> pivot_q, const Vec6& F_Po_P,
+                             std::span<double> wheel_tau) noexcept {
+  Vec4 q = Vec4::Zero();
+  bool finite = F_Po_P.allFinite() && pivot_q.size() >= static_cast<std::size_t>(kKeloDrives);
+  for (int i = 0; i < kKeloDrives && finite; ++i) {
+    q[i] = pivot_q[static_cast<std::size_t>(i)];
+    finite = std::isfinite(q[i]);
+  }
+  if (!finite) {
+    for (double& t : wheel_tau) t = 0.0;
+    return;
+  }
+  const KeloDriveVector& tau = kelo_force_step(model, data, q, planar_wrench(F_Po_P));
+  for (std::size_t w = 0; w < wheel_tau.size(); ++w) {
+    wheel_tau[w] = static_cast<Eigen::Index>(w) < tau.size() ? tau[static_cast<Eigen::Index>(w)] : 0.0;
+  }
+}
+
+}  // namespace mospec::runtime::steps

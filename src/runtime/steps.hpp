@@ -1,0 +1,139 @@
+// The kernels of the IR's steps (src/ir/ir.hpp): one function per step kind
+// that isn't a single operator call, so the interpreter and the generated code
+// execute literally the same code and produce bit-identical logs. Everything
+// here is noexcept and allocation-free; the arrays are sized at setup.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "runtime/achd.hpp"
+#include "runtime/controllers.hpp"
+#include "runtime/evaluators.hpp"
+#include "runtime/kelo.hpp"
+#include "runtime/model.hpp"
+#include "runtime/monitors.hpp"
+#include "runtime/operators.hpp"
+
+namespace mospec::runtime::steps {
+
+// ---------------------------------------------------------------------------
+// Arms. One ArmWorkspace per ACHD solver, built at setup.
+struct ArmWorkspace {
+  explicit ArmWorkspace(const AchdModel& model, int constraints);
+  JointVector q, qd, tau_ff;
+  std::array<Vec6, kMaxJoints> F_ext{};
+  ConstraintMatrix alpha_To_B;  // 6 x nc, filled at setup (unit columns)
+  ConstraintVector beta;        // nc, filled every tick from the drivers
+  JointVector tau_command;      // what is sent to the arm
+  Status status = Status::Ok;
+  bool input_fault = false;  // the last sample had a non-finite q or qd
+};
+
+// Reads q, qd from the measured arm (the first nq joints) and runs the forward
+// velocity sweep: data.X_PS, X_BS, X_BT and the segment twists data.V (in S_i
+// at So_i). A non-finite measurement sets input_fault; the kinematics then use
+// zeros for the bad entries (the solve step sends zero torque).
+void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
+                    std::span<const double> q_measured, std::span<const double> qd_measured) noexcept;
+
+// The pose of segment S_i w.r.t. the root, as seen by the root.
+inline const Pose& segment_pose(const AchdData& data, int segment) noexcept {
+  return data.X_BS[static_cast<std::size_t>(segment)];
+}
+// The twist of S_i w.r.t. the root at So_i, as seen by the root.
+inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
+  return rotate_twist_to_proximal(data.X_BS[static_cast<std::size_t>(segment)],
+                                  data.V[static_cast<std::size_t>(segment)]);
+}
+
+// Solves ACHD with the workspace's drivers (F_ext, tau_ff, alpha, beta) and
+// computes the torque command that realises the solved motion on the real
+// robot, where the drivers' forces are virtual: tau_command = rne(q, qd, qdd)
+// without F_ext (= data.tau + sum_i J_i^T F_ext,i), gravity included. Writes
+// zero torque when the inputs were not finite or the solver failed.
+void arm_solve(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
+               std::span<double> tau_out) noexcept;
+
+// ---------------------------------------------------------------------------
+// Views (1D <-> 3D).
+inline double view_pose(const Pose& X, int index) noexcept {
+  return view(X, View{index < 3 ? Part::Angular : Part::Linear, static_cast<Axis>(index % 3)});
+}
+inline double view_vec6(const Vec6& v, int index) noexcept { return v[index]; }
+
+// ---------------------------------------------------------------------------
+// Constraint evaluation. `active` gates an assignment (its output is 0 while
+// the motion it belongs to is not running); error evaluators always measure.
+// Writes the satisfaction and the error (or the assignment's output).
+inline void evaluate(const ConstraintEvaluator& evaluator, double measured, bool active,
+                     bool& satisfied, double& error_or_output) noexcept {
+  const Evaluation e = evaluator.evaluate(measured);
+  satisfied = e.satisfied;
+  if (evaluator.spec().kind == ConstraintKind::Assignment) {
+    error_or_output = active ? e.output : 0.0;
+  } else {
+    error_or_output = e.error;
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Monitors watch an error signal: the watched constraint is satisfied while
+// the error is within `tolerance` of 0 (exactly 0 for inequalities inside their
+// feasible set).
+inline bool level_monitor(MonitorState& state, double error, double tolerance) noexcept {
+  return LevelMonitor::update(state, std::abs(error) <= tolerance);
+}
+inline bool edge_monitor(MonitorState& state, double error, double tolerance) noexcept {
+  const bool before = state.satisfied;
+  LevelMonitor::update(state, std::abs(error) <= tolerance);
+  return !before && state.satisfied;  // the constraint became satisfied
+}
+
+// ---------------------------------------------------------------------------
+// Guarded motions: Idle -> Running when every `when` holds (at once when there
+// is none); Running -> Done as soon as any `until` holds (checked in the same
+// tick it starts). Returns whether it is running after this tick.
+enum class MotionState : uint8_t { Idle = 0, Running = 1, Done = 2 };
+inline bool guarded_motion(MotionState& state, std::span<const bool> when,
+                           std::span<const bool> until) noexcept {
+  if (state == MotionState::Idle) {
+    bool all = true;
+    for (bool w : when) all = all && w;
+    if (all) state = MotionState::Running;
+  }
+  if (state == MotionState::Running) {
+    for (bool u : until) {
+      if (u) {
+        state = MotionState::Done;
+        break;
+      }
+    }
+  }
+  return state == MotionState::Running;
+}
+
+// ---------------------------------------------------------------------------
+// Controllers run while their motion runs; otherwise their output is 0 and
+// their state is reset (a motion that starts later starts from a clean
+// integral).
+inline double pid(const Pid& controller, PidState& state, double error, double dt,
+                  bool active) noexcept {
+  if (!active) {
+    Pid::reset(state);
+    return 0.0;
+  }
+  controller.step(state, error, dt);
+  return state.output;
+}
+
+// ---------------------------------------------------------------------------
+// Base: the platform wrench F_Po_P (at the platform origin, seen by P)
+// distributed to the drives (paper Eq. 2-3) from the measured pivot angles.
+// Non-finite inputs give zero hub torques.
+void base_force_distribution(const KeloModel& model, KeloData& data,
+                             std::span<const double> pivot_q, const Vec6& F_Po_P,
+                             std::span<double> wheel_tau) noexcept;
+
+}  // namespace mospec::runtime::steps
