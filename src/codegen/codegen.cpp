@@ -1,0 +1,820 @@
+#include "codegen/codegen.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <kainjow/mustache.hpp>
+#include <set>
+#include <string_view>
+
+#include "codegen/templates.hpp"
+#include "support/io.hpp"
+
+namespace mospec::codegen {
+
+namespace mus = kainjow::mustache;
+using ir::DataType;
+using ir::StepKind;
+
+std::string cpp_double(double value) {
+  if (std::isnan(value)) return "std::numeric_limits<double>::quiet_NaN()";
+  if (std::isinf(value)) {
+    return value > 0 ? "std::numeric_limits<double>::infinity()"
+                     : "-std::numeric_limits<double>::infinity()";
+  }
+  std::array<char, 40> buf{};
+  std::snprintf(buf.data(), buf.size(), "%.17g", value);
+  std::string s(buf.data());
+  if (s.find_first_of(".e") == std::string::npos) s.append(".0");
+  return s;
+}
+
+std::string cpp_string(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out.push_back('\\');
+      out.push_back(c);
+    } else if (u < 0x20 || u == 0x7f || c == '?') {
+      // Octal escapes (three digits, so a following digit is never absorbed);
+      // '?' too, so no trigraph can form.
+      std::array<char, 8> buf{};
+      std::snprintf(buf.data(), buf.size(), "\\%03o", static_cast<unsigned>(u));
+      out.append(buf.data());
+    } else {
+      out.push_back(c);
+    }
+  }
+  out.push_back('"');
+  return out;
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what) {
+  std::string msg = "codegen: ";
+  msg.append(what);
+  throw Error("codegen", msg);
+}
+
+// Text for a // comment: one line, and no trailing backslash (a line splice).
+std::string comment(std::string_view text) {
+  std::string out;
+  for (const char c : text) out.push_back(static_cast<unsigned char>(c) < 0x20 ? ' ' : c);
+  while (!out.empty() && out.back() == '\\') out.back() = '/';
+  return out;
+}
+
+const std::set<std::string_view>& cpp_keywords() {
+  static const std::set<std::string_view> k{
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break",
+      "case", "catch", "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept",
+      "const", "consteval", "constexpr", "constinit", "const_cast", "continue", "co_await",
+      "co_return", "co_yield", "decltype", "default", "delete", "do", "double", "dynamic_cast",
+      "else", "enum", "explicit", "export", "extern", "false", "float", "for", "friend", "goto",
+      "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
+      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register",
+      "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static",
+      "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
+      "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using",
+      "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq"};
+  return k;
+}
+
+bool is_identifier(std::string_view s) {
+  if (s.empty() || (s[0] >= '0' && s[0] <= '9')) return false;
+  for (const char c : s) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_';
+    if (!ok) return false;
+  }
+  // Reserved: a double underscore anywhere, or an underscore and a capital first.
+  if (s.find("__") != std::string_view::npos) return false;
+  if (s.size() > 1 && s[0] == '_' && s[1] >= 'A' && s[1] <= 'Z') return false;
+  return cpp_keywords().count(s) == 0;
+}
+
+// Unique identifiers within one scope: the IR's name when it is a usable C++
+// identifier not yet taken, else the fallback (made unique with a suffix).
+class Names {
+ public:
+  std::string take(const std::string& wanted, const std::string& fallback) {
+    std::string name = is_identifier(wanted) && !used_.count(wanted) ? wanted : fallback;
+    if (used_.count(name)) {
+      for (int k = 2;; ++k) {
+        std::string candidate = name;
+        candidate.append("_").append(std::to_string(k));
+        if (!used_.count(candidate)) {
+          name = candidate;
+          break;
+        }
+      }
+    }
+    used_.insert(name);
+    return name;
+  }
+
+ private:
+  std::set<std::string> used_;
+};
+
+// The member of Data that holds each data type's slots.
+std::string_view type_member(DataType t) {
+  switch (t) {
+    case DataType::Scalar: return "scalar";
+    case DataType::Vector3: return "vec3";
+    case DataType::Pose: return "pose";
+    case DataType::Twist: return "twist";
+    case DataType::Wrench: return "wrench";
+    case DataType::Flag: return "flag";
+    case DataType::Event: return "event";
+  }
+  return "scalar";
+}
+
+// The step kinds' names as ir::to_string spells them (comments only).
+std::string_view kind_name(StepKind k) {
+  switch (k) {
+    case StepKind::ReadClock: return "read-clock";
+    case StepKind::ArmKinematics: return "arm-kinematics";
+    case StepKind::ViewRead: return "view-read";
+    case StepKind::ViewWrite: return "view-write";
+    case StepKind::ComposePose: return "compose-pose";
+    case StepKind::PoseToLinearDistance: return "pose-to-linear-distance";
+    case StepKind::PoseToDirection: return "pose-to-direction";
+    case StepKind::RotateWrenchToProximal: return "rotate-wrench-to-proximal";
+    case StepKind::RotateTwistToProximal: return "rotate-twist-to-proximal";
+    case StepKind::RotateDirectionToProximal: return "rotate-direction-to-proximal";
+    case StepKind::TransformWrenchToProximal: return "transform-wrench-to-proximal";
+    case StepKind::WrenchFromPositionDirectionAndMagnitude:
+      return "wrench-from-position-direction-and-magnitude";
+    case StepKind::AddWrench: return "add-wrench";
+    case StepKind::PlanarAngleFromDirections: return "planar-angle-from-directions";
+    case StepKind::InvertAngle: return "invert-angle";
+    case StepKind::Evaluate: return "evaluate";
+    case StepKind::LevelMonitor: return "level-monitor";
+    case StepKind::EdgeMonitor: return "edge-monitor";
+    case StepKind::GuardedMotion: return "guarded-motion";
+    case StepKind::Pid: return "pid";
+    case StepKind::ArmSolve: return "arm-solve";
+    case StepKind::BaseForceDistribution: return "base-force-distribution";
+  }
+  return "?";
+}
+
+std::string join_doubles(const double* values, int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) out.append(", ");
+    out.append(cpp_double(values[i]));
+  }
+  return out;
+}
+std::string vec3(const runtime::Vec3& v) {
+  return join_doubles(v.data(), 3);
+}
+// A 3x3 matrix row-major, for Eigen's comma initializer.
+std::string mat3(const runtime::Mat3& M) {
+  const std::array<double, 9> r{M(0, 0), M(0, 1), M(0, 2), M(1, 0), M(1, 1),
+                                M(1, 2), M(2, 0), M(2, 1), M(2, 2)};
+  return join_doubles(r.data(), 9);
+}
+
+std::string anti_windup(runtime::AntiWindup a) {
+  switch (a) {
+    case runtime::AntiWindup::None: return "rt::AntiWindup::None";
+    case runtime::AntiWindup::ConditionalIntegration: return "rt::AntiWindup::ConditionalIntegration";
+    case runtime::AntiWindup::BackCalculation: return "rt::AntiWindup::BackCalculation";
+  }
+  return "rt::AntiWindup::ConditionalIntegration";
+}
+
+std::string constraint_kind(runtime::ConstraintKind k) {
+  switch (k) {
+    case runtime::ConstraintKind::Equality: return "rt::ConstraintKind::Equality";
+    case runtime::ConstraintKind::LessThan: return "rt::ConstraintKind::LessThan";
+    case runtime::ConstraintKind::GreaterThan: return "rt::ConstraintKind::GreaterThan";
+    case runtime::ConstraintKind::Bilateral: return "rt::ConstraintKind::Bilateral";
+    case runtime::ConstraintKind::Assignment: return "rt::ConstraintKind::Assignment";
+  }
+  return "rt::ConstraintKind::Equality";
+}
+
+// Bit-for-bit equality (distinguishes -0 from +0; NaN equals itself).
+template <typename M>
+bool same_bits(const M& a, const M& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+mus::data list() {
+  return mus::data{mus::data::type::list};
+}
+
+// Builds the template data for one Program. Every choice is made here.
+class Builder {
+ public:
+  Builder(const ir::Program& p, const SourceFiles* files) : p_(p), files_(files) {
+    Names slot_names;
+    for (std::size_t i = 0; i < p.data.size(); ++i) {
+      const ir::Data& d = p.data[i];
+      if (d.slot < 0 || d.slot >= p.count(d.type)) {
+        fail("datum '" + d.name + "' has slot " + std::to_string(d.slot) + ", outside its type's " +
+             std::to_string(p.count(d.type)) + " slot(s)");
+      }
+      std::string fallback(type_member(d.type));
+      fallback.append("_").append(std::to_string(d.slot));
+      data_names_.push_back(slot_names.take(d.name, fallback));
+    }
+    Names members;
+    for (std::size_t a = 0; a < p.arms.size(); ++a) {
+      arm_members_.push_back(members.take("arm_" + p.arms[a].name, "arm_" + std::to_string(a)));
+      ws_members_.push_back(members.take("ws_" + p.arms[a].name, "ws_" + std::to_string(a)));
+    }
+    members.take("base", "base");
+    for (std::size_t i = 0; i < p.steps.size(); ++i) {
+      const ir::Step& st = p.steps[i];
+      const std::string idx = std::to_string(i);
+      std::string m;
+      if (st.kind == StepKind::Evaluate) m = members.take("eval_" + st.name, "eval_" + idx);
+      if (st.kind == StepKind::Pid) m = members.take("pid_" + st.name, "pid_" + idx);
+      if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor) {
+        m = members.take("tolerance_" + st.name, "tolerance_" + idx);
+      }
+      step_members_.push_back(m);
+    }
+  }
+
+  mus::data build() {
+    mus::data root;
+    root.set("app_comment", comment(p_.app));
+    root.set("app_literal", cpp_string(p_.app));
+    add_slots(root);
+    add_model(root);
+    add_data(root);
+    add_steps(root);
+    add_log(root);
+    return root;
+  }
+
+ private:
+  const ir::Data& datum(int index) const {
+    if (index < 0 || static_cast<std::size_t>(index) >= p_.data.size()) {
+      fail("reference to datum " + std::to_string(index) + ", but the program has " +
+           std::to_string(p_.data.size()));
+    }
+    return p_.data[static_cast<std::size_t>(index)];
+  }
+  // The expression that names a datum's slot, e.g. "d.scalar[slot::time]".
+  std::string ref(int index, std::string_view object = "d.") const {
+    const ir::Data& d = datum(index);
+    std::string s(object);
+    s.append(type_member(d.type)).append("[slot::").append(data_names_[static_cast<std::size_t>(index)]).append("]");
+    return s;
+  }
+  std::string in(const ir::Step& st, std::size_t k) const {
+    if (k >= st.in.size()) fail("step '" + st.name + "' has no input " + std::to_string(k));
+    return ref(st.in[k]);
+  }
+  std::string out(const ir::Step& st, std::size_t k) const {
+    if (k >= st.out.size()) fail("step '" + st.name + "' has no output " + std::to_string(k));
+    return ref(st.out[k]);
+  }
+  std::string where(const SourceLoc& loc) const {
+    if (!loc.known()) return "(no source location)";
+    std::string s;
+    if (files_ != nullptr && loc.file != 0 && loc.file < files_->size()) {
+      s = files_->path(loc.file);
+    } else {
+      s = "<file " + std::to_string(loc.file) + ">";
+    }
+    s.append(":").append(std::to_string(loc.line));
+    if (loc.column != 0) s.append(":").append(std::to_string(loc.column));
+    return comment(s);
+  }
+  const ir::ArmSolver& arm(const ir::Step& st) const {
+    if (st.solver < 0 || static_cast<std::size_t>(st.solver) >= p_.arms.size()) {
+      fail("step '" + st.name + "' refers to arm solver " + std::to_string(st.solver) +
+           ", but the program has " + std::to_string(p_.arms.size()));
+    }
+    return p_.arms[static_cast<std::size_t>(st.solver)];
+  }
+  int state_slot(const ir::Step& st, ir::StateKind kind) const {
+    if (st.state < 0 || st.state >= p_.states[static_cast<std::size_t>(kind)]) {
+      fail("step '" + st.name + "' has state slot " + std::to_string(st.state) + " out of range");
+    }
+    return st.state;
+  }
+
+  void add_slots(mus::data& root) const {
+    mus::data types = list();
+    for (int t = 0; t < ir::kDataTypes; ++t) {
+      const auto type = static_cast<DataType>(t);
+      if (p_.count(type) == 0) continue;
+      // By slot, so the listing reads like the arrays.
+      std::vector<std::size_t> by_slot(static_cast<std::size_t>(p_.count(type)), p_.data.size());
+      for (std::size_t i = 0; i < p_.data.size(); ++i) {
+        if (p_.data[i].type == type) by_slot[static_cast<std::size_t>(p_.data[i].slot)] = i;
+      }
+      mus::data slots = list();
+      for (const std::size_t i : by_slot) {
+        if (i == p_.data.size()) continue;
+        const ir::Data& d = p_.data[i];
+        mus::data s;
+        s.set("name", data_names_[i]);
+        s.set("slot", std::to_string(d.slot));
+        s.set("iri", comment(d.iri));
+        s.set("has_unit", !d.unit.empty());
+        s.set("unit", comment(d.unit));
+        slots.push_back(s);
+      }
+      mus::data entry;
+      entry.set("type", std::string(type_member(type)));
+      entry.set("count", std::to_string(p_.count(type)));
+      entry.set("slots", slots);
+      types.push_back(entry);
+    }
+    root.set("slot_types", types);
+  }
+
+  void add_model(mus::data& root) const {
+    std::vector<std::string> inits;
+    mus::data arms = list();
+    for (std::size_t a = 0; a < p_.arms.size(); ++a) {
+      const ir::ArmSolver& s = p_.arms[a];
+      const std::string& member = arm_members_[a];
+      mus::data e;
+      e.set("name", comment(s.name));
+      e.set("iri", comment(s.iri));
+      e.set("chain_iri", comment(s.chain_iri));
+      e.set("root", comment(s.chain.root()));
+      e.set("root_literal", cpp_string(s.chain.root()));
+      e.set("segments", std::to_string(s.chain.size()));
+      e.set("port", std::to_string(s.port));
+      e.set("member", member);
+      e.set("workspace", ws_members_[a]);
+      e.set("constraints", std::to_string(s.acceleration_constraints.size()));
+      e.set("gravity", join_doubles(s.gravity.data(), 3));
+      e.set("tip_is_last_segment", s.tip_is_last_segment);
+      const runtime::Pose X_NT = s.tip_is_last_segment ? runtime::Pose{} : s.chain.X_NT();
+      e.set("X_NT_R", mat3(X_NT.R));
+      e.set("X_NT_p", vec3(X_NT.p));
+      mus::data segments = list();
+      runtime::Chain rebuilt(s.chain.root());
+      for (int i = 0; i < s.chain.size(); ++i) {
+        const runtime::Segment& g = s.chain.segment(i);
+        mus::data seg;
+        seg.set("link_literal", cpp_string(g.link));
+        seg.set("joint_literal", cpp_string(g.joint));
+        seg.set("joint_type", g.type == runtime::JointType::Revolute ? "Revolute" : "Prismatic");
+        seg.set("R", mat3(g.X_PJ.R));
+        seg.set("p", vec3(g.X_PJ.p));
+        seg.set("axis", vec3(g.axis_J));
+        seg.set("mass", cpp_double(g.inertia.mass));
+        seg.set("com", vec3(g.inertia.p_SoScm_S));
+        seg.set("inertia", mat3(g.inertia.I_Scm_S));
+        seg.set("lower", cpp_double(g.limits.lower));
+        seg.set("upper", cpp_double(g.limits.upper));
+        seg.set("velocity", cpp_double(g.limits.velocity));
+        seg.set("effort", cpp_double(g.limits.effort));
+        seg.set("armature", cpp_double(g.armature));
+        segments.push_back(seg);
+        runtime::Segment copy = g;
+        rebuilt.add_segment(std::move(copy));
+      }
+      // The generated code rebuilds the chain with add_segment, exactly as here;
+      // it must reproduce the IR's chain bit for bit (a composed identity can
+      // turn a -0 into +0), or the tick would not match the interpreter's.
+      for (int i = 0; i < s.chain.size(); ++i) {
+        const runtime::Pose& want = s.chain.segment(i).X_PJ;
+        const runtime::Pose& got = rebuilt.segment(i).X_PJ;
+        if (!same_bits(want.R, got.R) || !same_bits(want.p, got.p)) {
+          fail("arm '" + s.name + "': segment " + std::to_string(i) +
+               "'s joint placement does not survive Chain::add_segment bit for bit");
+        }
+      }
+      e.set("chain_segments", segments);
+      mus::data alpha = list();
+      for (std::size_t k = 0; k < s.acceleration_constraints.size(); ++k) {
+        mus::data c;
+        c.set("workspace", ws_members_[a]);
+        c.set("component", std::to_string(s.acceleration_constraints[k].component));
+        c.set("column", std::to_string(k));
+        c.set("iri", comment(s.acceleration_constraints[k].iri));
+        alpha.push_back(c);
+      }
+      e.set("alpha", alpha);
+      arms.push_back(e);
+      inits.push_back(member + "(" + member + "_model())");
+    }
+    root.set("arms", arms);
+
+    root.set("has_base", p_.base.has_value());
+    if (p_.base) {
+      const ir::BaseSolver& b = *p_.base;
+      root.set("base_name", comment(b.name));
+      root.set("base_iri", comment(b.iri));
+      for (int i = 0; i < runtime::kKeloDrives; ++i) {
+        root.set("pivot" + std::to_string(i), join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
+      }
+      root.set("wheel_diameter", cpp_double(b.geometry.wheel_diameter));
+      root.set("wheel_distance", cpp_double(b.geometry.wheel_distance));
+      root.set("castor_offset", cpp_double(b.geometry.castor_offset));
+      inits.emplace_back("base(base_config())");
+    }
+
+    mus::data evaluators = list(), pids = list(), monitors = list();
+    for (std::size_t i = 0; i < p_.steps.size(); ++i) {
+      const ir::Step& st = p_.steps[i];
+      if (st.kind != StepKind::Evaluate) continue;
+      const runtime::ConstraintSpec& c = st.constraint;
+      mus::data e;
+      e.set("member", step_members_[i]);
+      e.set("iri", comment(st.iri));
+      evaluators.push_back(e);
+      std::string init = step_members_[i];
+      init.append("(rt::ConstraintSpec{.kind = ").append(constraint_kind(c.kind));
+      init.append(", .reference = ").append(cpp_double(c.reference));
+      init.append(", .threshold = ").append(cpp_double(c.threshold));
+      init.append(", .lower = ").append(cpp_double(c.lower));
+      init.append(", .upper = ").append(cpp_double(c.upper));
+      init.append(", .tolerance = ").append(cpp_double(c.tolerance));
+      init.append("},\n        ").append(cpp_string(st.name)).append(")");
+      inits.push_back(init);
+    }
+    for (std::size_t i = 0; i < p_.steps.size(); ++i) {
+      const ir::Step& st = p_.steps[i];
+      if (st.kind != StepKind::Pid) continue;
+      const runtime::PidSpec& c = st.pid;
+      mus::data e;
+      e.set("member", step_members_[i]);
+      e.set("iri", comment(st.iri));
+      pids.push_back(e);
+      std::string init = step_members_[i];
+      init.append("(rt::PidSpec{.kp = ").append(cpp_double(c.kp));
+      init.append(", .ki = ").append(cpp_double(c.ki));
+      init.append(", .kd = ").append(cpp_double(c.kd));
+      init.append(", .decay_rate = ").append(cpp_double(c.decay_rate));
+      init.append(",\n                   .output_min = ").append(cpp_double(c.output_min));
+      init.append(",\n                   .output_max = ").append(cpp_double(c.output_max));
+      init.append(",\n                   .anti_windup = ").append(anti_windup(c.anti_windup));
+      init.append(", .tracking_rate = ").append(cpp_double(c.tracking_rate));
+      init.append("},\n        ").append(cpp_string(st.name)).append(")");
+      inits.push_back(init);
+    }
+    for (std::size_t i = 0; i < p_.steps.size(); ++i) {
+      const ir::Step& st = p_.steps[i];
+      if (st.kind != StepKind::LevelMonitor && st.kind != StepKind::EdgeMonitor) continue;
+      mus::data e;
+      e.set("member", step_members_[i]);
+      e.set("iri", comment(st.iri));
+      e.set("tolerance", cpp_double(st.constraint.tolerance));
+      monitors.push_back(e);
+    }
+    root.set("has_evaluators", !evaluators.list_value().empty());
+    root.set("evaluators", evaluators);
+    root.set("has_pids", !pids.list_value().empty());
+    root.set("pids", pids);
+    root.set("has_monitors", !monitors.list_value().empty());
+    root.set("monitors", monitors);
+    root.set("has_initializers", !inits.empty());
+    root.set("initializers", initializer_list(inits));
+  }
+
+  static mus::data initializer_list(const std::vector<std::string>& inits) {
+    mus::data l = list();
+    for (std::size_t i = 0; i < inits.size(); ++i) {
+      mus::data e;
+      e.set("text", inits[i]);
+      e.set("last", i + 1 == inits.size());
+      l.push_back(e);
+    }
+    return l;
+  }
+
+  void add_data(mus::data& root) const {
+    root.set("n_scalar", std::to_string(p_.count(DataType::Scalar)));
+    root.set("n_vec3", std::to_string(p_.count(DataType::Vector3)));
+    root.set("n_pose", std::to_string(p_.count(DataType::Pose)));
+    root.set("n_twist", std::to_string(p_.count(DataType::Twist)));
+    root.set("n_wrench", std::to_string(p_.count(DataType::Wrench)));
+    root.set("n_flag", std::to_string(p_.count(DataType::Flag)));
+    root.set("n_event", std::to_string(p_.count(DataType::Event)));
+    root.set("n_pid_states", std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Pid)]));
+    root.set("n_monitor_states", std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Monitor)]));
+    root.set("n_motion_states", std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Motion)]));
+
+    std::vector<std::string> inits;
+    for (std::size_t a = 0; a < p_.arms.size(); ++a) {
+      inits.push_back(arm_members_[a] + "(m." + arm_members_[a] + ")");
+      inits.push_back(ws_members_[a] + "(m." + arm_members_[a] + ", " +
+                      std::to_string(p_.arms[a].acceleration_constraints.size()) + ")");
+    }
+    if (p_.base) inits.emplace_back("base(m.base)");
+    root.set("has_data_initializers", !inits.empty());
+    root.set("data_initializers", initializer_list(inits));
+
+    // Model constants, written into their slots once (as the interpreter does).
+    mus::data constants = list();
+    for (std::size_t i = 0; i < p_.data.size(); ++i) {
+      const ir::Data& d = p_.data[i];
+      if (d.value.empty()) continue;
+      const std::string target = ref(static_cast<int>(i), "");
+      const auto need = [&](std::size_t n) {
+        if (d.value.size() != n) {
+          fail("constant '" + d.name + "' has " + std::to_string(d.value.size()) +
+               " value(s); its type needs " + std::to_string(n));
+        }
+      };
+      std::string st;
+      switch (d.type) {
+        case DataType::Scalar:
+          need(1);
+          st = target + " = " + cpp_double(d.value[0]) + ";";
+          break;
+        case DataType::Vector3:
+          need(3);
+          st = target + " = rt::Vec3(" + join_doubles(d.value.data(), 3) + ");";
+          break;
+        case DataType::Pose:
+          need(12);
+          st = target + ".R << " + join_doubles(d.value.data(), 9) + ";\n  " + target +
+               ".p = rt::Vec3(" + join_doubles(d.value.data() + 9, 3) + ");";
+          break;
+        case DataType::Twist:
+        case DataType::Wrench:
+          need(6);
+          st = target + " << " + join_doubles(d.value.data(), 6) + ";";
+          break;
+        case DataType::Flag:
+          need(1);
+          st = target + " = " + (d.value[0] != 0.0 ? "true" : "false") + ";";
+          break;
+        case DataType::Event:
+          continue;  // events are cleared every tick: a constant one is never seen
+      }
+      mus::data c;
+      c.set("statement", st);
+      c.set("name", comment(d.iri.empty() ? d.name : d.iri));
+      constants.push_back(c);
+    }
+    root.set("constants", constants);
+  }
+
+  void add_steps(mus::data& root) const {
+    mus::data steps = list();
+    for (std::size_t i = 0; i < p_.steps.size(); ++i) steps.push_back(step(i));
+    root.set("steps", steps);
+  }
+
+  mus::data step(std::size_t index) const {
+    const ir::Step& st = p_.steps[index];
+    mus::data s;
+    s.set("index", std::to_string(index));
+    s.set("kind", std::string(kind_name(st.kind)));
+    s.set("name", comment(st.name));
+    s.set("iri", comment(st.iri));
+    s.set("where", where(st.where));
+    const auto call = [&](int arity, const char* function) {
+      s.set(std::string("is_call") + std::to_string(arity), true);
+      s.set("function", function);
+      for (int k = 0; k < arity; ++k) s.set("in" + std::to_string(k), in(st, static_cast<std::size_t>(k)));
+      s.set("out0", out(st, 0));
+    };
+    const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
+    switch (st.kind) {
+      case StepKind::ReadClock:
+        s.set("is_read_clock", true);
+        s.set("out0", out(st, 0));
+        break;
+      case StepKind::ArmKinematics: {
+        const ir::ArmSolver& a = arm(st);
+        const auto k = static_cast<std::size_t>(st.solver);
+        s.set("is_arm_kinematics", true);
+        s.set("arm", arm_members_[k]);
+        s.set("workspace", ws_members_[k]);
+        s.set("port", std::to_string(a.port));
+        mus::data outputs = list();
+        for (const ir::ArmOutput& o : a.outputs) {
+          mus::data e;
+          e.set("target", ref(o.data));
+          e.set("function", o.what == ir::ArmOutput::What::SegmentPose ? "segment_pose" : "segment_twist");
+          e.set("arm", arm_members_[k]);
+          e.set("segment", std::to_string(o.segment));
+          outputs.push_back(e);
+        }
+        s.set("outputs", outputs);
+        break;
+      }
+      case StepKind::ViewRead:
+        if (st.views.size() != 1) fail("view step '" + st.name + "' needs one component");
+        s.set("is_view_read", true);
+        s.set("function", datum(st.in.at(0)).type == DataType::Pose ? "view_pose" : "view_vec6");
+        s.set("in0", in(st, 0));
+        s.set("component", std::to_string(st.views[0]));
+        s.set("out0", out(st, 0));
+        break;
+      case StepKind::ViewWrite: {
+        if (st.views.size() != st.in.size()) fail("view step '" + st.name + "' needs one component per input");
+        s.set("is_view_write", true);
+        s.set("out0", out(st, 0));
+        mus::data components = list();
+        for (std::size_t k = 0; k < st.in.size(); ++k) {
+          mus::data c;
+          c.set("out0", out(st, 0));
+          c.set("component", std::to_string(st.views[k]));
+          c.set("source", in(st, k));
+          components.push_back(c);
+        }
+        s.set("components", components);
+        break;
+      }
+      case StepKind::ComposePose: call(2, "compose_pose"); break;
+      case StepKind::PoseToLinearDistance: call(1, "pose_to_linear_distance"); break;
+      case StepKind::PoseToDirection:
+        s.set("is_pose_to_direction", true);
+        s.set("in0", in(st, 0));
+        s.set("out0", out(st, 0));
+        break;
+      case StepKind::RotateWrenchToProximal: call(2, "rotate_wrench_to_proximal"); break;
+      case StepKind::RotateTwistToProximal: call(2, "rotate_twist_to_proximal"); break;
+      case StepKind::RotateDirectionToProximal: call(2, "rotate_direction_to_proximal"); break;
+      case StepKind::TransformWrenchToProximal: call(2, "transform_wrench_to_proximal"); break;
+      case StepKind::WrenchFromPositionDirectionAndMagnitude:
+        call(3, "wrench_from_position_direction_and_magnitude");
+        break;
+      case StepKind::AddWrench:
+        s.set("is_add_wrench", true);
+        s.set("in0", in(st, 0));
+        s.set("in1", in(st, 1));
+        s.set("out0", out(st, 0));
+        break;
+      case StepKind::PlanarAngleFromDirections:
+        s.set("is_planar_angle", true);
+        for (std::size_t k = 0; k < 3; ++k) s.set("in" + std::to_string(k), in(st, k));
+        s.set("out0", out(st, 0));
+        break;
+      case StepKind::InvertAngle: call(1, "invert_angle"); break;
+      case StepKind::Evaluate:
+        s.set("is_evaluate", true);
+        s.set("evaluator", step_members_[index]);
+        s.set("in0", in(st, 0));
+        s.set("active", gate());
+        s.set("out0", out(st, 0));
+        s.set("out1", out(st, 1));
+        break;
+      case StepKind::LevelMonitor:
+      case StepKind::EdgeMonitor:
+        s.set(st.kind == StepKind::LevelMonitor ? "is_level_monitor" : "is_edge_monitor", true);
+        s.set("state_slot", std::to_string(state_slot(st, ir::StateKind::Monitor)));
+        s.set("in0", in(st, 0));
+        s.set("tolerance", step_members_[index]);
+        s.set("out0", out(st, 0));
+        break;
+      case StepKind::GuardedMotion: {
+        if (st.n_when < 0 || static_cast<std::size_t>(st.n_when) > st.in.size()) {
+          fail("guarded motion '" + st.name + "' has " + std::to_string(st.n_when) + " when-guards of " +
+               std::to_string(st.in.size()) + " inputs");
+        }
+        const auto n_when = static_cast<std::size_t>(st.n_when);
+        std::string when, until;
+        for (std::size_t k = 0; k < st.in.size(); ++k) {
+          std::string& list_text = k < n_when ? when : until;
+          if (!list_text.empty()) list_text.append(", ");
+          list_text.append(in(st, k));
+        }
+        s.set("is_guarded_motion", true);
+        s.set("n_when", std::to_string(n_when));
+        s.set("n_until", std::to_string(st.in.size() - n_when));
+        s.set("when", when);
+        s.set("until", until);
+        s.set("state_slot", std::to_string(state_slot(st, ir::StateKind::Motion)));
+        s.set("out0", out(st, 0));
+        break;
+      }
+      case StepKind::Pid:
+        s.set("is_pid", true);
+        s.set("pid", step_members_[index]);
+        s.set("state_slot", std::to_string(state_slot(st, ir::StateKind::Pid)));
+        s.set("in0", in(st, 0));
+        s.set("active", gate());
+        s.set("out0", out(st, 0));
+        break;
+      case StepKind::ArmSolve: {
+        const ir::ArmSolver& a = arm(st);
+        const auto k = static_cast<std::size_t>(st.solver);
+        s.set("is_arm_solve", true);
+        s.set("arm", arm_members_[k]);
+        s.set("workspace", ws_members_[k]);
+        s.set("port", std::to_string(a.port));
+        mus::data forces = list(), joint_forces = list(), betas = list();
+        for (const ir::CartesianForce& f : a.cartesian_forces) {
+          mus::data e;
+          e.set("workspace", ws_members_[k]);
+          e.set("segment", std::to_string(f.segment));
+          e.set("source", ref(f.wrench));
+          e.set("iri", comment(f.iri));
+          forces.push_back(e);
+        }
+        for (const ir::JointForce& f : a.joint_forces) {
+          mus::data e;
+          e.set("workspace", ws_members_[k]);
+          e.set("joint", std::to_string(f.joint));
+          e.set("source", ref(f.force));
+          e.set("iri", comment(f.iri));
+          joint_forces.push_back(e);
+        }
+        for (std::size_t c = 0; c < a.acceleration_constraints.size(); ++c) {
+          mus::data e;
+          e.set("workspace", ws_members_[k]);
+          e.set("column", std::to_string(c));
+          e.set("source", ref(a.acceleration_constraints[c].energy));
+          e.set("iri", comment(a.acceleration_constraints[c].iri));
+          betas.push_back(e);
+        }
+        s.set("forces", forces);
+        s.set("joint_forces", joint_forces);
+        s.set("betas", betas);
+        break;
+      }
+      case StepKind::BaseForceDistribution:
+        if (!p_.base) fail("step '" + st.name + "' distributes a wrench, but the program has no base");
+        s.set("is_base_force_distribution", true);
+        s.set("in0", in(st, 0));
+        break;
+    }
+    return s;
+  }
+
+  void add_log(mus::data& root) const {
+    mus::data log = list();
+    for (std::size_t i = 0; i < p_.log.size(); ++i) {
+      const ir::LogColumn& c = p_.log[i];
+      const ir::Data& d = datum(c.data);
+      std::string value;
+      switch (d.type) {
+        case DataType::Scalar: value = ref(c.data); break;
+        case DataType::Flag:
+        case DataType::Event: value = "(" + ref(c.data) + " ? 1.0 : 0.0)"; break;
+        default: value = "std::numeric_limits<double>::quiet_NaN()"; break;
+      }
+      mus::data e;
+      e.set("index", std::to_string(i));
+      e.set("name_literal", cpp_string(c.name));
+      e.set("unit_literal", cpp_string(c.unit));
+      e.set("value", value);
+      log.push_back(e);
+    }
+    root.set("n_log", std::to_string(p_.log.size()));
+    root.set("log", log);
+  }
+
+  const ir::Program& p_;
+  const SourceFiles* files_;
+  std::vector<std::string> data_names_;  // by data index: its slot:: identifier
+  std::vector<std::string> arm_members_, ws_members_;
+  std::vector<std::string> step_members_;  // by step index: its Model member ("" if none)
+};
+
+}  // namespace
+
+std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles* files) {
+  const mus::data data = Builder(program, files).build();
+  std::vector<GeneratedFile> out;
+  for (const Template& t : kTemplates) {
+    mus::mustache tmpl{std::string(t.text)};
+    if (!tmpl.is_valid()) {
+      std::string msg = "template ";
+      msg.append(t.file).append(".mustache: ").append(tmpl.error_message());
+      fail(msg);
+    }
+    // C++ and CMake, not HTML: substitute verbatim.
+    tmpl.set_custom_escape([](const std::string& s) { return s; });
+    std::string text = tmpl.render(data);
+    if (!tmpl.is_valid()) {
+      std::string msg = "template ";
+      msg.append(t.file).append(".mustache: ").append(tmpl.error_message());
+      fail(msg);
+    }
+    out.push_back({std::string(t.file), std::move(text)});
+  }
+  return out;
+}
+
+void generate(const ir::Program& program, const std::string& out_dir, const SourceFiles* files) {
+  const std::vector<GeneratedFile> rendered = render(program, files);
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) {
+    std::string msg = "mospec: cannot create directory '";
+    msg.append(out_dir).append("': ").append(ec.message());
+    throw Error("io", msg);
+  }
+  for (const GeneratedFile& f : rendered) {
+    write_output((std::filesystem::path(out_dir) / f.path).string(), f.content);
+  }
+}
+
+}  // namespace mospec::codegen
