@@ -36,6 +36,9 @@ Action add_validate_command(CLI::App& app);
 Action add_stats_command(CLI::App& app);
 Action add_sim_command(CLI::App& app);
 Action add_import_urdf_command(CLI::App& app);
+Action add_generate_command(CLI::App& app);
+Action add_build_command(CLI::App& app);
 Action add_ir_command(CLI::App& app);
+Action add_run_command(CLI::App& app);
 
 }  // namespace mospec::cli

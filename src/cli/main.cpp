@@ -58,8 +58,14 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("sim"), sim);
   Action import_urdf = add_import_urdf_command(app);
   commands.emplace_back(app.get_subcommand("import-urdf"), import_urdf);
+  Action generate = add_generate_command(app);
+  commands.emplace_back(app.get_subcommand("generate"), generate);
+  Action build = add_build_command(app);
+  commands.emplace_back(app.get_subcommand("build"), build);
   Action ir = add_ir_command(app);
   commands.emplace_back(app.get_subcommand("ir"), ir);
+  Action run = add_run_command(app);
+  commands.emplace_back(app.get_subcommand("run"), run);
 
   try {
     app.parse(argc, argv);

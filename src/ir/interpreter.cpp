@@ -13,15 +13,19 @@ using runtime::Vec6;
 
 struct Interpreter::Arm {
   explicit Arm(const ArmSolver& s)
-      : model(achd_model(s)),
+      : model(achd_model(s, true)),
+        task_model(achd_model(s, false)),
         data(model),
+        X_BR(s.X_RB.inverse()),
         ws(model, static_cast<int>(s.acceleration_constraints.size())) {
     for (size_t k = 0; k < s.acceleration_constraints.size(); ++k) {
       ws.alpha_To_B(s.acceleration_constraints[k].component, static_cast<Eigen::Index>(k)) = 1.0;
     }
   }
-  runtime::AchdModel model;
+  runtime::AchdModel model;       // with gravity: kinematics and the command
+  runtime::AchdModel task_model;  // without: the ACHD solve
   runtime::AchdData data;
+  runtime::Pose X_BR;  // the chain's root in the solver's root (mount inverse)
   runtime::steps::ArmWorkspace ws;
 };
 
@@ -110,6 +114,8 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       for (const ArmOutput& o : solver.outputs) {
         if (o.what == ArmOutput::What::SegmentPose) {
           poses_[slot(o.data)] = steps::segment_pose(arm.data, o.segment);
+        } else if (o.what == ArmOutput::What::ChainRootPose) {
+          poses_[slot(o.data)] = steps::segment_pose_in_chain_root(arm.data, arm.X_BR, o.segment);
         } else {
           twists_[slot(o.data)] = steps::segment_twist(arm.data, o.segment);
         }
@@ -215,7 +221,8 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
         arm.ws.beta[static_cast<Eigen::Index>(k)] =
             scalars_[slot(solver.acceleration_constraints[k].energy)];
       }
-      steps::arm_solve(arm.model, arm.data, arm.ws, command.arm_tau[static_cast<size_t>(solver.port)]);
+      steps::arm_solve(arm.task_model, arm.model, arm.data, arm.ws,
+                       command.arm_tau[static_cast<size_t>(solver.port)]);
       break;
     }
     case StepKind::BaseForceDistribution:

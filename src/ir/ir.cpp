@@ -46,9 +46,10 @@ std::string_view to_string(StepKind k) {
   return "?";
 }
 
-runtime::AchdModel achd_model(const ArmSolver& arm) {
-  runtime::AchdModel model(arm.chain,
-                           runtime::Vec3(arm.gravity[0], arm.gravity[1], arm.gravity[2]));
+runtime::AchdModel achd_model(const ArmSolver& arm, bool physical) {
+  const runtime::Vec3 g = physical ? runtime::Vec3(arm.gravity[0], arm.gravity[1], arm.gravity[2])
+                                   : runtime::Vec3::Zero();
+  runtime::AchdModel model(arm.chain, g);
   if (arm.tip_is_last_segment) model.X_NT = runtime::Pose{};
   return model;
 }
@@ -263,6 +264,10 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["iri"] = a.iri;
     e["chain"] = a.chain_iri;
     e["root"] = a.root_frame;
+    if (!a.mount_pose_iri.empty()) {
+      e["mount"] = a.mount_pose_iri;
+      e["X_RB"] = pose_json(a.X_RB);
+    }
     e["port"] = a.port;
     e["gravity"] = a.gravity;
     e["tip-is-last-segment"] = a.tip_is_last_segment;
@@ -286,7 +291,10 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["X_NT"] = pose_json(a.chain.X_NT());
     Json outs = Json::array();
     for (const ArmOutput& o : a.outputs) {
-      outs.push_back({{"what", o.what == ArmOutput::What::SegmentPose ? "segment-pose" : "segment-twist"},
+      const char* what = o.what == ArmOutput::What::SegmentPose     ? "segment-pose"
+                         : o.what == ArmOutput::What::ChainRootPose ? "segment-pose-in-chain-root"
+                                                                    : "segment-twist";
+      outs.push_back({{"what", what},
                       {"segment", o.segment},
                       {"data", o.data}});
     }

@@ -105,8 +105,10 @@ struct Step {
 // What ArmKinematics writes into each output: the pose of segment frame S_i
 // w.r.t. the root (as seen by the root), or the twist of S_i w.r.t. the root at
 // So_i as seen by the root.
+// With a mount (root_frame is not the chain's root), a pose may also be asked
+// w.r.t. the chain's own root: X_BS = X_RB^-1 X_RS (ChainRootPose).
 struct ArmOutput {
-  enum class What : uint8_t { SegmentPose, SegmentTwist } what = What::SegmentPose;
+  enum class What : uint8_t { SegmentPose, SegmentTwist, ChainRootPose } what = What::SegmentPose;
   int segment = 0;
   int data = 0;
 };
@@ -133,6 +135,11 @@ struct JointForce {
 struct ArmSolver {
   std::string iri, name;
   std::string chain_iri, root_frame;
+  // The chain as the solver sees it: rooted at root_frame (when that is not
+  // the chain's own root, the constant mount pose is composed into the first
+  // joint's placement).
+  std::string mount_pose_iri;  // the constant pose used for that, if any
+  runtime::Pose X_RB;          // that pose (identity without a mount)
   int port = 0;  // robot::kRightArm / kLeftArm: which arm's sensors and actuators
   runtime::Chain chain{""};
   bool tip_is_last_segment = true;  // constraints act on the last segment's origin
@@ -182,11 +189,12 @@ struct Program {
 inline constexpr int kMaxGuards = 16;
 
 // Setup-time constants every back-end builds the same way:
-// the arm's ACHD model: the chain with the solver's gravity; when the motion
+// the arm's ACHD model: the chain with the solver's gravity (`physical`) or
+// without (the task model, see runtime::steps::arm_solve); when the motion
 // drivers act on the last segment (tip_is_last_segment), its tip frame is that
 // segment's frame (X_NT = identity), so acceleration constraints act at its
 // origin.
-runtime::AchdModel achd_model(const ArmSolver& arm);
+runtime::AchdModel achd_model(const ArmSolver& arm, bool physical);
 // The base's KELO configuration: the geometry with unit weights.
 runtime::KeloConfig kelo_config(const BaseSolver& base);
 // A constant pose from Data::value (R row-major, then p).

@@ -8,6 +8,8 @@
 #include <set>
 #include <unordered_map>
 
+#include <Eigen/SVD>
+
 #include "runtime/chain_rdf.hpp"
 
 namespace mospec::ir {
@@ -313,6 +315,12 @@ void Lowerer::fill_constant(Data& d, TermId e) {
         error(e, "invalid-pose", "the direction cosines of '" + d.iri + "' are not a rotation (orthonormal, right-handed to 1e-6)");
         break;
       }
+      // Direction cosines are written to a few digits: use the nearest
+      // rotation (polar decomposition), so composed poses stay rigid.
+      {
+        Eigen::JacobiSVD<runtime::Mat3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        R = svd.matrixU() * svd.matrixV().transpose();
+      }
       d.value = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2), *x, *y, *z};
       break;
     }
@@ -444,11 +452,46 @@ void Lowerer::lower_arm(TermId solver) {
     }
     return -1;
   };
-  arm.root_frame = frame_of(arm.chain.root());
-  if (auto root = object(solver, vocab(slv, "root")); !root || str(*root) != arm.root_frame) {
-    error(solver, "unsupported-root",
-          "the solver '" + arm.iri + "' must have the chain's root frame '" + arm.root_frame +
-              "' as its root (ACHD solves in the root of the chain)");
+  const std::string chain_root_name = arm.chain.root();
+  const std::string chain_root_frame = frame_of(chain_root_name);
+  if (auto root = object(solver, vocab(slv, "root"))) {
+    arm.root_frame = str(*root);
+  } else {
+    error(solver, "missing-property", "the solver '" + arm.iri + "' names no root");
+    arm.root_frame = chain_root_frame;
+  }
+  if (arm.root_frame != chain_root_frame) {
+    // A solver rooted at, e.g., the platform: the chain hangs from it by a
+    // constant mount pose, which becomes part of the first joint's placement.
+    std::optional<runtime::Pose> X_RB;
+    for (TermId p : instances(vocab("geometry/spatial-relations", "Pose"))) {
+      auto of = object(p, vocab("geometry/spatial-relations", "of"));
+      auto wrt = object(p, vocab("geometry/spatial-relations", "with-respect-to"));
+      auto seen = object(p, vocab("geometry/coordinates", "as-seen-by"));
+      if (!of || !wrt || !seen || str(*of) != chain_root_frame || str(*wrt) != arm.root_frame ||
+          str(*seen) != arm.root_frame)
+        continue;
+      const int d = datum(p, DataType::Pose, solver, "mount pose");
+      if (prog_.data[static_cast<size_t>(d)].value.empty()) continue;
+      X_RB = constant_pose(prog_.data[static_cast<size_t>(d)].value);
+      arm.mount_pose_iri = str(p);
+      arm.X_RB = *X_RB;
+      break;
+    }
+    if (!X_RB) {
+      error(solver, "unsupported-root",
+            "the solver '" + arm.iri + "' is rooted at '" + arm.root_frame + "', not at the chain's root '" +
+                chain_root_frame + "'; mospec needs a constant pose of '" + chain_root_frame +
+                "' w.r.t. and seen by '" + arm.root_frame + "' (the mount) to move the chain there");
+    } else {
+      runtime::Chain rerooted(local_name(arm.root_frame));
+      rerooted.add_fixed(arm.chain.root(), *X_RB, runtime::RigidInertia{});
+      for (int i = 0; i < arm.chain.size(); ++i) rerooted.add_segment(arm.chain.segment(i));
+      if (arm.chain.X_NT().R != runtime::Mat3::Identity() || !arm.chain.X_NT().p.isZero(0.0)) {
+        rerooted.add_fixed(arm.chain.tip(), arm.chain.X_NT(), runtime::RigidInertia{});
+      }
+      arm.chain = std::move(rerooted);
+    }
   }
   // Gravity: a uniform field in the root frame.
   if (auto grav = object(solver, vocab(slv, "gravity"))) {
@@ -487,11 +530,19 @@ void Lowerer::lower_arm(TermId solver) {
       const int d = datum(o, DataType::Pose, solver, "output");
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       const int seg = segment_by(dd.of, frame_of);
-      if (seg < 0 || dd.with_respect_to != arm.root_frame || dd.as_seen_by != arm.root_frame) {
+      const bool in_root = dd.with_respect_to == arm.root_frame && dd.as_seen_by == arm.root_frame;
+      const bool in_chain_root = arm.root_frame != chain_root_frame && dd.with_respect_to == chain_root_frame &&
+                                 dd.as_seen_by == chain_root_frame;
+      if (seg < 0 || !(in_root || in_chain_root)) {
         error(o, "unsupported-output",
               "the solver '" + arm.iri + "' outputs poses of the chain's segment frames w.r.t. and seen by its root '" +
-                  arm.root_frame + "'; '" + dd.iri + "' is of '" + dd.of + "' w.r.t. '" + dd.with_respect_to +
-                  "' seen by '" + dd.as_seen_by + "'");
+                  arm.root_frame + "' (or the chain's root '" + chain_root_frame + "'); '" + dd.iri + "' is of '" + dd.of +
+                  "' w.r.t. '" + dd.with_respect_to + "' seen by '" + dd.as_seen_by + "'");
+        continue;
+      }
+      if (in_chain_root) {
+        arm.outputs.push_back({ArmOutput::What::ChainRootPose, seg, d});
+        kin.out.push_back(d);
         continue;
       }
       arm.outputs.push_back({ArmOutput::What::SegmentPose, seg, d});
@@ -501,7 +552,8 @@ void Lowerer::lower_arm(TermId solver) {
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       int seg = segment_by(dd.of, link_of);
       if (seg < 0) seg = segment_by(dd.of, frame_of);
-      const bool wrt_root = dd.with_respect_to == link_of(arm.chain.root()) || dd.with_respect_to == arm.root_frame;
+      const bool wrt_root = dd.with_respect_to == link_of(chain_root_name) ||
+                            dd.with_respect_to == chain_root_frame || dd.with_respect_to == arm.root_frame;
       if (seg < 0 || !wrt_root || dd.as_seen_by != arm.root_frame ||
           dd.reference_point != origin_of(arm.chain.segment(seg).link)) {
         error(o, "unsupported-output",

@@ -45,8 +45,9 @@ void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
   data.X_BT = X_BP * model.X_NT;
 }
 
-void arm_solve(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
-               std::span<double> tau_out) noexcept {
+void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, AchdData& data,
+               ArmWorkspace& ws, std::span<double> tau_out) noexcept {
+  const AchdModel& model = task_model;
   const auto n = static_cast<std::size_t>(model.nq);
   bool finite = !ws.input_fault && ws.tau_ff.allFinite() && ws.beta.allFinite();
   for (std::size_t i = 0; i < n; ++i) finite = finite && ws.F_ext[i].allFinite();
@@ -59,7 +60,7 @@ void arm_solve(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
   const bool solved = ws.status == Status::Ok || ws.status == Status::ConstraintsDegraded;
   if (solved) {
     const JointIn qdd(data.qdd);
-    impl::rne_into(model, data, ws.q, ws.qd, &qdd, {}, ws.tau_command);
+    impl::rne_into(physical_model, data, ws.q, ws.qd, &qdd, {}, ws.tau_command);
   }
   if (!solved || !ws.tau_command.allFinite()) ws.tau_command.setZero();
   for (std::size_t i = 0; i < tau_out.size(); ++i) {

@@ -42,6 +42,11 @@ void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
 inline const Pose& segment_pose(const AchdData& data, int segment) noexcept {
   return data.X_BS[static_cast<std::size_t>(segment)];
 }
+// The pose of S_i w.r.t. the chain's own root B when the solver's root R
+// carries it at the constant X_RB: X_BS = X_RB^-1 X_RS.
+inline Pose segment_pose_in_chain_root(const AchdData& data, const Pose& X_BR, int segment) noexcept {
+  return X_BR * data.X_BS[static_cast<std::size_t>(segment)];
+}
 // The twist of S_i w.r.t. the root at So_i, as seen by the root.
 inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
   return rotate_twist_to_proximal(data.X_BS[static_cast<std::size_t>(segment)],
@@ -49,12 +54,16 @@ inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
 }
 
 // Solves ACHD with the workspace's drivers (F_ext, tau_ff, alpha, beta) and
-// computes the torque command that realises the solved motion on the real
-// robot, where the drivers' forces are virtual: tau_command = rne(q, qd, qdd)
-// without F_ext (= data.tau + sum_i J_i^T F_ext,i), gravity included. Writes
-// zero torque when the inputs were not finite or the solver failed.
-void arm_solve(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
-               std::span<double> tau_out) noexcept;
+// computes the joint torques to send. The arm runs gravity-compensated: ACHD
+// solves the task in `task_model`, the chain without gravity (so directions no
+// driver controls keep their velocity instead of falling), and the command
+// realises that motion on the real robot, where the drivers' wrenches are
+// virtual and gravity is real:
+//   tau_command = rne(q, qd, qdd) in `physical_model` (with the solver's
+//   gravity) and without F_ext.
+// Writes zero torque when the inputs were not finite or the solver failed.
+void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, AchdData& data,
+               ArmWorkspace& ws, std::span<double> tau_out) noexcept;
 
 // ---------------------------------------------------------------------------
 // Views (1D <-> 3D).

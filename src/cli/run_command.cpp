@@ -1,0 +1,140 @@
+// `mospec run APP --sim`: validate -> lower -> run the controller against the
+// simulated robot -> log and summary. With --interpret the IR is executed
+// directly; otherwise the generated controller is built (cached by content
+// hash) and loaded.
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/pipeline.hpp"
+#include "ir/interpreter.hpp"
+#include "sim/config.hpp"
+#include "sim/robot_model.hpp"
+#include "sim/run.hpp"
+#include "sim/world.hpp"
+#include "support/io.hpp"
+
+namespace mospec::cli {
+
+namespace {
+
+// The scenario's world: --world, else APP's sibling "<name>.world.json", else
+// the default world.
+sim::WorldConfig scenario_world(const std::string& app, const std::string& world_file) {
+  if (!world_file.empty()) return sim::load_world_config(world_file);
+  std::filesystem::path p(app);
+  if (p.extension() == ".json") {
+    std::filesystem::path w = p;
+    w.replace_extension(".world.json");
+    if (std::filesystem::exists(w)) return sim::load_world_config(w.string());
+  }
+  return sim::default_world();
+}
+
+std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted) {
+  nlohmann::ordered_json j;
+  j["scenario"] = app;
+  j["controller"] = interpreted ? "interpreted" : "generated";
+  j["duration"] = r.simulated;
+  j["ticks"] = r.ticks;
+  j["wall_time"] = r.wall;
+  j["non_finite"] = r.non_finite;
+  j["max_torque_ratio"] = r.max_torque_ratio;
+  j["torque_limit_exceeded"] = r.torque_limit_exceeded;
+  j["instabilities"] = r.instabilities;
+  nlohmann::ordered_json final_values;
+  for (size_t i = 0; i < r.columns.size() && i < r.last_row.size(); ++i) {
+    const double v = r.last_row[i];
+    final_values[r.columns[i]] = std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+  }
+  j["final"] = std::move(final_values);
+  return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+Action add_run_command(CLI::App& app) {
+  struct Flags {
+    PipelineFlags pipeline;
+    bool sim = false;
+    bool interpret = false;
+    double duration = 10.0;
+    std::optional<std::uint64_t> seed;
+    std::string world;
+    std::string base;
+    std::string log;
+    std::string summary;
+    int log_every = 10;
+    std::string cache;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* cmd = app.add_subcommand(
+      "run",
+      "Validate an app model, lower it and run its controller against the simulated robot; "
+      "write a CSV log (every constraint's value, error and satisfaction, every monitor, motion "
+      "and controller output, and the world's ground truth) and a JSON summary. The world is "
+      "--world, else APP's sibling <name>.world.json, else the default world.");
+  flags->pipeline.add_to(*cmd);
+  cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the only target so far)")
+      ->required();
+  cmd->add_flag("--interpret", flags->interpret,
+                "Execute the IR directly instead of generating and building C++");
+  cmd->add_option("--duration", flags->duration, "Simulated time [s]")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
+  cmd->add_option("--seed", flags->seed, "Seed of the world's initial perturbations");
+  cmd->add_option("--world", flags->world, "World file (JSON, see docs/simulation.md)")
+      ->type_name("FILE");
+  cmd->add_option("--base", flags->base, "Base model (overrides the world)")
+      ->check(CLI::IsMember({"wheeled", "planar", "fixed"}));
+  cmd->add_option("--log", flags->log, "CSV log file ('-' = standard output)")->type_name("FILE.csv");
+  cmd->add_option("--log-every", flags->log_every, "Log every N-th control tick")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--summary", flags->summary, "JSON summary file ('-' = standard output)")
+      ->type_name("FILE.json");
+  cmd->add_option("--cache", flags->cache,
+                  "Directory of generated and built controllers (default: .mospec-cache)")
+      ->type_name("DIR");
+  return [flags]() {
+    int code = kExitOk;
+    auto program = load_validate_lower(flags->pipeline, code);
+    if (!program) return code;
+    sim::WorldConfig config = scenario_world(flags->pipeline.inputs.front(), flags->world);
+    if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
+    if (flags->seed) config.seed = *flags->seed;
+    const runtime::Chain arm = sim::load_arm_chain(config.robot);
+    std::unique_ptr<robot::Controller> controller;
+    if (flags->interpret) {
+      controller = std::make_unique<ir::Interpreter>(std::move(*program));
+    } else {
+      throw Error("unsupported", "generated controllers are not wired into `mospec run` yet; use --interpret");
+    }
+    sim::World world(config, arm);
+    sim::RunOptions options;
+    options.duration = flags->duration;
+    options.log_every = flags->log_every;
+    const sim::RunResult r = sim::run(world, *controller, options);
+    if (!flags->log.empty()) write_output(flags->log, r.csv);
+    if (!flags->summary.empty()) {
+      write_output(flags->summary, summary_json(flags->pipeline.inputs.front(), r, flags->interpret));
+    }
+    std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
+              << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall
+              << " s\n";
+    if (r.instabilities > 0) {
+      std::cerr << "mospec: error: MuJoCo reported " << r.instabilities
+                << " instability warning(s); the log is not trustworthy\n";
+      return kExitFindings;
+    }
+    if (r.non_finite) {
+      std::cerr << "mospec: error: a controller output or command was not finite\n";
+      return kExitFindings;
+    }
+    return kExitOk;
+  };
+}
+
+}  // namespace mospec::cli

@@ -1,0 +1,43 @@
+// One loop for every controller: the simulated robot read -> controller tick
+// -> write -> step, logging the controller's columns (its constraints,
+// monitors, motions and controller outputs) next to the world's ground truth.
+// The interpreter and generated controllers run through the same loop, so
+// their logs compare byte for byte.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "robot/controller.hpp"
+#include "sim/world.hpp"
+
+namespace mospec::sim {
+
+struct RunOptions {
+  double duration = 10.0;  // [s] simulated
+  int log_every = 1;       // log every N-th tick (and the last)
+};
+
+struct RunResult {
+  std::uint64_t ticks = 0;
+  double simulated = 0.0;  // [s]
+  double wall = 0.0;       // [s]
+  std::string csv;         // header + rows; numbers in shortest round-trip form
+  std::vector<std::string> columns;
+  std::vector<double> last_row;  // the final logged values, by column
+  // Safety summary over the whole run.
+  bool non_finite = false;            // a controller output or command was NaN/inf
+  double max_torque_ratio = 0.0;      // max |tau_i| / effort_limit_i over arms and ticks
+  bool torque_limit_exceeded = false;  // max_torque_ratio > 1
+  int instabilities = 0;               // MuJoCo warnings (untrustworthy when > 0)
+};
+
+// Runs `controller` against `world` from its current state. The per-tick path
+// allocates nothing except the log text.
+RunResult run(World& world, robot::Controller& controller, const RunOptions& options);
+
+// The value of a named column in the last row (NaN when absent).
+double last_value(const RunResult& result, const std::string& column);
+
+}  // namespace mospec::sim
