@@ -350,7 +350,7 @@ std::string to_json(const Program& p, const SourceFiles* files) {
       static constexpr const char* kKinds[] = {"equality", "less-than", "greater-than", "bilateral",
                                                "assignment"};
       Json c;
-      c["kind"] = kKinds[static_cast<int>(st.constraint.kind)];
+      c["relation"] = kKinds[static_cast<int>(st.constraint.kind)];
       c["reference"] = st.constraint.reference;
       c["threshold"] = st.constraint.threshold;
       c["lower"] = st.constraint.lower;

@@ -215,6 +215,12 @@ class Lowerer {
     return index;
   }
   void produce(int d, int step) {
+    if (!prog_.data[static_cast<size_t>(d)].value.empty()) {
+      const Data& dd = prog_.data[static_cast<size_t>(d)];
+      error(dd.where, "produced-constant",
+            "'" + dd.iri + "' has a fixed value in the model, but '" + pending_iri_ + "' also writes it");
+      return;
+    }
     auto [it, fresh] = producer_.emplace(d, step);
     if (!fresh) {
       const Data& dd = prog_.data[static_cast<size_t>(d)];
