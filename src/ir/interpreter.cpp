@@ -244,7 +244,15 @@ double Interpreter::value(int data) const noexcept {
 }
 
 void Interpreter::log_values(std::span<double> out) const noexcept {
-  for (size_t i = 0; i < out.size() && i < program_.log.size(); ++i) out[i] = value(program_.log[i].data);
+  for (size_t i = 0; i < out.size() && i < program_.log.size(); ++i) {
+    const LogColumn& c = program_.log[i];
+    const Data& d = program_.data[static_cast<size_t>(c.data)];
+    if (c.component >= 0 && (d.type == DataType::Twist || d.type == DataType::Wrench)) {
+      out[i] = (d.type == DataType::Twist ? twists_ : wrenches_)[static_cast<size_t>(d.slot)][c.component];
+    } else {
+      out[i] = value(c.data);
+    }
+  }
 }
 
 }  // namespace mospec::ir

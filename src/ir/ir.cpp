@@ -207,6 +207,9 @@ void verify(const Program& p) {
   for (const LogColumn& c : p.log) {
     if (c.data < 0 || static_cast<size_t>(c.data) >= p.data.size())
       throw Error("ir-invalid", "log column '" + c.name + "' refers to no datum");
+    const DataType t = p.data[static_cast<size_t>(c.data)].type;
+    if (c.component >= 0 && (c.component > 5 || (t != DataType::Twist && t != DataType::Wrench)))
+      throw Error("ir-invalid", "log column '" + c.name + "': a component of a twist or wrench only");
   }
 }
 
@@ -368,7 +371,11 @@ std::string to_json(const Program& p, const SourceFiles* files) {
   }
   j["schedule"] = std::move(steps);
   Json log = Json::array();
-  for (const LogColumn& c : p.log) log.push_back({{"name", c.name}, {"unit", c.unit}, {"data", c.data}});
+  for (const LogColumn& c : p.log) {
+    Json e = {{"name", c.name}, {"unit", c.unit}, {"data", c.data}};
+    if (c.component >= 0) e["component"] = c.component;
+    log.push_back(std::move(e));
+  }
   j["log"] = std::move(log);
   return j.dump(2) + "\n";
 }

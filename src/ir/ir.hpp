@@ -165,11 +165,13 @@ enum class StateKind : uint8_t { Pid, Monitor, Motion };
 // One column of the per-tick log: the value of a datum after the tick (a flag
 // or event as 0/1). Chosen by lowering: every constraint's measured value,
 // error and satisfaction, every monitor, every motion's state, every
-// controller's output.
+// controller's output, the bounds of bilateral constraints, and the platform
+// wrench the base distributes.
 struct LogColumn {
   std::string name;  // e.g. "cstr-dist-rightarm-shoulder-ee.error"
   std::string unit;  // QUDT local name, "" for flags
   int data = 0;
+  int component = -1;  // for a twist or wrench: which of its 6 entries (angular first)
 };
 
 struct Program {

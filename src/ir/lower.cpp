@@ -261,6 +261,7 @@ class Lowerer {
   std::map<uint32_t, int> active_of_controller_;     // controller term -> active flag data
   std::map<uint32_t, int> active_of_evaluator_;      // evaluator term -> active flag data
   std::map<uint32_t, int> evaluate_step_of_evaluator_;
+  std::map<int, std::pair<int, int>> bounds_of_satisfied_;  // bilateral: satisfied flag -> lower, upper data
 };
 
 std::optional<DataType> Lowerer::type_of(TermId e) const {
@@ -844,6 +845,10 @@ void Lowerer::lower_evaluators() {
     }
     s.constraint = spec;
     const int satisfied = synthetic(str(*c) + "#satisfied", local_name(str(*c)) + "_satisfied", DataType::Flag, where(*c));
+    if (spec.kind == runtime::ConstraintKind::Bilateral) {
+      bounds_of_satisfied_[satisfied] = {data_of_.at(object(*c, vocab(cs, "lower-threshold"))->index),
+                                         data_of_.at(object(*c, vocab(cs, "upper-threshold"))->index)};
+    }
     if (assignment) {
       // The quantity is what the evaluator writes: the reference value.
       s.in = {*reference_datum};
@@ -1194,6 +1199,18 @@ void Lowerer::build_log() {
         prog_.log.push_back({cname + ".value", value.unit, assignment ? s.out[1] : s.in[0]});
         if (!assignment) prog_.log.push_back({cname + ".error", prog_.data[static_cast<size_t>(s.out[1])].unit, s.out[1]});
         prog_.log.push_back({cname + ".satisfied", "", s.out[0]});
+        if (auto it = bounds_of_satisfied_.find(s.out[0]); it != bounds_of_satisfied_.end()) {
+          prog_.log.push_back({cname + ".lower", value.unit, it->second.first});
+          prog_.log.push_back({cname + ".upper", value.unit, it->second.second});
+        }
+        break;
+      }
+      case StepKind::BaseForceDistribution: {
+        // The platform wrench [f_x, f_y, m_z] the drives are to exert.
+        const std::string base = local_name(s.iri);
+        prog_.log.push_back({base + ".fx", "N", s.in[0], 3});
+        prog_.log.push_back({base + ".fy", "N", s.in[0], 4});
+        prog_.log.push_back({base + ".mz", "N-M", s.in[0], 2});
         break;
       }
       case StepKind::LevelMonitor: add(".flag", s.out[0]); break;
