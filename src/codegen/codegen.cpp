@@ -357,6 +357,10 @@ class Builder {
       e.set("workspace", ws_members_[a]);
       e.set("constraints", std::to_string(s.acceleration_constraints.size()));
       e.set("gravity", join_doubles(s.gravity.data(), 3));
+      e.set("X_RB_R", mat3(s.X_RB.R));
+      e.set("X_RB_p", vec3(s.X_RB.p));
+      e.set("has_mount", !s.mount_pose_iri.empty());
+      e.set("mount_iri", comment(s.mount_pose_iri));
       e.set("tip_is_last_segment", s.tip_is_last_segment);
       const runtime::Pose X_NT = s.tip_is_last_segment ? runtime::Pose{} : s.chain.X_NT();
       e.set("X_NT_R", mat3(X_NT.R));
@@ -407,7 +411,11 @@ class Builder {
       }
       e.set("alpha", alpha);
       arms.push_back(e);
-      inits.push_back(member + "(" + member + "_model())");
+      // The physical model (the solver's gravity: kinematics and the torque
+      // command), the task model (no gravity: the ACHD solve), the mount.
+      inits.push_back(member + "(" + member + "_model(rt::Vec3(" + join_doubles(s.gravity.data(), 3) + ")))");
+      inits.push_back(member + "_task(" + member + "_model(rt::Vec3::Zero()))");
+      inits.push_back(member + "_X_BR(" + member + "_X_RB().inverse())");
     }
     root.set("arms", arms);
 
@@ -600,9 +608,17 @@ class Builder {
         for (const ir::ArmOutput& o : a.outputs) {
           mus::data e;
           e.set("target", ref(o.data));
-          e.set("function", o.what == ir::ArmOutput::What::SegmentPose ? "segment_pose" : "segment_twist");
-          e.set("arm", arm_members_[k]);
-          e.set("segment", std::to_string(o.segment));
+          std::string call = "rt::steps::";
+          if (o.what == ir::ArmOutput::What::SegmentPose) {
+            call.append("segment_pose(d.").append(arm_members_[k]).append(", ");
+          } else if (o.what == ir::ArmOutput::What::ChainRootPose) {
+            call.append("segment_pose_in_chain_root(d.").append(arm_members_[k]).append(", m.");
+            call.append(arm_members_[k]).append("_X_BR, ");
+          } else {
+            call.append("segment_twist(d.").append(arm_members_[k]).append(", ");
+          }
+          call.append(std::to_string(o.segment)).append(")");
+          e.set("call", call);
           outputs.push_back(e);
         }
         s.set("outputs", outputs);
@@ -778,13 +794,46 @@ class Builder {
   std::vector<std::string> step_members_;  // by step index: its Model member ("" if none)
 };
 
+// The Mustache spec's "standalone" rule, which kainjow's renderer does not
+// apply: a line holding nothing but one section tag ({{#x}}, {{^x}}, {{/x}})
+// or comment ({{! }}) leaves no trace in the output, neither its indentation
+// nor its line break. Applied to the template text before parsing.
+std::string strip_standalone_tags(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  std::size_t at = 0;
+  while (at < text.size()) {
+    std::size_t end = text.find('\n', at);
+    const bool has_newline = end != std::string_view::npos;
+    if (!has_newline) end = text.size();
+    const std::string_view line = text.substr(at, end - at);
+    const std::size_t first = line.find_first_not_of(" \t");
+    const std::size_t last = line.find_last_not_of(" \t");
+    bool standalone = false;
+    if (first != std::string_view::npos && line.size() - first >= 5 && line.substr(first, 2) == "{{" &&
+        (line[first + 2] == '#' || line[first + 2] == '^' || line[first + 2] == '/' ||
+         line[first + 2] == '!')) {
+      const std::string_view tag = line.substr(first, last + 1 - first);
+      standalone = tag.size() >= 5 && tag.substr(tag.size() - 2) == "}}" &&
+                   tag.find("}}") == tag.size() - 2;
+      if (standalone) out.append(tag);
+    }
+    if (!standalone) {
+      out.append(line);
+      if (has_newline) out.push_back('\n');
+    }
+    at = has_newline ? end + 1 : end;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles* files) {
   const mus::data data = Builder(program, files).build();
   std::vector<GeneratedFile> out;
   for (const Template& t : kTemplates) {
-    mus::mustache tmpl{std::string(t.text)};
+    mus::mustache tmpl{strip_standalone_tags(t.text)};
     if (!tmpl.is_valid()) {
       std::string msg = "template ";
       msg.append(t.file).append(".mustache: ").append(tmpl.error_message());

@@ -1,0 +1,50 @@
+// A built controller's tick allocates nothing: 10 000 ticks (and log reads) of
+// each dlopened generated library under the counting allocator. Run by
+// build_test.sh; its own executable because it replaces the global allocator.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "load_controller.hpp"
+#include "programs.hpp"
+// Defines the replacement allocator: this translation unit only, and last.
+#include "alloc_counter.hpp"  // NOLINT(llvm-include-order)
+
+namespace mospec::codegen {
+namespace {
+
+void expect_no_allocation(const char* env) {
+#ifdef MOSPEC_NO_ALLOC_COUNTING
+  GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+#endif
+  const std::string path = testing::library_from_env(env);
+  if (path.empty()) GTEST_SKIP() << env << " is not set (run by build_test.sh)";
+  testing::LoadedController generated;
+  testing::load_controller(path, generated);
+  robot::Controller& c = *generated.controller;
+  std::vector<double> values(c.log_columns().size());
+  std::vector<robot::MeasuredState> states;
+  for (std::uint64_t k = 0; k < 1000; ++k) states.push_back(testing::measurement(k));
+  robot::Command command;
+  double sum = 0.0;
+  const long n = alloc_counter::during([&] {
+    for (int k = 0; k < 10000; ++k) {
+      c.tick(states[static_cast<std::size_t>(k % 1000)], command);
+      c.log_values(values);
+      sum += values.empty() ? 0.0 : values[0];
+    }
+  });
+  EXPECT_EQ(n, 0) << "allocations in 10 000 ticks";
+  EXPECT_TRUE(sum == sum);
+}
+
+TEST(GeneratedControllerAllocation, SmallProgramTicksWithoutAllocating) {
+  expect_no_allocation("MOSPEC_SMALL_CONTROLLER");
+}
+
+TEST(GeneratedControllerAllocation, ArmProgramTicksWithoutAllocating) {
+  expect_no_allocation("MOSPEC_ARM_CONTROLLER");
+}
+
+}  // namespace
+}  // namespace mospec::codegen

@@ -1,0 +1,287 @@
+// Hand-built IR programs for the code generator's tests: the same functions
+// give the same Program every time, so the fixture writer (which generates and
+// builds the project) and the tests (which run the interpreter beside the built
+// library) see one program.
+//
+//   small_program()  no arm: a clock, constant poses and vectors, views, every
+//                    operator kind, equality/less-than evaluations, a PID, level
+//                    and edge monitors, a guarded motion, the KELO base.
+//   arm_program()    a 7-dof Kinova Gen3 arm (robots/kinova-gen3.jsonld):
+//                    kinematics outputs, a tip acceleration constraint driven
+//                    by a PID, a Cartesian force and a joint force.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "app/app.hpp"
+#include "ir/ir.hpp"
+#include "robot/interface.hpp"
+#include "runtime/chain_rdf.hpp"
+
+namespace mospec::codegen::testing {
+
+class ProgramBuilder {
+ public:
+  explicit ProgramBuilder(SourceFiles& files) {
+    file_ = files.add("tests/codegen/programs.hpp");
+    p.app = "https://mospec.example/tests/codegen/app";
+  }
+
+  int datum(const std::string& name, ir::DataType type, std::vector<double> value = {},
+            const std::string& unit = "") {
+    ir::Data d;
+    d.iri = "https://mospec.example/tests/codegen/" + name;
+    d.name = name;
+    d.type = type;
+    d.slot = p.slots[static_cast<std::size_t>(type)]++;
+    d.unit = unit;
+    d.value = std::move(value);
+    d.where = {file_, static_cast<uint32_t>(p.data.size() + 1), 3};
+    p.data.push_back(std::move(d));
+    return static_cast<int>(p.data.size() - 1);
+  }
+
+  ir::Step& step(ir::StepKind kind, const std::string& name, std::vector<int> in,
+                 std::vector<int> out) {
+    ir::Step s;
+    s.kind = kind;
+    s.name = name;
+    s.iri = "https://mospec.example/tests/codegen/" + name;
+    s.in = std::move(in);
+    s.out = std::move(out);
+    s.where = {file_, static_cast<uint32_t>(100 + p.steps.size()), 5};
+    p.steps.push_back(std::move(s));
+    return p.steps.back();
+  }
+
+  int state(ir::StateKind kind) { return p.states[static_cast<std::size_t>(kind)]++; }
+
+  void log(const std::string& name, int data, const std::string& unit = "") {
+    p.log.push_back({name, unit, data});
+  }
+
+  ir::Program p;
+
+ private:
+  uint32_t file_ = 0;
+};
+
+// A rotation about z by a (row-major) and a position: a constant pose's value.
+inline std::vector<double> pose_value(double a, double x, double y, double z) {
+  const double c = std::cos(a), s = std::sin(a);
+  return {c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0, x, y, z};
+}
+
+inline ir::Program small_program(SourceFiles& files) {
+  using T = ir::DataType;
+  using K = ir::StepKind;
+  ProgramBuilder b(files);
+  const int time = b.datum("time", T::Scalar, {}, "SEC");
+  const int X_WA = b.datum("X_WA", T::Pose, pose_value(0.3, 0.1, 0.2, 0.3));
+  const int X_AB = b.datum("X_AB", T::Pose, pose_value(-0.7, 0.4, -0.1, 0.25));
+  const int p_BoC = b.datum("p_BoC_W", T::Vector3, {0.0, 0.05, -0.02}, "M");
+  const int x_axis = b.datum("x_axis", T::Vector3, {1.0, 0.0, 0.0});
+  const int z_axis = b.datum("z_axis", T::Vector3, {0.0, 0.0, 1.0});
+  const int F_bias = b.datum("F_bias", T::Wrench, {0.0, 0.0, 0.5, 1.0, -2.0, 0.0});
+  const int V_A = b.datum("V_A", T::Twist, {0.1, -0.2, 0.3, 0.01, 0.02, -0.03});
+
+  b.step(K::ReadClock, "clock", {}, {time});
+  const int X_WB = b.datum("X_WB", T::Pose);
+  b.step(K::ComposePose, "compose", {X_WA, X_AB}, {X_WB});
+  const int height = b.datum("height", T::Scalar, {}, "M");
+  b.step(K::ViewRead, "view_height", {X_WB}, {height}).views = {5};
+  const int yaw = b.datum("yaw", T::Scalar, {}, "RAD");
+  b.step(K::ViewRead, "view_yaw", {X_WB}, {yaw}).views = {2};
+  const int distance = b.datum("distance", T::Scalar, {}, "M");
+  b.step(K::PoseToLinearDistance, "distance_op", {X_WB}, {distance});
+  const int d_WB = b.datum("d_WB", T::Vector3);
+  b.step(K::PoseToDirection, "direction_op", {X_WB}, {d_WB});
+  const int angle = b.datum("angle", T::Scalar, {}, "RAD");
+  b.step(K::PlanarAngleFromDirections, "angle_op", {d_WB, x_axis, z_axis}, {angle});
+  const int angle_inv = b.datum("angle_inv", T::Scalar, {}, "RAD");
+  b.step(K::InvertAngle, "invert_op", {angle}, {angle_inv});
+  const int d_W = b.datum("d_W", T::Vector3);
+  b.step(K::RotateDirectionToProximal, "rotate_direction", {X_WA, d_WB}, {d_W});
+  const int V_W = b.datum("V_W", T::Twist);
+  b.step(K::RotateTwistToProximal, "rotate_twist", {X_WA, V_A}, {V_W});
+  const int v_z = b.datum("v_z", T::Scalar, {}, "M-PER-SEC");
+  b.step(K::ViewRead, "view_vz", {V_W}, {v_z}).views = {5};
+
+  // height == 0.5 (tolerance 1 cm): the PID's error.
+  const int height_ok = b.datum("height_ok", T::Flag);
+  const int height_err = b.datum("height_err", T::Scalar, {}, "M");
+  ir::Step& eq = b.step(K::Evaluate, "cstr_height", {height}, {height_ok, height_err});
+  eq.constraint = {runtime::ConstraintKind::Equality, 0.5, 0.0, 0.0, 0.0, 0.01};
+  eq.has_error_output = true;
+  // time >= 0.05 s: the motion's until guard (level) and an event when it starts to hold.
+  const int late = b.datum("late", T::Flag);
+  const int late_err = b.datum("late_err", T::Scalar, {}, "SEC");
+  ir::Step& gt = b.step(K::Evaluate, "cstr_time", {time}, {late, late_err});
+  gt.constraint = {runtime::ConstraintKind::GreaterThan, 0.0, 0.05, 0.0, 0.0, 0.0};
+  gt.has_error_output = true;
+  const int timeout = b.datum("timeout", T::Flag);
+  ir::Step& lm = b.step(K::LevelMonitor, "mon_timeout", {late_err}, {timeout});
+  lm.constraint.tolerance = 0.0;
+  lm.state = b.state(ir::StateKind::Monitor);
+  const int timeout_event = b.datum("timeout_event", T::Event);
+  ir::Step& em = b.step(K::EdgeMonitor, "mon_timeout_edge", {late_err}, {timeout_event});
+  em.constraint.tolerance = 0.0;
+  em.state = b.state(ir::StateKind::Monitor);
+  const int approach = b.datum("approach", T::Flag);
+  ir::Step& gm = b.step(K::GuardedMotion, "motion_approach", {height_ok, timeout}, {approach});
+  gm.n_when = 0;  // starts at once; height_ok is a second until guard
+  gm.state = b.state(ir::StateKind::Motion);
+  const int force = b.datum("force", T::Scalar, {}, "N");
+  ir::Step& pid = b.step(K::Pid, "pid_height", {height_err, approach}, {force});
+  pid.pid.kp = 200.0;
+  pid.pid.ki = 15.0;
+  pid.pid.kd = 0.5;
+  pid.pid.decay_rate = 0.99;
+  pid.pid.output_min = -50.0;
+  pid.pid.output_max = 50.0;
+  pid.state = b.state(ir::StateKind::Pid);
+  // A contact force: an assignment gated by the motion.
+  const int push_ok = b.datum("push_ok", T::Flag);
+  const int push = b.datum("push", T::Scalar, {}, "N");
+  const int push_ref = b.datum("push_ref", T::Scalar, {}, "N");
+  b.step(K::ReadClock, "clock_again", {}, {push_ref});  // a second reader of the clock
+  ir::Step& as = b.step(K::Evaluate, "cstr_push", {push_ref, approach}, {push_ok, push});
+  as.constraint = {runtime::ConstraintKind::Assignment, 20.0, 0.0, 0.0, 0.0, 0.0};
+
+  const int F_force = b.datum("F_force", T::Wrench);
+  b.step(K::WrenchFromPositionDirectionAndMagnitude, "wrench_op", {p_BoC, d_W, force}, {F_force});
+  const int F_push = b.datum("F_push", T::Wrench);
+  b.step(K::ViewWrite, "view_push", {push, force}, {F_push}).views = {5, 3};
+  const int F_sum = b.datum("F_sum", T::Wrench);
+  b.step(K::AddWrench, "add_op", {F_force, F_push}, {F_sum});
+  const int F_sum2 = b.datum("F_sum2", T::Wrench);
+  b.step(K::AddWrench, "add_bias", {F_sum, F_bias}, {F_sum2});
+  const int F_rot = b.datum("F_rot", T::Wrench);
+  b.step(K::RotateWrenchToProximal, "rotate_wrench", {X_WA, F_sum2}, {F_rot});
+  const int F_P = b.datum("F_P", T::Wrench);
+  b.step(K::TransformWrenchToProximal, "transform_wrench", {X_WA, F_rot}, {F_P});
+  const int f_z = b.datum("f_z", T::Scalar, {}, "N");
+  b.step(K::ViewRead, "view_fz", {F_P}, {f_z}).views = {5};
+
+  ir::BaseSolver base;
+  base.iri = "https://mospec.example/tests/codegen/base";
+  base.name = "kelo";
+  base.geometry = runtime::KeloGeometry::paper();
+  base.wrench = F_P;
+  b.p.base = base;
+  b.step(K::BaseForceDistribution, "base_distribution", {F_P}, {});
+
+  for (int d : {time, height, yaw, distance, angle, angle_inv, v_z, height_err, late_err, force,
+                push, f_z}) {
+    b.log(b.p.data[static_cast<std::size_t>(d)].name, d, b.p.data[static_cast<std::size_t>(d)].unit);
+  }
+  for (int d : {height_ok, late, timeout, timeout_event, approach, push_ok}) {
+    b.log(b.p.data[static_cast<std::size_t>(d)].name, d);
+  }
+  return b.p;
+}
+
+// robots/kinova-gen3.jsonld's chain, read through mospec's own metamodels.
+inline runtime::Chain gen3_chain() {
+  app::LoadOptions options;
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/",
+                            std::string(MOSPEC_SOURCE_DIR) + "/metamodels");
+  const app::LoadedModel model =
+      app::load({std::string(MOSPEC_SOURCE_DIR) + "/robots/kinova-gen3.jsonld"}, options);
+  return runtime::chain_from_rdf(model.flattened(), "https://mospec.example/robots/kinova-gen3/chain");
+}
+
+inline ir::Program arm_program(SourceFiles& files) {
+  using T = ir::DataType;
+  using K = ir::StepKind;
+  ProgramBuilder b(files);
+  ir::ArmSolver arm;
+  arm.iri = "https://mospec.example/tests/codegen/right-arm-solver";
+  arm.name = "right_arm";
+  arm.chain_iri = "https://mospec.example/robots/kinova-gen3/chain";
+  arm.root_frame = "https://mospec.example/robots/kinova-gen3/frame-base_link";
+  arm.port = robot::kRightArm;
+  arm.chain = gen3_chain();
+  arm.gravity = {0.0, 0.0, -9.81};
+  // A mount: the solver's root R carries the chain's root B at X_RB.
+  arm.mount_pose_iri = "https://mospec.example/tests/codegen/mount";
+  const std::vector<double> mount = pose_value(0.5, 0.1, -0.2, 0.9);
+  arm.X_RB.R << mount[0], mount[1], mount[2], mount[3], mount[4], mount[5], mount[6], mount[7], mount[8];
+  arm.X_RB.p = runtime::Vec3(mount[9], mount[10], mount[11]);
+  const int n = arm.chain.size();
+
+  const int time = b.datum("time", T::Scalar, {}, "SEC");
+  const int X_BE = b.datum("X_BE", T::Pose);
+  const int V_BE = b.datum("V_BE", T::Twist);
+  const int X_B3 = b.datum("X_B3", T::Pose);
+  const int X_C3 = b.datum("X_C3", T::Pose);  // w.r.t. the chain's own root
+  arm.outputs = {{ir::ArmOutput::What::SegmentPose, n - 1, X_BE},
+                 {ir::ArmOutput::What::SegmentTwist, n - 1, V_BE},
+                 {ir::ArmOutput::What::SegmentPose, 3, X_B3},
+                 {ir::ArmOutput::What::ChainRootPose, 3, X_C3}};
+  b.step(K::ReadClock, "clock", {}, {time});
+  ir::Step& kin = b.step(K::ArmKinematics, "right_arm_kinematics", {}, {X_BE, V_BE, X_B3, X_C3});
+  kin.solver = 0;
+  const int height = b.datum("ee_height", T::Scalar, {}, "M");
+  b.step(K::ViewRead, "view_height", {X_BE}, {height}).views = {5};
+  const int elbow_x = b.datum("elbow_x", T::Scalar, {}, "M");
+  b.step(K::ViewRead, "view_elbow_x", {X_C3}, {elbow_x}).views = {3};
+  const int vz = b.datum("ee_vz", T::Scalar, {}, "M-PER-SEC");
+  b.step(K::ViewRead, "view_vz", {V_BE}, {vz}).views = {5};
+  const int ok = b.datum("height_ok", T::Flag);
+  const int err = b.datum("height_err", T::Scalar, {}, "M");
+  ir::Step& ev = b.step(K::Evaluate, "cstr_height", {height}, {ok, err});
+  ev.constraint = {runtime::ConstraintKind::Bilateral, 0.0, 0.0, 0.55, 0.65, 0.001};
+  ev.has_error_output = true;
+  const int acc = b.datum("acc_z", T::Scalar, {}, "M-PER-SEC2");
+  ir::Step& pid = b.step(K::Pid, "pid_height", {err}, {acc});
+  pid.pid.kp = 40.0;
+  pid.pid.ki = 2.0;
+  pid.pid.kd = 0.0;
+  pid.state = b.state(ir::StateKind::Pid);
+  const int push = b.datum("push", T::Scalar, {}, "N");
+  const int push_ok = b.datum("push_ok", T::Flag);
+  const int push_ref = b.datum("push_ref", T::Scalar, {0.0}, "N");
+  ir::Step& as = b.step(K::Evaluate, "cstr_push", {push_ref}, {push_ok, push});
+  as.constraint = {runtime::ConstraintKind::Assignment, 5.0, 0.0, 0.0, 0.0, 0.0};
+  const int F_E = b.datum("F_E", T::Wrench);
+  b.step(K::ViewWrite, "view_push", {push}, {F_E}).views = {3};
+  const int F_E_B = b.datum("F_E_B", T::Wrench);
+  b.step(K::RotateWrenchToProximal, "rotate_push", {X_BE, F_E}, {F_E_B});
+  const int tau_1 = b.datum("tau_1", T::Scalar, {0.25}, "N-M");
+
+  arm.acceleration_constraints = {{"https://mospec.example/tests/codegen/acc-z", 5, acc, 0}};
+  arm.cartesian_forces = {{"https://mospec.example/tests/codegen/push", n - 1, F_E_B, 0}};
+  arm.joint_forces = {{"https://mospec.example/tests/codegen/tau-1", 1, tau_1, 0}};
+  b.p.arms.push_back(std::move(arm));
+  ir::Step& solve = b.step(K::ArmSolve, "right_arm_solve", {acc, F_E_B, tau_1}, {});
+  solve.solver = 0;
+
+  for (int d : {time, height, elbow_x, vz, err, acc, push}) {
+    b.log(b.p.data[static_cast<std::size_t>(d)].name, d, b.p.data[static_cast<std::size_t>(d)].unit);
+  }
+  b.log("height_ok", ok);
+  return b.p;
+}
+
+// A synthetic measurement for tick k (1 kHz): smooth joint motion, pivots
+// turning, a non-zero dt except on the first sample.
+inline robot::MeasuredState measurement(std::uint64_t k) {
+  robot::MeasuredState s;
+  const double t = 0.001 * static_cast<double>(k);
+  s.clock = {k, t, k == 0 ? 0.0 : 0.001};
+  for (std::size_t a = 0; a < s.arm.size(); ++a) {
+    for (std::size_t j = 0; j < s.arm[a].q.size(); ++j) {
+      const double w = 0.5 + 0.1 * static_cast<double>(j) + 0.05 * static_cast<double>(a);
+      s.arm[a].q[j] = 0.3 * std::sin(w * t + static_cast<double>(j)) + (j % 2 == 1 ? 0.4 : 0.0);
+      s.arm[a].qd[j] = 0.3 * w * std::cos(w * t + static_cast<double>(j));
+    }
+  }
+  for (std::size_t i = 0; i < s.pivot_q.size(); ++i) {
+    s.pivot_q[i] = 0.2 * static_cast<double>(i) + 0.3 * std::sin(t + static_cast<double>(i));
+  }
+  return s;
+}
+
+}  // namespace mospec::codegen::testing
