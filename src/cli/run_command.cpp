@@ -43,7 +43,31 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   j["non_finite"] = r.non_finite;
   j["max_torque_ratio"] = r.max_torque_ratio;
   j["torque_limit_exceeded"] = r.torque_limit_exceeded;
+  j["joint_limit_exceeded"] = r.joint_limit_exceeded;
   j["instabilities"] = r.instabilities;
+  // Every bilateral constraint (a tube, e.g. the shoulder–contact distances):
+  // where it ended and whether that is inside.
+  nlohmann::ordered_json tubes = nlohmann::ordered_json::array();
+  for (const std::string& c : r.columns) {
+    const std::string suffix = ".lower";
+    if (c.size() <= suffix.size() || c.compare(c.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+    const std::string name = c.substr(0, c.size() - suffix.size());
+    const double v = sim::last_value(r, name + ".value");
+    const double lo = sim::last_value(r, name + ".lower");
+    const double hi = sim::last_value(r, name + ".upper");
+    nlohmann::ordered_json t;
+    t["constraint"] = name;
+    t["final"] = v;
+    t["lower"] = lo;
+    t["upper"] = hi;
+    t["inside"] = v >= lo && v <= hi;
+    tubes.push_back(std::move(t));
+  }
+  j["bilateral"] = std::move(tubes);
+  // The table's edge runs along y of the world: the platform is aligned with
+  // it at yaw 0.
+  const double yaw = sim::last_value(r, "base_yaw");
+  j["base_yaw_to_edge_deg"] = std::isfinite(yaw) ? yaw * 180.0 / 3.14159265358979323846 : 0.0;
   nlohmann::ordered_json final_values;
   for (size_t i = 0; i < r.columns.size() && i < r.last_row.size(); ++i) {
     const double v = r.last_row[i];

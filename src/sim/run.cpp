@@ -48,6 +48,13 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t k = 0; k < ticks; ++k) {
     world.read(state);
+    for (const auto& arm : state.arm) {
+      for (size_t j = 0; j < arm.q.size(); ++j) {
+        if (arm.q[j] < config.actuation.lower[j] || arm.q[j] > config.actuation.upper[j]) {
+          r.joint_limit_exceeded = true;
+        }
+      }
+    }
     controller.tick(state, command);
     double tau_ratio = 0.0;
     for (const auto& arm : command.arm_tau) {

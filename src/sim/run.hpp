@@ -30,6 +30,7 @@ struct RunResult {
   bool non_finite = false;            // a controller output or command was NaN/inf
   double max_torque_ratio = 0.0;      // max |tau_i| / effort_limit_i over arms and ticks
   bool torque_limit_exceeded = false;  // max_torque_ratio > 1
+  bool joint_limit_exceeded = false;   // a measured joint position left its limits
   int instabilities = 0;               // MuJoCo warnings (untrustworthy when > 0)
 };
 
