@@ -23,7 +23,7 @@ conformance: build
 	@$(BIN)/jsonld-conformance ../shared/conformance/jsonld/expand-manifest.jsonld
 	@$(BIN)/shacl-conformance ../shared/conformance/shacl/tests/core/manifest.ttl
 
-BENCHES = mospec-bench mospec-validate-bench mospec-runtime-bench mospec-runtime-base-bench mospec-sim-bench
+BENCHES = mospec-bench mospec-validate-bench mospec-runtime-bench mospec-runtime-base-bench mospec-sim-bench mospec-codegen-bench
 bench: build
 	@for b in $(BENCHES); do \
 	  if [ -x $(BIN)/$$b ]; then echo "== $$b"; \

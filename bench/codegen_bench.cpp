@@ -1,0 +1,155 @@
+// Code generation and the generated tick (issue #7's targets):
+//   BM_GenerateProcess/sc1   `mospec generate models/sc1.json` as a whole
+//                            process (target <= 30 ms wall; the authors'
+//                            Python + JVM pipeline takes seconds);
+//   BM_Lower/sc1             load + lower in-process (no validation);
+//   BM_InterpretedTick/sc1   one tick of the IR interpreter;
+//   BM_GeneratedTick/sc1     one tick of the generated controller (target
+//                            <= 10 us), built once at start-up with
+//                            `mospec build` and loaded with dlopen.
+// Every tick runs against a robot standing in the default world's pose, with
+// a slow joint motion so nothing is constant-folded.
+#include <benchmark/benchmark.h>
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/app.hpp"
+#include "ir/interpreter.hpp"
+#include "ir/lower.hpp"
+#include "robot/controller.hpp"
+#include "sim/config.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using mospec::robot::Controller;
+
+const std::string kSource = MOSPEC_SOURCE_DIR;
+const std::string kMospec = MOSPEC_BINARY;
+
+// Runs argv with stdout redirected to `out_file` (or discarded); returns the exit status.
+int spawn(const std::vector<std::string>& args, const std::string& out_file = "/dev/null") {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addchdir_np(&actions, kSource.c_str());
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+mospec::ir::Program lower_sc1() {
+  mospec::app::LoadOptions options;
+  options.root = kSource;
+  mospec::app::LoadedModel model = mospec::app::load({kSource + "/models/sc1.json"}, options);
+  return mospec::ir::lower(model);
+}
+
+void run_ticks(benchmark::State& state, Controller& controller) {
+  const mospec::sim::WorldConfig world = mospec::sim::default_world();
+  mospec::robot::MeasuredState s;
+  for (int a = 0; a < mospec::robot::kArms; ++a) s.arm[static_cast<size_t>(a)].q = world.arms[static_cast<size_t>(a)].q0;
+  mospec::robot::Command command;
+  std::uint64_t k = 0;
+  for (auto _ : state) {
+    s.clock.tick = k;
+    s.clock.t = 0.001 * static_cast<double>(k);
+    s.clock.dt = 0.001;
+    s.arm[0].qd[1] = 0.05 * std::sin(0.001 * static_cast<double>(k));
+    controller.tick(s, command);
+    benchmark::DoNotOptimize(command);
+    ++k;
+  }
+}
+
+void BM_GenerateProcess(benchmark::State& state) {
+  const fs::path out = fs::temp_directory_path() / ("mospec-bench-gen-" + std::to_string(getpid()));
+  for (auto _ : state) {
+    if (spawn({kMospec, "generate", "models/sc1.json", "-o", out.string()}) != 0) {
+      state.SkipWithError("mospec generate failed");
+      break;
+    }
+  }
+  fs::remove_all(out);
+}
+BENCHMARK(BM_GenerateProcess)->Name("BM_GenerateProcess/sc1")->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Lower(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(lower_sc1());
+}
+BENCHMARK(BM_Lower)->Name("BM_Lower/sc1")->Unit(benchmark::kMillisecond);
+
+void BM_InterpretedTick(benchmark::State& state) {
+  mospec::ir::Interpreter interpreter(lower_sc1());
+  run_ticks(state, interpreter);
+}
+BENCHMARK(BM_InterpretedTick)->Name("BM_InterpretedTick/sc1")->Unit(benchmark::kMicrosecond);
+
+// The generated SC1 controller, built once per process.
+std::unique_ptr<Controller> generated_sc1(std::string& why) {
+  const fs::path dir = fs::temp_directory_path() / ("mospec-bench-sc1-" + std::to_string(getpid()));
+  const fs::path lib_path_file = dir.string() + ".path";
+  if (spawn({kMospec, "generate", "models/sc1.json", "-o", dir.string()}) != 0) {
+    why = "mospec generate failed";
+    return nullptr;
+  }
+  if (spawn({kMospec, "build", dir.string()}, lib_path_file.string()) != 0) {
+    why = "mospec build failed";
+    return nullptr;
+  }
+  std::string lib;
+  if (FILE* f = std::fopen(lib_path_file.c_str(), "r")) {
+    char buf[4096];
+    if (std::fgets(buf, sizeof buf, f)) lib = buf;
+    std::fclose(f);
+  }
+  while (!lib.empty() && (lib.back() == '\n' || lib.back() == '\r')) lib.pop_back();
+  void* handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    why = dlerror();
+    return nullptr;
+  }
+  auto factory = reinterpret_cast<mospec::robot::ControllerFactory>(
+      dlsym(handle, mospec::robot::kControllerFactorySymbol));
+  if (!factory) {
+    why = "no controller factory in the library";
+    return nullptr;
+  }
+  return std::unique_ptr<Controller>(factory());  // the library stays loaded
+}
+
+void BM_GeneratedTick(benchmark::State& state) {
+  static std::string why;
+  static std::unique_ptr<Controller> controller = generated_sc1(why);
+  if (!controller) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  run_ticks(state, *controller);
+}
+BENCHMARK(BM_GeneratedTick)->Name("BM_GeneratedTick/sc1")->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
