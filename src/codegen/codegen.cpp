@@ -770,7 +770,16 @@ class Builder {
       const ir::LogColumn& c = p_.log[i];
       const ir::Data& d = datum(c.data);
       std::string value;
+      if (c.component > 5) fail("log column '" + c.name + "' has component " + std::to_string(c.component));
       switch (d.type) {
+        case DataType::Twist:
+        case DataType::Wrench:
+          if (c.component >= 0) {
+            value = ref(c.data) + "[" + std::to_string(c.component) + "]";
+          } else {
+            value = "std::numeric_limits<double>::quiet_NaN()";
+          }
+          break;
         case DataType::Scalar: value = ref(c.data); break;
         case DataType::Flag:
         case DataType::Event: value = "(" + ref(c.data) + " ? 1.0 : 0.0)"; break;

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "codegen/build.hpp"
 #include "load_controller.hpp"
 #include "programs.hpp"
 // Defines the replacement allocator: this translation unit only, and last.
@@ -19,9 +20,8 @@ void expect_no_allocation(const char* env) {
 #endif
   const std::string path = testing::library_from_env(env);
   if (path.empty()) GTEST_SKIP() << env << " is not set (run by build_test.sh)";
-  testing::LoadedController generated;
-  testing::load_controller(path, generated);
-  robot::Controller& c = *generated.controller;
+  const std::unique_ptr<robot::Controller> generated = load_controller(path);
+  robot::Controller& c = *generated;
   std::vector<double> values(c.log_columns().size());
   std::vector<robot::MeasuredState> states;
   for (std::uint64_t k = 0; k < 1000; ++k) states.push_back(testing::measurement(k));

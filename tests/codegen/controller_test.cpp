@@ -7,14 +7,13 @@
 #include <cstring>
 #include <vector>
 
+#include "codegen/build.hpp"
 #include "ir/interpreter.hpp"
 #include "load_controller.hpp"
 #include "programs.hpp"
 
 namespace mospec::codegen {
 namespace {
-
-using testing::LoadedController;
 
 bool same_bits(const void* a, const void* b, std::size_t n) {
   return std::memcmp(a, b, n) == 0;
@@ -23,9 +22,8 @@ bool same_bits(const void* a, const void* b, std::size_t n) {
 void expect_like_the_interpreter(const char* env, ir::Program (*make)(SourceFiles&), int ticks) {
   const std::string path = testing::library_from_env(env);
   if (path.empty()) GTEST_SKIP() << env << " is not set (run by build_test.sh)";
-  LoadedController generated;
-  testing::load_controller(path, generated);
-  robot::Controller& gen = *generated.controller;
+  const std::unique_ptr<robot::Controller> generated = load_controller(path);
+  robot::Controller& gen = *generated;
   SourceFiles files;
   ir::Interpreter interp(make(files));
   const ir::Program& program = interp.program();
@@ -77,21 +75,40 @@ TEST(GeneratedController, ArmProgramMatchesTheInterpreterBitForBit) {
 TEST(GeneratedController, LogColumnsAreTheProgramsNamedColumns) {
   const std::string path = testing::library_from_env("MOSPEC_SMALL_CONTROLLER");
   if (path.empty()) GTEST_SKIP() << "MOSPEC_SMALL_CONTROLLER is not set (run by build_test.sh)";
-  LoadedController generated;
-  testing::load_controller(path, generated);
-  const auto columns = generated.controller->log_columns();
-  ASSERT_EQ(columns.size(), 18u);
+  const std::unique_ptr<robot::Controller> generated = load_controller(path);
+  const auto columns = generated->log_columns();
+  ASSERT_EQ(columns.size(), 21u);
   EXPECT_STREQ(columns[0].name, "time");
   EXPECT_STREQ(columns[0].unit, "SEC");
   EXPECT_STREQ(columns[17].name, "push_ok");
   EXPECT_STREQ(columns[17].unit, "");
+  EXPECT_STREQ(columns[18].name, "F_P.f_x");
+  EXPECT_STREQ(columns[18].unit, "N");
   // Flags and events log as exactly 0 or 1.
   std::vector<double> v(columns.size());
   for (std::uint64_t k = 0; k < 100; ++k) {
     robot::Command c;
-    generated.controller->tick(testing::measurement(k), c);
-    generated.controller->log_values(v);
-    for (std::size_t i = 12; i < v.size(); ++i) EXPECT_TRUE(v[i] == 0.0 || v[i] == 1.0) << columns[i].name;
+    generated->tick(testing::measurement(k), c);
+    generated->log_values(v);
+    for (std::size_t i = 12; i < 18; ++i) EXPECT_TRUE(v[i] == 0.0 || v[i] == 1.0) << columns[i].name;
+  }
+}
+
+}  // namespace
+}  // namespace mospec::codegen
+
+namespace mospec::codegen {
+namespace {
+
+TEST(LoadController, NamesTheLibraryAndTheReason) {
+  try {
+    load_controller("/nonexistent/libmospec_controller.so");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "load");
+    EXPECT_NE(std::string(e.what()).find("cannot load controller '/nonexistent/libmospec_controller.so'"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -179,6 +179,10 @@ inline ir::Program small_program(SourceFiles& files) {
   for (int d : {height_ok, late, timeout, timeout_event, approach, push_ok}) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d);
   }
+  // Components of a wrench and a twist.
+  b.p.log.push_back({"F_P.f_x", "N", F_P, 3});
+  b.p.log.push_back({"F_P.m_z", "N-M", F_P, 2});
+  b.p.log.push_back({"V_W.w_x", "RAD-PER-SEC", V_W, 0});
   return b.p;
 }
 
