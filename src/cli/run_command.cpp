@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/pipeline.hpp"
+#include "codegen/build.hpp"
+#include "codegen/codegen.hpp"
 #include "ir/interpreter.hpp"
 #include "sim/config.hpp"
 #include "sim/robot_model.hpp"
@@ -31,6 +33,42 @@ sim::WorldConfig scenario_world(const std::string& app, const std::string& world
     if (std::filesystem::exists(w)) return sim::load_world_config(w.string());
   }
   return sim::default_world();
+}
+
+// The generated controller for `program`: generated and built once into
+// CACHE/<content hash>/ (the hash covers the IR, its source locations and the
+// mospec build that renders it), then loaded.
+std::unique_ptr<robot::Controller> generated_controller(const ir::Program& program,
+                                                        const SourceFiles& files,
+                                                        const std::string& cache) {
+  namespace fs = std::filesystem;
+  std::string key = ir::to_json(program, &files);
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto size = fs::file_size(self, ec);
+    const auto time = fs::last_write_time(self, ec).time_since_epoch().count();
+    key.append(self.string()).append(std::to_string(size)).append(std::to_string(time));
+  }
+  const fs::path dir = fs::absolute(fs::path(cache) / ir::content_hash(key));
+  const fs::path marker = dir / "built";
+  std::string library;
+  if (fs::exists(marker, ec)) {
+    library = read_file(marker.string());
+    while (!library.empty() && (library.back() == '\n' || library.back() == '\r')) library.pop_back();
+  }
+  if (library.empty() || !fs::exists(library, ec)) {
+    std::cerr << "mospec: generating and building the controller in " << dir.string() << '\n';
+    codegen::generate(program, dir.string(), &files);
+    const codegen::BuildResult built = codegen::build_project(dir.string(), 2);
+    if (!built.ok) {
+      std::cerr << built.output;
+      throw Error("build", "building the generated controller in '" + dir.string() + "' failed");
+    }
+    library = built.library;
+    write_output(marker.string(), library + "\n");
+  }
+  return codegen::load_controller(library);
 }
 
 std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted) {
@@ -124,7 +162,8 @@ Action add_run_command(CLI::App& app) {
       ->type_name("DIR");
   return [flags]() {
     int code = kExitOk;
-    auto program = load_validate_lower(flags->pipeline, code);
+    SourceFiles files;
+    auto program = load_validate_lower(flags->pipeline, code, &files);
     if (!program) return code;
     sim::WorldConfig config = scenario_world(flags->pipeline.inputs.front(), flags->world);
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
@@ -134,7 +173,7 @@ Action add_run_command(CLI::App& app) {
     if (flags->interpret) {
       controller = std::make_unique<ir::Interpreter>(std::move(*program));
     } else {
-      throw Error("unsupported", "generated controllers are not wired into `mospec run` yet; use --interpret");
+      controller = generated_controller(*program, files, flags->cache.empty() ? ".mospec-cache" : flags->cache);
     }
     sim::World world(config, arm);
     sim::RunOptions options;
