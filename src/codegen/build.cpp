@@ -1,7 +1,9 @@
 #include "codegen/build.hpp"
 
 #include <dlfcn.h>
+#include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,6 +13,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "codegen/codegen.hpp"
+#include "ir/lower.hpp"
 #include "support/diagnostics.hpp"
 
 extern char** environ;
@@ -101,6 +105,30 @@ class LibraryController final : public robot::Controller {
   robot::Controller* inner_;
 };
 
+// An exclusive lock on a file (flock), held for the object's lifetime: runs
+// started in parallel (e.g. seeded trials) build a cached controller once.
+class FileLock {
+ public:
+  explicit FileLock(const std::string& path) : fd_(open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
+    if (fd_ < 0) {
+      std::string msg = "mospec: cannot open lock file '";
+      msg.append(path).append("': ").append(std::strerror(errno));
+      throw Error("io", msg);
+    }
+    while (flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+    }
+  }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  ~FileLock() {
+    flock(fd_, LOCK_UN);
+    close(fd_);
+  }
+
+ private:
+  int fd_;
+};
+
 [[noreturn]] void load_error(const std::string& library, const std::string& why) {
   std::string msg = "mospec: cannot load controller '";
   msg.append(library).append("': ").append(why);
@@ -138,6 +166,46 @@ BuildResult build_project(const std::string& dir_arg, int jobs, const std::strin
   r.ok = status == 0;
   if (r.ok) r.library = library.string();
   return r;
+}
+
+CachedController cached_controller(const ir::Program& program, const std::string& cache_dir,
+                                   const SourceFiles* files, int jobs) {
+  const std::vector<GeneratedFile> rendered = render(program, files);
+  const std::string package = default_package_dir();
+  std::string key_text = package;
+  for (const GeneratedFile& f : rendered) key_text.append("\n").append(f.path).append("\n").append(f.content);
+  const fs::path dir = fs::path(cache_dir) / ir::content_hash(key_text);
+  const fs::path library = dir / "build" / "libmospec_controller.so";
+  std::error_code ec;
+  fs::create_directories(cache_dir, ec);
+  if (ec) {
+    std::string msg = "mospec: cannot create directory '";
+    msg.append(cache_dir).append("': ").append(ec.message());
+    throw Error("io", msg);
+  }
+  const FileLock lock(dir.string() + ".lock");
+  CachedController c;
+  c.project = dir.string();
+  std::string output;
+  int status = 0;
+  if (fs::exists(library, ec)) {
+    std::string cmake = MOSPEC_CMAKE_COMMAND;
+    if (!fs::exists(cmake, ec)) cmake = "cmake";
+    status = run({cmake, "--build", (dir / "build").string(), "--parallel", std::to_string(jobs)}, output);
+  } else {
+    generate(program, dir.string(), files);
+    const BuildResult r = build_project(dir.string(), jobs, package);
+    status = r.ok ? 0 : 1;
+    output = r.output;
+    c.built = true;
+  }
+  if (status != 0) {
+    std::string msg = output;
+    msg.append("mospec: building the generated controller in '").append(dir.string()).append("' failed");
+    throw Error("build", msg);
+  }
+  c.library = library.string();
+  return c;
 }
 
 std::unique_ptr<robot::Controller> load_controller(const std::string& library) {

@@ -6,7 +6,9 @@
 #include <memory>
 #include <string>
 
+#include "ir/ir.hpp"
 #include "robot/controller.hpp"
+#include "support/diagnostics.hpp"
 
 namespace mospec::codegen {
 
@@ -28,6 +30,20 @@ struct BuildResult {
 // default_package_dir(). Throws mospec::Error("usage") when `dir` holds no
 // CMakeLists.txt.
 BuildResult build_project(const std::string& dir, int jobs = 2, const std::string& package = {});
+
+// The generated and built controller of `program`, kept in
+// cache_dir/<hash of the generated files and the runtime package>/: generated
+// and built the first time (`built` is then true), later only brought up to
+// date by an incremental `cmake --build` (which relinks when the runtime's
+// libraries changed). Throws mospec::Error("build") with the compiler's output
+// when the project does not build.
+struct CachedController {
+  std::string library;
+  std::string project;  // the generated project's directory
+  bool built = false;   // generated and configured now (not found in the cache)
+};
+CachedController cached_controller(const ir::Program& program, const std::string& cache_dir,
+                                   const SourceFiles* files = nullptr, int jobs = 2);
 
 // Loads a built controller library: dlopen, mospec_create_controller(), and the
 // ABI check. The returned controller keeps the library loaded for as long as it

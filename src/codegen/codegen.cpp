@@ -121,6 +121,14 @@ class Names {
   std::set<std::string> used_;
 };
 
+// `prefix` + name, unless the name already starts with it ("pid_" + "pid_x"
+// stays "pid_x").
+std::string prefixed(std::string_view prefix, const std::string& name) {
+  if (name.compare(0, prefix.size(), prefix) == 0) return name;
+  std::string s(prefix);
+  return s.append(name);
+}
+
 // The member of Data that holds each data type's slots.
 std::string_view type_member(DataType t) {
   switch (t) {
@@ -238,10 +246,10 @@ class Builder {
       const ir::Step& st = p.steps[i];
       const std::string idx = std::to_string(i);
       std::string m;
-      if (st.kind == StepKind::Evaluate) m = members.take("eval_" + st.name, "eval_" + idx);
-      if (st.kind == StepKind::Pid) m = members.take("pid_" + st.name, "pid_" + idx);
+      if (st.kind == StepKind::Evaluate) m = members.take(prefixed("eval_", st.name), "eval_" + idx);
+      if (st.kind == StepKind::Pid) m = members.take(prefixed("pid_", st.name), "pid_" + idx);
       if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor) {
-        m = members.take("tolerance_" + st.name, "tolerance_" + idx);
+        m = members.take(prefixed("tolerance_", st.name), "tolerance_" + idx);
       }
       step_members_.push_back(m);
     }

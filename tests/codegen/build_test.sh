@@ -3,9 +3,10 @@
 # `mospec build` (the project compiles with -Wall -Wextra -Werror), then runs
 # the tests that dlopen the libraries: same log columns and bit-identical
 # values as the interpreter, and no allocation in 10 000 ticks.
-# usage: build_test.sh MOSPEC WRITE_FIXTURE CONTROLLER_TEST ALLOC_TEST SCRATCH
+# The same for a scenario model (models/sc1.json) through `mospec generate`.
+# usage: build_test.sh MOSPEC WRITE_FIXTURE CONTROLLER_TEST ALLOC_TEST SCRATCH SOURCE_DIR
 set -euo pipefail
-mospec=$1 write_fixture=$2 controller_test=$3 alloc_test=$4 scratch=$5
+mospec=$1 write_fixture=$2 controller_test=$3 alloc_test=$4 scratch=$5 source=$6
 rm -rf "$scratch"
 mkdir -p "$scratch"
 
@@ -32,7 +33,23 @@ for program in small arm; do
   export "MOSPEC_$(echo "$program" | tr a-z A-Z)_CONTROLLER=$lib"
 done
 
-"$controller_test"
+# A scenario, generated from the models (validated and lowered by mospec).
+# Exit 1 means the models do not validate or lower: the ir tests report that.
+cd "$source"
+status=0
+"$mospec" generate models/sc1.json -o "$scratch/sc1" 2>"$scratch/sc1.gen.err" || status=$?
+if [ "$status" -eq 0 ]; then
+  lib=$("$mospec" build "$scratch/sc1" --jobs 2) || { echo "build_test: sc1 does not build" >&2; exit 1; }
+  export MOSPEC_SCENARIO_APP=models/sc1.json MOSPEC_SCENARIO_CONTROLLER=$lib
+elif [ "$status" -eq 1 ]; then
+  echo "build_test: skipped sc1 (it does not validate or lower):" >&2
+  tail -3 "$scratch/sc1.gen.err" >&2
+else
+  cat "$scratch/sc1.gen.err" >&2
+  exit 1
+fi
+
+MOSPEC_CACHE_TEST_DIR="$scratch/cache" "$controller_test"
 "$alloc_test"
 
 # A project that does not compile: exit 2 and the compiler's message.

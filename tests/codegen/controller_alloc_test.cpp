@@ -46,5 +46,9 @@ TEST(GeneratedControllerAllocation, ArmProgramTicksWithoutAllocating) {
   expect_no_allocation("MOSPEC_ARM_CONTROLLER");
 }
 
+TEST(GeneratedControllerAllocation, ScenarioTicksWithoutAllocating) {
+  expect_no_allocation("MOSPEC_SCENARIO_CONTROLLER");
+}
+
 }  // namespace
 }  // namespace mospec::codegen

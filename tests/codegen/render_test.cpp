@@ -69,7 +69,7 @@ TEST(Codegen, EveryStepIsACommentedBlockInScheduleOrder) {
     at = found + head.size();
   }
   EXPECT_NE(cpp.find("d.scalar[slot::time] = state.clock.t;"), std::string::npos);
-  EXPECT_NE(cpp.find("rt::steps::pid(m.pid_pid_height, d.pid[0], d.scalar[slot::height_err], "
+  EXPECT_NE(cpp.find("rt::steps::pid(m.pid_height, d.pid[0], d.scalar[slot::height_err], "
                      "state.clock.dt, d.flag[slot::approach]);"),
             std::string::npos);
   const std::string hpp = file(render(p, &files), "controller.hpp");
