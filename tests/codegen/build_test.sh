@@ -4,9 +4,13 @@
 # the tests that dlopen the libraries: same log columns and bit-identical
 # values as the interpreter, and no allocation in 10 000 ticks.
 # The same for a scenario model (models/sc1.json) through `mospec generate`.
+# Finally the installed package: `cmake --install` into a prefix, and that
+# prefix's mospec builds a project against its installed headers and libraries.
 # usage: build_test.sh MOSPEC WRITE_FIXTURE CONTROLLER_TEST ALLOC_TEST SCRATCH SOURCE_DIR
+#                      BINARY_DIR CMAKE
 set -euo pipefail
 mospec=$1 write_fixture=$2 controller_test=$3 alloc_test=$4 scratch=$5 source=$6
+binary_dir=$7 cmake=$8
 rm -rf "$scratch"
 mkdir -p "$scratch"
 
@@ -68,5 +72,16 @@ grep -q "mospec: building '.*broken' failed" "$scratch/broken.err"
 # A directory without a project: exit 2, located message.
 if "$mospec" build "$scratch/nowhere" 2>"$scratch/nowhere.err"; then exit 1; else test $? -eq 2; fi
 grep -q "holds no generated project" "$scratch/nowhere.err"
+
+# The install tree.
+"$cmake" --install "$binary_dir" --prefix "$scratch/prefix" >"$scratch/install.log"
+test -f "$scratch/prefix/include/mospec/runtime/steps.hpp"
+test -f "$scratch/prefix/include/mospec/robot/controller.hpp"
+test ! -e "$scratch/prefix/include/mospec/runtime/chain_rdf.hpp"
+"$write_fixture" small "$scratch/installed"
+lib=$("$scratch/prefix/bin/mospec" build "$scratch/installed")
+grep -q "mospec_DIR:.*=$scratch/prefix/lib/cmake/mospec" "$scratch/installed/build/CMakeCache.txt"
+test -f "$lib"
+
 rm -rf "$scratch"
 echo "build_test: ok"
