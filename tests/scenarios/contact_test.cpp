@@ -6,7 +6,8 @@
 //   * after 1 s of settling, every arm's contact normal force is 20 N ± 10 %;
 //   * after 1 s, every arm's elbow height is within 2 cm of its reference;
 //   * nothing is NaN, and the joint torques stay inside Kinova's limits
-//     (tau_ratio < 1).
+//     (tau_ratio < 1);
+// and, in a world without the table, the past-the-table guard ends the motion.
 // Usage: scenarios_contact_test MOSPEC SOURCE_DIR APP
 #include <gtest/gtest.h>
 
@@ -161,6 +162,47 @@ TEST_F(Scenario, ContactForceAndElbowHeightHoldAfterOneSecond) {
     EXPECT_GE(force.min, 18.0) << side;
     EXPECT_LE(force.max, 22.0) << side;
     EXPECT_LE(std::max(std::abs(height.min), std::abs(height.max)), 0.02) << side;
+  }
+}
+
+// The guards: without the table the 20 N push carries each end effector forward
+// and past the table's face; the motion ends (`cstr-pos-<arm>-past-table`: x in P
+// more than 5 cm ahead of the contact position) within half a second, and the
+// edge-triggered monitor reports it once.
+TEST_F(Scenario, WithoutTheTableTheMotionEndsPastTheFace) {
+  const fs::path world = dir_ / "no-table.world.json", log = dir_ / "no-table.csv", out = dir_ / "no-table.txt";
+  std::ofstream(world) << "{ \"base\": \"fixed\", \"table\": { \"present\": false },\n"
+                          "  \"robot\": { \"model\": \""
+                       << (fs::path(g_source) / "robots" / "kinova-gen3.jsonld").string()
+                       << "\",\n    \"map\": { \"https://comp-rob2b.github.io/metamodels/\": \""
+                       << (fs::path(g_source) / "metamodels").string() << "\" } } }\n";
+  const std::string cmd = "cd " + shell_quote(g_source) + " && " + shell_quote(g_mospec) + " run models/" + g_app +
+                          ".json --sim --interpret --duration 1 --log-every 1 --world " +
+                          shell_quote(world.string()) + " --log " + shell_quote(log.string()) + " > " +
+                          shell_quote(out.string()) + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const Csv csv = read_csv(log);
+  ASSERT_FALSE(csv.rows.empty());
+  const int t = csv.column("t");
+  for (const std::string& side : arms()) {
+    const std::string arm = arm_name(side);
+    const int running = csv.column("motion-" + arm + ".running");
+    const int past = csv.column("cstr-pos-" + arm + "-past-table.satisfied");
+    const int event = csv.column("mon-" + arm + "-past-table.event");
+    ASSERT_GE(running, 0);
+    ASSERT_GE(past, 0);
+    ASSERT_GE(event, 0);
+    double ended = INFINITY;
+    int events = 0;
+    for (const auto& row : csv.rows) {
+      if (row[static_cast<size_t>(running)] == 0.0 && !std::isfinite(ended)) {
+        ended = row[static_cast<size_t>(t)];
+        EXPECT_EQ(row[static_cast<size_t>(past)], 1.0) << side;
+      }
+      events += row[static_cast<size_t>(event)] != 0.0;
+    }
+    EXPECT_LT(ended, 0.5) << side;
+    EXPECT_EQ(events, 1) << side;
   }
 }
 
