@@ -40,5 +40,7 @@ Action add_generate_command(CLI::App& app);
 Action add_build_command(CLI::App& app);
 Action add_ir_command(CLI::App& app);
 Action add_run_command(CLI::App& app);
+Action add_plot_command(CLI::App& app);
+Action add_trials_command(CLI::App& app);
 
 }  // namespace mospec::cli

@@ -66,6 +66,10 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("ir"), ir);
   Action run = add_run_command(app);
   commands.emplace_back(app.get_subcommand("run"), run);
+  Action plot = add_plot_command(app);
+  commands.emplace_back(app.get_subcommand("plot"), plot);
+  Action trials = add_trials_command(app);
+  commands.emplace_back(app.get_subcommand("trials"), trials);
 
   try {
     app.parse(argc, argv);

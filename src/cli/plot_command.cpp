@@ -1,0 +1,148 @@
+// `mospec plot INPUT -o FIG.svg|FIG.png`: the paper's Fig. 4 from one run log
+// (`mospec run --log`), or its Fig. 6 (mean +- 1 std bands) from a directory of
+// trials (`mospec trials`), rendered by gnuplot.
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "plot/csv.hpp"
+#include "plot/figure.hpp"
+#include "plot/gnuplot.hpp"
+#include "support/diagnostics.hpp"
+#include "support/io.hpp"
+
+namespace mospec::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// trial-<i>.csv -> i; nullopt for any other name.
+std::optional<unsigned long> trial_index(const std::string& name) {
+  constexpr std::string_view prefix = "trial-", suffix = ".csv";
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return std::nullopt;
+  }
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.empty() || digits.size() > 9 ||
+      !std::all_of(digits.begin(), digits.end(),
+                   [](unsigned char c) { return c >= '0' && c <= '9'; })) {
+    return std::nullopt;
+  }
+  return std::stoul(digits);
+}
+
+// The trials' logs in index order. When `mospec trials` left a trials.json,
+// trials that did not exit 0 are left out (their logs are not trustworthy),
+// each with a warning.
+std::vector<std::string> trial_logs(const std::string& dir) {
+  std::vector<std::pair<unsigned long, std::string>> found;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    if (auto i = trial_index(e.path().filename().string()))
+      found.emplace_back(*i, e.path().string());
+  }
+  std::sort(found.begin(), found.end());
+  const fs::path manifest = fs::path(dir) / "trials.json";
+  std::vector<std::string> failed;
+  if (fs::exists(manifest)) {
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(read_file(manifest.string()));
+    } catch (const nlohmann::json::exception& e) {
+      throw Error("trials", e.what(), manifest.string());
+    }
+    for (const auto& trial : j.value("trials", nlohmann::json::array())) {
+      if (trial.value("exit_code", 0) != 0 && trial.contains("log"))
+        failed.push_back(trial["log"].get<std::string>());
+    }
+  }
+  std::vector<std::string> logs;
+  for (auto& [index, path] : found) {
+    const std::string name = fs::path(path).filename().string();
+    if (std::find(failed.begin(), failed.end(), name) != failed.end()) {
+      std::cerr << "mospec: warning: leaving out " << path << ": its run did not exit 0 ("
+                << manifest.string() << ")\n";
+      continue;
+    }
+    logs.push_back(path);
+  }
+  if (logs.empty()) {
+    std::string message = "no trial-<i>.csv logs to plot in '";
+    message.append(dir).append("' (write them with `mospec trials`)");
+    throw Error("io", message);
+  }
+  return logs;
+}
+
+}  // namespace
+
+Action add_plot_command(CLI::App& app) {
+  struct Flags {
+    std::string input;
+    std::string output;
+    std::string title;
+    plot::Selection selection;
+  };
+  auto flags = std::make_shared<Flags>();
+  CLI::App* cmd = app.add_subcommand(
+      "plot",
+      "Render a run log (`mospec run --log`) as the paper's Fig. 4 - the shoulder-contact "
+      "distances "
+      "d_r, d_l [m] with their thresholds, and the platform wrench F_perp, F_par [N], tau [N m] "
+      "(or, "
+      "without one, each arm's distance-controller output [N]) - or a directory of trials (`mospec "
+      "trials`) as Fig. 6: mean +- one standard deviation over the trials. Needs gnuplot.");
+  cmd->add_option("input", flags->input, "A run's CSV log, or a directory of trial-<i>.csv logs")
+      ->required()
+      ->type_name("CSV|DIR");
+  cmd->add_option("-o,--output", flags->output, "The figure; the format follows the extension")
+      ->required()
+      ->type_name("FIG.svg|FIG.png");
+  cmd->add_option("--title", flags->title, "Figure title (default: the input's name)");
+  cmd->add_option(
+         "--distance", flags->selection.distances,
+         "A distance column [m] for the left panel instead of the shoulder-contact distances; "
+         "repeatable. Its .lower/.upper columns, when present, are drawn as thresholds.")
+      ->type_name("COL");
+  cmd->add_option(
+         "--force", flags->selection.forces,
+         "A force column [N] for the right panel instead of the defaults (a column ending in .mz "
+         "goes on the right-hand torque scale); repeatable.")
+      ->type_name("COL");
+  return [flags]() {
+    plot::format_of(flags->output);  // a bad extension fails before any reading
+    std::error_code ec;
+    plot::Figure figure;
+    if (fs::is_directory(flags->input, ec)) {
+      std::vector<plot::Table> trials;
+      for (const std::string& log : trial_logs(flags->input)) trials.push_back(plot::read_csv(log));
+      std::string title = flags->title;
+      if (title.empty()) {
+        title = fs::path(flags->input).lexically_normal().filename().string();
+        if (title.empty())
+          title = fs::path(flags->input).lexically_normal().parent_path().filename().string();
+        title.append(": mean ± 1 std over ")
+            .append(std::to_string(trials.size()))
+            .append(" trials");
+      }
+      figure = plot::trials_figure(trials, flags->selection, title);
+      plot::render(figure, flags->output);
+      std::cerr << "mospec: wrote " << flags->output << " (" << trials.size() << " trials)\n";
+    } else {
+      const plot::Table run = plot::read_csv(flags->input);
+      const std::string title =
+          flags->title.empty() ? fs::path(flags->input).filename().string() : flags->title;
+      figure = plot::run_figure(run, flags->selection, title);
+      plot::render(figure, flags->output);
+      std::cerr << "mospec: wrote " << flags->output << "\n";
+    }
+    return kExitOk;
+  };
+}
+
+}  // namespace mospec::cli

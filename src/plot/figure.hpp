@@ -1,0 +1,70 @@
+// The paper's result figures from run logs. A Figure is decided here (which
+// columns, labels, units, colours, statistics); gnuplot_script() only writes
+// it down, with every number inline, so gnuplot never reads a user's file.
+//
+// Fig. 4 (one run): left panel, the shoulder-contact distances d_r, d_l [m]
+// with their thresholds (the constraints' .lower/.upper columns) dashed; right
+// panel, the platform wrench the base distributes (F_perp, F_par [N]; tau
+// [N m] on the right-hand scale) or, without one (SC2), each arm's
+// distance-controller output [N].
+// Fig. 6 (trials): the same panels as mean +- one standard deviation bands over
+// trials that share columns and time base.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "plot/csv.hpp"
+
+namespace mospec::plot {
+
+enum class Format { Svg, Png };
+
+// By the output's extension (.svg, .png; any case); throws mospec::Error
+// (code "usage") otherwise.
+Format format_of(const std::string& path);
+
+// Column choices; empty lists take the defaults named above.
+struct Selection {
+  std::vector<std::string> distances;
+  std::vector<std::string> forces;
+};
+
+struct Curve {
+  std::string label;
+  bool label_enhanced = true;  // false: a column name, shown verbatim
+  std::vector<double> y;
+  std::vector<double> sd;  // one standard deviation per row; empty: no band
+  std::string color;       // "#rrggbb"
+  bool dashed = false;
+  bool titled = true;       // false: not in the key (e.g. the second threshold)
+  bool right_axis = false;  // on the panel's y2 scale
+};
+
+struct Panel {
+  std::string ylabel;
+  std::string y2label;  // empty: no right-hand scale
+  std::vector<Curve> curves;
+};
+
+struct Figure {
+  std::string title;      // shown verbatim
+  std::vector<double> t;  // [s]
+  std::vector<Panel> panels;
+};
+
+// Fig. 4 from one run log. Throws mospec::Error (code "missing-column") naming
+// the file, the column and the available columns.
+Figure run_figure(const Table& run, const Selection& selection, const std::string& title);
+
+// Fig. 6 from trials (at least one). Throws mospec::Error when the trials'
+// columns or time bases differ (located at the first difference) or a column
+// is missing.
+Figure trials_figure(const std::vector<Table>& trials, const Selection& selection,
+                     const std::string& title);
+
+// The gnuplot script that renders `figure` to `output_name` (a plain file name,
+// relative to gnuplot's working directory) as `format`.
+std::string gnuplot_script(const Figure& figure, Format format, const std::string& output_name);
+
+}  // namespace mospec::plot

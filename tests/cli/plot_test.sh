@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# `mospec plot`: figures from small hand-made run logs (svg and png, checked by
+# their first bytes), a trials directory, and the errors (exit 2, located).
+# Usage: plot_test.sh MOSPEC
+. "$(dirname "$0")/../support/cli_lib.sh"
+
+# A run log as `mospec run --log` writes it: SC1's columns (the platform
+# wrench) or SC2's (no wrench; the distance controllers' outputs). $2 scales
+# the distances, so trials differ.
+run_log() {  # run_log sc1|sc2 SCALE > FILE
+  awk -v kind="$1" -v k="$2" 'BEGIN {
+    printf "t,cstr-dist-leftarm-shoulder-ee.value,cstr-dist-leftarm-shoulder-ee.lower,cstr-dist-leftarm-shoulder-ee.upper,"
+    printf "cstr-dist-rightarm-shoulder-ee.value,cstr-dist-rightarm-shoulder-ee.lower,cstr-dist-rightarm-shoulder-ee.upper,"
+    printf "ctrl-dist-leftarm-shoulder-ee.output,ctrl-dist-rightarm-shoulder-ee.output"
+    if (kind == "sc1") printf ",base-force-distribution.fx,base-force-distribution.fy,base-force-distribution.mz"
+    printf ",base_x\n"
+    for (i = 1; i <= 60; i++) {
+      t = i * 0.05
+      dl = 0.70 + k * 0.10 * exp(-t); dr = 0.70 - k * 0.08 * exp(-t / 2)
+      printf "%g,%.6f,0.68,0.72,%.6f,0.68,0.72,%.4f,%.4f", t, dl, dr, -40 * (dl - 0.70), -40 * (dr - 0.70)
+      if (kind == "sc1") printf ",%.4f,%.4f,%.4f", -30 * exp(-t), 5 * sin(t), 2 * exp(-t / 3)
+      printf ",%g\n", t / 10
+    }
+  }'
+}
+
+is_svg() { head -c 200 "$1" | grep -Eq '^(<\?xml|<svg)'; }
+is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
+no_temp() { ! ls -a "$1" | grep -q '^\.mospec-plot-'; }
+
+run_log sc1 1 > "$work/sc1.csv"
+run_log sc2 1 > "$work/sc2.csv"
+
+# One run, both formats: the figure exists and is what its name says.
+expect "sc1 svg" 0 "wrote" -- "$mospec" plot "$work/sc1.csv" -o "$work/sc1.svg" --title "SC1 (test)"
+check "sc1 svg is svg" is_svg "$work/sc1.svg"
+check "sc1 svg has the legend" grep -q "thr" "$work/sc1.svg"
+expect "sc1 png" 0 "wrote" -- "$mospec" plot "$work/sc1.csv" -o "$work/sc1.png"
+check "sc1 png is png" is_png "$work/sc1.png"
+check "no temporary left" no_temp "$work"
+# No platform wrench (SC2): the distance controllers' outputs instead.
+expect "sc2 svg" 0 "wrote" -- "$mospec" plot "$work/sc2.csv" -o "$work/sc2.svg"
+check "sc2 svg is svg" is_svg "$work/sc2.svg"
+# Chosen columns; a quote in the title reaches gnuplot as text.
+expect "chosen columns" 0 "" -- "$mospec" plot "$work/sc1.csv" -o "$work/pick.png" \
+  --distance cstr-dist-leftarm-shoulder-ee.value --force base_x --title "it's \"quoted\""
+check "chosen columns png" is_png "$work/pick.png"
+
+# Errors: exit 2, the file (and line) named, nothing written.
+expect "missing --force column" 2 "sc1.csv: error: no column 'nope' \(--force\); the columns are: t, cstr-dist" -- \
+  "$mospec" plot "$work/sc1.csv" -o "$work/bad.svg" --force nope
+cut -d, -f1-4,8- "$work/sc1.csv" > "$work/no-right.csv"
+expect "missing distance column" 2 "no-right.csv: error: no column 'cstr-dist-rightarm-shoulder-ee.value' .*the columns are: t, " -- \
+  "$mospec" plot "$work/no-right.csv" -o "$work/bad.svg"
+cut -d, -f1-7,10 "$work/sc2.csv" > "$work/no-force.csv"
+expect "no force columns" 2 "no-force.csv: error: no force columns: .*--force" -- \
+  "$mospec" plot "$work/no-force.csv" -o "$work/bad.svg"
+{ head -3 "$work/sc1.csv"; echo "0.2,0.7,0.68,zero,0.7,0.68,0.72,1,1,1,1,1,1"; } > "$work/bad-number.csv"
+expect "malformed number" 2 "bad-number.csv:4:[0-9]+: error: column 'cstr-dist-leftarm-shoulder-ee.upper': 'zero' is not a number" -- \
+  "$mospec" plot "$work/bad-number.csv" -o "$work/bad.svg"
+{ head -4 "$work/sc1.csv"; echo "0.25,0.7,0.68"; } > "$work/short-row.csv"
+expect "short row" 2 "short-row.csv:5: error: expected 13 fields \(as in the header\), got 3" -- \
+  "$mospec" plot "$work/short-row.csv" -o "$work/bad.svg"
+: > "$work/empty.csv"
+expect "empty file" 2 "empty.csv:1: error: the file is empty" -- "$mospec" plot "$work/empty.csv" -o "$work/bad.svg"
+expect "missing file" 2 "cannot read '.*/absent.csv'" -- "$mospec" plot "$work/absent.csv" -o "$work/bad.svg"
+expect "unknown format" 2 "must end in .svg or .png" -- "$mospec" plot "$work/sc1.csv" -o "$work/bad.pdf"
+expect "missing output dir" 2 "no directory" -- "$mospec" plot "$work/sc1.csv" -o "$work/nowhere/bad.svg"
+expect "no gnuplot" 2 "gnuplot.*gnuplot-nox" -- env PATH=/nonexistent "$mospec" plot "$work/sc1.csv" -o "$work/bad.svg"
+check "no output after errors" test ! -e "$work/bad.svg"
+check "no temporary after errors" no_temp "$work"
+
+# Trials: three runs with the same columns and time base -> mean +- 1 std.
+mkdir "$work/trials"
+for i in 0 1 2; do run_log sc2 "1.$i" > "$work/trials/trial-$i.csv"; done
+expect "trials svg" 0 "3 trials" -- "$mospec" plot "$work/trials" -o "$work/trials.svg"
+check "trials svg is svg" is_svg "$work/trials.svg"
+expect "trials png" 0 "3 trials" -- "$mospec" plot "$work/trials" -o "$work/trials.png"
+check "trials png is png" is_png "$work/trials.png"
+# A trial on another time base is refused at its first differing row.
+mkdir "$work/skewed"
+cp "$work/trials/trial-0.csv" "$work/trials/trial-1.csv" "$work/skewed/"
+sed '3s/^0.1,/0.11,/' "$work/trials/trial-2.csv" > "$work/skewed/trial-2.csv"
+expect "trials time base" 2 "skewed/trial-2.csv:3: error: t = 0.11.* differs" -- \
+  "$mospec" plot "$work/skewed" -o "$work/bad.svg"
+mkdir "$work/none"
+expect "no trials" 2 "no trial-<i>.csv" -- "$mospec" plot "$work/none" -o "$work/bad.svg"
+
+finish plot_test
