@@ -111,7 +111,7 @@ class FileLock {
  public:
   explicit FileLock(const std::string& path) : fd_(open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
     if (fd_ < 0) {
-      std::string msg = "mospec: cannot open lock file '";
+      std::string msg = "cannot open lock file '";
       msg.append(path).append("': ").append(std::strerror(errno));
       throw Error("io", msg);
     }
@@ -130,7 +130,7 @@ class FileLock {
 };
 
 [[noreturn]] void load_error(const std::string& library, const std::string& why) {
-  std::string msg = "mospec: cannot load controller '";
+  std::string msg = "cannot load controller '";
   msg.append(library).append("': ").append(why);
   throw Error("load", msg);
 }
@@ -141,7 +141,7 @@ BuildResult build_project(const std::string& dir_arg, int jobs, const std::strin
   std::error_code ec;
   const fs::path dir = fs::absolute(dir_arg, ec);
   if (ec || !fs::exists(dir / "CMakeLists.txt", ec)) {
-    std::string msg = "mospec: '";
+    std::string msg = "'";
     msg.append(dir_arg).append("' holds no generated project (no CMakeLists.txt)");
     throw Error("usage", msg);
   }
@@ -179,7 +179,7 @@ CachedController cached_controller(const ir::Program& program, const std::string
   std::error_code ec;
   fs::create_directories(cache_dir, ec);
   if (ec) {
-    std::string msg = "mospec: cannot create directory '";
+    std::string msg = "cannot create directory '";
     msg.append(cache_dir).append("': ").append(ec.message());
     throw Error("io", msg);
   }
@@ -200,8 +200,8 @@ CachedController cached_controller(const ir::Program& program, const std::string
     c.built = true;
   }
   if (status != 0) {
-    std::string msg = output;
-    msg.append("mospec: building the generated controller in '").append(dir.string()).append("' failed");
+    std::string msg = "building the generated controller in '";
+    msg.append(dir.string()).append("' failed:\n").append(output);
     throw Error("build", msg);
   }
   c.library = library.string();

@@ -874,7 +874,7 @@ void generate(const ir::Program& program, const std::string& out_dir, const Sour
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) {
-    std::string msg = "mospec: cannot create directory '";
+    std::string msg = "cannot create directory '";
     msg.append(out_dir).append("': ").append(ec.message());
     throw Error("io", msg);
   }
