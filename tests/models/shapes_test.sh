@@ -67,7 +67,7 @@ bad bilateral task/constraint.ttl 8 \
   '<https://ex.org/b4>: lower and upper threshold must have the same quantity kind'
 
 good solver "task/solver-specification.ttl task/platform-solvers.ttl"
-bad solver "task/solver-specification.ttl task/platform-solvers.ttl" 13 \
+bad solver "task/solver-specification.ttl task/platform-solvers.ttl" 14 \
   '<https://ex.org/drv-bad>: the motion driver has no level in the prioritisation hierarchy.*ex.org/spec-frc1' \
   '<https://ex.org/drv-bad>: the motion driver has no level in the prioritisation hierarchy.*ex.org/spec-frc2' \
   '<https://ex.org/drv-bad>: a Cartesian-force driver must be a Cartesian force specification' \
@@ -77,6 +77,7 @@ bad solver "task/solver-specification.ttl task/platform-solvers.ttl" 13 \
   "<https://ex.org/acc-bad>: the acceleration energy is no controller's control signal" \
   '<https://ex.org/spec-acc-bad>: an acceleration-constraint specification has acceleration constraints' \
   '<https://ex.org/spec-frc-bad>: nothing produces the applied wrench' \
+  '<https://ex.org/spec-frc3-bad>: nothing produces the applied wrench' \
   '<https://ex.org/s4>: gravity is an acceleration: its unit must be M-PER-SEC2' \
   "<https://ex.org/s1>: gravity must be expressed in the solver's root frame.*g-world" \
   "<https://ex.org/s2>: gravity must be expressed in the solver's root frame.*g-nowhere" \
