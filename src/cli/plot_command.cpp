@@ -50,15 +50,19 @@ std::vector<std::string> trial_logs(const std::string& dir) {
   const fs::path manifest = fs::path(dir) / "trials.json";
   std::vector<std::string> failed;
   if (fs::exists(manifest)) {
-    nlohmann::json j;
     try {
-      j = nlohmann::json::parse(read_file(manifest.string()));
+      const nlohmann::json j = nlohmann::json::parse(read_file(manifest.string()));
+      for (const nlohmann::json& trial : j.at("trials")) {
+        const nlohmann::json& code = trial.at("exit_code");  // null: killed by a signal
+        const nlohmann::json& csv = trial.at("csv");         // null: never written
+        if (csv.is_string() && !(code.is_number_integer() && code.get<int>() == 0)) {
+          failed.push_back(csv.get<std::string>());
+        }
+      }
     } catch (const nlohmann::json::exception& e) {
-      throw Error("trials", e.what(), manifest.string());
-    }
-    for (const auto& trial : j.value("trials", nlohmann::json::array())) {
-      if (trial.value("exit_code", 0) != 0 && trial.contains("log"))
-        failed.push_back(trial["log"].get<std::string>());
+      std::string message = "not a `mospec trials` manifest: ";
+      message.append(e.what());
+      throw Error("trials", message, manifest.string());
     }
   }
   std::vector<std::string> logs;
@@ -128,11 +132,12 @@ Action add_plot_command(CLI::App& app) {
           title = fs::path(flags->input).lexically_normal().parent_path().filename().string();
         title.append(": mean ± 1 std over ")
             .append(std::to_string(trials.size()))
-            .append(" trials");
+            .append(trials.size() == 1 ? " trial" : " trials");
       }
       figure = plot::trials_figure(trials, flags->selection, title);
       plot::render(figure, flags->output);
-      std::cerr << "mospec: wrote " << flags->output << " (" << trials.size() << " trials)\n";
+      std::cerr << "mospec: wrote " << flags->output << " (" << trials.size()
+                << (trials.size() == 1 ? " trial)\n" : " trials)\n");
     } else {
       const plot::Table run = plot::read_csv(flags->input);
       const std::string title =

@@ -24,9 +24,12 @@ void render(const Figure& figure, const std::string& output) {
     message.append(output).append("': no directory '").append(dir.string()).append("'");
     throw Error("io", message);
   }
-  if (fs::is_directory(out, ec)) {
+  // The figure replaces the output by a rename, which must never replace a
+  // directory, a device or a pipe.
+  const fs::file_status status = fs::status(out, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
     std::string message = "cannot write '";
-    message.append(output).append("': is a directory");
+    message.append(output).append("': not a regular file");
     throw Error("io", message);
   }
   std::string temp = ".mospec-plot-";

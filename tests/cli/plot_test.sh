@@ -66,6 +66,10 @@ expect "empty file" 2 "empty.csv:1: error: the file is empty" -- "$mospec" plot 
 expect "missing file" 2 "cannot read '.*/absent.csv'" -- "$mospec" plot "$work/absent.csv" -o "$work/bad.svg"
 expect "unknown format" 2 "must end in .svg or .png" -- "$mospec" plot "$work/sc1.csv" -o "$work/bad.pdf"
 expect "missing output dir" 2 "no directory" -- "$mospec" plot "$work/sc1.csv" -o "$work/nowhere/bad.svg"
+mkfifo "$work/fifo.svg"
+expect "output not a regular file" 2 "fifo.svg': not a regular file" -- \
+  "$mospec" plot "$work/sc1.csv" -o "$work/fifo.svg"
+rm "$work/fifo.svg"
 expect "no gnuplot" 2 "gnuplot.*gnuplot-nox" -- env PATH=/nonexistent "$mospec" plot "$work/sc1.csv" -o "$work/bad.svg"
 check "no output after errors" test ! -e "$work/bad.svg"
 check "no temporary after errors" no_temp "$work"
@@ -83,6 +87,17 @@ cp "$work/trials/trial-0.csv" "$work/trials/trial-1.csv" "$work/skewed/"
 sed '3s/^0.1,/0.11,/' "$work/trials/trial-2.csv" > "$work/skewed/trial-2.csv"
 expect "trials time base" 2 "skewed/trial-2.csv:3: error: t = 0.11.* differs" -- \
   "$mospec" plot "$work/skewed" -o "$work/bad.svg"
+# A manifest from `mospec trials`: a trial that did not exit 0 is left out.
+cat > "$work/trials/trials.json" <<'JSON'
+{"trials": [{"index": 0, "exit_code": 0, "csv": "trial-0.csv"},
+            {"index": 1, "exit_code": 1, "csv": "trial-1.csv"},
+            {"index": 2, "exit_code": null, "signal": 9, "csv": "trial-2.csv"}]}
+JSON
+expect "failed trials left out" 0 "\(1 trial\)" -- "$mospec" plot "$work/trials" -o "$work/trials.svg"
+check "failed trial warned" grep -q "leaving out .*trial-1.csv: its run did not exit 0" "$work/stderr.txt"
+echo '{"trials": 3}' > "$work/trials/trials.json"
+expect "bad manifest" 2 "trials/trials.json: error: not a .mospec trials. manifest" -- \
+  "$mospec" plot "$work/trials" -o "$work/trials.svg"
 mkdir "$work/none"
 expect "no trials" 2 "no trial-<i>.csv" -- "$mospec" plot "$work/none" -o "$work/bad.svg"
 
