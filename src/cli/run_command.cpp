@@ -169,6 +169,12 @@ Action add_run_command(CLI::App& app) {
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
     if (flags->seed) config.seed = *flags->seed;
     const runtime::Chain arm = sim::load_arm_chain(config.robot);
+    sim::RunOptions options;
+    options.duration = flags->duration;
+    options.log_every = flags->log_every;
+    options.idle = {true, true};
+    for (const ir::ArmSolver& a : program->arms) options.idle[static_cast<size_t>(a.port)] = false;
+    options.arm = &arm;
     std::unique_ptr<robot::Controller> controller;
     if (flags->interpret) {
       controller = std::make_unique<ir::Interpreter>(std::move(*program));
@@ -176,9 +182,6 @@ Action add_run_command(CLI::App& app) {
       controller = generated_controller(*program, files, flags->cache.empty() ? ".mospec-cache" : flags->cache);
     }
     sim::World world(config, arm);
-    sim::RunOptions options;
-    options.duration = flags->duration;
-    options.log_every = flags->log_every;
     const sim::RunResult r = sim::run(world, *controller, options);
     if (!flags->log.empty()) write_output(flags->log, r.csv);
     if (!flags->summary.empty()) {

@@ -211,6 +211,12 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
     case StepKind::ArmSolve: {
       const ArmSolver& solver = program_.arms[static_cast<size_t>(st.solver)];
       Arm& arm = *arms_[static_cast<size_t>(st.solver)];
+      bool driven = st.in.size() == st.drivers();  // no gates: always
+      for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || flags_[in(k)] != 0;
+      if (!driven) {
+        steps::arm_hold(arm.model, arm.data, arm.ws, command.arm_tau[static_cast<size_t>(solver.port)]);
+        break;
+      }
       arm.ws.F_ext.fill(Vec6::Zero());
       for (const CartesianForce& f : solver.cartesian_forces) {
         arm.ws.F_ext[static_cast<size_t>(f.segment)] += wrenches_[slot(f.wrench)];

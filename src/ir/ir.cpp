@@ -194,6 +194,13 @@ void verify(const Program& p) {
       if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size()) invalid(st, "no such arm solver");
     }
     if (st.kind == StepKind::BaseForceDistribution && !p.base) invalid(st, "no base solver");
+    if (st.kind == StepKind::ArmSolve) {
+      if (st.drivers() > st.in.size()) invalid(st, "bad driver count");
+      for (size_t k = st.drivers(); k < st.in.size(); ++k) {
+        check_index(st, st.in[k]);
+        if (p.data[static_cast<size_t>(st.in[k])].type != DataType::Flag) invalid(st, "a motion gate must be a flag");
+      }
+    }
     for (int d : st.in) consume(st, d);
     for (int d : st.out) produce(st, d);
   }
@@ -347,6 +354,7 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["in"] = st.in;
     e["out"] = st.out;
     if (st.solver >= 0) e["solver"] = st.solver;
+    if (st.kind == StepKind::ArmSolve) e["drivers"] = st.drivers();
     if (!st.views.empty()) e["views"] = st.views;
     if (st.kind == StepKind::Evaluate || st.kind == StepKind::LevelMonitor ||
         st.kind == StepKind::EdgeMonitor) {

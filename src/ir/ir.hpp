@@ -76,7 +76,7 @@ enum class StepKind : uint8_t {
   EdgeMonitor,      // in: [error]; out: [event]
   GuardedMotion,    // ins: [when flags..., until flags...]; out: [active flag]
   Pid,              // ins: [error, active flag]; out: [control signal]
-  ArmSolve,         // solver; ins: drivers' data; writes the arm's joint torques
+  ArmSolve,         // solver; ins: drivers' data, motion gates; writes the arm's joint torques
   BaseForceDistribution,  // base solver; in: [platform wrench]; writes the hub torques
 };
 std::string_view to_string(StepKind);
@@ -100,6 +100,12 @@ struct Step {
   int n_when = 0;                       // GuardedMotion: ins[0, n_when) are `when`
   runtime::PidSpec pid;                 // Pid
   int state = -1;                       // Pid, monitors, motions: their state slot
+  // ArmSolve: in[0, n_drivers) are the drivers' data; in[n_drivers, ...) the
+  // running flags of the motions whose controllers drive this arm. With such
+  // gates and none of them running, the arm holds (steps::arm_hold).
+  // -1: every input is a driver (no gates). drivers() resolves it.
+  int n_drivers = -1;
+  size_t drivers() const { return n_drivers < 0 ? in.size() : static_cast<size_t>(n_drivers); }
 };
 
 // What ArmKinematics writes into each output: the pose of segment frame S_i

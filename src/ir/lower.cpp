@@ -237,12 +237,14 @@ class Lowerer {
   void lower_clocks();
   void lower_arm(TermId solver);
   void lower_operators();
+  void lower_planar_angles();
   void lower_evaluators();
   void lower_monitors();
   void lower_handlers();
   void lower_controllers();
   void lower_base();
   void lower_views();
+  void gate_arm_solves();
   void check_inputs();
   void schedule();
   void build_log();
@@ -703,12 +705,10 @@ void Lowerer::lower_operators() {
       {gop, "ComposePose", StepKind::ComposePose, {{"in1", T::Pose}, {"in2", T::Pose}}, {"composite", T::Pose}},
       {gop, "PoseToLinearDistance", StepKind::PoseToLinearDistance, {{"pose", T::Pose}}, {"distance", T::Scalar}},
       {gop, "PoseToDirection", StepKind::PoseToDirection, {{"pose", T::Pose}}, {"direction", T::Vector3}},
-      {gop, "PlanarAngleFromDirections", StepKind::PlanarAngleFromDirections,
-       {{"direction1", T::Vector3}, {"direction2", T::Vector3}, {"normal", T::Vector3}}, {"angle", T::Scalar}},
-      {gop, "InvertAngle", StepKind::InvertAngle, {{"angle", T::Scalar}}, {"inverted", T::Scalar}},
+      {gop, "InvertAngle", StepKind::InvertAngle, {{"in", T::Scalar}}, {"out", T::Scalar}},
       {op, "RotateWrenchToProximalWithPose", StepKind::RotateWrenchToProximal, {{"pose", T::Pose}, {"from", T::Wrench}}, {"to", T::Wrench}},
-      {op, "RotateVelocityTwistToProximalWithPose", StepKind::RotateTwistToProximal, {{"pose", T::Pose}, {"from", T::Twist}}, {"to", T::Twist}},
-      {op, "RotateDirectionDistalToProximalWithPose", StepKind::RotateDirectionToProximal, {{"pose", T::Pose}, {"from", T::Vector3}}, {"to", T::Vector3}},
+      {gop, "RotateVelocityTwistToProximalWithPose", StepKind::RotateTwistToProximal, {{"pose", T::Pose}, {"from", T::Twist}}, {"to", T::Twist}},
+      {gop, "RotateDirectionDistalToProximalWithPose", StepKind::RotateDirectionToProximal, {{"pose", T::Pose}, {"from", T::Vector3}}, {"to", T::Vector3}},
       {op, "TransformWrenchToProximal", StepKind::TransformWrenchToProximal, {{"pose", T::Pose}, {"from", T::Wrench}}, {"to", T::Wrench}},
       {op, "WrenchFromPositionDirectionAndMagnitude", StepKind::WrenchFromPositionDirectionAndMagnitude,
        {{"position", T::Vector3}, {"direction", T::Vector3}, {"magnitude", T::Scalar}}, {"wrench", T::Wrench}},
@@ -753,6 +753,46 @@ void Lowerer::lower_operators() {
       }
       add_step(std::move(s));
     }
+  }
+}
+
+// PlanarAngleFromDirections: the signed angle from the first to the second
+// direction in the xy-plane of the frame both are seen by (about its z axis).
+// The vocabulary's from-directions must then be ordered: an RDF list.
+void Lowerer::lower_planar_angles() {
+  const std::string gop = "geometry/spatial-operators";
+  for (TermId e : instances(vocab(gop, "PlanarAngleFromDirections"))) {
+    pending_iri_ = str(e);
+    Step s;
+    s.kind = StepKind::PlanarAngleFromDirections;
+    s.iri = str(e);
+    s.name = local_name(s.iri);
+    s.where = where(e);
+    auto dirs = objects(e, vocab(gop, "from-directions"));
+    std::vector<TermId> ordered;
+    if (dirs.size() == 1) ordered = list(dirs.front());
+    auto angle = object(e, vocab(gop, "angle"));
+    if (ordered.size() != 2 || !angle) {
+      error(e, "unordered-directions",
+            "PlanarAngleFromDirections '" + s.iri + "' needs `from-directions` as an ordered list of two "
+            "directions (\"@list\" in JSON-LD: the angle's sign depends on their order) and an `angle`");
+      continue;
+    }
+    const int d1 = datum(ordered[0], DataType::Vector3, e, "from-directions");
+    const int d2 = datum(ordered[1], DataType::Vector3, e, "from-directions");
+    const Data& a = prog_.data[static_cast<size_t>(d1)];
+    const Data& b = prog_.data[static_cast<size_t>(d2)];
+    if (a.as_seen_by != b.as_seen_by || a.as_seen_by.empty()) {
+      error(e, "frame-mismatch", "PlanarAngleFromDirections '" + s.iri + "' needs both directions seen by one frame; '" +
+                                     a.iri + "' is seen by '" + a.as_seen_by + "', '" + b.iri + "' by '" + b.as_seen_by + "'");
+      continue;
+    }
+    const int normal = synthetic(s.iri + "#normal", local_name(s.iri) + "_normal", DataType::Vector3, s.where, "UNITLESS");
+    prog_.data[static_cast<size_t>(normal)].value = {0.0, 0.0, 1.0};
+    prog_.data[static_cast<size_t>(normal)].as_seen_by = a.as_seen_by;
+    s.in = {d1, d2, normal};
+    s.out = {datum(*angle, DataType::Scalar, e, "angle")};
+    add_step(std::move(s));
   }
 }
 
@@ -1129,6 +1169,35 @@ void Lowerer::lower_views() {
   }
 }
 
+// Which motions drive each arm: the running flags gating the controllers and
+// assignments whose outputs reach the arm's drivers, through any operators.
+void Lowerer::gate_arm_solves() {
+  for (Step& solve : steps_) {
+    if (solve.kind != StepKind::ArmSolve) continue;
+    solve.n_drivers = static_cast<int>(solve.in.size());
+    std::set<int> gates, seen_data;
+    std::vector<int> todo(solve.in.begin(), solve.in.end());
+    while (!todo.empty()) {
+      const int d = todo.back();
+      todo.pop_back();
+      if (!seen_data.insert(d).second) continue;
+      auto it = producer_.find(d);
+      if (it == producer_.end() || it->second < 0) continue;
+      const Step& p = steps_[static_cast<size_t>(it->second)];
+      const bool gated = (p.kind == StepKind::Pid && p.in.size() == 2) ||
+                         (p.kind == StepKind::Evaluate && p.constraint.kind == runtime::ConstraintKind::Assignment &&
+                          p.in.size() == 2);
+      if (gated) gates.insert(p.in[1]);
+      if (p.kind == StepKind::GuardedMotion || p.kind == StepKind::ArmKinematics) continue;
+      for (size_t k = 0; k < p.in.size(); ++k) {
+        if (gated && k == 1) continue;
+        todo.push_back(p.in[k]);
+      }
+    }
+    solve.in.insert(solve.in.end(), gates.begin(), gates.end());
+  }
+}
+
 void Lowerer::check_inputs() {
   for (const Step& s : steps_) {
     for (int d : s.in) {
@@ -1232,12 +1301,14 @@ Program Lowerer::run() {
   lower_clocks();
   for (TermId s : instances(vocab("task/solver-specification", "SolverWithInputAndOutput"))) lower_arm(s);
   lower_operators();
+  lower_planar_angles();
   lower_base();
   lower_evaluators();
   lower_monitors();
   lower_handlers();
   lower_controllers();
   lower_views();
+  gate_arm_solves();
   check_inputs();
   if (errors_.empty()) schedule();
   if (!errors_.empty()) throw LowerError(std::move(errors_));

@@ -68,6 +68,23 @@ void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, Ach
   }
 }
 
+void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
+              std::span<double> tau_out) noexcept {
+  const auto n = static_cast<std::size_t>(physical_model.nq);
+  ws.status = Status::Ok;
+  if (ws.input_fault) {
+    ws.tau_command.setZero();
+  } else {
+    data.qdd = -ws.qd / kHoldTimeConstant;
+    const JointIn qdd(data.qdd);
+    impl::rne_into(physical_model, data, ws.q, ws.qd, &qdd, {}, ws.tau_command);
+    if (!ws.tau_command.allFinite()) ws.tau_command.setZero();
+  }
+  for (std::size_t i = 0; i < tau_out.size(); ++i) {
+    tau_out[i] = i < n ? ws.tau_command[static_cast<Eigen::Index>(i)] : 0.0;
+  }
+}
+
 void base_force_distribution(const KeloModel& model, KeloData& data,
                              std::span<const double> pivot_q, const Vec6& F_Po_P,
                              std::span<double> wheel_tau) noexcept {

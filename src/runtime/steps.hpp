@@ -65,6 +65,14 @@ inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
 void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, AchdData& data,
                ArmWorkspace& ws, std::span<double> tau_out) noexcept;
 
+// The arm when no motion drives it: it brakes to a stop and then holds,
+// gravity-compensated: tau = rne(q, qd, -qd / kHoldTimeConstant) with the
+// solver's gravity (every joint's velocity decays with that time constant on
+// the model). Zero torque when the inputs were not finite.
+inline constexpr double kHoldTimeConstant = 0.1;  // [s]
+void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
+              std::span<double> tau_out) noexcept;
+
 // ---------------------------------------------------------------------------
 // Views (1D <-> 3D).
 inline double view_pose(const Pose& X, int index) noexcept {

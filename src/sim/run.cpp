@@ -3,6 +3,9 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <memory>
+
+#include "sim/controllers.hpp"
 
 namespace mospec::sim {
 
@@ -44,7 +47,13 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   const auto ticks = static_cast<std::uint64_t>(std::llround(options.duration / config.control_period));
   const auto every = static_cast<std::uint64_t>(options.log_every < 1 ? 1 : options.log_every);
   robot::MeasuredState state;
-  robot::Command command;
+  robot::Command command, idle_command;
+  std::unique_ptr<GravityCompensation> hold;
+  const bool any_idle = options.arm && (options.idle[0] || options.idle[1]);
+  if (any_idle) {
+    hold = std::make_unique<GravityCompensation>(
+        *options.arm, std::array<runtime::Pose, robot::kArms>{config.arms[0].X_PB, config.arms[1].X_PB});
+  }
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t k = 0; k < ticks; ++k) {
     world.read(state);
@@ -56,6 +65,12 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
       }
     }
     controller.tick(state, command);
+    if (any_idle) {
+      hold->compute(state, idle_command);
+      for (size_t a = 0; a < command.arm_tau.size(); ++a) {
+        if (options.idle[a]) command.arm_tau[a] = idle_command.arm_tau[a];
+      }
+    }
     double tau_ratio = 0.0;
     for (const auto& arm : command.arm_tau) {
       for (size_t j = 0; j < arm.size(); ++j) {

@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <array>
+
 #include "robot/controller.hpp"
+#include "runtime/chain.hpp"
 #include "sim/world.hpp"
 
 namespace mospec::sim {
@@ -17,6 +20,11 @@ namespace mospec::sim {
 struct RunOptions {
   double duration = 10.0;  // [s] simulated
   int log_every = 1;       // log every N-th tick (and the last)
+  // Arms the controller does not drive (e.g. the left arm in a right-arm
+  // task) are held by the robot side with gravity compensation instead of
+  // being sent the controller's zeros. Needs `arm`, the arms' chain.
+  std::array<bool, robot::kArms> idle{};
+  const runtime::Chain* arm = nullptr;
 };
 
 struct RunResult {
