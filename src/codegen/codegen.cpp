@@ -532,50 +532,61 @@ class Builder {
     root.set("has_data_initializers", !inits.empty());
     root.set("data_initializers", initializer_list(inits));
 
-    // Model constants, written into their slots once (as the interpreter does).
+    // Model constants: values in Model (set by its constructor), copied into
+    // their slots by Data's constructor once (as the interpreter does).
     mus::data constants = list();
     for (std::size_t i = 0; i < p_.data.size(); ++i) {
       const ir::Data& d = p_.data[i];
-      if (d.value.empty()) continue;
-      const std::string target = ref(static_cast<int>(i), "");
+      if (d.value.empty() || d.type == DataType::Event) continue;  // events clear every tick
+      const std::string member = "value_" + data_names_[i];
       const auto need = [&](std::size_t n) {
         if (d.value.size() != n) {
           fail("constant '" + d.name + "' has " + std::to_string(d.value.size()) +
                " value(s); its type needs " + std::to_string(n));
         }
       };
-      std::string st;
+      std::string type, assign;
       switch (d.type) {
         case DataType::Scalar:
           need(1);
-          st = target + " = " + cpp_double(d.value[0]) + ";";
+          type = "double";
+          assign = member + " = " + cpp_double(d.value[0]) + ";";
           break;
         case DataType::Vector3:
           need(3);
-          st = target + " = rt::Vec3(" + join_doubles(d.value.data(), 3) + ");";
+          type = "rt::Vec3";
+          assign = member + " = rt::Vec3(" + join_doubles(d.value.data(), 3) + ");";
           break;
         case DataType::Pose:
           need(12);
-          st = target + ".R << " + join_doubles(d.value.data(), 9) + ";\n  " + target +
-               ".p = rt::Vec3(" + join_doubles(d.value.data() + 9, 3) + ");";
+          type = "rt::Pose";
+          assign = member + ".R << " + join_doubles(d.value.data(), 9) + ";\n  " + member +
+                   ".p = rt::Vec3(" + join_doubles(d.value.data() + 9, 3) + ");";
           break;
         case DataType::Twist:
         case DataType::Wrench:
           need(6);
-          st = target + " << " + join_doubles(d.value.data(), 6) + ";";
+          type = "rt::Vec6";
+          assign = member + " << " + join_doubles(d.value.data(), 6) + ";";
           break;
         case DataType::Flag:
           need(1);
-          st = target + " = " + (d.value[0] != 0.0 ? "true" : "false") + ";";
+          type = "bool";
+          assign = member + " = " + (d.value[0] != 0.0 ? "true" : "false") + ";";
           break;
-        case DataType::Event:
-          continue;  // events are cleared every tick: a constant one is never seen
+        case DataType::Event: break;
       }
       mus::data c;
-      c.set("statement", st);
+      c.set("type", type);
+      c.set("member", member);
+      c.set("assign", assign);
+      c.set("copy", ref(static_cast<int>(i), "") + " = m." + member + ";");
       c.set("name", comment(d.iri.empty() ? d.name : d.iri));
+      c.set("has_unit", !d.unit.empty());
+      c.set("unit", comment(d.unit));
       constants.push_back(c);
     }
+    root.set("has_constants", !constants.list_value().empty());
     root.set("constants", constants);
   }
 
@@ -593,6 +604,12 @@ class Builder {
     s.set("name", comment(st.name));
     s.set("iri", comment(st.iri));
     s.set("where", where(st.where));
+    // A blank line, then what the block implements and where it is written.
+    std::string header = "\n  // [";
+    header.append(std::to_string(index)).append("] ").append(kind_name(st.kind)).append(" '");
+    header.append(comment(st.name)).append("': ").append(comment(st.iri)).append("\n  //     ");
+    header.append(where(st.where));
+    s.set("header", header);
     const auto call = [&](int arity, const char* function) {
       s.set(std::string("is_call") + std::to_string(arity), true);
       s.set("function", function);
@@ -733,6 +750,19 @@ class Builder {
         s.set("arm", arm_members_[k]);
         s.set("workspace", ws_members_[k]);
         s.set("port", std::to_string(a.port));
+        // in[0, drivers) are the drivers' data; the rest gate the solve: the
+        // running flags of the motions that drive this arm (none running: hold).
+        const std::size_t drivers = st.drivers();
+        if (drivers > st.in.size()) fail("arm solve '" + st.name + "' has more drivers than inputs");
+        std::string gates;
+        for (std::size_t g = drivers; g < st.in.size(); ++g) {
+          if (datum(st.in[g]).type != DataType::Flag) fail("arm solve '" + st.name + "': a motion gate must be a flag");
+          if (!gates.empty()) gates.append(" || ");
+          gates.append(in(st, g));
+        }
+        s.set("gated", !gates.empty());
+        s.set("gates", gates);
+        s.set("indent", gates.empty() ? "  " : "    ");
         mus::data forces = list(), joint_forces = list(), betas = list();
         for (const ir::CartesianForce& f : a.cartesian_forces) {
           mus::data e;
@@ -811,10 +841,13 @@ class Builder {
   std::vector<std::string> step_members_;  // by step index: its Model member ("" if none)
 };
 
-// The Mustache spec's "standalone" rule, which kainjow's renderer does not
-// apply: a line holding nothing but one section tag ({{#x}}, {{^x}}, {{/x}})
-// or comment ({{! }}) leaves no trace in the output, neither its indentation
-// nor its line break. Applied to the template text before parsing.
+// The Mustache spec's "standalone" rule, which kainjow applies only to the
+// sections that render: a line holding nothing but one section tag ({{#x}},
+// {{^x}}, {{/x}}) or comment ({{! }}) leaves no trace in the output, neither
+// its indentation nor its line break. Applied to the template text before
+// parsing (the tag joins the start of the next line), so skipped sections
+// leave no blank lines either. Templates put blank lines before a section tag,
+// not after it.
 std::string strip_standalone_tags(std::string_view text) {
   std::string out;
   out.reserve(text.size());
@@ -827,7 +860,7 @@ std::string strip_standalone_tags(std::string_view text) {
     const std::size_t first = line.find_first_not_of(" \t");
     const std::size_t last = line.find_last_not_of(" \t");
     bool standalone = false;
-    if (first != std::string_view::npos && line.size() - first >= 5 && line.substr(first, 2) == "{{" &&
+    if (first != std::string_view::npos && line.substr(first, 2) == "{{" && first + 2 < line.size() &&
         (line[first + 2] == '#' || line[first + 2] == '^' || line[first + 2] == '/' ||
          line[first + 2] == '!')) {
       const std::string_view tag = line.substr(first, last + 1 - first);
@@ -840,6 +873,41 @@ std::string strip_standalone_tags(std::string_view text) {
       if (has_newline) out.push_back('\n');
     }
     at = has_newline ? end + 1 : end;
+  }
+  return out;
+}
+
+// Blank lines of the rendered C++ as a person would leave them: at most one in
+// a row, none after an opening brace or before a closing one. (Sections that
+// render nothing leave their surrounding blank lines behind.)
+std::string tidy_blank_lines(const std::string& text) {
+  std::vector<std::string_view> lines;
+  for (std::size_t at = 0; at < text.size();) {
+    std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    lines.push_back(std::string_view(text).substr(at, end - at));
+    at = end + 1;
+  }
+  const auto blank = [](std::string_view l) { return l.find_first_not_of(" \t") == std::string_view::npos; };
+  std::string out;
+  out.reserve(text.size());
+  std::string_view previous = "{";  // no blank line at the top
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (blank(lines[i])) {
+      std::size_t next = i + 1;
+      while (next < lines.size() && blank(lines[next])) ++next;
+      const std::string_view after = next < lines.size() ? lines[next] : std::string_view("}");
+      // An indented closing brace, or a bare "}" / "};" (not "}  // namespace").
+      const std::size_t first = after.find_first_not_of(" \t");
+      const bool closes = first != std::string_view::npos && after[first] == '}' &&
+                          (first > 0 || after == "}" || after == "};");
+      if (blank(previous) || previous.back() == '{' || closes) continue;
+      out.push_back('\n');
+      previous = "";
+      continue;
+    }
+    out.append(lines[i]).push_back('\n');
+    previous = lines[i];
   }
   return out;
 }
@@ -864,6 +932,7 @@ std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles*
       msg.append(t.file).append(".mustache: ").append(tmpl.error_message());
       fail(msg);
     }
+    if (t.file.ends_with(".hpp") || t.file.ends_with(".cpp")) text = tidy_blank_lines(text);
     out.push_back({std::string(t.file), std::move(text)});
   }
   return out;

@@ -255,17 +255,29 @@ inline ir::Program arm_program(SourceFiles& files) {
   b.step(K::RotateWrenchToProximal, "rotate_push", {X_BE, F_E}, {F_E_B});
   const int tau_1 = b.datum("tau_1", T::Scalar, {0.25}, "N-M");
 
+  // The arm is driven while a motion runs (until t >= 1 s), then holds.
+  const int late = b.datum("late", T::Flag);
+  const int late_err = b.datum("late_err", T::Scalar, {}, "SEC");
+  ir::Step& gt = b.step(K::Evaluate, "cstr_time", {time}, {late, late_err});
+  gt.constraint = {runtime::ConstraintKind::GreaterThan, 0.0, 1.0, 0.0, 0.0, 0.0};
+  const int reach = b.datum("reach", T::Flag);
+  ir::Step& gm = b.step(K::GuardedMotion, "motion_reach", {late}, {reach});
+  gm.n_when = 0;
+  gm.state = b.state(ir::StateKind::Motion);
+
   arm.acceleration_constraints = {{"https://mospec.example/tests/codegen/acc-z", 5, acc, 0}};
   arm.cartesian_forces = {{"https://mospec.example/tests/codegen/push", n - 1, F_E_B, 0}};
   arm.joint_forces = {{"https://mospec.example/tests/codegen/tau-1", 1, tau_1, 0}};
   b.p.arms.push_back(std::move(arm));
-  ir::Step& solve = b.step(K::ArmSolve, "right_arm_solve", {acc, F_E_B, tau_1}, {});
+  ir::Step& solve = b.step(K::ArmSolve, "right_arm_solve", {acc, F_E_B, tau_1, reach}, {});
   solve.solver = 0;
+  solve.n_drivers = 3;
 
   for (int d : {time, height, elbow_x, vz, err, acc, push}) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d, b.p.data[static_cast<std::size_t>(d)].unit);
   }
   b.log("height_ok", ok);
+  b.log("reach", reach);
   return b.p;
 }
 
