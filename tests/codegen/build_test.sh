@@ -14,7 +14,7 @@ binary_dir=$7 cmake=$8
 rm -rf "$scratch"
 mkdir -p "$scratch"
 
-for program in small arm; do
+for program in small arm empty; do
   "$write_fixture" "$program" "$scratch/$program"
   # Twice: the second generation of the same program changes no byte.
   cp -r "$scratch/$program" "$scratch/$program.first"

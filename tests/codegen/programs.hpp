@@ -8,7 +8,9 @@
 //                    and edge monitors, a guarded motion, the KELO base.
 //   arm_program()    a 7-dof Kinova Gen3 arm (robots/kinova-gen3.jsonld):
 //                    kinematics outputs, a tip acceleration constraint driven
-//                    by a PID, a Cartesian force and a joint force.
+//                    by a PID, a Cartesian force and a joint force, gated by a
+//                    motion (the arm holds once it ends).
+//   empty_program()  no data, no steps, no log.
 #pragma once
 
 #include <cmath>
@@ -183,6 +185,12 @@ inline ir::Program small_program(SourceFiles& files) {
   b.p.log.push_back({"F_P.f_x", "N", F_P, 3});
   b.p.log.push_back({"F_P.m_z", "N-M", F_P, 2});
   b.p.log.push_back({"V_W.w_x", "RAD-PER-SEC", V_W, 0});
+  return b.p;
+}
+
+// Nothing to compute: every array is empty, the log has no columns.
+inline ir::Program empty_program(SourceFiles& files) {
+  ProgramBuilder b(files);
   return b.p;
 }
 
