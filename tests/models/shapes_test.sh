@@ -182,6 +182,26 @@ for f in $families; do
   if grep -q '^@prefix mos:' "$mm/$f" && grep -q '^mos:' "$mm/$f"; then :; else fail "$f holds no shape"; fi
 done
 
+# newtonian-rigid-body-dynamics/operators.ttl is exactly its per-operator files'
+# shapes (wrench, add, rotate, transform): sc1 lists wrench, add and transform,
+# sc2 wrench and rotate, so that --strict finds no unused shape in either.
+dyn_families="wrench add rotate transform"
+if diff <(body "$mm/newtonian-rigid-body-dynamics/operators.ttl") \
+        <(for f in $dyn_families; do body "$mm/newtonian-rigid-body-dynamics/operators/$f.ttl"; done) > "$out"; then
+  echo "ok   newtonian-rigid-body-dynamics/operators.ttl = its per-operator files"
+else fail "newtonian-rigid-body-dynamics/operators.ttl differs from operators/*.ttl"; fi
+for f in $dyn_families; do
+  f="newtonian-rigid-body-dynamics/operators/$f.ttl"
+  if grep -q '^@prefix mos:' "$mm/$f" && grep -q '^mos:' "$mm/$f"; then :; else fail "$f holds no shape"; fi
+done
+# The per-operator files check what the aggregate checks.
+good wrench-transform newtonian-rigid-body-dynamics/operators/transform.ttl
+bad wrench-transform newtonian-rigid-body-dynamics/operators/transform.ttl 4 \
+  "<https://ex.org/t1>: the transformed wrench must be seen by the pose's distal frame" \
+  "<https://ex.org/t2>: the transformed wrench must act at the origin of the pose's distal frame" \
+  "<https://ex.org/t2>: the transformed wrench must come out acting at the origin of the pose's proximal frame" \
+  "<https://ex.org/t3>: the transformed wrench must come out seen by the pose's proximal frame"
+
 # The authors' apps with their own contexts and shapes plus three of mospec's
 # shape files: the known upstream sh:xone findings on DirectionCosineXYZ (1/2/2/2)
 # and, because the authors' contexts drop the arguments of the end-effector wrench
