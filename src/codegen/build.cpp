@@ -59,7 +59,10 @@ int run(const std::vector<std::string>& args, std::string& output) {
   close(fd[1]);
   if (spawned != 0) {
     close(fd[0]);
-    output.append("mospec: cannot run '").append(args[0]).append("': ").append(std::strerror(spawned));
+    output.append("mospec: cannot run '")
+        .append(args[0])
+        .append("': ")
+        .append(std::strerror(spawned));
     output.append("\n");
     return -1;
   }
@@ -109,7 +112,8 @@ class LibraryController final : public robot::Controller {
 // started in parallel (e.g. seeded trials) build a cached controller once.
 class FileLock {
  public:
-  explicit FileLock(const std::string& path) : fd_(open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
+  explicit FileLock(const std::string& path)
+      : fd_(open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
     if (fd_ < 0) {
       std::string msg = "cannot open lock file '";
       msg.append(path).append("': ").append(std::strerror(errno));
@@ -173,7 +177,8 @@ CachedController cached_controller(const ir::Program& program, const std::string
   const std::vector<GeneratedFile> rendered = render(program, files);
   const std::string package = default_package_dir();
   std::string key_text = package;
-  for (const GeneratedFile& f : rendered) key_text.append("\n").append(f.path).append("\n").append(f.content);
+  for (const GeneratedFile& f : rendered)
+    key_text.append("\n").append(f.path).append("\n").append(f.content);
   const fs::path dir = fs::path(cache_dir) / ir::content_hash(key_text);
   const fs::path library = dir / "build" / "libmospec_controller.so";
   std::error_code ec;
@@ -191,7 +196,8 @@ CachedController cached_controller(const ir::Program& program, const std::string
   if (fs::exists(library, ec)) {
     std::string cmake = MOSPEC_CMAKE_COMMAND;
     if (!fs::exists(cmake, ec)) cmake = "cmake";
-    status = run({cmake, "--build", (dir / "build").string(), "--parallel", std::to_string(jobs)}, output);
+    status = run({cmake, "--build", (dir / "build").string(), "--parallel", std::to_string(jobs)},
+                 output);
   } else {
     generate(program, dir.string(), files);
     const BuildResult r = build_project(dir.string(), jobs, package);

@@ -69,26 +69,45 @@ std::string comment(std::string_view text) {
 }
 
 const std::set<std::string_view>& cpp_keywords() {
-  static const std::set<std::string_view> k{
-      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break",
-      "case", "catch", "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept",
-      "const", "consteval", "constexpr", "constinit", "const_cast", "continue", "co_await",
-      "co_return", "co_yield", "decltype", "default", "delete", "do", "double", "dynamic_cast",
-      "else", "enum", "explicit", "export", "extern", "false", "float", "for", "friend", "goto",
-      "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
-      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register",
-      "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static",
-      "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
-      "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using",
-      "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq"};
+  static const std::set<std::string_view> k{"alignas",       "alignof",     "and",
+                                            "and_eq",        "asm",         "auto",
+                                            "bitand",        "bitor",       "bool",
+                                            "break",         "case",        "catch",
+                                            "char",          "char8_t",     "char16_t",
+                                            "char32_t",      "class",       "compl",
+                                            "concept",       "const",       "consteval",
+                                            "constexpr",     "constinit",   "const_cast",
+                                            "continue",      "co_await",    "co_return",
+                                            "co_yield",      "decltype",    "default",
+                                            "delete",        "do",          "double",
+                                            "dynamic_cast",  "else",        "enum",
+                                            "explicit",      "export",      "extern",
+                                            "false",         "float",       "for",
+                                            "friend",        "goto",        "if",
+                                            "inline",        "int",         "long",
+                                            "mutable",       "namespace",   "new",
+                                            "noexcept",      "not",         "not_eq",
+                                            "nullptr",       "operator",    "or",
+                                            "or_eq",         "private",     "protected",
+                                            "public",        "register",    "reinterpret_cast",
+                                            "requires",      "return",      "short",
+                                            "signed",        "sizeof",      "static",
+                                            "static_assert", "static_cast", "struct",
+                                            "switch",        "template",    "this",
+                                            "thread_local",  "throw",       "true",
+                                            "try",           "typedef",     "typeid",
+                                            "typename",      "union",       "unsigned",
+                                            "using",         "virtual",     "void",
+                                            "volatile",      "wchar_t",     "while",
+                                            "xor",           "xor_eq"};
   return k;
 }
 
 bool is_identifier(std::string_view s) {
   if (s.empty() || (s[0] >= '0' && s[0] <= '9')) return false;
   for (const char c : s) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '_';
+    const bool ok =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
     if (!ok) return false;
   }
   // Reserved: a double underscore anywhere, or an underscore and a capital first.
@@ -132,13 +151,20 @@ std::string prefixed(std::string_view prefix, const std::string& name) {
 // The member of Data that holds each data type's slots.
 std::string_view type_member(DataType t) {
   switch (t) {
-    case DataType::Scalar: return "scalar";
-    case DataType::Vector3: return "vec3";
-    case DataType::Pose: return "pose";
-    case DataType::Twist: return "twist";
-    case DataType::Wrench: return "wrench";
-    case DataType::Flag: return "flag";
-    case DataType::Event: return "event";
+    case DataType::Scalar:
+      return "scalar";
+    case DataType::Vector3:
+      return "vec3";
+    case DataType::Pose:
+      return "pose";
+    case DataType::Twist:
+      return "twist";
+    case DataType::Wrench:
+      return "wrench";
+    case DataType::Flag:
+      return "flag";
+    case DataType::Event:
+      return "event";
   }
   return "scalar";
 }
@@ -146,29 +172,50 @@ std::string_view type_member(DataType t) {
 // The step kinds' names as ir::to_string spells them (comments only).
 std::string_view kind_name(StepKind k) {
   switch (k) {
-    case StepKind::ReadClock: return "read-clock";
-    case StepKind::ArmKinematics: return "arm-kinematics";
-    case StepKind::ViewRead: return "view-read";
-    case StepKind::ViewWrite: return "view-write";
-    case StepKind::ComposePose: return "compose-pose";
-    case StepKind::PoseToLinearDistance: return "pose-to-linear-distance";
-    case StepKind::PoseToDirection: return "pose-to-direction";
-    case StepKind::RotateWrenchToProximal: return "rotate-wrench-to-proximal";
-    case StepKind::RotateTwistToProximal: return "rotate-twist-to-proximal";
-    case StepKind::RotateDirectionToProximal: return "rotate-direction-to-proximal";
-    case StepKind::TransformWrenchToProximal: return "transform-wrench-to-proximal";
+    case StepKind::ReadClock:
+      return "read-clock";
+    case StepKind::ArmKinematics:
+      return "arm-kinematics";
+    case StepKind::ViewRead:
+      return "view-read";
+    case StepKind::ViewWrite:
+      return "view-write";
+    case StepKind::ComposePose:
+      return "compose-pose";
+    case StepKind::PoseToLinearDistance:
+      return "pose-to-linear-distance";
+    case StepKind::PoseToDirection:
+      return "pose-to-direction";
+    case StepKind::RotateWrenchToProximal:
+      return "rotate-wrench-to-proximal";
+    case StepKind::RotateTwistToProximal:
+      return "rotate-twist-to-proximal";
+    case StepKind::RotateDirectionToProximal:
+      return "rotate-direction-to-proximal";
+    case StepKind::TransformWrenchToProximal:
+      return "transform-wrench-to-proximal";
     case StepKind::WrenchFromPositionDirectionAndMagnitude:
       return "wrench-from-position-direction-and-magnitude";
-    case StepKind::AddWrench: return "add-wrench";
-    case StepKind::PlanarAngleFromDirections: return "planar-angle-from-directions";
-    case StepKind::InvertAngle: return "invert-angle";
-    case StepKind::Evaluate: return "evaluate";
-    case StepKind::LevelMonitor: return "level-monitor";
-    case StepKind::EdgeMonitor: return "edge-monitor";
-    case StepKind::GuardedMotion: return "guarded-motion";
-    case StepKind::Pid: return "pid";
-    case StepKind::ArmSolve: return "arm-solve";
-    case StepKind::BaseForceDistribution: return "base-force-distribution";
+    case StepKind::AddWrench:
+      return "add-wrench";
+    case StepKind::PlanarAngleFromDirections:
+      return "planar-angle-from-directions";
+    case StepKind::InvertAngle:
+      return "invert-angle";
+    case StepKind::Evaluate:
+      return "evaluate";
+    case StepKind::LevelMonitor:
+      return "level-monitor";
+    case StepKind::EdgeMonitor:
+      return "edge-monitor";
+    case StepKind::GuardedMotion:
+      return "guarded-motion";
+    case StepKind::Pid:
+      return "pid";
+    case StepKind::ArmSolve:
+      return "arm-solve";
+    case StepKind::BaseForceDistribution:
+      return "base-force-distribution";
   }
   return "?";
 }
@@ -193,20 +240,28 @@ std::string mat3(const runtime::Mat3& M) {
 
 std::string anti_windup(runtime::AntiWindup a) {
   switch (a) {
-    case runtime::AntiWindup::None: return "rt::AntiWindup::None";
-    case runtime::AntiWindup::ConditionalIntegration: return "rt::AntiWindup::ConditionalIntegration";
-    case runtime::AntiWindup::BackCalculation: return "rt::AntiWindup::BackCalculation";
+    case runtime::AntiWindup::None:
+      return "rt::AntiWindup::None";
+    case runtime::AntiWindup::ConditionalIntegration:
+      return "rt::AntiWindup::ConditionalIntegration";
+    case runtime::AntiWindup::BackCalculation:
+      return "rt::AntiWindup::BackCalculation";
   }
   return "rt::AntiWindup::ConditionalIntegration";
 }
 
 std::string constraint_kind(runtime::ConstraintKind k) {
   switch (k) {
-    case runtime::ConstraintKind::Equality: return "rt::ConstraintKind::Equality";
-    case runtime::ConstraintKind::LessThan: return "rt::ConstraintKind::LessThan";
-    case runtime::ConstraintKind::GreaterThan: return "rt::ConstraintKind::GreaterThan";
-    case runtime::ConstraintKind::Bilateral: return "rt::ConstraintKind::Bilateral";
-    case runtime::ConstraintKind::Assignment: return "rt::ConstraintKind::Assignment";
+    case runtime::ConstraintKind::Equality:
+      return "rt::ConstraintKind::Equality";
+    case runtime::ConstraintKind::LessThan:
+      return "rt::ConstraintKind::LessThan";
+    case runtime::ConstraintKind::GreaterThan:
+      return "rt::ConstraintKind::GreaterThan";
+    case runtime::ConstraintKind::Bilateral:
+      return "rt::ConstraintKind::Bilateral";
+    case runtime::ConstraintKind::Assignment:
+      return "rt::ConstraintKind::Assignment";
   }
   return "rt::ConstraintKind::Equality";
 }
@@ -246,7 +301,8 @@ class Builder {
       const ir::Step& st = p.steps[i];
       const std::string idx = std::to_string(i);
       std::string m;
-      if (st.kind == StepKind::Evaluate) m = members.take(prefixed("eval_", st.name), "eval_" + idx);
+      if (st.kind == StepKind::Evaluate)
+        m = members.take(prefixed("eval_", st.name), "eval_" + idx);
       if (st.kind == StepKind::Pid) m = members.take(prefixed("pid_", st.name), "pid_" + idx);
       if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor) {
         m = members.take(prefixed("tolerance_", st.name), "tolerance_" + idx);
@@ -279,7 +335,10 @@ class Builder {
   std::string ref(int index, std::string_view object = "d.") const {
     const ir::Data& d = datum(index);
     std::string s(object);
-    s.append(type_member(d.type)).append("[slot::").append(data_names_[static_cast<std::size_t>(index)]).append("]");
+    s.append(type_member(d.type))
+        .append("[slot::")
+        .append(data_names_[static_cast<std::size_t>(index)])
+        .append("]");
     return s;
   }
   std::string in(const ir::Step& st, std::size_t k) const {
@@ -421,7 +480,8 @@ class Builder {
       arms.push_back(e);
       // The physical model (the solver's gravity: kinematics and the torque
       // command), the task model (no gravity: the ACHD solve), the mount.
-      inits.push_back(member + "(" + member + "_model(rt::Vec3(" + join_doubles(s.gravity.data(), 3) + ")))");
+      inits.push_back(member + "(" + member + "_model(rt::Vec3(" +
+                      join_doubles(s.gravity.data(), 3) + ")))");
       inits.push_back(member + "_task(" + member + "_model(rt::Vec3::Zero()))");
       inits.push_back(member + "_X_BR(" + member + "_X_RB().inverse())");
     }
@@ -433,7 +493,8 @@ class Builder {
       root.set("base_name", comment(b.name));
       root.set("base_iri", comment(b.iri));
       for (int i = 0; i < runtime::kKeloDrives; ++i) {
-        root.set("pivot" + std::to_string(i), join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
+        root.set("pivot" + std::to_string(i),
+                 join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
       }
       root.set("wheel_diameter", cpp_double(b.geometry.wheel_diameter));
       root.set("wheel_distance", cpp_double(b.geometry.wheel_distance));
@@ -518,9 +579,12 @@ class Builder {
     root.set("n_wrench", std::to_string(p_.count(DataType::Wrench)));
     root.set("n_flag", std::to_string(p_.count(DataType::Flag)));
     root.set("n_event", std::to_string(p_.count(DataType::Event)));
-    root.set("n_pid_states", std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Pid)]));
-    root.set("n_monitor_states", std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Monitor)]));
-    root.set("n_motion_states", std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Motion)]));
+    root.set("n_pid_states",
+             std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Pid)]));
+    root.set("n_monitor_states",
+             std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Monitor)]));
+    root.set("n_motion_states",
+             std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Motion)]));
 
     std::vector<std::string> inits;
     for (std::size_t a = 0; a < p_.arms.size(); ++a) {
@@ -574,7 +638,8 @@ class Builder {
           type = "bool";
           assign = member + " = " + (d.value[0] != 0.0 ? "true" : "false") + ";";
           break;
-        case DataType::Event: break;
+        case DataType::Event:
+          break;
       }
       mus::data c;
       c.set("type", type);
@@ -613,7 +678,8 @@ class Builder {
     const auto call = [&](int arity, const char* function) {
       s.set(std::string("is_call") + std::to_string(arity), true);
       s.set("function", function);
-      for (int k = 0; k < arity; ++k) s.set("in" + std::to_string(k), in(st, static_cast<std::size_t>(k)));
+      for (int k = 0; k < arity; ++k)
+        s.set("in" + std::to_string(k), in(st, static_cast<std::size_t>(k)));
       s.set("out0", out(st, 0));
     };
     const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
@@ -658,7 +724,8 @@ class Builder {
         s.set("out0", out(st, 0));
         break;
       case StepKind::ViewWrite: {
-        if (st.views.size() != st.in.size()) fail("view step '" + st.name + "' needs one component per input");
+        if (st.views.size() != st.in.size())
+          fail("view step '" + st.name + "' needs one component per input");
         s.set("is_view_write", true);
         s.set("out0", out(st, 0));
         mus::data components = list();
@@ -672,17 +739,29 @@ class Builder {
         s.set("components", components);
         break;
       }
-      case StepKind::ComposePose: call(2, "compose_pose"); break;
-      case StepKind::PoseToLinearDistance: call(1, "pose_to_linear_distance"); break;
+      case StepKind::ComposePose:
+        call(2, "compose_pose");
+        break;
+      case StepKind::PoseToLinearDistance:
+        call(1, "pose_to_linear_distance");
+        break;
       case StepKind::PoseToDirection:
         s.set("is_pose_to_direction", true);
         s.set("in0", in(st, 0));
         s.set("out0", out(st, 0));
         break;
-      case StepKind::RotateWrenchToProximal: call(2, "rotate_wrench_to_proximal"); break;
-      case StepKind::RotateTwistToProximal: call(2, "rotate_twist_to_proximal"); break;
-      case StepKind::RotateDirectionToProximal: call(2, "rotate_direction_to_proximal"); break;
-      case StepKind::TransformWrenchToProximal: call(2, "transform_wrench_to_proximal"); break;
+      case StepKind::RotateWrenchToProximal:
+        call(2, "rotate_wrench_to_proximal");
+        break;
+      case StepKind::RotateTwistToProximal:
+        call(2, "rotate_twist_to_proximal");
+        break;
+      case StepKind::RotateDirectionToProximal:
+        call(2, "rotate_direction_to_proximal");
+        break;
+      case StepKind::TransformWrenchToProximal:
+        call(2, "transform_wrench_to_proximal");
+        break;
       case StepKind::WrenchFromPositionDirectionAndMagnitude:
         call(3, "wrench_from_position_direction_and_magnitude");
         break;
@@ -697,7 +776,9 @@ class Builder {
         for (std::size_t k = 0; k < 3; ++k) s.set("in" + std::to_string(k), in(st, k));
         s.set("out0", out(st, 0));
         break;
-      case StepKind::InvertAngle: call(1, "invert_angle"); break;
+      case StepKind::InvertAngle:
+        call(1, "invert_angle");
+        break;
       case StepKind::Evaluate:
         s.set("is_evaluate", true);
         s.set("evaluator", step_members_[index]);
@@ -716,8 +797,8 @@ class Builder {
         break;
       case StepKind::GuardedMotion: {
         if (st.n_when < 0 || static_cast<std::size_t>(st.n_when) > st.in.size()) {
-          fail("guarded motion '" + st.name + "' has " + std::to_string(st.n_when) + " when-guards of " +
-               std::to_string(st.in.size()) + " inputs");
+          fail("guarded motion '" + st.name + "' has " + std::to_string(st.n_when) +
+               " when-guards of " + std::to_string(st.in.size()) + " inputs");
         }
         const auto n_when = static_cast<std::size_t>(st.n_when);
         std::string when, until;
@@ -753,10 +834,12 @@ class Builder {
         // in[0, drivers) are the drivers' data; the rest gate the solve: the
         // running flags of the motions that drive this arm (none running: hold).
         const std::size_t drivers = st.drivers();
-        if (drivers > st.in.size()) fail("arm solve '" + st.name + "' has more drivers than inputs");
+        if (drivers > st.in.size())
+          fail("arm solve '" + st.name + "' has more drivers than inputs");
         std::string gates;
         for (std::size_t g = drivers; g < st.in.size(); ++g) {
-          if (datum(st.in[g]).type != DataType::Flag) fail("arm solve '" + st.name + "': a motion gate must be a flag");
+          if (datum(st.in[g]).type != DataType::Flag)
+            fail("arm solve '" + st.name + "': a motion gate must be a flag");
           if (!gates.empty()) gates.append(" || ");
           gates.append(in(st, g));
         }
@@ -794,7 +877,8 @@ class Builder {
         break;
       }
       case StepKind::BaseForceDistribution:
-        if (!p_.base) fail("step '" + st.name + "' distributes a wrench, but the program has no base");
+        if (!p_.base)
+          fail("step '" + st.name + "' distributes a wrench, but the program has no base");
         s.set("is_base_force_distribution", true);
         s.set("in0", in(st, 0));
         break;
@@ -808,7 +892,8 @@ class Builder {
       const ir::LogColumn& c = p_.log[i];
       const ir::Data& d = datum(c.data);
       std::string value;
-      if (c.component > 5) fail("log column '" + c.name + "' has component " + std::to_string(c.component));
+      if (c.component > 5)
+        fail("log column '" + c.name + "' has component " + std::to_string(c.component));
       switch (d.type) {
         case DataType::Twist:
         case DataType::Wrench:
@@ -818,10 +903,16 @@ class Builder {
             value = "std::numeric_limits<double>::quiet_NaN()";
           }
           break;
-        case DataType::Scalar: value = ref(c.data); break;
+        case DataType::Scalar:
+          value = ref(c.data);
+          break;
         case DataType::Flag:
-        case DataType::Event: value = "(" + ref(c.data) + " ? 1.0 : 0.0)"; break;
-        default: value = "std::numeric_limits<double>::quiet_NaN()"; break;
+        case DataType::Event:
+          value = "(" + ref(c.data) + " ? 1.0 : 0.0)";
+          break;
+        default:
+          value = "std::numeric_limits<double>::quiet_NaN()";
+          break;
       }
       mus::data e;
       e.set("index", std::to_string(i));
@@ -860,12 +951,13 @@ std::string strip_standalone_tags(std::string_view text) {
     const std::size_t first = line.find_first_not_of(" \t");
     const std::size_t last = line.find_last_not_of(" \t");
     bool standalone = false;
-    if (first != std::string_view::npos && line.substr(first, 2) == "{{" && first + 2 < line.size() &&
+    if (first != std::string_view::npos && line.substr(first, 2) == "{{" &&
+        first + 2 < line.size() &&
         (line[first + 2] == '#' || line[first + 2] == '^' || line[first + 2] == '/' ||
          line[first + 2] == '!')) {
       const std::string_view tag = line.substr(first, last + 1 - first);
-      standalone = tag.size() >= 5 && tag.substr(tag.size() - 2) == "}}" &&
-                   tag.find("}}") == tag.size() - 2;
+      standalone =
+          tag.size() >= 5 && tag.substr(tag.size() - 2) == "}}" && tag.find("}}") == tag.size() - 2;
       if (standalone) out.append(tag);
     }
     if (!standalone) {
@@ -888,7 +980,9 @@ std::string tidy_blank_lines(const std::string& text) {
     lines.push_back(std::string_view(text).substr(at, end - at));
     at = end + 1;
   }
-  const auto blank = [](std::string_view l) { return l.find_first_not_of(" \t") == std::string_view::npos; };
+  const auto blank = [](std::string_view l) {
+    return l.find_first_not_of(" \t") == std::string_view::npos;
+  };
   std::string out;
   out.reserve(text.size());
   std::string_view previous = "{";  // no blank line at the top

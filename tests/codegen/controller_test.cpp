@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <functional>
+#include <sstream>
 #include <vector>
 
 #include "codegen/build.hpp"
@@ -21,7 +22,8 @@ bool same_bits(const void* a, const void* b, std::size_t n) {
   return std::memcmp(a, b, n) == 0;
 }
 
-void expect_like_the_interpreter(const char* env, const std::function<ir::Program()>& make, int ticks) {
+void expect_like_the_interpreter(const char* env, const std::function<ir::Program()>& make,
+                                 int ticks) {
   const std::string path = testing::library_from_env(env);
   if (path.empty()) GTEST_SKIP() << env << " is not set (run by build_test.sh)";
   const std::unique_ptr<robot::Controller> generated = load_controller(path);
@@ -49,11 +51,16 @@ void expect_like_the_interpreter(const char* env, const std::function<ir::Progra
     gen.tick(state, cb);
     interp.log_values(a);
     gen.log_values(b);
+    std::string differ;
     for (std::size_t i = 0; i < a.size(); ++i) {
-      ASSERT_TRUE(same_bits(&a[i], &b[i], sizeof(double)))
-          << "tick " << k << ", column " << columns[i].name << ": interpreter " << a[i]
-          << ", generated " << b[i];
+      if (!same_bits(&a[i], &b[i], sizeof(double))) {
+        std::ostringstream line;
+        line.precision(17);
+        line << "\n  " << columns[i].name << ": interpreter " << a[i] << ", generated " << b[i];
+        differ.append(line.str());
+      }
     }
+    ASSERT_TRUE(differ.empty()) << "tick " << k << ", columns that differ:" << differ;
     ASSERT_EQ(ca.tick, cb.tick);
     ASSERT_TRUE(same_bits(ca.arm_tau.data(), cb.arm_tau.data(), sizeof ca.arm_tau)) << "tick " << k;
     ASSERT_TRUE(same_bits(ca.wheel_tau.data(), cb.wheel_tau.data(), sizeof ca.wheel_tau))
@@ -67,24 +74,33 @@ void expect_like_the_interpreter(const char* env, const std::function<ir::Progra
 }
 
 TEST(GeneratedController, SmallProgramMatchesTheInterpreterBitForBit) {
-  expect_like_the_interpreter("MOSPEC_SMALL_CONTROLLER", [] {
-    SourceFiles files;
-    return testing::small_program(files);
-  }, 2000);
+  expect_like_the_interpreter(
+      "MOSPEC_SMALL_CONTROLLER",
+      [] {
+        SourceFiles files;
+        return testing::small_program(files);
+      },
+      2000);
 }
 
 TEST(GeneratedController, ArmProgramMatchesTheInterpreterBitForBit) {
-  expect_like_the_interpreter("MOSPEC_ARM_CONTROLLER", [] {
-    SourceFiles files;
-    return testing::arm_program(files);
-  }, 2000);
+  expect_like_the_interpreter(
+      "MOSPEC_ARM_CONTROLLER",
+      [] {
+        SourceFiles files;
+        return testing::arm_program(files);
+      },
+      2000);
 }
 
 TEST(GeneratedController, EmptyProgramMatchesTheInterpreter) {
-  expect_like_the_interpreter("MOSPEC_EMPTY_CONTROLLER", [] {
-    SourceFiles files;
-    return testing::empty_program(files);
-  }, 10);
+  expect_like_the_interpreter(
+      "MOSPEC_EMPTY_CONTROLLER",
+      [] {
+        SourceFiles files;
+        return testing::empty_program(files);
+      },
+      10);
 }
 
 // A scenario model (MOSPEC_SCENARIO_APP, relative to the working directory)
@@ -92,10 +108,13 @@ TEST(GeneratedController, EmptyProgramMatchesTheInterpreter) {
 TEST(GeneratedController, ScenarioMatchesTheInterpreterBitForBit) {
   const std::string app = testing::library_from_env("MOSPEC_SCENARIO_APP");
   if (app.empty()) GTEST_SKIP() << "MOSPEC_SCENARIO_APP is not set (run by build_test.sh)";
-  expect_like_the_interpreter("MOSPEC_SCENARIO_CONTROLLER", [&] {
-    const app::LoadedModel model = app::load({app}, app::LoadOptions{});
-    return ir::lower(model);
-  }, 3000);
+  expect_like_the_interpreter(
+      "MOSPEC_SCENARIO_CONTROLLER",
+      [&] {
+        const app::LoadedModel model = app::load({app}, app::LoadOptions{});
+        return ir::lower(model);
+      },
+      3000);
 }
 
 // The columns a reader of the log sees, by name and unit.
@@ -117,7 +136,8 @@ TEST(GeneratedController, LogColumnsAreTheProgramsNamedColumns) {
     robot::Command c;
     generated->tick(testing::measurement(k), c);
     generated->log_values(v);
-    for (std::size_t i = 12; i < 18; ++i) EXPECT_TRUE(v[i] == 0.0 || v[i] == 1.0) << columns[i].name;
+    for (std::size_t i = 12; i < 18; ++i)
+      EXPECT_TRUE(v[i] == 0.0 || v[i] == 1.0) << columns[i].name;
   }
 }
 
@@ -148,8 +168,9 @@ TEST(LoadController, NamesTheLibraryAndTheReason) {
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), "load");
-    EXPECT_NE(std::string(e.what()).find("cannot load controller '/nonexistent/libmospec_controller.so'"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("cannot load controller '/nonexistent/libmospec_controller.so'"),
+        std::string::npos)
         << e.what();
   }
 }

@@ -176,7 +176,8 @@ inline ir::Program small_program(SourceFiles& files) {
 
   for (int d : {time, height, yaw, distance, angle, angle_inv, v_z, height_err, late_err, force,
                 push, f_z}) {
-    b.log(b.p.data[static_cast<std::size_t>(d)].name, d, b.p.data[static_cast<std::size_t>(d)].unit);
+    b.log(b.p.data[static_cast<std::size_t>(d)].name, d,
+          b.p.data[static_cast<std::size_t>(d)].unit);
   }
   for (int d : {height_ok, late, timeout, timeout_event, approach, push_ok}) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d);
@@ -201,7 +202,8 @@ inline runtime::Chain gen3_chain() {
                             std::string(MOSPEC_SOURCE_DIR) + "/metamodels");
   const app::LoadedModel model =
       app::load({std::string(MOSPEC_SOURCE_DIR) + "/robots/kinova-gen3.jsonld"}, options);
-  return runtime::chain_from_rdf(model.flattened(), "https://mospec.example/robots/kinova-gen3/chain");
+  return runtime::chain_from_rdf(model.flattened(),
+                                 "https://mospec.example/robots/kinova-gen3/chain");
 }
 
 inline ir::Program arm_program(SourceFiles& files) {
@@ -219,7 +221,8 @@ inline ir::Program arm_program(SourceFiles& files) {
   // A mount: the solver's root R carries the chain's root B at X_RB.
   arm.mount_pose_iri = "https://mospec.example/tests/codegen/mount";
   const std::vector<double> mount = pose_value(0.5, 0.1, -0.2, 0.9);
-  arm.X_RB.R << mount[0], mount[1], mount[2], mount[3], mount[4], mount[5], mount[6], mount[7], mount[8];
+  arm.X_RB.R << mount[0], mount[1], mount[2], mount[3], mount[4], mount[5], mount[6], mount[7],
+      mount[8];
   arm.X_RB.p = runtime::Vec3(mount[9], mount[10], mount[11]);
   const int n = arm.chain.size();
 
@@ -282,7 +285,8 @@ inline ir::Program arm_program(SourceFiles& files) {
   solve.n_drivers = 3;
 
   for (int d : {time, height, elbow_x, vz, err, acc, push}) {
-    b.log(b.p.data[static_cast<std::size_t>(d)].name, d, b.p.data[static_cast<std::size_t>(d)].unit);
+    b.log(b.p.data[static_cast<std::size_t>(d)].name, d,
+          b.p.data[static_cast<std::size_t>(d)].unit);
   }
   b.log("height_ok", ok);
   b.log("reach", reach);

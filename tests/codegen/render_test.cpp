@@ -62,7 +62,8 @@ TEST(Codegen, EveryStepIsACommentedBlockInScheduleOrder) {
     const ir::Step& st = p.steps[i];
     std::string head = "  // [";
     head.append(std::to_string(i)).append("] ").append(ir::to_string(st.kind)).append(" '");
-    head.append(st.name).append("': ").append(st.iri).append("\n  //     tests/codegen/programs.hpp:");
+    head.append(st.name).append("': ").append(st.iri).append(
+        "\n  //     tests/codegen/programs.hpp:");
     head.append(std::to_string(st.where.line)).append(":5\n");
     const std::size_t found = cpp.find(head, at);
     ASSERT_NE(found, std::string::npos) << head;
@@ -81,7 +82,8 @@ TEST(Codegen, TheArmIsRebuiltFromItsSegmentConstants) {
   SourceFiles files;
   const ir::Program p = testing::arm_program(files);
   const std::string cpp = file(render(p, &files), "controller.cpp");
-  EXPECT_NE(cpp.find("rt::AchdModel arm_right_arm_model(const rt::Vec3& g_B) {"), std::string::npos);
+  EXPECT_NE(cpp.find("rt::AchdModel arm_right_arm_model(const rt::Vec3& g_B) {"),
+            std::string::npos);
   std::size_t segments = 0;
   for (std::size_t at = cpp.find("chain.add_segment("); at != std::string::npos;
        at = cpp.find("chain.add_segment(", at + 1)) {
@@ -119,7 +121,7 @@ TEST(Codegen, StringsAreEscaped) {
 TEST(Codegen, UnusableNamesFallBackToTheSlot) {
   SourceFiles files;
   ir::Program p = testing::small_program(files);
-  p.data[0].name = "class";  // a keyword
+  p.data[0].name = "class";   // a keyword
   p.data[1].name = "height";  // the scalar named so later falls back
   const std::string hpp = file(render(p, &files), "controller.hpp");
   EXPECT_NE(hpp.find("inline constexpr std::size_t scalar_0 = 0;"), std::string::npos);
@@ -151,7 +153,8 @@ TEST(Codegen, GenerateWritesTheProjectAndOverwritesItWhole) {
   }
   write_output((dir / "nested" / "controller.cpp").string(), "stale");
   generate(p, (dir / "nested").string(), &files);
-  EXPECT_EQ(read_file((dir / "nested" / "controller.cpp").string()), file(render(p, &files), "controller.cpp"));
+  EXPECT_EQ(read_file((dir / "nested" / "controller.cpp").string()),
+            file(render(p, &files), "controller.cpp"));
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir / "nested")) ++entries;
   EXPECT_EQ(entries, 3u) << "no temporary files left behind";
