@@ -12,8 +12,8 @@
 //   * SC1: the commanded platform wrench (base-force-distribution.fx/fy/mz)
 //     decays after its transient (Fig. 4): what remains balances the
 //     whiskers' contact push (3 N per arm); SC2 has no force distribution.
-// The guard: without the table the contact push carries each end-effector past
-// the face and the overreach guard ends its motion (the arm then holds).
+// The guards: without the table the contact push carries the end-effectors past
+// the face and the overreach/overstretch guards end both motions (the arms then hold).
 // A broken copy of SC1 (distance controllers without their P, I and D gains; a distance
 // threshold in millimetres) is refused before any code is generated, with
 // located messages.
@@ -219,9 +219,11 @@ TEST_F(Whisker, ThePlatformWrenchDecays) {
 }
 
 // Without the table the 3 N contact push carries each end-effector forward; the
-// overreach guard (x in P beyond 0.75 m) ends the motion within a second and its
-// edge-triggered monitor reports it once.
-TEST_F(Whisker, WithoutTheTableTheOverreachGuardEndsTheMotion) {
+// guards (the end-effector more than 0.75 m ahead in P, a shoulder–contact
+// distance beyond 0.76 m; either arm's guard ends both motions) stop the whisker
+// motions within a second, each guard's edge-triggered monitor reports at most
+// once, and the arms then hold.
+TEST_F(Whisker, WithoutTheTableTheGuardsEndTheMotions) {
   if (g_app != "sc1") GTEST_SKIP() << "the mount holds SC2's end-effectors";
   const fs::path world = dir_ / "no-table.world.json", log = dir_ / "no-table.csv",
                  out = dir_ / "no-table.txt";
@@ -238,25 +240,41 @@ TEST_F(Whisker, WithoutTheTableTheOverreachGuardEndsTheMotion) {
   ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(out);
   const Csv csv = read_csv(log);
   ASSERT_FALSE(csv.rows.empty());
+  std::vector<int> guards, events;
+  for (const std::string& arm : kArms) {
+    for (const std::string& g :
+         {"cstr-pos-" + arm + "-overreach", "cstr-dist-" + arm + "-shoulder-ee-overstretched"}) {
+      guards.push_back(csv.column(g + ".satisfied"));
+      ASSERT_GE(guards.back(), 0) << g;
+    }
+    for (const std::string& m : {"mon-" + arm + "-overreach", "mon-" + arm + "-overstretched"}) {
+      events.push_back(csv.column(m + ".event"));
+      ASSERT_GE(events.back(), 0) << m;
+    }
+  }
   for (const std::string& arm : kArms) {
     const int running = csv.column("motion-sc1-" + arm + ".running");
-    const int over = csv.column("cstr-pos-" + arm + "-overreach.satisfied");
-    const int event = csv.column("mon-" + arm + "-overreach.event");
     ASSERT_GE(running, 0);
-    ASSERT_GE(over, 0);
-    ASSERT_GE(event, 0);
     double ended = INFINITY;
-    int events = 0;
     for (const auto& row : csv.rows) {
       if (row[static_cast<size_t>(running)] == 0.0 && !std::isfinite(ended)) {
         ended = row[0];
-        EXPECT_EQ(row[static_cast<size_t>(over)], 1.0) << arm;
+        bool guarded = false;
+        for (int g : guards) guarded = guarded || row[static_cast<size_t>(g)] == 1.0;
+        EXPECT_TRUE(guarded) << arm << " ended at t = " << ended << " with no guard satisfied";
       }
-      events += row[static_cast<size_t>(event)] != 0.0;
     }
+    std::printf("sc1 without the table: %s's motion ended at %.3f s\n", arm.c_str(), ended);
     EXPECT_LT(ended, 1.0) << arm;
-    EXPECT_EQ(events, 1) << arm;
   }
+  int total = 0;
+  for (int e : events) {
+    int n = 0;
+    for (const auto& row : csv.rows) n += row[static_cast<size_t>(e)] != 0.0;
+    EXPECT_LE(n, 1) << csv.header[static_cast<size_t>(e)];
+    total += n;
+  }
+  EXPECT_GE(total, 1);
 }
 
 // A broken copy of the models is refused before any code is generated: exit 1,
