@@ -4,7 +4,7 @@
 # the tests that dlopen the libraries: same log columns and bit-identical
 # values as the interpreter, and no allocation in 10 000 ticks.
 # The same for a scenario model (models/sc1.json) through `mospec generate`.
-# Finally the installed package: `cmake --install` into a prefix, and that
+# Clang compiles the generated code warning-free too. Finally the installed package: `cmake --install` into a prefix, and that
 # prefix's mospec builds a project against its installed headers and libraries.
 # usage: build_test.sh MOSPEC WRITE_FIXTURE CONTROLLER_TEST ALLOC_TEST SCRATCH SOURCE_DIR
 #                      BINARY_DIR CMAKE
@@ -72,6 +72,16 @@ grep -q "mospec: building '.*broken' failed" "$scratch/broken.err"
 # A directory without a project: exit 2, located message.
 if "$mospec" build "$scratch/nowhere" 2>"$scratch/nowhere.err"; then exit 1; else test $? -eq 2; fi
 grep -q "holds no generated project" "$scratch/nowhere.err"
+
+# Clang (the sanitizer builds' compiler) compiles the generated code warning-free too.
+if command -v clang++ >/dev/null; then
+  for program in small arm; do
+    "$cmake" -S "$scratch/$program.first" -B "$scratch/$program.clang" -DCMAKE_CXX_COMPILER=clang++ \
+      "-Dmospec_DIR=$binary_dir/package" >"$scratch/$program.clang.log" 2>&1 &&
+      "$cmake" --build "$scratch/$program.clang" >>"$scratch/$program.clang.log" 2>&1 ||
+      { echo "build_test: clang cannot build $program:" >&2; cat "$scratch/$program.clang.log" >&2; exit 1; }
+  done
+fi
 
 # The install tree.
 "$cmake" --install "$binary_dir" --prefix "$scratch/prefix" >"$scratch/install.log"
