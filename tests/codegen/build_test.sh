@@ -4,8 +4,9 @@
 # the tests that dlopen the libraries: same log columns and bit-identical
 # values as the interpreter, and no allocation in 10 000 ticks.
 # The same for a scenario model (models/sc1.json) through `mospec generate`.
-# Clang compiles the generated code warning-free too. Finally the installed package: `cmake --install` into a prefix, and that
-# prefix's mospec builds a project against its installed headers and libraries.
+# Clang compiles the generated code warning-free too. Finally the installed
+# package: `cmake --install` into a prefix, and that prefix's mospec builds a
+# project against its installed headers and libraries.
 # usage: build_test.sh MOSPEC WRITE_FIXTURE CONTROLLER_TEST ALLOC_TEST SCRATCH SOURCE_DIR
 #                      BINARY_DIR CMAKE
 set -euo pipefail
