@@ -35,40 +35,15 @@ sim::WorldConfig scenario_world(const std::string& app, const std::string& world
   return sim::default_world();
 }
 
-// The generated controller for `program`: generated and built once into
-// CACHE/<content hash>/ (the hash covers the IR, its source locations and the
-// mospec build that renders it), then loaded.
+// The generated controller for `program`, generated and built once into the
+// cache (keyed by the generated files and the runtime package, under a file
+// lock so concurrent runs share one build), then loaded.
 std::unique_ptr<robot::Controller> generated_controller(const ir::Program& program,
                                                         const SourceFiles& files,
                                                         const std::string& cache) {
-  namespace fs = std::filesystem;
-  std::string key = ir::to_json(program, &files);
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const auto size = fs::file_size(self, ec);
-    const auto time = fs::last_write_time(self, ec).time_since_epoch().count();
-    key.append(self.string()).append(std::to_string(size)).append(std::to_string(time));
-  }
-  const fs::path dir = fs::absolute(fs::path(cache) / ir::content_hash(key));
-  const fs::path marker = dir / "built";
-  std::string library;
-  if (fs::exists(marker, ec)) {
-    library = read_file(marker.string());
-    while (!library.empty() && (library.back() == '\n' || library.back() == '\r')) library.pop_back();
-  }
-  if (library.empty() || !fs::exists(library, ec)) {
-    std::cerr << "mospec: generating and building the controller in " << dir.string() << '\n';
-    codegen::generate(program, dir.string(), &files);
-    const codegen::BuildResult built = codegen::build_project(dir.string(), 2);
-    if (!built.ok) {
-      std::cerr << built.output;
-      throw Error("build", "building the generated controller in '" + dir.string() + "' failed");
-    }
-    library = built.library;
-    write_output(marker.string(), library + "\n");
-  }
-  return codegen::load_controller(library);
+  const codegen::CachedController c = codegen::cached_controller(program, cache, &files);
+  if (c.built) std::cerr << "mospec: generated and built the controller in " << c.project << '\n';
+  return codegen::load_controller(c.library);
 }
 
 std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted) {

@@ -23,6 +23,6 @@ expect "sc0a, interpreted" 0 "" -- "$mospec" run models/sc0a.json --sim --durati
 check "sc0a: identical logs" cmp -s "$work/sc0a-gen.csv" "$work/sc0a-int.csv"
 expect "sc0a again: the cached build is reused" 0 "" -- "$mospec" run models/sc0a.json --sim \
   --duration 0.1 --log "$work/sc0a-again.csv" --cache "$cache"
-check "no rebuild on the second run" bash -c "! grep -q 'generating and building' '$work/stderr.txt'"
+check "no rebuild on the second run" bash -c "! grep -q 'generated and built' '$work/stderr.txt'"
 
 finish run-equivalence
