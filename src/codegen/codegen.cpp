@@ -216,6 +216,8 @@ std::string_view kind_name(StepKind k) {
       return "arm-solve";
     case StepKind::BaseForceDistribution:
       return "base-force-distribution";
+    case StepKind::BaseVelocityComposition:
+      return "base-velocity-composition";
   }
   return "?";
 }
@@ -876,11 +878,30 @@ class Builder {
         s.set("betas", betas);
         break;
       }
-      case StepKind::BaseForceDistribution:
+      case StepKind::BaseForceDistribution: {
         if (!p_.base)
           fail("step '" + st.name + "' distributes a wrench, but the program has no base");
         s.set("is_base_force_distribution", true);
         s.set("in0", in(st, 0));
+        // in[0] is the platform wrench; the rest are the running flags of the
+        // motions that drive the base (none running: it brakes and holds).
+        std::string gates;
+        for (std::size_t g = st.drivers(); g < st.in.size(); ++g) {
+          if (datum(st.in[g]).type != DataType::Flag)
+            fail("base step '" + st.name + "': a motion gate must be a flag");
+          if (!gates.empty()) gates.append(" || ");
+          gates.append(in(st, g));
+        }
+        s.set("gated", !gates.empty());
+        s.set("gates", gates);
+        s.set("indent", gates.empty() ? "  " : "    ");
+        break;
+      }
+      case StepKind::BaseVelocityComposition:
+        if (!p_.base)
+          fail("step '" + st.name + "' measures the base, but the program has no base");
+        s.set("is_base_velocity_composition", true);
+        s.set("out0", out(st, 0));
         break;
     }
     return s;

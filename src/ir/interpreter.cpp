@@ -231,9 +231,19 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
                        command.arm_tau[static_cast<size_t>(solver.port)]);
       break;
     }
-    case StepKind::BaseForceDistribution:
-      steps::base_force_distribution(base_->model, base_->data, state.pivot_q, wrenches_[in(0)],
-                                     command.wheel_tau);
+    case StepKind::BaseForceDistribution: {
+      bool driven = st.in.size() == st.drivers();  // no gates: always
+      for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || flags_[in(k)] != 0;
+      if (!driven) {
+        steps::base_hold(base_->model, base_->data, state.pivot_q, state.wheel_qd, command.wheel_tau);
+      } else {
+        steps::base_force_distribution(base_->model, base_->data, state.pivot_q, wrenches_[in(0)],
+                                       command.wheel_tau);
+      }
+      break;
+    }
+    case StepKind::BaseVelocityComposition:
+      steps::base_velocity(base_->model, base_->data, state.pivot_q, state.wheel_qd, twists_[out(0)]);
       break;
   }
 }

@@ -42,6 +42,7 @@ std::string_view to_string(StepKind k) {
     case StepKind::Pid: return "pid";
     case StepKind::ArmSolve: return "arm-solve";
     case StepKind::BaseForceDistribution: return "base-force-distribution";
+    case StepKind::BaseVelocityComposition: return "base-velocity-composition";
   }
   return "?";
 }
@@ -124,7 +125,12 @@ Signature signature(const Step& st, const Program& p) {
     }
     case StepKind::ArmKinematics:
     case StepKind::ArmSolve: return {{}, {}, true};
-    case StepKind::BaseForceDistribution: return {{T::Wrench}, {}};
+    case StepKind::BaseForceDistribution: {
+      Signature s{{T::Wrench}, {}};
+      for (size_t k = 1; k < st.in.size(); ++k) s.in.push_back(T::Flag);
+      return s;
+    }
+    case StepKind::BaseVelocityComposition: return {{}, {T::Twist}};
   }
   return {};
 }
@@ -193,7 +199,8 @@ void verify(const Program& p) {
     if (st.kind == StepKind::ArmKinematics || st.kind == StepKind::ArmSolve) {
       if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size()) invalid(st, "no such arm solver");
     }
-    if (st.kind == StepKind::BaseForceDistribution && !p.base) invalid(st, "no base solver");
+    if ((st.kind == StepKind::BaseForceDistribution || st.kind == StepKind::BaseVelocityComposition) && !p.base)
+      invalid(st, "no base solver");
     if (st.kind == StepKind::ArmSolve) {
       if (st.drivers() > st.in.size()) invalid(st, "bad driver count");
       for (size_t k = st.drivers(); k < st.in.size(); ++k) {
@@ -340,6 +347,7 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     b["wheel-distance"] = p.base->geometry.wheel_distance;
     b["castor-offset"] = p.base->geometry.castor_offset;
     b["wrench"] = p.base->wrench;
+    b["twist"] = p.base->twist;
     b["where"] = location(p.base->where, files);
     j["base"] = std::move(b);
   } else {
@@ -354,7 +362,7 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["in"] = st.in;
     e["out"] = st.out;
     if (st.solver >= 0) e["solver"] = st.solver;
-    if (st.kind == StepKind::ArmSolve) e["drivers"] = st.drivers();
+    if (st.kind == StepKind::ArmSolve || st.kind == StepKind::BaseForceDistribution) e["drivers"] = st.drivers();
     if (!st.views.empty()) e["views"] = st.views;
     if (st.kind == StepKind::Evaluate || st.kind == StepKind::LevelMonitor ||
         st.kind == StepKind::EdgeMonitor) {

@@ -77,7 +77,8 @@ enum class StepKind : uint8_t {
   GuardedMotion,    // ins: [when flags..., until flags...]; out: [active flag]
   Pid,              // ins: [error, active flag]; out: [control signal]
   ArmSolve,         // solver; ins: drivers' data, motion gates; writes the arm's joint torques
-  BaseForceDistribution,  // base solver; in: [platform wrench]; writes the hub torques
+  BaseForceDistribution,  // base solver; ins: [platform wrench, motion gates...]; writes the hub torques
+  BaseVelocityComposition,  // base solver; out: [platform twist] from pivots and wheel rates
 };
 std::string_view to_string(StepKind);
 
@@ -158,10 +159,14 @@ struct ArmSolver {
   SourceLoc where;
 };
 
+// The KELO base: a force distribution solver (the platform wrench it
+// distributes) and/or a velocity composition solver (the platform twist it
+// measures); one geometry for both.
 struct BaseSolver {
-  std::string iri, name;
+  std::string iri, name;  // the first of the two solvers the model has
   runtime::KeloGeometry geometry;
   int wrench = -1;  // platform wrench: at the platform origin, as seen by the platform
+  int twist = -1;   // platform twist w.r.t. the floor, at the platform origin, seen by it
   SourceLoc where;
 };
 

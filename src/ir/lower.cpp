@@ -1041,40 +1041,74 @@ void Lowerer::lower_controllers() {
 
 void Lowerer::lower_base() {
   const std::string slv = "task/solver-specification";
-  const auto solvers = instances(vocab(slv, "ForceDistributionSolver"));
-  if (solvers.size() > 1) error(solvers[1], "too-many-bases", "mospec's robot has one base; a second force distribution solver '" + str(solvers[1]) + "' has nothing to drive");
-  if (solvers.empty()) return;
-  const TermId b = solvers.front();
-  pending_iri_ = str(b);
+  const auto forces = instances(vocab(slv, "ForceDistributionSolver"));
+  const auto velocities = instances(vocab(slv, "VelocityCompositionSolver"));
+  if (forces.size() > 1)
+    error(forces[1], "too-many-bases", "mospec's robot has one base; a second force distribution solver '" + str(forces[1]) + "' has nothing to drive");
+  if (velocities.size() > 1)
+    error(velocities[1], "too-many-bases", "mospec's robot has one base; a second velocity composition solver '" + str(velocities[1]) + "' has nothing to measure");
+  if (forces.empty() && velocities.empty()) return;
   BaseSolver base;
-  base.iri = str(b);
+  const TermId first = forces.empty() ? velocities.front() : forces.front();
+  base.iri = str(first);
   base.name = identifier(local_name(base.iri));
-  base.where = where(b);
+  base.where = where(first);
   base.geometry = runtime::KeloGeometry::paper();
-  auto f = object(b, vocab(slv, "force"));
-  if (!f) {
-    error(b, "missing-property", "the force distribution solver '" + base.iri + "' names no force");
-    return;
+  // A platform quantity must be at the origin of the frame it is seen by.
+  const auto at_frame_origin = [&](const Data& q) {
+    std::string origin;
+    if (auto frame = term(q.as_seen_by); !absent(frame)) {
+      if (auto o = object(frame, vocab("geometry/structural-entities", "origin"))) origin = str(*o);
+    }
+    return !origin.empty() && q.reference_point == origin;
+  };
+  std::vector<Step> new_steps;
+  if (!velocities.empty()) {
+    const TermId v = velocities.front();
+    pending_iri_ = str(v);
+    if (auto t = object(v, vocab(slv, "velocity"))) {
+      base.twist = datum(*t, DataType::Twist, v, "velocity");
+      const Data& tw = prog_.data[static_cast<size_t>(base.twist)];
+      if (!at_frame_origin(tw)) {
+        error(*t, "frame-mismatch",
+              "the platform twist '" + tw.iri + "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
+                  tw.reference_point + "' seen by '" + tw.as_seen_by + "'");
+      }
+      Step s;
+      s.kind = StepKind::BaseVelocityComposition;
+      s.iri = str(v);
+      s.name = local_name(s.iri);
+      s.where = where(v);
+      s.out = {base.twist};
+      new_steps.push_back(std::move(s));
+    } else {
+      error(v, "missing-property", "the velocity composition solver '" + str(v) + "' names no velocity");
+    }
   }
-  base.wrench = datum(*f, DataType::Wrench, b, "force");
-  const Data& w = prog_.data[static_cast<size_t>(base.wrench)];
-  std::string origin;
-  if (auto frame = term(w.as_seen_by); !absent(frame)) {
-    if (auto o = object(frame, vocab("geometry/structural-entities", "origin"))) origin = str(*o);
+  if (!forces.empty()) {
+    const TermId b = forces.front();
+    pending_iri_ = str(b);
+    if (auto f = object(b, vocab(slv, "force"))) {
+      base.wrench = datum(*f, DataType::Wrench, b, "force");
+      const Data& w = prog_.data[static_cast<size_t>(base.wrench)];
+      if (!at_frame_origin(w)) {
+        error(*f, "frame-mismatch",
+              "the platform wrench '" + w.iri + "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
+                  w.reference_point + "' seen by '" + w.as_seen_by + "'");
+      }
+      Step s;
+      s.kind = StepKind::BaseForceDistribution;
+      s.iri = str(b);
+      s.name = local_name(s.iri);
+      s.where = where(b);
+      s.in = {base.wrench};
+      new_steps.push_back(std::move(s));
+    } else {
+      error(b, "missing-property", "the force distribution solver '" + str(b) + "' names no force");
+    }
   }
-  if (origin.empty() || w.reference_point != origin) {
-    error(*f, "frame-mismatch",
-          "the platform wrench '" + w.iri + "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
-              w.reference_point + "' seen by '" + w.as_seen_by + "'");
-  }
-  Step s;
-  s.kind = StepKind::BaseForceDistribution;
-  s.iri = base.iri;
-  s.name = base.name;
-  s.where = base.where;
-  s.in = {base.wrench};
   prog_.base = std::move(base);
-  add_step(std::move(s));
+  for (Step& s : new_steps) add_step(std::move(s));
 }
 
 void Lowerer::lower_views() {
@@ -1169,11 +1203,11 @@ void Lowerer::lower_views() {
   }
 }
 
-// Which motions drive each arm: the running flags gating the controllers and
+// Which motions drive each arm and the base: the running flags gating the controllers and
 // assignments whose outputs reach the arm's drivers, through any operators.
 void Lowerer::gate_arm_solves() {
   for (Step& solve : steps_) {
-    if (solve.kind != StepKind::ArmSolve) continue;
+    if (solve.kind != StepKind::ArmSolve && solve.kind != StepKind::BaseForceDistribution) continue;
     solve.n_drivers = static_cast<int>(solve.in.size());
     std::set<int> gates, seen_data;
     std::vector<int> todo(solve.in.begin(), solve.in.end());
@@ -1188,7 +1222,9 @@ void Lowerer::gate_arm_solves() {
                          (p.kind == StepKind::Evaluate && p.constraint.kind == runtime::ConstraintKind::Assignment &&
                           p.in.size() == 2);
       if (gated) gates.insert(p.in[1]);
-      if (p.kind == StepKind::GuardedMotion || p.kind == StepKind::ArmKinematics) continue;
+      if (p.kind == StepKind::GuardedMotion || p.kind == StepKind::ArmKinematics ||
+          p.kind == StepKind::BaseVelocityComposition)
+        continue;
       for (size_t k = 0; k < p.in.size(); ++k) {
         if (gated && k == 1) continue;
         todo.push_back(p.in[k]);

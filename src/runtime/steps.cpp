@@ -104,4 +104,56 @@ void base_force_distribution(const KeloModel& model, KeloData& data,
   }
 }
 
+namespace {
+
+// Pivots and wheel rates as Eigen vectors; false when any is not finite.
+bool base_measurements(std::span<const double> pivot_q, std::span<const double> wheel_qd, Vec4& q,
+                       KeloDriveVector& rates) noexcept {
+  if (pivot_q.size() < static_cast<std::size_t>(kKeloDrives) ||
+      wheel_qd.size() < static_cast<std::size_t>(rates.size()))
+    return false;
+  bool finite = true;
+  for (int i = 0; i < kKeloDrives; ++i) {
+    q[i] = pivot_q[static_cast<std::size_t>(i)];
+    finite = finite && std::isfinite(q[i]);
+  }
+  for (Eigen::Index w = 0; w < rates.size(); ++w) {
+    rates[w] = wheel_qd[static_cast<std::size_t>(w)];
+    finite = finite && std::isfinite(rates[w]);
+  }
+  return finite;
+}
+
+}  // namespace
+
+void base_velocity(const KeloModel& model, KeloData& data, std::span<const double> pivot_q,
+                   std::span<const double> wheel_qd, Vec6& twist) noexcept {
+  Vec4 q = Vec4::Zero();
+  KeloDriveVector rates = KeloDriveVector::Zero();
+  if (!base_measurements(pivot_q, wheel_qd, q, rates)) {
+    twist.setZero();
+    return;
+  }
+  kelo_set_pivots(model, data, q);
+  twist = spatial_twist(kelo_platform_twist(model, data, rates));
+}
+
+void base_hold(const KeloModel& model, KeloData& data, std::span<const double> pivot_q,
+               std::span<const double> wheel_qd, std::span<double> wheel_tau) noexcept {
+  Vec4 q = Vec4::Zero();
+  KeloDriveVector rates = KeloDriveVector::Zero();
+  if (!base_measurements(pivot_q, wheel_qd, q, rates)) {
+    for (double& t : wheel_tau) t = 0.0;
+    return;
+  }
+  kelo_set_pivots(model, data, q);
+  const Vec3 xd = kelo_platform_twist(model, data, rates);
+  const Vec3 F_p(-kBaseHoldLinearDamping * xd[0], -kBaseHoldLinearDamping * xd[1],
+                 -kBaseHoldAngularDamping * xd[2]);
+  const KeloDriveVector& tau = kelo_force_step(model, data, q, F_p);
+  for (std::size_t w = 0; w < wheel_tau.size(); ++w) {
+    wheel_tau[w] = static_cast<Eigen::Index>(w) < tau.size() ? tau[static_cast<Eigen::Index>(w)] : 0.0;
+  }
+}
+
 }  // namespace mospec::runtime::steps

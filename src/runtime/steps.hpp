@@ -153,4 +153,19 @@ void base_force_distribution(const KeloModel& model, KeloData& data,
                              std::span<const double> pivot_q, const Vec6& F_Po_P,
                              std::span<double> wheel_tau) noexcept;
 
+// The base when no motion drives it: it brakes to a stop and stays there,
+// with a platform wrench opposing its measured planar twist,
+// F_p = -[c_lin vx, c_lin vy, c_rot wz], distributed like any other.
+inline constexpr double kBaseHoldLinearDamping = 400.0;  // [N·s/m]: ~0.2 s for the ~80 kg platform
+inline constexpr double kBaseHoldAngularDamping = 40.0;  // [N·m·s/rad]
+void base_hold(const KeloModel& model, KeloData& data, std::span<const double> pivot_q,
+               std::span<const double> wheel_qd, std::span<double> wheel_tau) noexcept;
+
+// The base's velocity composition: the platform twist (w.r.t. the floor, at
+// the platform origin, seen by the platform; angular first) from the measured
+// pivot angles and wheel rates, by weighted least squares over the drives.
+// Non-finite measurements give a zero twist.
+void base_velocity(const KeloModel& model, KeloData& data, std::span<const double> pivot_q,
+                   std::span<const double> wheel_qd, Vec6& twist) noexcept;
+
 }  // namespace mospec::runtime::steps

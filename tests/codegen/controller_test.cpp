@@ -123,13 +123,15 @@ TEST(GeneratedController, LogColumnsAreTheProgramsNamedColumns) {
   if (path.empty()) GTEST_SKIP() << "MOSPEC_SMALL_CONTROLLER is not set (run by build_test.sh)";
   const std::unique_ptr<robot::Controller> generated = load_controller(path);
   const auto columns = generated->log_columns();
-  ASSERT_EQ(columns.size(), 21u);
+  ASSERT_EQ(columns.size(), 23u);
   EXPECT_STREQ(columns[0].name, "time");
   EXPECT_STREQ(columns[0].unit, "SEC");
   EXPECT_STREQ(columns[17].name, "push_ok");
   EXPECT_STREQ(columns[17].unit, "");
   EXPECT_STREQ(columns[18].name, "F_P.f_x");
   EXPECT_STREQ(columns[18].unit, "N");
+  EXPECT_STREQ(columns[21].name, "V_P.v_x");
+  EXPECT_STREQ(columns[21].unit, "M-PER-SEC");
   // Flags and events log as exactly 0 or 1.
   std::vector<double> v(columns.size());
   for (std::uint64_t k = 0; k < 100; ++k) {
@@ -138,6 +140,9 @@ TEST(GeneratedController, LogColumnsAreTheProgramsNamedColumns) {
     generated->log_values(v);
     for (std::size_t i = 12; i < 18; ++i)
       EXPECT_TRUE(v[i] == 0.0 || v[i] == 1.0) << columns[i].name;
+    if (k > 0) {
+      EXPECT_NE(v[21], 0.0) << "the platform twist composed from the turning wheels";
+    }
   }
 }
 

@@ -5,7 +5,8 @@
 //
 //   small_program()  no arm: a clock, constant poses and vectors, views, every
 //                    operator kind, equality/less-than evaluations, a PID, level
-//                    and edge monitors, a guarded motion, the KELO base.
+//                    and edge monitors, a guarded motion, the KELO base (velocity
+//                    composition, gated force distribution).
 //   arm_program()    a 7-dof Kinova Gen3 arm (robots/kinova-gen3.jsonld):
 //                    kinematics outputs, a tip acceleration constraint driven
 //                    by a PID, a Cartesian force and a joint force, gated by a
@@ -171,8 +172,12 @@ inline ir::Program small_program(SourceFiles& files) {
   base.name = "kelo";
   base.geometry = runtime::KeloGeometry::paper();
   base.wrench = F_P;
+  const int V_P = b.datum("V_P", T::Twist);
+  base.twist = V_P;
   b.p.base = base;
-  b.step(K::BaseForceDistribution, "base_distribution", {F_P}, {});
+  b.step(K::BaseVelocityComposition, "base_velocity", {}, {V_P});
+  // The distribution runs while `approach` runs; otherwise the base holds.
+  b.step(K::BaseForceDistribution, "base_distribution", {F_P, approach}, {}).n_drivers = 1;
 
   for (int d : {time, height, yaw, distance, angle, angle_inv, v_z, height_err, late_err, force,
                 push, f_z}) {
@@ -186,6 +191,8 @@ inline ir::Program small_program(SourceFiles& files) {
   b.p.log.push_back({"F_P.f_x", "N", F_P, 3});
   b.p.log.push_back({"F_P.m_z", "N-M", F_P, 2});
   b.p.log.push_back({"V_W.w_x", "RAD-PER-SEC", V_W, 0});
+  b.p.log.push_back({"V_P.v_x", "M-PER-SEC", V_P, 3});
+  b.p.log.push_back({"V_P.w_z", "RAD-PER-SEC", V_P, 2});
   return b.p;
 }
 
@@ -308,6 +315,9 @@ inline robot::MeasuredState measurement(std::uint64_t k) {
   }
   for (std::size_t i = 0; i < s.pivot_q.size(); ++i) {
     s.pivot_q[i] = 0.2 * static_cast<double>(i) + 0.3 * std::sin(t + static_cast<double>(i));
+  }
+  for (std::size_t w = 0; w < s.wheel_qd.size(); ++w) {
+    s.wheel_qd[w] = 0.5 * std::sin(0.7 * t + static_cast<double>(w));
   }
   return s;
 }
