@@ -1,5 +1,6 @@
 #include "cli/pipeline.hpp"
 
+#include <filesystem>
 #include <iostream>
 
 #include "shacl/model_validation.hpp"
@@ -16,6 +17,20 @@ void PipelineFlags::add_to(CLI::App& cmd) {
   load.add_to(cmd);
 }
 
+std::string resolve_app(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) {
+    if (std::filesystem::is_directory(path, ec)) {
+      std::string trimmed = path;
+      while (trimmed.size() > 1 && trimmed.back() == '/') trimmed.pop_back();
+      if (std::filesystem::is_regular_file(trimmed + ".json", ec)) return trimmed + ".json";
+    }
+    return path;
+  }
+  if (std::filesystem::is_regular_file(path + ".json", ec)) return path + ".json";
+  return path;
+}
+
 std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& exit_code,
                                                SourceFiles* files) {
   ir::LowerOptions options;
@@ -27,7 +42,9 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
     }
     options.ports[b.substr(0, eq)] = arm == "right" ? 0 : 1;
   }
-  app::LoadedModel model = app::load(flags.inputs, flags.load.to_options());
+  std::vector<std::string> inputs;
+  for (const std::string& i : flags.inputs) inputs.push_back(resolve_app(i));
+  app::LoadedModel model = app::load(inputs, flags.load.to_options());
   const size_t warnings = print_diagnostics(model.diagnostics());
   shacl::ModelValidationOptions vopt;
   vopt.strict = flags.load.strict;

@@ -19,6 +19,10 @@ struct PipelineFlags {
   void add_to(CLI::App& cmd);
 };
 
+// An app named without its extension (`models/sc1`, as scenarios are named)
+// is the JSON file next to it (`models/sc1.json`); other paths are unchanged.
+std::string resolve_app(const std::string& path);
+
 // Loads, validates and lowers. On failure prints every finding (located) to
 // stderr and returns the exit code in `exit_code`: 1 when the model does not
 // validate or lower, 2 on bad input. `files` receives the source files (for

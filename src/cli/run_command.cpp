@@ -140,7 +140,8 @@ Action add_run_command(CLI::App& app) {
     SourceFiles files;
     auto program = load_validate_lower(flags->pipeline, code, &files);
     if (!program) return code;
-    sim::WorldConfig config = scenario_world(flags->pipeline.inputs.front(), flags->world);
+    const std::string app_path = resolve_app(flags->pipeline.inputs.front());
+    sim::WorldConfig config = scenario_world(app_path, flags->world);
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
     if (flags->seed) config.seed = *flags->seed;
     const runtime::Chain arm = sim::load_arm_chain(config.robot);
@@ -160,7 +161,7 @@ Action add_run_command(CLI::App& app) {
     const sim::RunResult r = sim::run(world, *controller, options);
     if (!flags->log.empty()) write_output(flags->log, r.csv);
     if (!flags->summary.empty()) {
-      write_output(flags->summary, summary_json(flags->pipeline.inputs.front(), r, flags->interpret));
+      write_output(flags->summary, summary_json(app_path, r, flags->interpret));
     }
     std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall

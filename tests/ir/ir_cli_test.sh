@@ -13,6 +13,10 @@ for app in sc0a sc0b sc1 sc2; do
   check "$app IR is deterministic" cmp -s "$work/$app.1.json" "$work/$app.2.json"
 done
 
+expect "an app named without .json (models/sc0a) is models/sc0a.json" 0 "" -- \
+  "$mospec" ir models/sc0a -o "$work/sc0a.3.json"
+check "... and lowers to the same IR" cmp -s "$work/sc0a.1.json" "$work/sc0a.3.json"
+
 D="$SRC/tests/ir/data"
 expect "tiny lowers" 0 "" -- "$mospec" ir --root "$D" "$D/tiny.json" -o "$work/tiny.json"
 order=$(grep -o '"kind": "[a-z-]*"' "$work/tiny.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
