@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/faults.hpp"
 #include "cli/pipeline.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
@@ -54,6 +55,7 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   j["ticks"] = r.ticks;
   j["wall_time"] = r.wall;
   j["non_finite"] = r.non_finite;
+  j["non_finite_logged_rows"] = r.non_finite_values;
   j["max_torque_ratio"] = r.max_torque_ratio;
   j["torque_limit_exceeded"] = r.torque_limit_exceeded;
   j["joint_limit_exceeded"] = r.joint_limit_exceeded;
@@ -105,6 +107,7 @@ Action add_run_command(CLI::App& app) {
     std::string summary;
     int log_every = 10;
     std::string cache;
+    std::vector<std::string> faults;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
@@ -132,6 +135,7 @@ Action add_run_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--summary", flags->summary, "JSON summary file ('-' = standard output)")
       ->type_name("FILE.json");
+  cmd->add_option("--fault", flags->faults, kFaultHelp)->type_name("SPEC");
   cmd->add_option("--cache", flags->cache,
                   "Directory of generated and built controllers (default: .mospec-cache)")
       ->type_name("DIR");
@@ -158,6 +162,7 @@ Action add_run_command(CLI::App& app) {
       controller = generated_controller(*program, files, flags->cache.empty() ? ".mospec-cache" : flags->cache);
     }
     sim::World world(config, arm);
+    for (const std::string& f : flags->faults) add_fault(world.faults(), f);
     const sim::RunResult r = sim::run(world, *controller, options);
     if (!flags->log.empty()) write_output(flags->log, r.csv);
     if (!flags->summary.empty()) {
@@ -172,7 +177,7 @@ Action add_run_command(CLI::App& app) {
       return kExitFindings;
     }
     if (r.non_finite) {
-      std::cerr << "mospec: error: a controller output or command was not finite\n";
+      std::cerr << "mospec: error: the controller commanded a value that is not finite\n";
       return kExitFindings;
     }
     return kExitOk;

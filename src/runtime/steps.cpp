@@ -22,14 +22,15 @@ void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
   ws.input_fault = false;
   for (int i = 0; i < model.nq; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    const double qi = k < q_measured.size() ? q_measured[k] : 0.0;
-    const double qdi = k < qd_measured.size() ? qd_measured[k] : 0.0;
-    const bool ok = std::isfinite(qi) && std::isfinite(qdi) && k < q_measured.size() &&
-                    k < qd_measured.size();
-    ws.input_fault = ws.input_fault || !ok;
-    ws.q[i] = std::isfinite(qi) ? qi : 0.0;
-    ws.qd[i] = std::isfinite(qdi) ? qdi : 0.0;
+    const bool present = k < q_measured.size() && k < qd_measured.size();
+    const double qi = present ? q_measured[k] : std::nan("");
+    const double qdi = present ? qd_measured[k] : std::nan("");
+    // Keep each entry's last finite value (q and qd start at zero).
+    if (std::isfinite(qi)) ws.q[i] = qi;
+    if (std::isfinite(qdi)) ws.qd[i] = qdi;
+    ws.input_fault = ws.input_fault || !std::isfinite(qi) || !std::isfinite(qdi);
   }
+  ws.any_valid = ws.any_valid || !ws.input_fault;
   // The outward velocity sweep of ACHD/RNE, without the dynamics.
   Vec6 V_P = Vec6::Zero();
   Pose X_BP;
@@ -49,7 +50,11 @@ void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, Ach
                ArmWorkspace& ws, std::span<double> tau_out) noexcept {
   const AchdModel& model = task_model;
   const auto n = static_cast<std::size_t>(model.nq);
-  bool finite = !ws.input_fault && ws.tau_ff.allFinite() && ws.beta.allFinite();
+  if (ws.input_fault) {
+    arm_hold(physical_model, data, ws, tau_out);
+    return;
+  }
+  bool finite = ws.tau_ff.allFinite() && ws.beta.allFinite();
   for (std::size_t i = 0; i < n; ++i) finite = finite && ws.F_ext[i].allFinite();
   if (finite) {
     ws.status = achd(model, data, ws.q, ws.qd, ws.tau_ff,
@@ -72,7 +77,7 @@ void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
               std::span<double> tau_out) noexcept {
   const auto n = static_cast<std::size_t>(physical_model.nq);
   ws.status = Status::Ok;
-  if (ws.input_fault) {
+  if (!ws.any_valid) {
     ws.tau_command.setZero();
   } else {
     data.qdd = -ws.qd / kHoldTimeConstant;

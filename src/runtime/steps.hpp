@@ -29,12 +29,14 @@ struct ArmWorkspace {
   JointVector tau_command;      // what is sent to the arm
   Status status = Status::Ok;
   bool input_fault = false;  // the last sample had a non-finite q or qd
+  bool any_valid = false;    // a complete finite sample has been seen
 };
 
 // Reads q, qd from the measured arm (the first nq joints) and runs the forward
 // velocity sweep: data.X_PS, X_BS, X_BT and the segment twists data.V (in S_i
-// at So_i). A non-finite measurement sets input_fault; the kinematics then use
-// zeros for the bad entries (the solve step sends zero torque).
+// at So_i). A non-finite entry sets input_fault and keeps that joint's last
+// finite value (so nothing downstream jumps); while input_fault is set the
+// solve step holds the arm instead of driving it.
 void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
                     std::span<const double> q_measured, std::span<const double> qd_measured) noexcept;
 
@@ -61,14 +63,15 @@ inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
 // virtual and gravity is real:
 //   tau_command = rne(q, qd, qdd) in `physical_model` (with the solver's
 //   gravity) and without F_ext.
-// Writes zero torque when the inputs were not finite or the solver failed.
+// On a sensor fault (input_fault) it holds the arm (arm_hold) on the last
+// valid sample; zero torque when the solver fails or no valid sample was seen.
 void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, AchdData& data,
                ArmWorkspace& ws, std::span<double> tau_out) noexcept;
 
 // The arm when no motion drives it: it brakes to a stop and then holds,
 // gravity-compensated: tau = rne(q, qd, -qd / kHoldTimeConstant) with the
 // solver's gravity (every joint's velocity decays with that time constant on
-// the model). Zero torque when the inputs were not finite.
+// the model). Zero torque before the first complete finite sample.
 inline constexpr double kHoldTimeConstant = 0.1;  // [s]
 void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
               std::span<double> tau_out) noexcept;

@@ -86,10 +86,12 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     controller.log_values(values);
     size_t c = 0;
     row[c++] = world.time();
+    bool finite_row = true;
     for (double v : values) {
-      r.non_finite = r.non_finite || !std::isfinite(v);
+      finite_row = finite_row && std::isfinite(v);
       row[c++] = v;
     }
+    r.non_finite_values += finite_row ? 0 : 1;
     const runtime::Pose X_WP = world.X_WP();
     row[c++] = X_WP.p.x();
     row[c++] = X_WP.p.y();
