@@ -46,7 +46,8 @@ int spawn(const std::vector<std::string>& args, const std::string& out_file = "/
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
   posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addchdir_np(&actions, kSource.c_str());
   pid_t pid = 0;
@@ -69,7 +70,8 @@ mospec::ir::Program lower_sc1() {
 void run_ticks(benchmark::State& state, Controller& controller) {
   const mospec::sim::WorldConfig world = mospec::sim::default_world();
   mospec::robot::MeasuredState s;
-  for (int a = 0; a < mospec::robot::kArms; ++a) s.arm[static_cast<size_t>(a)].q = world.arms[static_cast<size_t>(a)].q0;
+  for (int a = 0; a < mospec::robot::kArms; ++a)
+    s.arm[static_cast<size_t>(a)].q = world.arms[static_cast<size_t>(a)].q0;
   mospec::robot::Command command;
   std::uint64_t k = 0;
   for (auto _ : state) {
@@ -93,7 +95,10 @@ void BM_GenerateProcess(benchmark::State& state) {
   }
   fs::remove_all(out);
 }
-BENCHMARK(BM_GenerateProcess)->Name("BM_GenerateProcess/sc1")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GenerateProcess)
+    ->Name("BM_GenerateProcess/sc1")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_Lower(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(lower_sc1());

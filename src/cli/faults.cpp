@@ -55,5 +55,4 @@ void add_fault(robot::FaultInjector& faults, const std::string& spec) {
   }
 }
 
-
 }  // namespace mospec::cli

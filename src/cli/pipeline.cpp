@@ -50,7 +50,8 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
   vopt.strict = flags.load.strict;
   shacl::ModelValidation v = shacl::validate_model(model, vopt);
   print_diagnostics(v.shape_diagnostics);
-  const size_t violations = v.report.count(shacl::Level::Violation) + v.report.count(shacl::Level::Other);
+  const size_t violations =
+      v.report.count(shacl::Level::Violation) + v.report.count(shacl::Level::Other);
   const bool strict_fail =
       flags.load.strict && (warnings + v.strict_findings.size() + v.report.results.size() > 0);
   if (violations > 0 || strict_fail) {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-
 #include <nlohmann/json.hpp>
 
 #include "cli/faults.hpp"
@@ -65,7 +64,9 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   nlohmann::ordered_json tubes = nlohmann::ordered_json::array();
   for (const std::string& c : r.columns) {
     const std::string suffix = ".lower";
-    if (c.size() <= suffix.size() || c.compare(c.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+    if (c.size() <= suffix.size() ||
+        c.compare(c.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
     const std::string name = c.substr(0, c.size() - suffix.size());
     const double v = sim::last_value(r, name + ".value");
     const double lo = sim::last_value(r, name + ".lower");
@@ -86,7 +87,8 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   nlohmann::ordered_json final_values;
   for (size_t i = 0; i < r.columns.size() && i < r.last_row.size(); ++i) {
     const double v = r.last_row[i];
-    final_values[r.columns[i]] = std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+    final_values[r.columns[i]] =
+        std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
   }
   j["final"] = std::move(final_values);
   return j.dump(2) + "\n";
@@ -129,7 +131,8 @@ Action add_run_command(CLI::App& app) {
       ->type_name("FILE");
   cmd->add_option("--base", flags->base, "Base model (overrides the world)")
       ->check(CLI::IsMember({"wheeled", "planar", "fixed"}));
-  cmd->add_option("--log", flags->log, "CSV log file ('-' = standard output)")->type_name("FILE.csv");
+  cmd->add_option("--log", flags->log, "CSV log file ('-' = standard output)")
+      ->type_name("FILE.csv");
   cmd->add_option("--log-every", flags->log_every, "Log every N-th control tick")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
@@ -159,7 +162,8 @@ Action add_run_command(CLI::App& app) {
     if (flags->interpret) {
       controller = std::make_unique<ir::Interpreter>(std::move(*program));
     } else {
-      controller = generated_controller(*program, files, flags->cache.empty() ? ".mospec-cache" : flags->cache);
+      controller = generated_controller(*program, files,
+                                        flags->cache.empty() ? ".mospec-cache" : flags->cache);
     }
     sim::World world(config, arm);
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);

@@ -48,9 +48,15 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
     if (d.value.empty()) continue;
     const auto s = static_cast<size_t>(d.slot);
     switch (d.type) {
-      case DataType::Scalar: scalars_[s] = d.value[0]; break;
-      case DataType::Vector3: vec3s_[s] = Vec3(d.value[0], d.value[1], d.value[2]); break;
-      case DataType::Pose: poses_[s] = constant_pose(d.value); break;
+      case DataType::Scalar:
+        scalars_[s] = d.value[0];
+        break;
+      case DataType::Vector3:
+        vec3s_[s] = Vec3(d.value[0], d.value[1], d.value[2]);
+        break;
+      case DataType::Pose:
+        poses_[s] = constant_pose(d.value);
+        break;
       case DataType::Twist:
       case DataType::Wrench: {
         Vec6 v;
@@ -58,21 +64,27 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
         (d.type == DataType::Twist ? twists_ : wrenches_)[s] = v;
         break;
       }
-      case DataType::Flag: flags_[s] = d.value[0] != 0.0; break;
-      case DataType::Event: break;
+      case DataType::Flag:
+        flags_[s] = d.value[0] != 0.0;
+        break;
+      case DataType::Event:
+        break;
     }
   }
   pid_states_.resize(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Pid)]));
-  monitor_states_.resize(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Monitor)]));
+  monitor_states_.resize(
+      static_cast<size_t>(program_.states[static_cast<int>(StateKind::Monitor)]));
   motion_states_.assign(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Motion)]),
                         runtime::steps::MotionState::Idle);
   evaluators_.resize(program_.steps.size());
   for (size_t i = 0; i < program_.steps.size(); ++i) {
     const Step& st = program_.steps[i];
     if (st.kind == StepKind::Evaluate) {
-      evaluators_[i] = std::make_unique<runtime::ConstraintEvaluator>(st.constraint, st.name.c_str());
+      evaluators_[i] =
+          std::make_unique<runtime::ConstraintEvaluator>(st.constraint, st.name.c_str());
     } else if (st.kind == StepKind::Pid) {
-      if (pids_.size() <= static_cast<size_t>(st.state)) pids_.resize(static_cast<size_t>(st.state) + 1, runtime::Pid(runtime::PidSpec{}));
+      if (pids_.size() <= static_cast<size_t>(st.state))
+        pids_.resize(static_cast<size_t>(st.state) + 1, runtime::Pid(runtime::PidSpec{}));
       pids_[static_cast<size_t>(st.state)] = runtime::Pid(st.pid, st.name.c_str());
     }
   }
@@ -128,8 +140,8 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       if (super.type == DataType::Pose) {
         scalars_[out(0)] = steps::view_pose(poses_[in(0)], v);
       } else {
-        scalars_[out(0)] = steps::view_vec6(
-            super.type == DataType::Twist ? twists_[in(0)] : wrenches_[in(0)], v);
+        scalars_[out(0)] =
+            steps::view_vec6(super.type == DataType::Twist ? twists_[in(0)] : wrenches_[in(0)], v);
       }
       break;
     }
@@ -196,9 +208,9 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       const auto n_when = static_cast<size_t>(st.n_when);
       for (size_t k = 0; k < n_when; ++k) when[k] = flags_[in(k)] != 0;
       for (size_t k = n_when; k < st.in.size(); ++k) until[k - n_when] = flags_[in(k)] != 0;
-      flags_[out(0)] = steps::guarded_motion(motion_states_[static_cast<size_t>(st.state)],
-                                             std::span<const bool>(when.data(), n_when),
-                                             std::span<const bool>(until.data(), st.in.size() - n_when));
+      flags_[out(0)] = steps::guarded_motion(
+          motion_states_[static_cast<size_t>(st.state)], std::span<const bool>(when.data(), n_when),
+          std::span<const bool>(until.data(), st.in.size() - n_when));
       break;
     }
     case StepKind::Pid: {
@@ -214,7 +226,8 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       bool driven = st.in.size() == st.drivers();  // no gates: always
       for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || flags_[in(k)] != 0;
       if (!driven) {
-        steps::arm_hold(arm.model, arm.data, arm.ws, command.arm_tau[static_cast<size_t>(solver.port)]);
+        steps::arm_hold(arm.model, arm.data, arm.ws,
+                        command.arm_tau[static_cast<size_t>(solver.port)]);
         break;
       }
       arm.ws.F_ext.fill(Vec6::Zero());
@@ -222,7 +235,8 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
         arm.ws.F_ext[static_cast<size_t>(f.segment)] += wrenches_[slot(f.wrench)];
       }
       arm.ws.tau_ff.setZero();
-      for (const JointForce& f : solver.joint_forces) arm.ws.tau_ff[f.joint] += scalars_[slot(f.force)];
+      for (const JointForce& f : solver.joint_forces)
+        arm.ws.tau_ff[f.joint] += scalars_[slot(f.force)];
       for (size_t k = 0; k < solver.acceleration_constraints.size(); ++k) {
         arm.ws.beta[static_cast<Eigen::Index>(k)] =
             scalars_[slot(solver.acceleration_constraints[k].energy)];
@@ -235,7 +249,8 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       bool driven = st.in.size() == st.drivers();  // no gates: always
       for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || flags_[in(k)] != 0;
       if (!driven) {
-        steps::base_hold(base_->model, base_->data, state.pivot_q, state.wheel_qd, command.wheel_tau);
+        steps::base_hold(base_->model, base_->data, state.pivot_q, state.wheel_qd,
+                         command.wheel_tau);
       } else {
         steps::base_force_distribution(base_->model, base_->data, state.pivot_q, wrenches_[in(0)],
                                        command.wheel_tau);
@@ -243,7 +258,8 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       break;
     }
     case StepKind::BaseVelocityComposition:
-      steps::base_velocity(base_->model, base_->data, state.pivot_q, state.wheel_qd, twists_[out(0)]);
+      steps::base_velocity(base_->model, base_->data, state.pivot_q, state.wheel_qd,
+                           twists_[out(0)]);
       break;
   }
 }
@@ -252,10 +268,14 @@ double Interpreter::value(int data) const noexcept {
   const Data& d = program_.data[static_cast<size_t>(data)];
   const auto s = static_cast<size_t>(d.slot);
   switch (d.type) {
-    case DataType::Scalar: return scalars_[s];
-    case DataType::Flag: return flags_[s] ? 1.0 : 0.0;
-    case DataType::Event: return events_[s] ? 1.0 : 0.0;
-    default: return std::nan("");
+    case DataType::Scalar:
+      return scalars_[s];
+    case DataType::Flag:
+      return flags_[s] ? 1.0 : 0.0;
+    case DataType::Event:
+      return events_[s] ? 1.0 : 0.0;
+    default:
+      return std::nan("");
   }
 }
 
@@ -264,7 +284,8 @@ void Interpreter::log_values(std::span<double> out) const noexcept {
     const LogColumn& c = program_.log[i];
     const Data& d = program_.data[static_cast<size_t>(c.data)];
     if (c.component >= 0 && (d.type == DataType::Twist || d.type == DataType::Wrench)) {
-      out[i] = (d.type == DataType::Twist ? twists_ : wrenches_)[static_cast<size_t>(d.slot)][c.component];
+      out[i] = (d.type == DataType::Twist ? twists_
+                                          : wrenches_)[static_cast<size_t>(d.slot)][c.component];
     } else {
       out[i] = value(c.data);
     }

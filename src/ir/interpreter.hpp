@@ -31,7 +31,9 @@ class Interpreter final : public robot::Controller {
 
   const Program& program() const { return program_; }
   // The current value of a datum (flags and events as 0/1); for tests.
-  double scalar(int data) const { return scalars_[static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot)]; }
+  double scalar(int data) const {
+    return scalars_[static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot)];
+  }
   double value(int data) const noexcept;
 
  private:
@@ -39,7 +41,9 @@ class Interpreter final : public robot::Controller {
   struct Base;
   void execute(const Step& step, size_t index, const robot::MeasuredState& state,
                robot::Command& command) noexcept;
-  size_t slot(int data) const { return static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot); }
+  size_t slot(int data) const {
+    return static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot);
+  }
 
   Program program_;
   std::vector<double> scalars_;

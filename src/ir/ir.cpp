@@ -6,43 +6,72 @@ namespace mospec::ir {
 
 std::string_view to_string(DataType t) {
   switch (t) {
-    case DataType::Scalar: return "scalar";
-    case DataType::Vector3: return "vector3";
-    case DataType::Pose: return "pose";
-    case DataType::Twist: return "twist";
-    case DataType::Wrench: return "wrench";
-    case DataType::Flag: return "flag";
-    case DataType::Event: return "event";
+    case DataType::Scalar:
+      return "scalar";
+    case DataType::Vector3:
+      return "vector3";
+    case DataType::Pose:
+      return "pose";
+    case DataType::Twist:
+      return "twist";
+    case DataType::Wrench:
+      return "wrench";
+    case DataType::Flag:
+      return "flag";
+    case DataType::Event:
+      return "event";
   }
   return "?";
 }
 
 std::string_view to_string(StepKind k) {
   switch (k) {
-    case StepKind::ReadClock: return "read-clock";
-    case StepKind::ArmKinematics: return "arm-kinematics";
-    case StepKind::ViewRead: return "view-read";
-    case StepKind::ViewWrite: return "view-write";
-    case StepKind::ComposePose: return "compose-pose";
-    case StepKind::PoseToLinearDistance: return "pose-to-linear-distance";
-    case StepKind::PoseToDirection: return "pose-to-direction";
-    case StepKind::RotateWrenchToProximal: return "rotate-wrench-to-proximal";
-    case StepKind::RotateTwistToProximal: return "rotate-twist-to-proximal";
-    case StepKind::RotateDirectionToProximal: return "rotate-direction-to-proximal";
-    case StepKind::TransformWrenchToProximal: return "transform-wrench-to-proximal";
+    case StepKind::ReadClock:
+      return "read-clock";
+    case StepKind::ArmKinematics:
+      return "arm-kinematics";
+    case StepKind::ViewRead:
+      return "view-read";
+    case StepKind::ViewWrite:
+      return "view-write";
+    case StepKind::ComposePose:
+      return "compose-pose";
+    case StepKind::PoseToLinearDistance:
+      return "pose-to-linear-distance";
+    case StepKind::PoseToDirection:
+      return "pose-to-direction";
+    case StepKind::RotateWrenchToProximal:
+      return "rotate-wrench-to-proximal";
+    case StepKind::RotateTwistToProximal:
+      return "rotate-twist-to-proximal";
+    case StepKind::RotateDirectionToProximal:
+      return "rotate-direction-to-proximal";
+    case StepKind::TransformWrenchToProximal:
+      return "transform-wrench-to-proximal";
     case StepKind::WrenchFromPositionDirectionAndMagnitude:
       return "wrench-from-position-direction-and-magnitude";
-    case StepKind::AddWrench: return "add-wrench";
-    case StepKind::PlanarAngleFromDirections: return "planar-angle-from-directions";
-    case StepKind::InvertAngle: return "invert-angle";
-    case StepKind::Evaluate: return "evaluate";
-    case StepKind::LevelMonitor: return "level-monitor";
-    case StepKind::EdgeMonitor: return "edge-monitor";
-    case StepKind::GuardedMotion: return "guarded-motion";
-    case StepKind::Pid: return "pid";
-    case StepKind::ArmSolve: return "arm-solve";
-    case StepKind::BaseForceDistribution: return "base-force-distribution";
-    case StepKind::BaseVelocityComposition: return "base-velocity-composition";
+    case StepKind::AddWrench:
+      return "add-wrench";
+    case StepKind::PlanarAngleFromDirections:
+      return "planar-angle-from-directions";
+    case StepKind::InvertAngle:
+      return "invert-angle";
+    case StepKind::Evaluate:
+      return "evaluate";
+    case StepKind::LevelMonitor:
+      return "level-monitor";
+    case StepKind::EdgeMonitor:
+      return "edge-monitor";
+    case StepKind::GuardedMotion:
+      return "guarded-motion";
+    case StepKind::Pid:
+      return "pid";
+    case StepKind::ArmSolve:
+      return "arm-solve";
+    case StepKind::BaseForceDistribution:
+      return "base-force-distribution";
+    case StepKind::BaseVelocityComposition:
+      return "base-velocity-composition";
   }
   return "?";
 }
@@ -86,22 +115,33 @@ struct Signature {
 Signature signature(const Step& st, const Program& p) {
   using T = DataType;
   switch (st.kind) {
-    case StepKind::ReadClock: return {{}, {T::Scalar}};
-    case StepKind::ComposePose: return {{T::Pose, T::Pose}, {T::Pose}};
-    case StepKind::PoseToLinearDistance: return {{T::Pose}, {T::Scalar}};
-    case StepKind::PoseToDirection: return {{T::Pose}, {T::Vector3}};
+    case StepKind::ReadClock:
+      return {{}, {T::Scalar}};
+    case StepKind::ComposePose:
+      return {{T::Pose, T::Pose}, {T::Pose}};
+    case StepKind::PoseToLinearDistance:
+      return {{T::Pose}, {T::Scalar}};
+    case StepKind::PoseToDirection:
+      return {{T::Pose}, {T::Vector3}};
     case StepKind::RotateWrenchToProximal:
-    case StepKind::TransformWrenchToProximal: return {{T::Pose, T::Wrench}, {T::Wrench}};
-    case StepKind::RotateTwistToProximal: return {{T::Pose, T::Twist}, {T::Twist}};
-    case StepKind::RotateDirectionToProximal: return {{T::Pose, T::Vector3}, {T::Vector3}};
+    case StepKind::TransformWrenchToProximal:
+      return {{T::Pose, T::Wrench}, {T::Wrench}};
+    case StepKind::RotateTwistToProximal:
+      return {{T::Pose, T::Twist}, {T::Twist}};
+    case StepKind::RotateDirectionToProximal:
+      return {{T::Pose, T::Vector3}, {T::Vector3}};
     case StepKind::WrenchFromPositionDirectionAndMagnitude:
       return {{T::Vector3, T::Vector3, T::Scalar}, {T::Wrench}};
-    case StepKind::AddWrench: return {{T::Wrench, T::Wrench}, {T::Wrench}};
+    case StepKind::AddWrench:
+      return {{T::Wrench, T::Wrench}, {T::Wrench}};
     case StepKind::PlanarAngleFromDirections:
       return {{T::Vector3, T::Vector3, T::Vector3}, {T::Scalar}};
-    case StepKind::InvertAngle: return {{T::Scalar}, {T::Scalar}};
-    case StepKind::LevelMonitor: return {{T::Scalar}, {T::Flag}};
-    case StepKind::EdgeMonitor: return {{T::Scalar}, {T::Event}};
+    case StepKind::InvertAngle:
+      return {{T::Scalar}, {T::Scalar}};
+    case StepKind::LevelMonitor:
+      return {{T::Scalar}, {T::Flag}};
+    case StepKind::EdgeMonitor:
+      return {{T::Scalar}, {T::Event}};
     case StepKind::Evaluate:
       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag, T::Scalar}};
       return {{T::Scalar}, {T::Flag, T::Scalar}};
@@ -124,13 +164,15 @@ Signature signature(const Step& st, const Program& p) {
       return {std::vector<T>(st.in.size(), T::Scalar), {super}};
     }
     case StepKind::ArmKinematics:
-    case StepKind::ArmSolve: return {{}, {}, true};
+    case StepKind::ArmSolve:
+      return {{}, {}, true};
     case StepKind::BaseForceDistribution: {
       Signature s{{T::Wrench}, {}};
       for (size_t k = 1; k < st.in.size(); ++k) s.in.push_back(T::Flag);
       return s;
     }
-    case StepKind::BaseVelocityComposition: return {{}, {T::Twist}};
+    case StepKind::BaseVelocityComposition:
+      return {{}, {T::Twist}};
   }
   return {};
 }
@@ -140,13 +182,16 @@ Signature signature(const Step& st, const Program& p) {
 void verify(const Program& p) {
   // Slots: dense per type, each used once.
   std::array<std::vector<char>, kDataTypes> used;
-  for (int t = 0; t < kDataTypes; ++t) used[static_cast<size_t>(t)].assign(static_cast<size_t>(p.slots[static_cast<size_t>(t)]), 0);
+  for (int t = 0; t < kDataTypes; ++t)
+    used[static_cast<size_t>(t)].assign(static_cast<size_t>(p.slots[static_cast<size_t>(t)]), 0);
   for (const Data& d : p.data) {
     auto& u = used[static_cast<size_t>(d.type)];
     if (d.slot < 0 || static_cast<size_t>(d.slot) >= u.size() || u[static_cast<size_t>(d.slot)]) {
       std::string msg = "datum '";
-      msg.append(d.name).append("' has slot ").append(std::to_string(d.slot)).append(
-          ", which is out of range or shared");
+      msg.append(d.name)
+          .append("' has slot ")
+          .append(std::to_string(d.slot))
+          .append(", which is out of range or shared");
       throw Error("ir-invalid", msg);
     }
     u[static_cast<size_t>(d.slot)] = 1;
@@ -180,11 +225,13 @@ void verify(const Program& p) {
         invalid(st, "wrong number of inputs or outputs");
       for (size_t k = 0; k < st.in.size(); ++k) {
         check_index(st, st.in[k]);
-        if (p.data[static_cast<size_t>(st.in[k])].type != sig.in[k]) invalid(st, "input of the wrong type");
+        if (p.data[static_cast<size_t>(st.in[k])].type != sig.in[k])
+          invalid(st, "input of the wrong type");
       }
       for (size_t k = 0; k < st.out.size(); ++k) {
         check_index(st, st.out[k]);
-        if (p.data[static_cast<size_t>(st.out[k])].type != sig.out[k]) invalid(st, "output of the wrong type");
+        if (p.data[static_cast<size_t>(st.out[k])].type != sig.out[k])
+          invalid(st, "output of the wrong type");
       }
     }
     if ((st.kind == StepKind::ViewRead && st.views.size() != 1) ||
@@ -197,15 +244,19 @@ void verify(const Program& p) {
         (st.n_when > kMaxGuards || static_cast<int>(st.in.size()) - st.n_when > kMaxGuards))
       invalid(st, "too many guards");
     if (st.kind == StepKind::ArmKinematics || st.kind == StepKind::ArmSolve) {
-      if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size()) invalid(st, "no such arm solver");
+      if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size())
+        invalid(st, "no such arm solver");
     }
-    if ((st.kind == StepKind::BaseForceDistribution || st.kind == StepKind::BaseVelocityComposition) && !p.base)
+    if ((st.kind == StepKind::BaseForceDistribution ||
+         st.kind == StepKind::BaseVelocityComposition) &&
+        !p.base)
       invalid(st, "no base solver");
     if (st.kind == StepKind::ArmSolve) {
       if (st.drivers() > st.in.size()) invalid(st, "bad driver count");
       for (size_t k = st.drivers(); k < st.in.size(); ++k) {
         check_index(st, st.in[k]);
-        if (p.data[static_cast<size_t>(st.in[k])].type != DataType::Flag) invalid(st, "a motion gate must be a flag");
+        if (p.data[static_cast<size_t>(st.in[k])].type != DataType::Flag)
+          invalid(st, "a motion gate must be a flag");
       }
     }
     for (int d : st.in) consume(st, d);
@@ -213,7 +264,8 @@ void verify(const Program& p) {
   }
   for (const ArmSolver& a : p.arms) {
     for (const AccelerationConstraint& c : a.acceleration_constraints) {
-      if (c.component < 0 || c.component > 5) throw Error("ir-invalid", "acceleration constraint component out of range");
+      if (c.component < 0 || c.component > 5)
+        throw Error("ir-invalid", "acceleration constraint component out of range");
     }
     if (a.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints))
       throw Error("ir-invalid", "more acceleration constraints than ACHD supports");
@@ -223,7 +275,8 @@ void verify(const Program& p) {
       throw Error("ir-invalid", "log column '" + c.name + "' refers to no datum");
     const DataType t = p.data[static_cast<size_t>(c.data)].type;
     if (c.component >= 0 && (c.component > 5 || (t != DataType::Twist && t != DataType::Wrench)))
-      throw Error("ir-invalid", "log column '" + c.name + "': a component of a twist or wrench only");
+      throw Error("ir-invalid",
+                  "log column '" + c.name + "': a component of a twist or wrench only");
   }
 }
 
@@ -240,7 +293,8 @@ Json location(const SourceLoc& loc, const SourceFiles* files) {
 
 Json pose_json(const runtime::Pose& X) {
   Json j;
-  j["R"] = {X.R(0, 0), X.R(0, 1), X.R(0, 2), X.R(1, 0), X.R(1, 1), X.R(1, 2), X.R(2, 0), X.R(2, 1), X.R(2, 2)};
+  j["R"] = {X.R(0, 0), X.R(0, 1), X.R(0, 2), X.R(1, 0), X.R(1, 1),
+            X.R(1, 2), X.R(2, 0), X.R(2, 1), X.R(2, 2)};
   j["p"] = {X.p.x(), X.p.y(), X.p.z()};
   return j;
 }
@@ -252,7 +306,8 @@ std::string to_json(const Program& p, const SourceFiles* files) {
   j["mospec-ir"] = 1;
   j["app"] = p.app;
   Json slots;
-  for (int t = 0; t < kDataTypes; ++t) slots[std::string(to_string(static_cast<DataType>(t)))] = p.slots[static_cast<size_t>(t)];
+  for (int t = 0; t < kDataTypes; ++t)
+    slots[std::string(to_string(static_cast<DataType>(t)))] = p.slots[static_cast<size_t>(t)];
   j["slots"] = slots;
   Json data = Json::array();
   for (size_t i = 0; i < p.data.size(); ++i) {
@@ -311,19 +366,19 @@ std::string to_json(const Program& p, const SourceFiles* files) {
       const char* what = o.what == ArmOutput::What::SegmentPose     ? "segment-pose"
                          : o.what == ArmOutput::What::ChainRootPose ? "segment-pose-in-chain-root"
                                                                     : "segment-twist";
-      outs.push_back({{"what", what},
-                      {"segment", o.segment},
-                      {"data", o.data}});
+      outs.push_back({{"what", what}, {"segment", o.segment}, {"data", o.data}});
     }
     e["outputs"] = std::move(outs);
     Json acc = Json::array();
     for (const AccelerationConstraint& c : a.acceleration_constraints) {
-      acc.push_back({{"iri", c.iri}, {"component", c.component}, {"energy", c.energy}, {"level", c.level}});
+      acc.push_back(
+          {{"iri", c.iri}, {"component", c.component}, {"energy", c.energy}, {"level", c.level}});
     }
     e["acceleration-constraints"] = std::move(acc);
     Json frc = Json::array();
     for (const CartesianForce& c : a.cartesian_forces) {
-      frc.push_back({{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}});
+      frc.push_back(
+          {{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}});
     }
     e["cartesian-forces"] = std::move(frc);
     Json jf = Json::array();
@@ -362,7 +417,8 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["in"] = st.in;
     e["out"] = st.out;
     if (st.solver >= 0) e["solver"] = st.solver;
-    if (st.kind == StepKind::ArmSolve || st.kind == StepKind::BaseForceDistribution) e["drivers"] = st.drivers();
+    if (st.kind == StepKind::ArmSolve || st.kind == StepKind::BaseForceDistribution)
+      e["drivers"] = st.drivers();
     if (!st.views.empty()) e["views"] = st.views;
     if (st.kind == StepKind::Evaluate || st.kind == StepKind::LevelMonitor ||
         st.kind == StepKind::EdgeMonitor) {
@@ -379,7 +435,10 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     }
     if (st.kind == StepKind::GuardedMotion) e["when"] = st.n_when;
     if (st.kind == StepKind::Pid) {
-      e["pid"] = {{"kp", st.pid.kp}, {"ki", st.pid.ki}, {"kd", st.pid.kd}, {"decay-rate", st.pid.decay_rate}};
+      e["pid"] = {{"kp", st.pid.kp},
+                  {"ki", st.pid.ki},
+                  {"kd", st.pid.kd},
+                  {"decay-rate", st.pid.decay_rate}};
     }
     if (st.state >= 0) e["state"] = st.state;
     e["where"] = location(st.where, files);

@@ -56,28 +56,29 @@ struct Data {
 };
 
 enum class StepKind : uint8_t {
-  ReadClock,            // out: [time]
-  ArmKinematics,        // solver; outs: the solver's outputs (arm_outputs)
-  ViewRead,             // in: [pose|twist|wrench]; out: [scalar]; view
-  ViewWrite,            // ins: [scalar...]; out: [twist|wrench] (others zero); views
-  ComposePose,          // ins: [X_AB, X_BC]; out: [X_AC]
-  PoseToLinearDistance, // in: [pose]; out: [scalar]
-  PoseToDirection,      // in: [pose]; out: [vector3]
+  ReadClock,                  // out: [time]
+  ArmKinematics,              // solver; outs: the solver's outputs (arm_outputs)
+  ViewRead,                   // in: [pose|twist|wrench]; out: [scalar]; view
+  ViewWrite,                  // ins: [scalar...]; out: [twist|wrench] (others zero); views
+  ComposePose,                // ins: [X_AB, X_BC]; out: [X_AC]
+  PoseToLinearDistance,       // in: [pose]; out: [scalar]
+  PoseToDirection,            // in: [pose]; out: [vector3]
   RotateWrenchToProximal,     // ins: [pose, wrench]; out: [wrench]
   RotateTwistToProximal,      // ins: [pose, twist]; out: [twist]
   RotateDirectionToProximal,  // ins: [pose, vector3]; out: [vector3]
   TransformWrenchToProximal,  // ins: [pose, wrench]; out: [wrench]
   WrenchFromPositionDirectionAndMagnitude,  // ins: [position, direction, magnitude]; out: [wrench]
-  AddWrench,                  // ins: [wrench, wrench]; out: [wrench]
-  PlanarAngleFromDirections,  // ins: [d1, d2, normal]; out: [scalar]
-  InvertAngle,                // in: [scalar]; out: [scalar]
-  Evaluate,         // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
-  LevelMonitor,     // in: [error]; out: [flag]
-  EdgeMonitor,      // in: [error]; out: [event]
-  GuardedMotion,    // ins: [when flags..., until flags...]; out: [active flag]
-  Pid,              // ins: [error, active flag]; out: [control signal]
-  ArmSolve,         // solver; ins: drivers' data, motion gates; writes the arm's joint torques
-  BaseForceDistribution,  // base solver; ins: [platform wrench, motion gates...]; writes the hub torques
+  AddWrench,                                // ins: [wrench, wrench]; out: [wrench]
+  PlanarAngleFromDirections,                // ins: [d1, d2, normal]; out: [scalar]
+  InvertAngle,                              // in: [scalar]; out: [scalar]
+  Evaluate,       // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
+  LevelMonitor,   // in: [error]; out: [flag]
+  EdgeMonitor,    // in: [error]; out: [event]
+  GuardedMotion,  // ins: [when flags..., until flags...]; out: [active flag]
+  Pid,            // ins: [error, active flag]; out: [control signal]
+  ArmSolve,       // solver; ins: drivers' data, motion gates; writes the arm's joint torques
+  BaseForceDistribution,    // base solver; ins: [platform wrench, motion gates...]; writes the hub
+                            // torques
   BaseVelocityComposition,  // base solver; out: [platform twist] from pivots and wheel rates
 };
 std::string_view to_string(StepKind);
@@ -89,18 +90,18 @@ struct ViewSpec {
 
 struct Step {
   StepKind kind = StepKind::ReadClock;
-  std::string iri;   // the model entity that asked for it
-  std::string name;  // C++ identifier
+  std::string iri;           // the model entity that asked for it
+  std::string name;          // C++ identifier
   std::vector<int> in, out;  // data indices
   SourceLoc where;
   // Per kind (unused fields stay default):
-  int solver = -1;             // ArmKinematics, ArmSolve: arm solver index
-  std::vector<int> views;      // ViewRead: 1 component; ViewWrite: one per input
-  runtime::ConstraintSpec constraint;   // Evaluate
-  bool has_error_output = false;        // Evaluate: out[1] is the error (else none/output)
-  int n_when = 0;                       // GuardedMotion: ins[0, n_when) are `when`
-  runtime::PidSpec pid;                 // Pid
-  int state = -1;                       // Pid, monitors, motions: their state slot
+  int solver = -1;                     // ArmKinematics, ArmSolve: arm solver index
+  std::vector<int> views;              // ViewRead: 1 component; ViewWrite: one per input
+  runtime::ConstraintSpec constraint;  // Evaluate
+  bool has_error_output = false;       // Evaluate: out[1] is the error (else none/output)
+  int n_when = 0;                      // GuardedMotion: ins[0, n_when) are `when`
+  runtime::PidSpec pid;                // Pid
+  int state = -1;                      // Pid, monitors, motions: their state slot
   // ArmSolve: in[0, n_drivers) are the drivers' data; in[n_drivers, ...) the
   // running flags of the motions whose controllers drive this arm. With such
   // gates and none of them running, the arm holds (steps::arm_hold).
@@ -147,7 +148,7 @@ struct ArmSolver {
   // joint's placement).
   std::string mount_pose_iri;  // the constant pose used for that, if any
   runtime::Pose X_RB;          // that pose (identity without a mount)
-  int port = 0;  // robot::kRightArm / kLeftArm: which arm's sensors and actuators
+  int port = 0;                // robot::kRightArm / kLeftArm: which arm's sensors and actuators
   runtime::Chain chain{""};
   bool tip_is_last_segment = true;  // constraints act on the last segment's origin
   std::array<double, 3> gravity{};  // in the root frame [m/s^2]

@@ -1,5 +1,6 @@
 #include "ir/lower.hpp"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -7,8 +8,6 @@
 #include <functional>
 #include <set>
 #include <unordered_map>
-
-#include <Eigen/SVD>
 
 #include "runtime/chain_rdf.hpp"
 
@@ -113,7 +112,9 @@ class Lowerer {
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
   }
-  bool defined(TermId s) const { return !absent(s) && g_.count(s, TermId::any(), TermId::any()) > 0; }
+  bool defined(TermId s) const {
+    return !absent(s) && g_.count(s, TermId::any(), TermId::any()) > 0;
+  }
   SourceLoc where(TermId s) const {
     if (absent(s)) return {};
     for (uint32_t i : g_.match(s, TermId::any(), TermId::any())) {
@@ -164,11 +165,13 @@ class Lowerer {
     const TermId chain = all.terms().find_iri(chain_iri);
     if (chain.is_any()) return out;
     std::set<uint32_t> graphs;
-    for (uint32_t i : all.match(chain, TermId::any(), TermId::any())) graphs.insert(all.quads()[i].graph.index);
+    for (uint32_t i : all.match(chain, TermId::any(), TermId::any()))
+      graphs.insert(all.quads()[i].graph.index);
     for (uint32_t i = 0; i < all.size(); ++i) {
       const rdf::Quad& q = all.quads()[i];
       if (!graphs.count(q.graph.index)) continue;
-      rdf::Quad copy{out.terms().import(all.terms(), q.subject), out.terms().import(all.terms(), q.predicate),
+      rdf::Quad copy{out.terms().import(all.terms(), q.subject),
+                     out.terms().import(all.terms(), q.predicate),
                      out.terms().import(all.terms(), q.object), TermId::default_graph()};
       out.add(copy, all.location(i));
     }
@@ -218,15 +221,20 @@ class Lowerer {
     if (!prog_.data[static_cast<size_t>(d)].value.empty()) {
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       error(dd.where, "produced-constant",
-            "'" + dd.iri + "' has a fixed value in the model, but '" + pending_iri_ + "' also writes it");
+            "'" + dd.iri + "' has a fixed value in the model, but '" + pending_iri_ +
+                "' also writes it");
       return;
     }
     auto [it, fresh] = producer_.emplace(d, step);
     if (!fresh) {
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       std::string msg = "'";
-      msg.append(dd.iri).append("' is produced twice: by '").append(steps_[static_cast<size_t>(it->second)].iri)
-          .append("' and by '").append(pending_iri_).append("'");
+      msg.append(dd.iri)
+          .append("' is produced twice: by '")
+          .append(steps_[static_cast<size_t>(it->second)].iri)
+          .append("' and by '")
+          .append(pending_iri_)
+          .append("'");
       error(dd.where, "produced-twice", msg);
     }
   }
@@ -256,14 +264,15 @@ class Lowerer {
   std::vector<Diagnostic> errors_;
   std::unordered_map<uint32_t, int> data_of_;  // entity term index -> data
   std::set<std::string> data_names_, step_names_;
-  std::vector<Step> steps_;            // unscheduled
-  std::map<int, int> producer_;        // data -> step
-  std::string pending_iri_;            // the entity being lowered (for messages)
+  std::vector<Step> steps_;                          // unscheduled
+  std::map<int, int> producer_;                      // data -> step
+  std::string pending_iri_;                          // the entity being lowered (for messages)
   std::map<uint32_t, int> evaluator_of_constraint_;  // constraint term -> step
   std::map<uint32_t, int> active_of_controller_;     // controller term -> active flag data
   std::map<uint32_t, int> active_of_evaluator_;      // evaluator term -> active flag data
   std::map<uint32_t, int> evaluate_step_of_evaluator_;
-  std::map<int, std::pair<int, int>> bounds_of_satisfied_;  // bilateral: satisfied flag -> lower, upper data
+  std::map<int, std::pair<int, int>>
+      bounds_of_satisfied_;  // bilateral: satisfied flag -> lower, upper data
 };
 
 std::optional<DataType> Lowerer::type_of(TermId e) const {
@@ -280,7 +289,8 @@ std::optional<DataType> Lowerer::type_of(TermId e) const {
       has_type(e, vocab("geometry/spatial-relations", "Position")) ||
       has_type(e, vocab("geometry/coordinates", "PositionCoordinate")))
     return DataType::Vector3;
-  if (has_type(e, kQudt + "Quantity") || has_type(e, vocab("geometry/spatial-relations", "LinearDistance")) ||
+  if (has_type(e, kQudt + "Quantity") ||
+      has_type(e, vocab("geometry/spatial-relations", "LinearDistance")) ||
       !objects(e, kQudt + "hasQuantityKind").empty())
     return DataType::Scalar;
   return std::nullopt;
@@ -293,12 +303,14 @@ void Lowerer::fill_constant(Data& d, TermId e) {
       if (auto v = number(e, kQudt + "value")) d.value = {*v};
       break;
     case DataType::Vector3: {
-      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")), z = number(e, vocab(gc, "z"));
+      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")),
+           z = number(e, vocab(gc, "z"));
       if (x && y && z) d.value = {*x, *y, *z};
       break;
     }
     case DataType::Pose: {
-      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")), z = number(e, vocab(gc, "z"));
+      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")),
+           z = number(e, vocab(gc, "z"));
       std::array<std::vector<double>, 3> cols;
       bool ok = x && y && z;
       const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
@@ -321,7 +333,9 @@ void Lowerer::fill_constant(Data& d, TermId e) {
         for (int r = 0; r < 3; ++r) R(r, c) = cols[static_cast<size_t>(c)][static_cast<size_t>(r)];
       if (!((R.transpose() * R - runtime::Mat3::Identity()).cwiseAbs().maxCoeff() < 1e-6) ||
           R.determinant() < 0) {
-        error(e, "invalid-pose", "the direction cosines of '" + d.iri + "' are not a rotation (orthonormal, right-handed to 1e-6)");
+        error(e, "invalid-pose",
+              "the direction cosines of '" + d.iri +
+                  "' are not a rotation (orthonormal, right-handed to 1e-6)");
         break;
       }
       // Direction cosines are written to a few digits: use the nearest
@@ -330,7 +344,8 @@ void Lowerer::fill_constant(Data& d, TermId e) {
         Eigen::JacobiSVD<runtime::Mat3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
         R = svd.matrixU() * svd.matrixV().transpose();
       }
-      d.value = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2), *x, *y, *z};
+      d.value = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2),
+                 R(2, 0), R(2, 1), R(2, 2), *x,      *y,      *z};
       break;
     }
     default:
@@ -343,8 +358,14 @@ int Lowerer::datum(TermId e, DataType expected, TermId referenced_by, const std:
     const Data& d = prog_.data[static_cast<size_t>(it->second)];
     if (d.type != expected) {
       std::string msg = "'";
-      msg.append(str(referenced_by)).append("' uses '").append(d.iri).append("' as its ").append(role)
-          .append(", which must be a ").append(to_string(expected)).append(", but it is a ")
+      msg.append(str(referenced_by))
+          .append("' uses '")
+          .append(d.iri)
+          .append("' as its ")
+          .append(role)
+          .append(", which must be a ")
+          .append(to_string(expected))
+          .append(", but it is a ")
           .append(to_string(d.type));
       error(referenced_by, "type-mismatch", msg);
     }
@@ -356,13 +377,23 @@ int Lowerer::datum(TermId e, DataType expected, TermId referenced_by, const std:
   d.where = where(e);
   if (!defined(e)) {
     std::string msg = "'";
-    msg.append(str(referenced_by)).append("' names '").append(d.iri).append("' as its ").append(role)
+    msg.append(str(referenced_by))
+        .append("' names '")
+        .append(d.iri)
+        .append("' as its ")
+        .append(role)
         .append(", but no model file defines it");
     error(where(referenced_by), "undefined-quantity", msg);
   } else if (auto t = type_of(e); t && *t != expected) {
     std::string msg = "'";
-    msg.append(str(referenced_by)).append("' uses '").append(d.iri).append("' as its ").append(role)
-        .append(", which must be a ").append(to_string(expected)).append(", but it is a ")
+    msg.append(str(referenced_by))
+        .append("' uses '")
+        .append(d.iri)
+        .append("' as its ")
+        .append(role)
+        .append(", which must be a ")
+        .append(to_string(expected))
+        .append(", but it is a ")
         .append(to_string(*t));
     error(referenced_by, "type-mismatch", msg);
   }
@@ -370,7 +401,8 @@ int Lowerer::datum(TermId e, DataType expected, TermId referenced_by, const std:
   if (auto o = object(e, vocab(gr, "of"))) d.of = str(*o);
   if (auto o = object(e, vocab(gr, "with-respect-to"))) d.with_respect_to = str(*o);
   if (auto o = object(e, vocab(gr, "reference-point"))) d.reference_point = str(*o);
-  if (auto o = object(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "reference-point")))
+  if (auto o =
+          object(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "reference-point")))
     d.reference_point = str(*o);
   if (auto o = object(e, vocab("geometry/coordinates", "as-seen-by"))) d.as_seen_by = str(*o);
   if (auto o = object(e, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by")))
@@ -389,8 +421,8 @@ int Lowerer::datum(TermId e, DataType expected, TermId referenced_by, const std:
   return index;
 }
 
-int Lowerer::synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
-                       const std::string& unit) {
+int Lowerer::synthetic(const std::string& iri, const std::string& name, DataType type,
+                       SourceLoc loc, const std::string& unit) {
   Data d;
   d.iri = iri;
   d.type = type;
@@ -446,16 +478,21 @@ void Lowerer::lower_arm(TermId solver) {
   if (auto it = options_.ports.find(arm.chain_iri); it != options_.ports.end()) {
     arm.port = it->second;
   } else {
-    error(solver, "unbound-chain",
-          "no robot arm is bound to the chain '" + arm.chain_iri +
-              "' (mospec's robot has a right and a left Gen3; bind it with --bind CHAIN=right|left)");
+    error(
+        solver, "unbound-chain",
+        "no robot arm is bound to the chain '" + arm.chain_iri +
+            "' (mospec's robot has a right and a left Gen3; bind it with --bind CHAIN=right|left)");
   }
   std::string prefix = arm.chain_iri;
-  if (prefix.size() >= 5 && prefix.compare(prefix.size() - 5, 5, "chain") == 0) prefix.resize(prefix.size() - 5);
+  if (prefix.size() >= 5 && prefix.compare(prefix.size() - 5, 5, "chain") == 0)
+    prefix.resize(prefix.size() - 5);
   const auto frame_of = [&](const std::string& link) { return prefix + "frame-" + link; };
   const auto link_of = [&](const std::string& link) { return prefix + "link-" + link; };
-  const auto origin_of = [&](const std::string& link) { return prefix + "point-" + link + "-origin"; };
-  const auto segment_by = [&](const std::string& iri, const std::function<std::string(const std::string&)>& f) {
+  const auto origin_of = [&](const std::string& link) {
+    return prefix + "point-" + link + "-origin";
+  };
+  const auto segment_by = [&](const std::string& iri,
+                              const std::function<std::string(const std::string&)>& f) {
     for (int i = 0; i < arm.chain.size(); ++i) {
       if (f(arm.chain.segment(i).link) == iri) return i;
     }
@@ -489,9 +526,11 @@ void Lowerer::lower_arm(TermId solver) {
     }
     if (!X_RB) {
       error(solver, "unsupported-root",
-            "the solver '" + arm.iri + "' is rooted at '" + arm.root_frame + "', not at the chain's root '" +
-                chain_root_frame + "'; mospec needs a constant pose of '" + chain_root_frame +
-                "' w.r.t. and seen by '" + arm.root_frame + "' (the mount) to move the chain there");
+            "the solver '" + arm.iri + "' is rooted at '" + arm.root_frame +
+                "', not at the chain's root '" + chain_root_frame +
+                "'; mospec needs a constant pose of '" + chain_root_frame +
+                "' w.r.t. and seen by '" + arm.root_frame +
+                "' (the mount) to move the chain there");
     } else {
       runtime::Chain rerooted(local_name(arm.root_frame));
       rerooted.add_fixed(arm.chain.root(), *X_RB, runtime::RigidInertia{});
@@ -505,20 +544,23 @@ void Lowerer::lower_arm(TermId solver) {
   // Gravity: a uniform field in the root frame.
   if (auto grav = object(solver, vocab(slv, "gravity"))) {
     const std::string gc = "geometry/coordinates";
-    auto x = number(*grav, vocab(gc, "x")), y = number(*grav, vocab(gc, "y")), z = number(*grav, vocab(gc, "z"));
+    auto x = number(*grav, vocab(gc, "x")), y = number(*grav, vocab(gc, "y")),
+         z = number(*grav, vocab(gc, "z"));
     std::string seen;
     if (auto s = object(*grav, vocab(gc, "as-seen-by"))) seen = str(*s);
-    if (auto s = object(*grav, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by"))) seen = str(*s);
+    if (auto s = object(*grav, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by")))
+      seen = str(*s);
     std::string unit;
     if (auto u = object(*grav, kQudt + "unit")) unit = local_name(str(*u));
     if (!x || !y || !z) {
       error(*grav, "missing-property", "the gravity '" + str(*grav) + "' needs x, y and z");
     } else if (seen != arm.root_frame) {
       error(*grav, "frame-mismatch",
-            "the gravity '" + str(*grav) + "' is seen by '" + seen + "', but the solver '" + arm.iri +
-                "' needs it in its root frame '" + arm.root_frame + "'");
+            "the gravity '" + str(*grav) + "' is seen by '" + seen + "', but the solver '" +
+                arm.iri + "' needs it in its root frame '" + arm.root_frame + "'");
     } else if (unit != "M-PER-SEC2") {
-      error(*grav, "wrong-unit", "the gravity '" + str(*grav) + "' must be in M-PER-SEC2, not '" + unit + "'");
+      error(*grav, "wrong-unit",
+            "the gravity '" + str(*grav) + "' must be in M-PER-SEC2, not '" + unit + "'");
     } else {
       arm.gravity = {*x, *y, *z};
     }
@@ -540,13 +582,16 @@ void Lowerer::lower_arm(TermId solver) {
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       const int seg = segment_by(dd.of, frame_of);
       const bool in_root = dd.with_respect_to == arm.root_frame && dd.as_seen_by == arm.root_frame;
-      const bool in_chain_root = arm.root_frame != chain_root_frame && dd.with_respect_to == chain_root_frame &&
+      const bool in_chain_root = arm.root_frame != chain_root_frame &&
+                                 dd.with_respect_to == chain_root_frame &&
                                  dd.as_seen_by == chain_root_frame;
       if (seg < 0 || !(in_root || in_chain_root)) {
         error(o, "unsupported-output",
-              "the solver '" + arm.iri + "' outputs poses of the chain's segment frames w.r.t. and seen by its root '" +
-                  arm.root_frame + "' (or the chain's root '" + chain_root_frame + "'); '" + dd.iri + "' is of '" + dd.of +
-                  "' w.r.t. '" + dd.with_respect_to + "' seen by '" + dd.as_seen_by + "'");
+              "the solver '" + arm.iri +
+                  "' outputs poses of the chain's segment frames w.r.t. and seen by its root '" +
+                  arm.root_frame + "' (or the chain's root '" + chain_root_frame + "'); '" +
+                  dd.iri + "' is of '" + dd.of + "' w.r.t. '" + dd.with_respect_to + "' seen by '" +
+                  dd.as_seen_by + "'");
         continue;
       }
       if (in_chain_root) {
@@ -562,18 +607,22 @@ void Lowerer::lower_arm(TermId solver) {
       int seg = segment_by(dd.of, link_of);
       if (seg < 0) seg = segment_by(dd.of, frame_of);
       const bool wrt_root = dd.with_respect_to == link_of(chain_root_name) ||
-                            dd.with_respect_to == chain_root_frame || dd.with_respect_to == arm.root_frame;
+                            dd.with_respect_to == chain_root_frame ||
+                            dd.with_respect_to == arm.root_frame;
       if (seg < 0 || !wrt_root || dd.as_seen_by != arm.root_frame ||
           dd.reference_point != origin_of(arm.chain.segment(seg).link)) {
         error(o, "unsupported-output",
-              "the solver '" + arm.iri + "' outputs twists of a segment w.r.t. the root, at the segment's origin, seen by the root '" +
+              "the solver '" + arm.iri +
+                  "' outputs twists of a segment w.r.t. the root, at the segment's origin, seen by "
+                  "the root '" +
                   arm.root_frame + "'; '" + dd.iri + "' does not fit");
         continue;
       }
       arm.outputs.push_back({ArmOutput::What::SegmentTwist, seg, d});
       kin.out.push_back(d);
     } else {
-      error(o, "unsupported-output", "the solver '" + arm.iri + "' cannot output '" + str(o) + "' (poses and twists only)");
+      error(o, "unsupported-output",
+            "the solver '" + arm.iri + "' cannot output '" + str(o) + "' (poses and twists only)");
     }
   }
   // Motion drivers and their priority levels.
@@ -584,7 +633,8 @@ void Lowerer::lower_arm(TermId solver) {
   solve.name = arm.name + "_solve";
   solve.where = arm.where;
   solve.solver = arm_index;
-  const std::string last_link = arm.chain.size() ? arm.chain.segment(arm.chain.size() - 1).link : "";
+  const std::string last_link =
+      arm.chain.size() ? arm.chain.segment(arm.chain.size() - 1).link : "";
   if (!drivers) {
     error(solver, "missing-property", "the solver '" + arm.iri + "' names no motion-drivers");
   } else {
@@ -605,7 +655,9 @@ void Lowerer::lower_arm(TermId solver) {
       auto it = level_of.find(spec.index);
       if (it == level_of.end()) {
         if (!arm.priority_levels.empty())
-          error(spec, "unprioritised-driver", "the motion driver '" + str(spec) + "' is in no prioritization level of '" + str(*drivers) + "'");
+          error(spec, "unprioritised-driver",
+                "the motion driver '" + str(spec) + "' is in no prioritization level of '" +
+                    str(*drivers) + "'");
         return 0;
       }
       return it->second;
@@ -616,13 +668,15 @@ void Lowerer::lower_arm(TermId solver) {
       if (lv != 0) {
         error(spec, "unsupported-priority",
               "acceleration constraints must be in the highest priority level: one ACHD solve "
-              "honours one level of constraints; '" + str(spec) + "' is in level " + std::to_string(lv + 1));
+              "honours one level of constraints; '" +
+                  str(spec) + "' is in level " + std::to_string(lv + 1));
       }
       auto link = object(spec, vocab(slv, "attached-to"));
       if (!link || str(*link) != link_of(last_link)) {
         error(spec, "unsupported-attachment",
-              "ACHD constrains the chain's last segment '" + link_of(last_link) + "'; '" + str(spec) +
-                  "' is attached to '" + (link ? str(*link) : std::string("nothing")) + "'");
+              "ACHD constrains the chain's last segment '" + link_of(last_link) + "'; '" +
+                  str(spec) + "' is attached to '" + (link ? str(*link) : std::string("nothing")) +
+                  "'");
       }
       for (TermId c : objects(spec, vocab(slv, "constraints"))) {
         AccelerationConstraint ac;
@@ -630,17 +684,21 @@ void Lowerer::lower_arm(TermId solver) {
         ac.level = lv;
         auto sub = object(c, vocab(slv, "subspace"));
         auto axis = object(c, vocab(slv, "axis"));
-        const std::string sn = sub ? local_name(str(*sub)) : "", an = axis ? local_name(str(*axis)) : "";
+        const std::string sn = sub ? local_name(str(*sub)) : "",
+                          an = axis ? local_name(str(*axis)) : "";
         const int base = sn == "angular-acceleration" ? 0 : sn == "linear-acceleration" ? 3 : -1;
         const int ax = an == "x" ? 0 : an == "y" ? 1 : an == "z" ? 2 : -1;
         if (base < 0 || ax < 0) {
-          error(c, "invalid-constraint", "the acceleration constraint '" + ac.iri + "' needs subspace linear-/angular-acceleration and axis x, y or z");
+          error(c, "invalid-constraint",
+                "the acceleration constraint '" + ac.iri +
+                    "' needs subspace linear-/angular-acceleration and axis x, y or z");
           continue;
         }
         ac.component = base + ax;
         auto energy = object(c, vocab(slv, "acceleration-energy"));
         if (!energy) {
-          error(c, "missing-property", "the acceleration constraint '" + ac.iri + "' names no acceleration-energy");
+          error(c, "missing-property",
+                "the acceleration constraint '" + ac.iri + "' names no acceleration-energy");
           continue;
         }
         ac.energy = datum(*energy, DataType::Scalar, c, "acceleration-energy");
@@ -649,7 +707,8 @@ void Lowerer::lower_arm(TermId solver) {
       }
     }
     if (arm.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints)) {
-      error(solver, "too-many-constraints", "the solver '" + arm.iri + "' has more than 6 acceleration constraints");
+      error(solver, "too-many-constraints",
+            "the solver '" + arm.iri + "' has more than 6 acceleration constraints");
     }
     for (TermId spec : objects(*drivers, vocab(slv, "cartesian-force"))) {
       pending_iri_ = str(spec);
@@ -659,12 +718,15 @@ void Lowerer::lower_arm(TermId solver) {
       auto link = object(spec, vocab(slv, "attached-to"));
       auto force = object(spec, vocab(slv, "force"));
       if (!link || !force) {
-        error(spec, "missing-property", "the Cartesian force '" + cf.iri + "' needs `force` and `attached-to`");
+        error(spec, "missing-property",
+              "the Cartesian force '" + cf.iri + "' needs `force` and `attached-to`");
         continue;
       }
       cf.segment = segment_by(str(*link), link_of);
       if (cf.segment < 0) {
-        error(spec, "unknown-link", "'" + cf.iri + "' is attached to '" + str(*link) + "', which is no moving link of '" + arm.chain_iri + "'");
+        error(spec, "unknown-link",
+              "'" + cf.iri + "' is attached to '" + str(*link) + "', which is no moving link of '" +
+                  arm.chain_iri + "'");
         continue;
       }
       cf.wrench = datum(*force, DataType::Wrench, spec, "force");
@@ -673,15 +735,17 @@ void Lowerer::lower_arm(TermId solver) {
       if (w.reference_point != origin || w.as_seen_by != arm.root_frame) {
         error(*force, "frame-mismatch",
               "the wrench '" + w.iri + "' drives '" + str(*link) + "' through '" + cf.iri +
-                  "', so ACHD needs it at that link's origin '" + origin + "' and seen by the root '" +
-                  arm.root_frame + "'; it is at '" + w.reference_point + "' seen by '" + w.as_seen_by +
+                  "', so ACHD needs it at that link's origin '" + origin +
+                  "' and seen by the root '" + arm.root_frame + "'; it is at '" +
+                  w.reference_point + "' seen by '" + w.as_seen_by +
                   "' (transform it with TransformWrenchToProximal/RotateWrenchToProximalWithPose)");
       }
       solve.in.push_back(cf.wrench);
       arm.cartesian_forces.push_back(cf);
     }
     for (TermId spec : objects(*drivers, vocab(slv, "joint-force"))) {
-      error(spec, "unsupported-driver", "joint-force motion drivers ('" + str(spec) + "') are not supported yet");
+      error(spec, "unsupported-driver",
+            "joint-force motion drivers ('" + str(spec) + "') are not supported yet");
     }
   }
   // Drivers a level lists but the solver's drivers do not.
@@ -702,17 +766,52 @@ void Lowerer::lower_operators() {
   };
   using T = DataType;
   const std::vector<Spec> specs = {
-      {gop, "ComposePose", StepKind::ComposePose, {{"in1", T::Pose}, {"in2", T::Pose}}, {"composite", T::Pose}},
-      {gop, "PoseToLinearDistance", StepKind::PoseToLinearDistance, {{"pose", T::Pose}}, {"distance", T::Scalar}},
-      {gop, "PoseToDirection", StepKind::PoseToDirection, {{"pose", T::Pose}}, {"direction", T::Vector3}},
+      {gop,
+       "ComposePose",
+       StepKind::ComposePose,
+       {{"in1", T::Pose}, {"in2", T::Pose}},
+       {"composite", T::Pose}},
+      {gop,
+       "PoseToLinearDistance",
+       StepKind::PoseToLinearDistance,
+       {{"pose", T::Pose}},
+       {"distance", T::Scalar}},
+      {gop,
+       "PoseToDirection",
+       StepKind::PoseToDirection,
+       {{"pose", T::Pose}},
+       {"direction", T::Vector3}},
       {gop, "InvertAngle", StepKind::InvertAngle, {{"in", T::Scalar}}, {"out", T::Scalar}},
-      {op, "RotateWrenchToProximalWithPose", StepKind::RotateWrenchToProximal, {{"pose", T::Pose}, {"from", T::Wrench}}, {"to", T::Wrench}},
-      {gop, "RotateVelocityTwistToProximalWithPose", StepKind::RotateTwistToProximal, {{"pose", T::Pose}, {"from", T::Twist}}, {"to", T::Twist}},
-      {gop, "RotateDirectionDistalToProximalWithPose", StepKind::RotateDirectionToProximal, {{"pose", T::Pose}, {"from", T::Vector3}}, {"to", T::Vector3}},
-      {op, "TransformWrenchToProximal", StepKind::TransformWrenchToProximal, {{"pose", T::Pose}, {"from", T::Wrench}}, {"to", T::Wrench}},
-      {op, "WrenchFromPositionDirectionAndMagnitude", StepKind::WrenchFromPositionDirectionAndMagnitude,
-       {{"position", T::Vector3}, {"direction", T::Vector3}, {"magnitude", T::Scalar}}, {"wrench", T::Wrench}},
-      {op, "AddWrench", StepKind::AddWrench, {{"in1", T::Wrench}, {"in2", T::Wrench}}, {"out", T::Wrench}},
+      {op,
+       "RotateWrenchToProximalWithPose",
+       StepKind::RotateWrenchToProximal,
+       {{"pose", T::Pose}, {"from", T::Wrench}},
+       {"to", T::Wrench}},
+      {gop,
+       "RotateVelocityTwistToProximalWithPose",
+       StepKind::RotateTwistToProximal,
+       {{"pose", T::Pose}, {"from", T::Twist}},
+       {"to", T::Twist}},
+      {gop,
+       "RotateDirectionDistalToProximalWithPose",
+       StepKind::RotateDirectionToProximal,
+       {{"pose", T::Pose}, {"from", T::Vector3}},
+       {"to", T::Vector3}},
+      {op,
+       "TransformWrenchToProximal",
+       StepKind::TransformWrenchToProximal,
+       {{"pose", T::Pose}, {"from", T::Wrench}},
+       {"to", T::Wrench}},
+      {op,
+       "WrenchFromPositionDirectionAndMagnitude",
+       StepKind::WrenchFromPositionDirectionAndMagnitude,
+       {{"position", T::Vector3}, {"direction", T::Vector3}, {"magnitude", T::Scalar}},
+       {"wrench", T::Wrench}},
+      {op,
+       "AddWrench",
+       StepKind::AddWrench,
+       {{"in1", T::Wrench}, {"in2", T::Wrench}},
+       {"out", T::Wrench}},
   };
   for (const Spec& spec : specs) {
     const std::string type_iri = vocab(spec.domain, spec.type);
@@ -727,7 +826,8 @@ void Lowerer::lower_operators() {
       for (const auto& [prop, type] : spec.in) {
         auto o = object(e, vocab(spec.domain, prop));
         if (!o) {
-          error(e, "missing-property", "the " + spec.type + " '" + s.iri + "' names no `" + prop + "`");
+          error(e, "missing-property",
+                "the " + spec.type + " '" + s.iri + "' names no `" + prop + "`");
           ok = false;
           continue;
         }
@@ -735,7 +835,8 @@ void Lowerer::lower_operators() {
       }
       auto o = object(e, vocab(spec.domain, spec.out.first));
       if (!o) {
-        error(e, "missing-property", "the " + spec.type + " '" + s.iri + "' names no `" + spec.out.first + "`");
+        error(e, "missing-property",
+              "the " + spec.type + " '" + s.iri + "' names no `" + spec.out.first + "`");
         ok = false;
       } else {
         s.out.push_back(datum(*o, spec.out.second, e, spec.out.first));
@@ -746,9 +847,11 @@ void Lowerer::lower_operators() {
         const Data& a = prog_.data[static_cast<size_t>(s.in[0])];
         const Data& b = prog_.data[static_cast<size_t>(s.in[1])];
         if (a.reference_point != b.reference_point || a.as_seen_by != b.as_seen_by) {
-          error(e, "frame-mismatch", "AddWrench '" + s.iri + "' adds '" + a.iri + "' (at '" + a.reference_point + "', seen by '" +
-                                         a.as_seen_by + "') and '" + b.iri + "' (at '" + b.reference_point + "', seen by '" +
-                                         b.as_seen_by + "'): both must have one reference point and frame");
+          error(e, "frame-mismatch",
+                "AddWrench '" + s.iri + "' adds '" + a.iri + "' (at '" + a.reference_point +
+                    "', seen by '" + a.as_seen_by + "') and '" + b.iri + "' (at '" +
+                    b.reference_point + "', seen by '" + b.as_seen_by +
+                    "'): both must have one reference point and frame");
         }
       }
       add_step(std::move(s));
@@ -774,8 +877,10 @@ void Lowerer::lower_planar_angles() {
     auto angle = object(e, vocab(gop, "angle"));
     if (ordered.size() != 2 || !angle) {
       error(e, "unordered-directions",
-            "PlanarAngleFromDirections '" + s.iri + "' needs `from-directions` as an ordered list of two "
-            "directions (\"@list\" in JSON-LD: the angle's sign depends on their order) and an `angle`");
+            "PlanarAngleFromDirections '" + s.iri +
+                "' needs `from-directions` as an ordered list of two "
+                "directions (\"@list\" in JSON-LD: the angle's sign depends on their order) and an "
+                "`angle`");
       continue;
     }
     const int d1 = datum(ordered[0], DataType::Vector3, e, "from-directions");
@@ -783,11 +888,14 @@ void Lowerer::lower_planar_angles() {
     const Data& a = prog_.data[static_cast<size_t>(d1)];
     const Data& b = prog_.data[static_cast<size_t>(d2)];
     if (a.as_seen_by != b.as_seen_by || a.as_seen_by.empty()) {
-      error(e, "frame-mismatch", "PlanarAngleFromDirections '" + s.iri + "' needs both directions seen by one frame; '" +
-                                     a.iri + "' is seen by '" + a.as_seen_by + "', '" + b.iri + "' by '" + b.as_seen_by + "'");
+      error(e, "frame-mismatch",
+            "PlanarAngleFromDirections '" + s.iri + "' needs both directions seen by one frame; '" +
+                a.iri + "' is seen by '" + a.as_seen_by + "', '" + b.iri + "' by '" + b.as_seen_by +
+                "'");
       continue;
     }
-    const int normal = synthetic(s.iri + "#normal", local_name(s.iri) + "_normal", DataType::Vector3, s.where, "UNITLESS");
+    const int normal = synthetic(s.iri + "#normal", local_name(s.iri) + "_normal",
+                                 DataType::Vector3, s.where, "UNITLESS");
     prog_.data[static_cast<size_t>(normal)].value = {0.0, 0.0, 1.0};
     prog_.data[static_cast<size_t>(normal)].as_seen_by = a.as_seen_by;
     s.in = {d1, d2, normal};
@@ -811,7 +919,8 @@ void Lowerer::lower_evaluators() {
     }
     if (!defined(*c)) {
       error(where(e, vocab(ch, "constraint"), *c), "undefined-constraint",
-            "the evaluator '" + str(e) + "' evaluates '" + str(*c) + "', which no model file defines");
+            "the evaluator '" + str(e) + "' evaluates '" + str(*c) +
+                "', which no model file defines");
       continue;
     }
     auto q = object(*c, vocab(cs, "quantity"));
@@ -833,12 +942,15 @@ void Lowerer::lower_evaluators() {
       const int d = datum(*t, DataType::Scalar, *c, prop);
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       if (dd.value.empty()) {
-        error(*t, "not-a-constant", "the " + prop + " '" + dd.iri + "' of '" + str(*c) + "' has no value");
+        error(*t, "not-a-constant",
+              "the " + prop + " '" + dd.iri + "' of '" + str(*c) + "' has no value");
         return std::nullopt;
       }
       if (dd.unit != unit) {
-        error(*t, "wrong-unit", "the " + prop + " '" + dd.iri + "' is in '" + dd.unit + "' but the constrained quantity '" +
-                                    prog_.data[static_cast<size_t>(quantity)].iri + "' is in '" + unit + "'");
+        error(*t, "wrong-unit",
+              "the " + prop + " '" + dd.iri + "' is in '" + dd.unit +
+                  "' but the constrained quantity '" +
+                  prog_.data[static_cast<size_t>(quantity)].iri + "' is in '" + unit + "'");
       }
       return dd.value[0];
     };
@@ -848,18 +960,22 @@ void Lowerer::lower_evaluators() {
       spec.kind = runtime::ConstraintKind::Bilateral;
       auto lo = constant("lower-threshold"), hi = constant("upper-threshold");
       if (!lo || !hi) {
-        error(*c, "missing-property", "the bilateral constraint '" + str(*c) + "' needs a lower and an upper threshold");
+        error(*c, "missing-property",
+              "the bilateral constraint '" + str(*c) + "' needs a lower and an upper threshold");
         continue;
       }
       spec.lower = *lo;
       spec.upper = *hi;
       if (!(spec.lower < spec.upper)) {
-        error(*c, "invalid-constraint", "the bilateral constraint '" + str(*c) + "' needs lower < upper");
+        error(*c, "invalid-constraint",
+              "the bilateral constraint '" + str(*c) + "' needs lower < upper");
         continue;
       }
-    } else if (has_type(*c, vocab(cs, "GreaterThanConstraint")) || has_type(*c, vocab(cs, "LessThanConstraint"))) {
-      spec.kind = has_type(*c, vocab(cs, "GreaterThanConstraint")) ? runtime::ConstraintKind::GreaterThan
-                                                                    : runtime::ConstraintKind::LessThan;
+    } else if (has_type(*c, vocab(cs, "GreaterThanConstraint")) ||
+               has_type(*c, vocab(cs, "LessThanConstraint"))) {
+      spec.kind = has_type(*c, vocab(cs, "GreaterThanConstraint"))
+                      ? runtime::ConstraintKind::GreaterThan
+                      : runtime::ConstraintKind::LessThan;
       auto t = constant("threshold");
       if (!t) {
         error(*c, "missing-property", "the constraint '" + str(*c) + "' needs a threshold");
@@ -867,27 +983,35 @@ void Lowerer::lower_evaluators() {
       }
       spec.threshold = *t;
     } else if (has_type(*c, vocab(cs, "EqualityConstraint"))) {
-      spec.kind = assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
+      spec.kind =
+          assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
       auto r = constant("reference-value");
       if (!r) {
-        error(*c, "missing-property", "the equality constraint '" + str(*c) + "' needs a reference-value");
+        error(*c, "missing-property",
+              "the equality constraint '" + str(*c) + "' needs a reference-value");
         continue;
       }
       spec.reference = *r;
-      if (auto t = object(*c, vocab(cs, "reference-value"))) reference_datum = data_of_.at(t->index);
+      if (auto t = object(*c, vocab(cs, "reference-value")))
+        reference_datum = data_of_.at(t->index);
     } else {
-      error(*c, "unsupported-constraint", "'" + str(*c) + "' is not an equality, bilateral, greater-than or less-than constraint");
+      error(
+          *c, "unsupported-constraint",
+          "'" + str(*c) + "' is not an equality, bilateral, greater-than or less-than constraint");
       continue;
     }
     if (assignment && spec.kind != runtime::ConstraintKind::Assignment) {
-      error(e, "invalid-evaluator", "the assignment evaluator '" + str(e) + "' needs an equality constraint");
+      error(e, "invalid-evaluator",
+            "the assignment evaluator '" + str(e) + "' needs an equality constraint");
       continue;
     }
     s.constraint = spec;
-    const int satisfied = synthetic(str(*c) + "#satisfied", local_name(str(*c)) + "_satisfied", DataType::Flag, where(*c));
+    const int satisfied = synthetic(str(*c) + "#satisfied", local_name(str(*c)) + "_satisfied",
+                                    DataType::Flag, where(*c));
     if (spec.kind == runtime::ConstraintKind::Bilateral) {
-      bounds_of_satisfied_[satisfied] = {data_of_.at(object(*c, vocab(cs, "lower-threshold"))->index),
-                                         data_of_.at(object(*c, vocab(cs, "upper-threshold"))->index)};
+      bounds_of_satisfied_[satisfied] = {
+          data_of_.at(object(*c, vocab(cs, "lower-threshold"))->index),
+          data_of_.at(object(*c, vocab(cs, "upper-threshold"))->index)};
     }
     if (assignment) {
       // The quantity is what the evaluator writes: the reference value.
@@ -899,7 +1023,8 @@ void Lowerer::lower_evaluators() {
         err = datum(*eo, DataType::Scalar, e, "error");
         s.has_error_output = true;
       } else {
-        err = synthetic(str(e) + "#error", local_name(str(e)) + "_error", DataType::Scalar, where(e), unit);
+        err = synthetic(str(e) + "#error", local_name(str(e)) + "_error", DataType::Scalar,
+                        where(e), unit);
       }
       s.in = {quantity};
       s.out = {satisfied, err};
@@ -921,7 +1046,9 @@ void Lowerer::lower_monitors() {
       auto err = object(m, vocab(ch, "error"));
       auto out = object(m, vocab(ch, edge ? "event" : "flag"));
       if (!err || !out) {
-        error(m, "missing-property", std::string("the monitor '") + str(m) + "' needs `error` and `" + (edge ? "event" : "flag") + "`");
+        error(m, "missing-property",
+              std::string("the monitor '") + str(m) + "' needs `error` and `" +
+                  (edge ? "event" : "flag") + "`");
         continue;
       }
       Step s;
@@ -936,7 +1063,8 @@ void Lowerer::lower_monitors() {
         if (ev.out.size() > 1 && ev.out[1] == s.in[0]) s.constraint = ev.constraint;
       }
       Data flag;
-      const int d = synthetic(str(*out), local_name(str(*out)), edge ? DataType::Event : DataType::Flag, where(*out));
+      const int d = synthetic(str(*out), local_name(str(*out)),
+                              edge ? DataType::Event : DataType::Flag, where(*out));
       data_of_[out->index] = d;
       s.out = {d};
       s.state = prog_.states[static_cast<int>(StateKind::Monitor)]++;
@@ -968,7 +1096,8 @@ void Lowerer::lower_handlers() {
           auto it = evaluator_of_constraint_.find(c.index);
           if (it == evaluator_of_constraint_.end()) {
             error(where(*m, vocab(mot, prop), c), "unevaluated-constraint",
-                  "the motion '" + str(*m) + "' lists '" + str(c) + "' in `" + prop + "`, but no evaluator evaluates it");
+                  "the motion '" + str(*m) + "' lists '" + str(c) + "' in `" + prop +
+                      "`, but no evaluator evaluates it");
             continue;
           }
           if (prop != "while") flags.push_back(steps_[static_cast<size_t>(it->second)].out[0]);
@@ -981,11 +1110,14 @@ void Lowerer::lower_handlers() {
       s.in = when;
       s.in.insert(s.in.end(), until.begin(), until.end());
       s.n_when = static_cast<int>(when.size());
-      if (when.size() > static_cast<size_t>(kMaxGuards) || until.size() > static_cast<size_t>(kMaxGuards)) {
-        error(*m, "too-many-guards", "the motion '" + str(*m) + "' has more than 16 when or until guards");
+      if (when.size() > static_cast<size_t>(kMaxGuards) ||
+          until.size() > static_cast<size_t>(kMaxGuards)) {
+        error(*m, "too-many-guards",
+              "the motion '" + str(*m) + "' has more than 16 when or until guards");
         continue;
       }
-      active = synthetic(str(*m) + "#running", local_name(str(*m)) + "_running", DataType::Flag, where(*m));
+      active = synthetic(str(*m) + "#running", local_name(str(*m)) + "_running", DataType::Flag,
+                         where(*m));
       s.out = {active};
       s.state = prog_.states[static_cast<int>(StateKind::Motion)]++;
       add_step(std::move(s));
@@ -998,7 +1130,8 @@ void Lowerer::lower_handlers() {
   for (auto& [eval, step] : evaluate_step_of_evaluator_) {
     Step& s = steps_[static_cast<size_t>(step)];
     if (s.constraint.kind != runtime::ConstraintKind::Assignment) continue;
-    if (auto it = active_of_evaluator_.find(eval); it != active_of_evaluator_.end()) s.in.push_back(it->second);
+    if (auto it = active_of_evaluator_.find(eval); it != active_of_evaluator_.end())
+      s.in.push_back(it->second);
   }
 }
 
@@ -1009,7 +1142,8 @@ void Lowerer::lower_controllers() {
     auto err = object(c, vocab(ch, "error-signal"));
     auto sig = object(c, vocab(ch, "control-signal"));
     if (!err || !sig) {
-      error(c, "missing-property", "the controller '" + str(c) + "' needs an error-signal and a control-signal");
+      error(c, "missing-property",
+            "the controller '" + str(c) + "' needs an error-signal and a control-signal");
       continue;
     }
     Step s;
@@ -1019,7 +1153,8 @@ void Lowerer::lower_controllers() {
     s.where = where(c);
     const auto gain = [&](const std::string& p, bool required) {
       auto v = number(c, vocab(ch, p));
-      if (!v && required) error(c, "missing-property", "the controller '" + str(c) + "' needs a numeric " + p);
+      if (!v && required)
+        error(c, "missing-property", "the controller '" + str(c) + "' needs a numeric " + p);
       return v.value_or(0.0);
     };
     s.pid.kp = gain("proportional-gain", true);
@@ -1032,7 +1167,8 @@ void Lowerer::lower_controllers() {
       error(c, "invalid-controller", e.what());
     }
     s.in = {datum(*err, DataType::Scalar, c, "error-signal")};
-    if (auto it = active_of_controller_.find(c.index); it != active_of_controller_.end()) s.in.push_back(it->second);
+    if (auto it = active_of_controller_.find(c.index); it != active_of_controller_.end())
+      s.in.push_back(it->second);
     s.out = {datum(*sig, DataType::Scalar, c, "control-signal")};
     s.state = prog_.states[static_cast<int>(StateKind::Pid)]++;
     add_step(std::move(s));
@@ -1044,9 +1180,13 @@ void Lowerer::lower_base() {
   const auto forces = instances(vocab(slv, "ForceDistributionSolver"));
   const auto velocities = instances(vocab(slv, "VelocityCompositionSolver"));
   if (forces.size() > 1)
-    error(forces[1], "too-many-bases", "mospec's robot has one base; a second force distribution solver '" + str(forces[1]) + "' has nothing to drive");
+    error(forces[1], "too-many-bases",
+          "mospec's robot has one base; a second force distribution solver '" + str(forces[1]) +
+              "' has nothing to drive");
   if (velocities.size() > 1)
-    error(velocities[1], "too-many-bases", "mospec's robot has one base; a second velocity composition solver '" + str(velocities[1]) + "' has nothing to measure");
+    error(velocities[1], "too-many-bases",
+          "mospec's robot has one base; a second velocity composition solver '" +
+              str(velocities[1]) + "' has nothing to measure");
   if (forces.empty() && velocities.empty()) return;
   BaseSolver base;
   const TermId first = forces.empty() ? velocities.front() : forces.front();
@@ -1070,9 +1210,11 @@ void Lowerer::lower_base() {
       base.twist = datum(*t, DataType::Twist, v, "velocity");
       const Data& tw = prog_.data[static_cast<size_t>(base.twist)];
       if (!at_frame_origin(tw)) {
-        error(*t, "frame-mismatch",
-              "the platform twist '" + tw.iri + "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
-                  tw.reference_point + "' seen by '" + tw.as_seen_by + "'");
+        error(
+            *t, "frame-mismatch",
+            "the platform twist '" + tw.iri +
+                "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
+                tw.reference_point + "' seen by '" + tw.as_seen_by + "'");
       }
       Step s;
       s.kind = StepKind::BaseVelocityComposition;
@@ -1082,7 +1224,8 @@ void Lowerer::lower_base() {
       s.out = {base.twist};
       new_steps.push_back(std::move(s));
     } else {
-      error(v, "missing-property", "the velocity composition solver '" + str(v) + "' names no velocity");
+      error(v, "missing-property",
+            "the velocity composition solver '" + str(v) + "' names no velocity");
     }
   }
   if (!forces.empty()) {
@@ -1092,9 +1235,11 @@ void Lowerer::lower_base() {
       base.wrench = datum(*f, DataType::Wrench, b, "force");
       const Data& w = prog_.data[static_cast<size_t>(base.wrench)];
       if (!at_frame_origin(w)) {
-        error(*f, "frame-mismatch",
-              "the platform wrench '" + w.iri + "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
-                  w.reference_point + "' seen by '" + w.as_seen_by + "'");
+        error(
+            *f, "frame-mismatch",
+            "the platform wrench '" + w.iri +
+                "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
+                w.reference_point + "' seen by '" + w.as_seen_by + "'");
       }
       Step s;
       s.kind = StepKind::BaseForceDistribution;
@@ -1125,7 +1270,8 @@ void Lowerer::lower_views() {
     auto space = object(v, vocab(map, "subspace"));
     auto axis = object(v, vocab(map, "axis"));
     if (!super || !sub || !space || !axis) {
-      error(v, "missing-property", "the view '" + str(v) + "' needs superobject, subobject, subspace and axis");
+      error(v, "missing-property",
+            "the view '" + str(v) + "' needs superobject, subobject, subspace and axis");
       continue;
     }
     ViewInfo info{v, *super, *sub};
@@ -1143,7 +1289,9 @@ void Lowerer::lower_views() {
       base = sp == "torque" || sp == "moment" ? 0 : sp == "force" ? 3 : -1;
     }
     if (base < 0 || a < 0) {
-      error(v, "invalid-view", "the view '" + str(v) + "' has subspace '" + sp + "' and axis '" + ax + "', which mospec cannot read");
+      error(v, "invalid-view",
+            "the view '" + str(v) + "' has subspace '" + sp + "' and axis '" + ax +
+                "', which mospec cannot read");
       continue;
     }
     info.index = base + a;
@@ -1197,8 +1345,8 @@ void Lowerer::lower_views() {
   for (size_t i = 0; i < views.size(); ++i) {
     if (done[i]) continue;
     error(views[i].view, "unproduced-quantity",
-          "the view '" + str(views[i].view) + "': nothing produces its superobject '" + str(views[i].super) +
-              "' or its subobject '" + str(views[i].sub) + "'");
+          "the view '" + str(views[i].view) + "': nothing produces its superobject '" +
+              str(views[i].super) + "' or its subobject '" + str(views[i].sub) + "'");
     done[i] = 1;
   }
 }
@@ -1218,9 +1366,10 @@ void Lowerer::gate_arm_solves() {
       auto it = producer_.find(d);
       if (it == producer_.end() || it->second < 0) continue;
       const Step& p = steps_[static_cast<size_t>(it->second)];
-      const bool gated = (p.kind == StepKind::Pid && p.in.size() == 2) ||
-                         (p.kind == StepKind::Evaluate && p.constraint.kind == runtime::ConstraintKind::Assignment &&
-                          p.in.size() == 2);
+      const bool gated =
+          (p.kind == StepKind::Pid && p.in.size() == 2) ||
+          (p.kind == StepKind::Evaluate &&
+           p.constraint.kind == runtime::ConstraintKind::Assignment && p.in.size() == 2);
       if (gated) gates.insert(p.in[1]);
       if (p.kind == StepKind::GuardedMotion || p.kind == StepKind::ArmKinematics ||
           p.kind == StepKind::BaseVelocityComposition)
@@ -1279,7 +1428,8 @@ void Lowerer::schedule() {
       if (waiting[i] > 0) {
         error(steps_[i].where, "cycle",
               "'" + steps_[i].iri + "' (" + std::string(to_string(steps_[i].kind)) +
-                  ") is on a dependency cycle: each quantity on it needs another one of them in the same tick");
+                  ") is on a dependency cycle: each quantity on it needs another one of them in "
+                  "the same tick");
       }
     }
     return;
@@ -1302,7 +1452,9 @@ void Lowerer::build_log() {
         const std::string cname = local_name(sat.iri.substr(0, sat.iri.find('#')));
         const Data& value = prog_.data[static_cast<size_t>(assignment ? s.out[1] : s.in[0])];
         prog_.log.push_back({cname + ".value", value.unit, assignment ? s.out[1] : s.in[0]});
-        if (!assignment) prog_.log.push_back({cname + ".error", prog_.data[static_cast<size_t>(s.out[1])].unit, s.out[1]});
+        if (!assignment)
+          prog_.log.push_back(
+              {cname + ".error", prog_.data[static_cast<size_t>(s.out[1])].unit, s.out[1]});
         prog_.log.push_back({cname + ".satisfied", "", s.out[0]});
         if (auto it = bounds_of_satisfied_.find(s.out[0]); it != bounds_of_satisfied_.end()) {
           prog_.log.push_back({cname + ".lower", value.unit, it->second.first});
@@ -1318,11 +1470,20 @@ void Lowerer::build_log() {
         prog_.log.push_back({base + ".mz", "N-M", s.in[0], 2});
         break;
       }
-      case StepKind::LevelMonitor: add(".flag", s.out[0]); break;
-      case StepKind::EdgeMonitor: add(".event", s.out[0]); break;
-      case StepKind::GuardedMotion: add(".running", s.out[0]); break;
-      case StepKind::Pid: add(".output", s.out[0]); break;
-      default: break;
+      case StepKind::LevelMonitor:
+        add(".flag", s.out[0]);
+        break;
+      case StepKind::EdgeMonitor:
+        add(".event", s.out[0]);
+        break;
+      case StepKind::GuardedMotion:
+        add(".running", s.out[0]);
+        break;
+      case StepKind::Pid:
+        add(".output", s.out[0]);
+        break;
+      default:
+        break;
     }
   }
 }
@@ -1335,7 +1496,8 @@ Program Lowerer::run() {
     }
   }
   lower_clocks();
-  for (TermId s : instances(vocab("task/solver-specification", "SolverWithInputAndOutput"))) lower_arm(s);
+  for (TermId s : instances(vocab("task/solver-specification", "SolverWithInputAndOutput")))
+    lower_arm(s);
   lower_operators();
   lower_planar_angles();
   lower_base();

@@ -57,8 +57,8 @@ void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, Ach
   bool finite = ws.tau_ff.allFinite() && ws.beta.allFinite();
   for (std::size_t i = 0; i < n; ++i) finite = finite && ws.F_ext[i].allFinite();
   if (finite) {
-    ws.status = achd(model, data, ws.q, ws.qd, ws.tau_ff,
-                     SegmentWrenches(ws.F_ext.data(), n), ws.alpha_To_B, ws.beta);
+    ws.status = achd(model, data, ws.q, ws.qd, ws.tau_ff, SegmentWrenches(ws.F_ext.data(), n),
+                     ws.alpha_To_B, ws.beta);
   } else {
     ws.status = Status::SizeMismatch;  // reported as a fault: nothing solved
   }
@@ -105,7 +105,8 @@ void base_force_distribution(const KeloModel& model, KeloData& data,
   }
   const KeloDriveVector& tau = kelo_force_step(model, data, q, planar_wrench(F_Po_P));
   for (std::size_t w = 0; w < wheel_tau.size(); ++w) {
-    wheel_tau[w] = static_cast<Eigen::Index>(w) < tau.size() ? tau[static_cast<Eigen::Index>(w)] : 0.0;
+    wheel_tau[w] =
+        static_cast<Eigen::Index>(w) < tau.size() ? tau[static_cast<Eigen::Index>(w)] : 0.0;
   }
 }
 
@@ -157,7 +158,8 @@ void base_hold(const KeloModel& model, KeloData& data, std::span<const double> p
                  -kBaseHoldAngularDamping * xd[2]);
   const KeloDriveVector& tau = kelo_force_step(model, data, q, F_p);
   for (std::size_t w = 0; w < wheel_tau.size(); ++w) {
-    wheel_tau[w] = static_cast<Eigen::Index>(w) < tau.size() ? tau[static_cast<Eigen::Index>(w)] : 0.0;
+    wheel_tau[w] =
+        static_cast<Eigen::Index>(w) < tau.size() ? tau[static_cast<Eigen::Index>(w)] : 0.0;
   }
 }
 

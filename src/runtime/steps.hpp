@@ -38,7 +38,8 @@ struct ArmWorkspace {
 // finite value (so nothing downstream jumps); while input_fault is set the
 // solve step holds the arm instead of driving it.
 void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
-                    std::span<const double> q_measured, std::span<const double> qd_measured) noexcept;
+                    std::span<const double> q_measured,
+                    std::span<const double> qd_measured) noexcept;
 
 // The pose of segment S_i w.r.t. the root, as seen by the root.
 inline const Pose& segment_pose(const AchdData& data, int segment) noexcept {
@@ -46,7 +47,8 @@ inline const Pose& segment_pose(const AchdData& data, int segment) noexcept {
 }
 // The pose of S_i w.r.t. the chain's own root B when the solver's root R
 // carries it at the constant X_RB: X_BS = X_RB^-1 X_RS.
-inline Pose segment_pose_in_chain_root(const AchdData& data, const Pose& X_BR, int segment) noexcept {
+inline Pose segment_pose_in_chain_root(const AchdData& data, const Pose& X_BR,
+                                       int segment) noexcept {
   return X_BR * data.X_BS[static_cast<std::size_t>(segment)];
 }
 // The twist of S_i w.r.t. the root at So_i, as seen by the root.
@@ -81,7 +83,9 @@ void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
 inline double view_pose(const Pose& X, int index) noexcept {
   return view(X, View{index < 3 ? Part::Angular : Part::Linear, static_cast<Axis>(index % 3)});
 }
-inline double view_vec6(const Vec6& v, int index) noexcept { return v[index]; }
+inline double view_vec6(const Vec6& v, int index) noexcept {
+  return v[index];
+}
 
 // ---------------------------------------------------------------------------
 // Constraint evaluation. `active` gates an assignment (its output is 0 while

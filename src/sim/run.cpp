@@ -23,10 +23,9 @@ void append_number(std::string& out, double x) {
 
 // The world's columns: what the figures and the acceptance criteria read.
 const char* const kWorldColumns[] = {
-    "base_x", "base_y", "base_yaw",
-    "right_ee_x", "right_ee_y", "right_ee_z", "right_fn", "right_fx", "right_fy", "right_fz",
-    "left_ee_x", "left_ee_y", "left_ee_z", "left_fn", "left_fx", "left_fy", "left_fz",
-    "ground_fx", "ground_fy", "ground_mz", "tau_ratio"};
+    "base_x",   "base_y",   "base_yaw", "right_ee_x", "right_ee_y", "right_ee_z", "right_fn",
+    "right_fx", "right_fy", "right_fz", "left_ee_x",  "left_ee_y",  "left_ee_z",  "left_fn",
+    "left_fx",  "left_fy",  "left_fz",  "ground_fx",  "ground_fy",  "ground_mz",  "tau_ratio"};
 
 }  // namespace
 
@@ -44,7 +43,8 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   std::vector<double> values(columns.size(), 0.0);
   std::vector<double> row(r.columns.size(), 0.0);
   const WorldConfig& config = world.config();
-  const auto ticks = static_cast<std::uint64_t>(std::llround(options.duration / config.control_period));
+  const auto ticks =
+      static_cast<std::uint64_t>(std::llround(options.duration / config.control_period));
   const auto every = static_cast<std::uint64_t>(options.log_every < 1 ? 1 : options.log_every);
   robot::MeasuredState state;
   robot::Command command, idle_command;
@@ -52,7 +52,8 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   const bool any_idle = options.arm && (options.idle[0] || options.idle[1]);
   if (any_idle) {
     hold = std::make_unique<GravityCompensation>(
-        *options.arm, std::array<runtime::Pose, robot::kArms>{config.arms[0].X_PB, config.arms[1].X_PB});
+        *options.arm,
+        std::array<runtime::Pose, robot::kArms>{config.arms[0].X_PB, config.arms[1].X_PB});
   }
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t k = 0; k < ticks; ++k) {

@@ -5,11 +5,10 @@
 // their logs compare byte for byte.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <array>
 
 #include "robot/controller.hpp"
 #include "runtime/chain.hpp"
@@ -35,13 +34,13 @@ struct RunResult {
   std::vector<std::string> columns;
   std::vector<double> last_row;  // the final logged values, by column
   // Safety summary over the whole run.
-  bool non_finite = false;            // a command was NaN/inf (never sent: the world zeroes it)
+  bool non_finite = false;              // a command was NaN/inf (never sent: the world zeroes it)
   std::uint64_t non_finite_values = 0;  // logged rows with a NaN/inf value (e.g. from a NaN sensor)
   std::uint64_t dropped_commands = 0;   // ticks whose command the world rejected or dropped
-  double max_torque_ratio = 0.0;      // max |tau_i| / effort_limit_i over arms and ticks
-  bool torque_limit_exceeded = false;  // max_torque_ratio > 1
-  bool joint_limit_exceeded = false;   // a measured joint position left its limits
-  int instabilities = 0;               // MuJoCo warnings (untrustworthy when > 0)
+  double max_torque_ratio = 0.0;        // max |tau_i| / effort_limit_i over arms and ticks
+  bool torque_limit_exceeded = false;   // max_torque_ratio > 1
+  bool joint_limit_exceeded = false;    // a measured joint position left its limits
+  int instabilities = 0;                // MuJoCo warnings (untrustworthy when > 0)
 };
 
 // Runs `controller` against `world` from its current state. The per-tick path

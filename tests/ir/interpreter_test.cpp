@@ -2,17 +2,18 @@
 // mirrors: guarded motions start on their `when` and end on any `until`,
 // controllers run only while their motion runs, monitors raise flags and
 // events; and a tick allocates nothing.
+#include "ir/interpreter.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "alloc_counter.hpp"  // NOLINT(llvm-include-order): after every other header
 #include "app/app.hpp"
-#include "ir/interpreter.hpp"
 #include "ir/lower.hpp"
 #include "sim/config.hpp"
-#include "alloc_counter.hpp"  // NOLINT(llvm-include-order): after every other header
 
 namespace mospec::ir {
 namespace {
@@ -79,11 +80,13 @@ TEST(Interpreter, RejectsAProgramThatDoesNotVerify) {
 // pose: arm kinematics, views, operators, evaluators, monitors, controllers,
 // the ACHD solve. Deterministic, finite, allocation-free.
 TEST(Interpreter, Sc0aTickIsDeterministicAndAllocationFree) {
-  const Program program = lower_app(std::string(MOSPEC_SOURCE_DIR) + "/models/sc0a.json", MOSPEC_SOURCE_DIR);
+  const Program program =
+      lower_app(std::string(MOSPEC_SOURCE_DIR) + "/models/sc0a.json", MOSPEC_SOURCE_DIR);
   Interpreter a(program), b(program);
   const sim::WorldConfig world = sim::default_world();
   robot::MeasuredState state;
-  for (int arm = 0; arm < robot::kArms; ++arm) state.arm[static_cast<size_t>(arm)].q = world.arms[static_cast<size_t>(arm)].q0;
+  for (int arm = 0; arm < robot::kArms; ++arm)
+    state.arm[static_cast<size_t>(arm)].q = world.arms[static_cast<size_t>(arm)].q0;
   robot::Command ca, cb;
   std::vector<double> va(a.log_columns().size()), vb(va.size());
   long allocations = 0;
