@@ -1462,6 +1462,14 @@ void Lowerer::build_log() {
         }
         break;
       }
+      case StepKind::BaseVelocityComposition: {
+        // The platform's measured planar twist [v_x, v_y, w_z].
+        const std::string base = local_name(s.iri);
+        prog_.log.push_back({base + ".vx", "M-PER-SEC", s.out[0], 3});
+        prog_.log.push_back({base + ".vy", "M-PER-SEC", s.out[0], 4});
+        prog_.log.push_back({base + ".wz", "RAD-PER-SEC", s.out[0], 2});
+        break;
+      }
       case StepKind::BaseForceDistribution: {
         // The platform wrench [f_x, f_y, m_z] the drives are to exert.
         const std::string base = local_name(s.iri);

@@ -17,6 +17,10 @@ expect "an app named without .json (models/sc0a) is models/sc0a.json" 0 "" -- \
   "$mospec" ir models/sc0a -o "$work/sc0a.3.json"
 check "... and lowers to the same IR" cmp -s "$work/sc0a.1.json" "$work/sc0a.3.json"
 
+check "sc1 composes the platform twist and logs it" grep -q '"name": "base-velocity-composition.vy"' "$work/sc1.1.json"
+check "sc1's base holds when its motions end (the distribution is gated)" \
+  grep -q '"kind": "base-force-distribution"' "$work/sc1.1.json"
+
 D="$SRC/tests/ir/data"
 expect "tiny lowers" 0 "" -- "$mospec" ir --root "$D" "$D/tiny.json" -o "$work/tiny.json"
 order=$(grep -o '"kind": "[a-z-]*"' "$work/tiny.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
