@@ -67,7 +67,9 @@ bad bilateral task/constraint.ttl 8 \
   '<https://ex.org/b4>: lower and upper threshold must have the same quantity kind'
 
 good solver "task/solver-specification.ttl task/platform-solvers.ttl"
-bad solver "task/solver-specification.ttl task/platform-solvers.ttl" 14 \
+bad solver "task/solver-specification.ttl task/platform-solvers.ttl" 17 \
+  '<https://ex.org/velocity-bad>: a velocity-composition solver has exactly one platform configuration' \
+  '<https://ex.org/velocity-bad>: a velocity-composition solver composes exactly one velocity twist' \
   '<https://ex.org/drv-bad>: the motion driver has no level in the prioritisation hierarchy.*ex.org/spec-frc1' \
   '<https://ex.org/drv-bad>: the motion driver has no level in the prioritisation hierarchy.*ex.org/spec-frc2' \
   '<https://ex.org/drv-bad>: a Cartesian-force driver must be a Cartesian force specification' \
