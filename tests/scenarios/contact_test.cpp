@@ -24,50 +24,16 @@
 
 namespace fs = std::filesystem;
 
+#include "run_log.hpp"
+
 namespace {
+
+using mospec::testing::Csv;
+using mospec::testing::read_csv;
+using mospec::testing::shell_quote;
 
 std::string g_mospec, g_source, g_app;
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& name) const {
-    for (size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name) return static_cast<int>(i);
-    return -1;
-  }
-};
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(cell);
-  return out;
-}
-
-Csv read_csv(const fs::path& path) {
-  Csv csv;
-  std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line)) return csv;
-  csv.header = split(line);
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    for (const std::string& c : split(line)) row.push_back(std::strtod(c.c_str(), nullptr));
-    csv.rows.push_back(std::move(row));
-  }
-  return csv;
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'') out += "'\\''";
-    else out += c;
-  }
-  return out + "'";
-}
 
 struct Stats {
   double min = INFINITY, max = -INFINITY, sum = 0;

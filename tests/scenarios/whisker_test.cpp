@@ -34,60 +34,20 @@
 
 namespace fs = std::filesystem;
 
+#include "run_log.hpp"
+
 namespace {
+
+using mospec::testing::Csv;
+using mospec::testing::read_csv;
+using mospec::testing::read_text;
+using mospec::testing::shell_quote;
 
 std::string g_mospec, g_source, g_app, g_seed;
 constexpr double kDuration = 15.0;  // [s] simulated
 constexpr double kHold = 8.0;       // [s] from here on the criteria must hold
 constexpr double kPi = 3.14159265358979323846;
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& name) const {
-    for (size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name) return static_cast<int>(i);
-    return -1;
-  }
-};
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(cell);
-  return out;
-}
-
-Csv read_csv(const fs::path& path) {
-  Csv csv;
-  std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line)) return csv;
-  csv.header = split(line);
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    for (const std::string& c : split(line)) row.push_back(std::strtod(c.c_str(), nullptr));
-    csv.rows.push_back(std::move(row));
-  }
-  return csv;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  return out + "'";
-}
 
 // A number of the summary's top level ("key": value).
 double summary_number(const std::string& json, const std::string& key) {
