@@ -169,59 +169,6 @@ std::string_view type_member(DataType t) {
   return "scalar";
 }
 
-// The step kinds' names as ir::to_string spells them (comments only).
-std::string_view kind_name(StepKind k) {
-  switch (k) {
-    case StepKind::ReadClock:
-      return "read-clock";
-    case StepKind::ArmKinematics:
-      return "arm-kinematics";
-    case StepKind::ViewRead:
-      return "view-read";
-    case StepKind::ViewWrite:
-      return "view-write";
-    case StepKind::ComposePose:
-      return "compose-pose";
-    case StepKind::PoseToLinearDistance:
-      return "pose-to-linear-distance";
-    case StepKind::PoseToDirection:
-      return "pose-to-direction";
-    case StepKind::RotateWrenchToProximal:
-      return "rotate-wrench-to-proximal";
-    case StepKind::RotateTwistToProximal:
-      return "rotate-twist-to-proximal";
-    case StepKind::RotateDirectionToProximal:
-      return "rotate-direction-to-proximal";
-    case StepKind::TransformWrenchToProximal:
-      return "transform-wrench-to-proximal";
-    case StepKind::WrenchFromPositionDirectionAndMagnitude:
-      return "wrench-from-position-direction-and-magnitude";
-    case StepKind::AddWrench:
-      return "add-wrench";
-    case StepKind::PlanarAngleFromDirections:
-      return "planar-angle-from-directions";
-    case StepKind::InvertAngle:
-      return "invert-angle";
-    case StepKind::Evaluate:
-      return "evaluate";
-    case StepKind::LevelMonitor:
-      return "level-monitor";
-    case StepKind::EdgeMonitor:
-      return "edge-monitor";
-    case StepKind::GuardedMotion:
-      return "guarded-motion";
-    case StepKind::Pid:
-      return "pid";
-    case StepKind::ArmSolve:
-      return "arm-solve";
-    case StepKind::BaseForceDistribution:
-      return "base-force-distribution";
-    case StepKind::BaseVelocityComposition:
-      return "base-velocity-composition";
-  }
-  return "?";
-}
-
 std::string join_doubles(const double* values, int n) {
   std::string out;
   for (int i = 0; i < n; ++i) {
@@ -667,13 +614,13 @@ class Builder {
     const ir::Step& st = p_.steps[index];
     mus::data s;
     s.set("index", std::to_string(index));
-    s.set("kind", std::string(kind_name(st.kind)));
+    s.set("kind", std::string(ir::to_string(st.kind)));
     s.set("name", comment(st.name));
     s.set("iri", comment(st.iri));
     s.set("where", where(st.where));
     // A blank line, then what the block implements and where it is written.
     std::string header = "\n  // [";
-    header.append(std::to_string(index)).append("] ").append(kind_name(st.kind)).append(" '");
+    header.append(std::to_string(index)).append("] ").append(ir::to_string(st.kind)).append(" '");
     header.append(comment(st.name)).append("': ").append(comment(st.iri)).append("\n  //     ");
     header.append(where(st.where));
     s.set("header", header);
@@ -898,8 +845,7 @@ class Builder {
         break;
       }
       case StepKind::BaseVelocityComposition:
-        if (!p_.base)
-          fail("step '" + st.name + "' measures the base, but the program has no base");
+        if (!p_.base) fail("step '" + st.name + "' measures the base, but the program has no base");
         s.set("is_base_velocity_composition", true);
         s.set("out0", out(st, 0));
         break;

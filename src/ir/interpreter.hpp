@@ -30,10 +30,8 @@ class Interpreter final : public robot::Controller {
   void log_values(std::span<double> out) const noexcept override;
 
   const Program& program() const { return program_; }
-  // The current value of a datum (flags and events as 0/1); for tests.
-  double scalar(int data) const {
-    return scalars_[static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot)];
-  }
+  // The current value of a scalar, flag or event datum (flags and events as
+  // 0/1; NaN for other types).
   double value(int data) const noexcept;
 
  private:

@@ -210,6 +210,15 @@ class Lowerer {
   void fill_constant(Data& d, TermId e);
 
   // --- steps --------------------------------------------------------------
+  // A step asked for by model entity `e`, named and located by it.
+  Step step_for(StepKind kind, TermId e) const {
+    Step s;
+    s.kind = kind;
+    s.iri = str(e);
+    s.name = local_name(s.iri);
+    s.where = where(e);
+    return s;
+  }
   int add_step(Step step) {
     step.name = unique_name(step.name, step_names_);
     const int index = static_cast<int>(steps_.size());
@@ -443,11 +452,7 @@ void Lowerer::lower_clocks() {
       error(c, "missing-property", "the clock '" + str(c) + "' names no `time` quantity");
       continue;
     }
-    Step s;
-    s.kind = StepKind::ReadClock;
-    s.iri = str(c);
-    s.name = local_name(s.iri);
-    s.where = where(c);
+    Step s = step_for(StepKind::ReadClock, c);
     s.out = {datum(*t, DataType::Scalar, c, "time")};
     if (prog_.data[static_cast<size_t>(s.out[0])].unit != "SEC")
       error(*t, "wrong-unit", "the clock's time '" + str(*t) + "' must be in SEC");
@@ -866,11 +871,7 @@ void Lowerer::lower_planar_angles() {
   const std::string gop = "geometry/spatial-operators";
   for (TermId e : instances(vocab(gop, "PlanarAngleFromDirections"))) {
     pending_iri_ = str(e);
-    Step s;
-    s.kind = StepKind::PlanarAngleFromDirections;
-    s.iri = str(e);
-    s.name = local_name(s.iri);
-    s.where = where(e);
+    Step s = step_for(StepKind::PlanarAngleFromDirections, e);
     auto dirs = objects(e, vocab(gop, "from-directions"));
     std::vector<TermId> ordered;
     if (dirs.size() == 1) ordered = list(dirs.front());
@@ -928,11 +929,7 @@ void Lowerer::lower_evaluators() {
       error(*c, "missing-property", "the constraint '" + str(*c) + "' names no quantity");
       continue;
     }
-    Step s;
-    s.kind = StepKind::Evaluate;
-    s.iri = str(e);
-    s.name = local_name(s.iri);
-    s.where = where(e);
+    Step s = step_for(StepKind::Evaluate, e);
     const int quantity = datum(*q, DataType::Scalar, *c, "quantity");
     const std::string unit = prog_.data[static_cast<size_t>(quantity)].unit;
     // A threshold/reference: a constant with the quantity's unit.
@@ -1062,7 +1059,6 @@ void Lowerer::lower_monitors() {
         const Step& ev = steps_[static_cast<size_t>(step)];
         if (ev.out.size() > 1 && ev.out[1] == s.in[0]) s.constraint = ev.constraint;
       }
-      Data flag;
       const int d = synthetic(str(*out), local_name(str(*out)),
                               edge ? DataType::Event : DataType::Flag, where(*out));
       data_of_[out->index] = d;
@@ -1085,11 +1081,7 @@ void Lowerer::lower_handlers() {
     if (auto it = active_of_motion.find(m->index); it != active_of_motion.end()) {
       active = it->second;
     } else {
-      Step s;
-      s.kind = StepKind::GuardedMotion;
-      s.iri = str(*m);
-      s.name = local_name(s.iri);
-      s.where = where(*m);
+      Step s = step_for(StepKind::GuardedMotion, *m);
       const auto guards = [&](const std::string& prop) {
         std::vector<int> flags;
         for (TermId c : objects(*m, vocab(mot, prop))) {
@@ -1146,11 +1138,7 @@ void Lowerer::lower_controllers() {
             "the controller '" + str(c) + "' needs an error-signal and a control-signal");
       continue;
     }
-    Step s;
-    s.kind = StepKind::Pid;
-    s.iri = str(c);
-    s.name = local_name(s.iri);
-    s.where = where(c);
+    Step s = step_for(StepKind::Pid, c);
     const auto gain = [&](const std::string& p, bool required) {
       auto v = number(c, vocab(ch, p));
       if (!v && required)
@@ -1202,55 +1190,36 @@ void Lowerer::lower_base() {
     }
     return !origin.empty() && q.reference_point == origin;
   };
+  // One platform quantity per solver: the twist it composes, the wrench it
+  // distributes; each at the origin of the frame it is seen by (the platform's).
   std::vector<Step> new_steps;
-  if (!velocities.empty()) {
-    const TermId v = velocities.front();
-    pending_iri_ = str(v);
-    if (auto t = object(v, vocab(slv, "velocity"))) {
-      base.twist = datum(*t, DataType::Twist, v, "velocity");
-      const Data& tw = prog_.data[static_cast<size_t>(base.twist)];
-      if (!at_frame_origin(tw)) {
-        error(
-            *t, "frame-mismatch",
-            "the platform twist '" + tw.iri +
-                "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
-                tw.reference_point + "' seen by '" + tw.as_seen_by + "'");
-      }
-      Step s;
-      s.kind = StepKind::BaseVelocityComposition;
-      s.iri = str(v);
-      s.name = local_name(s.iri);
-      s.where = where(v);
-      s.out = {base.twist};
-      new_steps.push_back(std::move(s));
-    } else {
-      error(v, "missing-property",
-            "the velocity composition solver '" + str(v) + "' names no velocity");
+  const auto platform_step = [&](TermId solver, const char* property, DataType type, StepKind kind,
+                                 int& field) {
+    pending_iri_ = str(solver);
+    auto q = object(solver, vocab(slv, property));
+    if (!q) {
+      error(solver, "missing-property", "the solver '" + str(solver) + "' names no " + property);
+      return;
     }
+    field = datum(*q, type, solver, property);
+    const Data& d = prog_.data[static_cast<size_t>(field)];
+    if (!at_frame_origin(d)) {
+      error(*q, "frame-mismatch",
+            "the platform " + std::string(to_string(type)) + " '" + d.iri +
+                "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
+                d.reference_point + "' seen by '" + d.as_seen_by + "'");
+    }
+    Step s = step_for(kind, solver);
+    (kind == StepKind::BaseVelocityComposition ? s.out : s.in) = {field};
+    new_steps.push_back(std::move(s));
+  };
+  if (!velocities.empty()) {
+    platform_step(velocities.front(), "velocity", DataType::Twist,
+                  StepKind::BaseVelocityComposition, base.twist);
   }
   if (!forces.empty()) {
-    const TermId b = forces.front();
-    pending_iri_ = str(b);
-    if (auto f = object(b, vocab(slv, "force"))) {
-      base.wrench = datum(*f, DataType::Wrench, b, "force");
-      const Data& w = prog_.data[static_cast<size_t>(base.wrench)];
-      if (!at_frame_origin(w)) {
-        error(
-            *f, "frame-mismatch",
-            "the platform wrench '" + w.iri +
-                "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
-                w.reference_point + "' seen by '" + w.as_seen_by + "'");
-      }
-      Step s;
-      s.kind = StepKind::BaseForceDistribution;
-      s.iri = str(b);
-      s.name = local_name(s.iri);
-      s.where = where(b);
-      s.in = {base.wrench};
-      new_steps.push_back(std::move(s));
-    } else {
-      error(b, "missing-property", "the force distribution solver '" + str(b) + "' names no force");
-    }
+    platform_step(forces.front(), "force", DataType::Wrench, StepKind::BaseForceDistribution,
+                  base.wrench);
   }
   prog_.base = std::move(base);
   for (Step& s : new_steps) add_step(std::move(s));
