@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <numbers>
 #include <nlohmann/json.hpp>
 
 #include "cli/faults.hpp"
@@ -83,7 +84,7 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   // The table's edge runs along y of the world: the platform is aligned with
   // it at yaw 0.
   const double yaw = sim::last_value(r, "base_yaw");
-  j["base_yaw_to_edge_deg"] = std::isfinite(yaw) ? yaw * 180.0 / 3.14159265358979323846 : 0.0;
+  j["base_yaw_to_edge_deg"] = std::isfinite(yaw) ? yaw * 180.0 / std::numbers::pi : 0.0;
   nlohmann::ordered_json final_values;
   for (size_t i = 0; i < r.columns.size() && i < r.last_row.size(); ++i) {
     const double v = r.last_row[i];

@@ -102,7 +102,13 @@ namespace {
 
 [[noreturn]] void invalid(const Step& step, const std::string& what) {
   std::string msg = "IR step '";
-  msg.append(step.name).append("' (").append(to_string(step.kind)).append("): ").append(what);
+  msg.append(step.name)
+      .append("' (")
+      .append(to_string(step.kind))
+      .append(", from '")
+      .append(step.iri)
+      .append("'): ")
+      .append(what);
   throw Error("ir-invalid", msg);
 }
 

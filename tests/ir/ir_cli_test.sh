@@ -18,8 +18,12 @@ expect "an app named without .json (models/sc0a) is models/sc0a.json" 0 "" -- \
 check "... and lowers to the same IR" cmp -s "$work/sc0a.1.json" "$work/sc0a.3.json"
 
 check "sc1 composes the platform twist and logs it" grep -q '"name": "base-velocity-composition.vy"' "$work/sc1.1.json"
-check "sc1's base holds when its motions end (the distribution is gated)" \
-  grep -q '"kind": "base-force-distribution"' "$work/sc1.1.json"
+# The base step reads the platform wrench (1 driver) and, after it, the running
+# flags of the motions that drive it: with none running the base holds.
+base_step=$(sed -n '/"kind": "base-force-distribution"/,/"where"/p' "$work/sc1.1.json")
+check "sc1's force distribution has one driver" grep -q '"drivers": 1' <<< "$base_step"
+check "sc1's force distribution is gated by both whisker motions" \
+  test "$(grep -cE '^ +[0-9]+,?$' <<< "$base_step")" -eq 3
 
 D="$SRC/tests/ir/data"
 expect "tiny lowers" 0 "" -- "$mospec" ir --root "$D" "$D/tiny.json" -o "$work/tiny.json"
