@@ -89,6 +89,9 @@ constexpr uint32_t kMaxLayerDepth = 6;
 // Processor-defined limit of CP 5.2.3: remote contexts nested deeper than this
 // are reported as "context overflow".
 constexpr size_t kMaxRemoteContexts = 32;
+// Processor-defined limit on the remote contexts one context processing may
+// process in all (repeats included), far above any real model's handful.
+constexpr size_t kMaxRemoteProcessing = 4096;
 
 constexpr std::array<std::string_view, 23> kKeywords = {
     "@base",   "@container", "@context", "@direction", "@graph",     "@id",
@@ -617,6 +620,8 @@ class Processor {
   const Options& opts_;
   ContextCache::Impl* cache_;
   bool json10_;
+  // Remote contexts processed (not answered from the cache) by this call.
+  size_t remote_processed_ = 0;
   // The remote contexts being processed, outermost first: the ancestors of the
   // one at hand, for cycle detection.
   std::vector<std::string> chain_;
@@ -917,6 +922,16 @@ class Processor {
           return;
         }
       }
+    }
+
+    // A context listed twice is processed twice, so contexts that each list
+    // the next one twice would take 2^depth steps: the total is bounded too.
+    if (++remote_processed_ > kMaxRemoteProcessing) {
+      fail("context overflow",
+           "more than " + std::to_string(kMaxRemoteProcessing) +
+               " remote contexts processed for one @context (the last one " + iri +
+               "); is a context listed many times?",
+           loc);
     }
 
     // CP 5.2.4 - 5.2.5

@@ -307,6 +307,17 @@ TEST_F(ContextTest, RepeatedRemoteContextsAreNotCycles) {
   EXPECT_EQ(c->find("a")->iri, "http://e/a");
   EXPECT_EQ(c->find("o")->iri, "http://e/o");
 
+  // Each context listing the next one twice: 2^20 inclusions, refused after a bound.
+  for (int i = 0; i < 20; ++i) {
+    const std::string next = "http://ctx.org/d" + std::to_string(i + 1) + ".jsonld";
+    loader.add("http://ctx.org/d" + std::to_string(i) + ".jsonld",
+               R"({"@context": [")" + next + R"(", ")" + next + R"("]})");
+  }
+  loader.add("http://ctx.org/d20.jsonld", R"({"@context": {}})");
+  EXPECT_EQ(error_of(R"("http://ctx.org/d0.jsonld")"), "context overflow");
+  EXPECT_NE(last_error->diagnostic().message.find("remote contexts processed"), std::string::npos)
+      << last_error->diagnostic().message;
+
   // A includes B includes A: the error is located where B names A, and says how.
   loader.add("http://ctx.org/A.jsonld", R"({"@context": ["B.jsonld"]})");
   loader.add("http://ctx.org/B.jsonld", "{\"@context\": [\n  \"A.jsonld\"]}");
