@@ -400,10 +400,10 @@ TEST_F(Expand, MalformedIdsAreReported) {
             "3:48 @id value \"http://ex/c\\\"d\" is not a well-formed IRI (it contains '\"' "
             "(U+0022), which IRIs exclude); JSON-LD drops it and the triples that use it");
   EXPECT_EQ(messages[2],
-            "3:78 @id value \"ex:e\\\\f\" is not a well-formed IRI (it contains '\\' (U+005C), "
+            "3:84 @id value \"ex:e\\\\f\" is not a well-formed IRI (it contains '\\' (U+005C), "
             "which IRIs exclude); JSON-LD drops it and the triples that use it");
   EXPECT_EQ(messages[3],
-            "4:51 @id value \"http://ex/<g>\" is not a well-formed IRI (it contains '<' "
+            "4:57 @id value \"http://ex/<g>\" is not a well-formed IRI (it contains '<' "
             "(U+003C), which IRIs exclude); JSON-LD drops it and the triples that use it (node "
             "<http://ex/<g>>)");
 }
