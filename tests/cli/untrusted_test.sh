@@ -44,13 +44,22 @@ write_app() {
   printf '%s\n  "import": [ %s ],\n  "constraints": [ %s ],\n  "iri-map": { "https://m.example/": { "path": "%s" } } }\n' \
     "$app_header" "$1" "$2" "${3:-.}" > "tree/$4.json"
 }
-write_app '"https://m.example/fifo.json"' '' . import-fifo
+for f in fifo.json dir huge.json urandom.json; do
+  write_app "\"https://m.example/$f\"" '' . "import-${f%.json}"
+done
 echo '{ "@context": { "ex": "https://ex.org/" }, "@id": "https://ex.org/ok", "ex:p": 1 }' > tree/ok.json
 write_app '"https://m.example/ok.json"' '"https://m.example/fifo.ttl"' . shapes-fifo
 (
   cd tree
   expect import-fifo 2 '^import-fifo\.json:6:[0-9]+: error: .*fifo\.json.*not a regular file \(a FIFO\)' \
     -- t "$mospec" rdf import-fifo.json
+  expect import-dir 2 '^import-dir\.json:6:[0-9]+: error: .*dir.*Is a directory' \
+    -- t "$mospec" rdf import-dir.json
+  expect import-huge 2 '^import-huge\.json:6:[0-9]+: error: .*huge\.json.*file is too large' \
+    -- t "$mospec" rdf import-huge.json
+  # A link inside the tree to a device resolves outside it.
+  expect import-urandom 2 '^import-urandom\.json:6:[0-9]+: error: .*outside the model tree' \
+    -- t "$mospec" rdf import-urandom.json
   expect shapes-fifo 2 '^shapes-fifo\.json:6:[0-9]+: error: .*fifo\.ttl.*not a regular file \(a FIFO\)' \
     -- t "$mospec" validate shapes-fifo.json
   echo "$passed $failures" > ../counts
