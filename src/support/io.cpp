@@ -169,10 +169,12 @@ void write_output(const std::string& path, std::string_view content) {
   Fd fd(::mkostemp(tmpl.data(), O_CLOEXEC | O_NOFOLLOW));
   if (fd.get() < 0) throw fail(errno);
   bool ok = ::fchmod(fd.get(), 0666 & ~current_umask()) == 0 && write_all(fd.get(), content);
-  int saved = errno;
-  ok = (fd.close() == 0) && ok;
+  int saved = ok ? 0 : errno;
+  if (fd.close() != 0 && ok) {  // a deferred write error (NFS, quota) shows up here
+    ok = false;
+    saved = errno;
+  }
   if (!ok) {
-    if (saved == 0) saved = errno;
     ::unlink(tmpl.c_str());
     throw fail(saved);
   }
