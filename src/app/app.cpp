@@ -74,9 +74,14 @@ class Loader {
     if (options.builtin_metamodels) {
       docs_.map_fallback(std::string(kMetamodelsIri), builtin_metamodels_dir());
     }
+    // The model tree is a sandbox: references load only from the directories
+    // above, --root, the app's iri-map and the inputs' own directories.
+    docs_.confine();
+    if (options.root) docs_.allow(*options.root);
   }
 
   void load_input(const std::string& path) {
+    docs_.allow(fs::path(path).has_parent_path() ? fs::path(path).parent_path().string() : ".");
     std::string iri = iri_for_path(maps_, path);
     if (!loaded_.insert(iri).second) return;
     jsonld::RemoteDocument doc = docs_.load_file(path, iri);
@@ -169,6 +174,7 @@ class Loader {
         if (prefix.kind != rdf::TermKind::Iri || path_p.is_any()) continue;
         for (uint32_t pi : local.match(q.object, path_p, any)) {
           std::string dir = join_root(options_, std::string(lt[local.quads()[pi].object].value));
+          check_iri_map_dir(dir, local.location(pi), std::string(prefix.value));
           docs_.map(std::string(prefix.value), dir);
           maps_.emplace_back(std::string(prefix.value), dir);
           app.iri_map.emplace_back(std::string(prefix.value), dir);
@@ -213,6 +219,39 @@ class Loader {
       }
     }
     if (!missing.empty()) throw with_dangling_references(missing);
+  }
+
+  // An app's iri-map may only name directories inside the tree its relative
+  // paths resolve against (--root, else the current directory): an untrusted
+  // app must not map an IRI onto /etc or the user's home.
+  void check_iri_map_dir(const std::string& dir, SourceLoc at, const std::string& prefix) const {
+    std::error_code ec;
+    const fs::path base = fs::weakly_canonical(fs::absolute(options_.root.value_or(".")), ec);
+    const fs::path target = fs::weakly_canonical(fs::absolute(dir), ec);
+    auto t = target.begin();
+    bool inside = true;
+    for (auto b = base.begin(); b != base.end() && inside; ++b) {
+      if (b->empty()) continue;
+      inside = t != target.end() && *t == *b;
+      if (inside) ++t;
+    }
+    for (char c : dir) inside = inside && static_cast<unsigned char>(c) >= 0x20 && c != 0x7f;
+    if (inside) return;
+    std::string message = "iri-map entry <" + prefix + "> names the directory '";
+    for (char c : target.string()) {
+      auto u = static_cast<unsigned char>(c);
+      if (u < 0x20 || u == 0x7f) {
+        static constexpr char kHex[] = "0123456789ABCDEF";
+        message.append("\\x").append(1, kHex[u >> 4]).append(1, kHex[u & 15]);
+      } else {
+        message += c;
+      }
+    }
+    message += "', outside the model tree '" + base.string() + "' (" +
+               (options_.root ? "--root" : "the current directory; pass --root DIR to change it") +
+               "); an app may only map IRIs into its own tree (pass --root DIR naming a tree "
+               "that holds it, if you trust it)";
+    throw Error("invalid iri-map", message, docs_.files().path(at.file), at.line, at.column);
   }
 
   // The first missing import's error, extended with the references the loaded

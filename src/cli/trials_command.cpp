@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "cli/commands.hpp"
@@ -60,8 +60,10 @@ void clear_previous(const fs::path& dir) {
 
 // The last lines of a trial's log, for the message about a failed trial.
 std::string tail(const fs::path& log, size_t lines) {
-  std::ifstream in(log);
+  std::string text;
+  if (!read_file_reason(log.string(), text).empty()) return {};  // no log: nothing to quote
   std::vector<std::string> all;
+  std::istringstream in(text);
   for (std::string line; std::getline(in, line);) all.push_back(line);
   std::string out;
   for (size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) {

@@ -89,6 +89,9 @@ constexpr uint32_t kMaxLayerDepth = 6;
 // Processor-defined limit of CP 5.2.3: remote contexts nested deeper than this
 // are reported as "context overflow".
 constexpr size_t kMaxRemoteContexts = 32;
+// Processor-defined limit on the remote contexts one context processing may
+// process in all (repeats included), far above any real model's handful.
+constexpr size_t kMaxRemoteProcessing = 4096;
 
 constexpr std::array<std::string_view, 23> kKeywords = {
     "@base",   "@container", "@context", "@direction", "@graph",     "@id",
@@ -617,6 +620,21 @@ class Processor {
   const Options& opts_;
   ContextCache::Impl* cache_;
   bool json10_;
+  // Remote contexts processed (not answered from the cache) by this call.
+  size_t remote_processed_ = 0;
+  // The remote contexts being processed, outermost first: the ancestors of the
+  // one at hand, for cycle detection.
+  std::vector<std::string> chain_;
+  // Keeps `chain_` balanced when processing ends, even by an exception.
+  struct ChainEntry {
+    std::vector<std::string>& chain;
+    ChainEntry(std::vector<std::string>& c, const std::string& iri) : chain(c) {
+      chain.push_back(iri);
+    }
+    ~ChainEntry() { chain.pop_back(); }
+    ChainEntry(const ChainEntry&) = delete;
+    ChainEntry& operator=(const ChainEntry&) = delete;
+  };
   // Documents dereferenced during this call when there is no shared cache (CP
   // 5.2.4: a context is dereferenced at most once).
   std::unordered_map<std::string, RemoteDoc, detail::StringHash, std::equal_to<>> local_docs_;
@@ -838,15 +856,21 @@ class Processor {
         std::find(remote_contexts.begin(), remote_contexts.end(), iri) != remote_contexts.end();
     // CP 5.2.2
     if (!validate && seen) return;
-    // CP 5.2.3: a context that includes itself would recurse forever, so that is
-    // reported at once rather than after kMaxRemoteContexts loads.
-    if (seen) {
-      if (json10_) {
-        fail("recursive context inclusion", "remote context " + iri + " includes itself", loc);
+    // CP 5.2.3: a context that (transitively) includes itself would recurse
+    // forever, so that is reported at once rather than after kMaxRemoteContexts
+    // loads. Only the chain of contexts being processed around this one counts:
+    // `remote_contexts` also holds earlier siblings, and a context listed twice
+    // in one @context array is processed twice, not a cycle.
+    if (std::find(chain_.begin(), chain_.end(), iri) != chain_.end()) {
+      std::string path;
+      for (auto it = std::find(chain_.begin(), chain_.end(), iri); it != chain_.end(); ++it) {
+        path.append(*it).append(" -> ");
       }
-      fail("context overflow", "remote context " + iri + " includes itself", loc);
+      path += iri;
+      const std::string message = "remote context " + iri + " includes itself (" + path + ")";
+      fail(json10_ ? "recursive context inclusion" : "context overflow", message, loc);
     }
-    if (remote_contexts.size() >= kMaxRemoteContexts) {
+    if (chain_.size() >= kMaxRemoteContexts) {
       fail("context overflow",
            "more than " + std::to_string(kMaxRemoteContexts) + " nested remote contexts at " + iri,
            loc);
@@ -900,6 +924,16 @@ class Processor {
       }
     }
 
+    // A context listed twice is processed twice, so contexts that each list
+    // the next one twice would take 2^depth steps: the total is bounded too.
+    if (++remote_processed_ > kMaxRemoteProcessing) {
+      fail("context overflow",
+           "more than " + std::to_string(kMaxRemoteProcessing) +
+               " remote contexts processed for one @context (the last one " + iri +
+               "); is a context listed many times?",
+           loc);
+    }
+
     // CP 5.2.4 - 5.2.5
     const RemoteDoc& doc = dereference(iri, loc);
     const json::Value* loaded = doc.document->get("@context");
@@ -926,6 +960,7 @@ class Processor {
     detail::DepLog log;
     {
       DepRecording recording(result, cacheable ? &log : nullptr);
+      ChainEntry in_chain(chain_, iri);
       process(result, nullptr, *loaded, doc_url, copy, override_protected, true, validate,
               /*in_remote=*/true);
     }

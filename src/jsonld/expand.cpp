@@ -69,6 +69,27 @@ bool is_graph_object(const Value& v) {
   return true;
 }
 
+// `s` as a message quotes it between double quotes: quote, backslash and
+// control characters escaped JSON-style, so a message never carries raw bytes.
+std::string escaped_for_message(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20 || u == 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\u00";
+      out += kHex[u >> 4];
+      out += kHex[u & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 // An absolute IRI by syntax: a scheme and none of the characters RFC 3987
 // excludes from IRIs (space, controls, <>"{}|\^`).
 bool is_iri(std::string_view s) {
@@ -205,6 +226,9 @@ class Expander {
   std::optional<std::string> expand_type_iri(const ActiveContext& type_scoped, const Value& v,
                                              ObjectState& st);
   void note_dropped_key(const std::string& key, SourceLoc loc, ObjectState& st);
+  // The warning for an @id (or @id-coerced value) that expands to a malformed
+  // IRI, which toRdf drops with its triples; nullopt when `iri` is fine.
+  std::optional<Pending> malformed_id(const std::string& iri, const Value& value) const;
 
   std::string file_name(SourceLoc loc) const;
   [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
@@ -230,6 +254,17 @@ void Expander::note_dropped_key(const std::string& key, SourceLoc loc, ObjectSta
   if (opts_.diagnostics == nullptr) return;
   st.pending.push_back(
       {loc, "dropped-key", "key \"" + key + "\" expands to no IRI and is dropped"});
+}
+
+std::optional<Expander::Pending> Expander::malformed_id(const std::string& iri,
+                                                        const Value& value) const {
+  if (opts_.diagnostics == nullptr || iri.starts_with("_:") || is_keyword(iri)) return std::nullopt;
+  std::string problem = rdf::iri_problem(iri);
+  if (problem.empty()) return std::nullopt;
+  std::string shown = escaped_for_message(value.as_string());
+  return Pending{value.location(), "malformed-id",
+                 "@id value \"" + shown + "\" is not a well-formed IRI (" + problem +
+                     "); JSON-LD drops it and the triples that use it"};
 }
 
 // IRI-expands an @type value against the type-scoped context (13.4.4.4). A value
@@ -568,6 +603,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
       put(result, "@id", std::move(null_id), key_loc);
       return;
     }
+    if (auto warning = malformed_id(*iri, value)) st.pending.push_back(std::move(*warning));
     expanded_value = string_at(std::move(*iri), value.location());
   } else if (ep == "@type") {  // 13.4.4
     bool ok = value.is_string();
@@ -854,6 +890,13 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
     if (**type == "@id" || **type == "@vocab") {
       std::optional<std::string> iri =
           expand_iri(active, value.as_string(), true, **type == "@vocab");
+      if (iri) {
+        if (auto w = malformed_id(*iri, value)) {
+          opts_.diagnostics->report(Diagnostic{Severity::Warning, file_name(w->loc), w->loc.line,
+                                               w->loc.column, std::move(w->code),
+                                               std::move(w->message)});
+        }
+      }
       Object o;
       o.append_new("@id", iri ? string_at(std::move(*iri), value.location()) : Value());
       Value out(std::move(o));

@@ -501,8 +501,14 @@ class Parser {
           append_utf8(out, cp);
           break;
         }
-        default:
-          fail_at(esc, "invalid escape sequence '\\" + std::string(1, e) + "' in string");
+        default: {
+          // A raw byte is quoted only when printable (describe escapes the rest).
+          const auto u = static_cast<unsigned char>(e);
+          if (u >= 0x20 && u < 0x7F) {
+            fail_at(esc, "invalid escape sequence '\\" + std::string(1, e) + "' in string");
+          }
+          fail_at(esc, "invalid escape sequence: '\\' followed by " + describe(e) + " in string");
+        }
       }
     }
   }

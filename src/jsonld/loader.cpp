@@ -1,11 +1,15 @@
 #include "jsonld/loader.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 #include <system_error>
+#include <vector>
+
+#include "support/io.hpp"
 
 namespace mospec::jsonld {
 namespace fs = std::filesystem;
@@ -86,25 +90,60 @@ std::string file_url(const std::string& canonical) {
   return out;
 }
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-
-// Reads the whole file; returns the reason on failure (empty on success).
-std::string read_whole_file(const std::string& path, std::string& out) {
+// A path with every symbolic link and `..` resolved (as far as it exists; the
+// rest lexically), absolute.
+fs::path canonical_path(const std::string& path) {
   std::error_code ec;
-  fs::file_status status = fs::status(path, ec);
-  if (fs::is_directory(status)) return std::strerror(EISDIR);
-  // Devices and pipes (/dev/zero, a FIFO) could block or never end; models are files.
-  if (fs::exists(status) && !fs::is_regular_file(status)) return "not a regular file";
-  errno = 0;
-  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-  if (!f) return std::strerror(errno != 0 ? errno : ENOENT);
-  char buffer[65536];
-  size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) out.append(buffer, n);
-  if (std::ferror(f.get())) return std::strerror(errno != 0 ? errno : EIO);
-  return {};
+  fs::path abs = fs::absolute(path, ec);
+  if (ec) return fs::path(path).lexically_normal();
+  fs::path p = fs::weakly_canonical(abs, ec);
+  return ec ? abs.lexically_normal() : p;
+}
+
+// Whether `path` is `root` or below it, component by component (so /tree2 is
+// not inside /tree). Both are canonical.
+bool is_within(const fs::path& path, const fs::path& root) {
+  auto p = path.begin();
+  for (auto r = root.begin(); r != root.end(); ++r) {
+    if (r->empty()) continue;  // a trailing '/'
+    if (p == path.end() || *p != *r) return false;
+    ++p;
+  }
+  return true;
+}
+
+// The first control character (U+0000-U+001F, U+007F) in `s`, or -1.
+int control_character(std::string_view s) {
+  for (char c : s) {
+    auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) return u;
+  }
+  return -1;
+}
+
+// `s` with control characters and non-ASCII bytes escaped, for messages.
+std::string escaped(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u >= 0x7f) {
+      static constexpr char kHex[] = "0123456789ABCDEF";
+      out += "\\x";
+      out += kHex[u >> 4];
+      out += kHex[u & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string code_point(int u) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  std::string out = "U+00";
+  out += kHex[(u >> 4) & 15];
+  out += kHex[u & 15];
+  return out;
 }
 
 }  // namespace
@@ -117,6 +156,79 @@ void MappedDocumentLoader::map(std::string prefix, std::string dir) {
 void MappedDocumentLoader::map_fallback(std::string prefix, std::string dir) {
   while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
   fallbacks_[std::move(prefix)] = std::move(dir);
+}
+
+void MappedDocumentLoader::allow(std::string dir) {
+  allowed_.push_back(std::move(dir));
+}
+
+bool MappedDocumentLoader::inside_sandbox(const std::string& canonical) const {
+  const fs::path p(canonical);
+  for (const auto* table : {&prefixes_, &fallbacks_}) {
+    for (const auto& entry : *table) {
+      if (is_within(p, canonical_path(entry.second.empty() ? "." : entry.second))) return true;
+    }
+  }
+  for (const std::string& dir : allowed_) {
+    if (is_within(p, canonical_path(dir.empty() ? "." : dir))) return true;
+  }
+  return false;
+}
+
+std::string MappedDocumentLoader::sandbox_roots() const {
+  std::vector<std::string> roots;
+  for (const auto* table : {&prefixes_, &fallbacks_}) {
+    for (const auto& entry : *table) roots.push_back(canonical_path(entry.second).string());
+  }
+  for (const std::string& dir : allowed_) roots.push_back(canonical_path(dir).string());
+  std::sort(roots.begin(), roots.end());
+  roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+  std::string out;
+  for (const std::string& r : roots) out.append(out.empty() ? "" : ", ").append(escaped(r));
+  return out.empty() ? "none" : out;
+}
+
+std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
+                                                      SourceLoc referenced_from,
+                                                      std::string_view code,
+                                                      std::string_view what) const {
+  const std::string& ref_file = files_.path(referenced_from.file);
+  auto fail = [&](const std::string& reason) -> Error {
+    return Error(std::string(code),
+                 "cannot load " + std::string(what) + " <" + escaped(iri) + ">: " + reason,
+                 ref_file, referenced_from.line, referenced_from.column);
+  };
+  if (int c = control_character(iri); c >= 0) {
+    throw fail("the IRI contains the control character " + code_point(c) +
+               "; IRIs that name files may not contain U+0000-U+001F or U+007F");
+  }
+  std::string path = resolve(iri);
+  if (path.empty()) {
+    std::string known;
+    for (const auto& entry : prefixes_) {
+      if (!known.empty()) known += ", ";
+      known += entry.first;
+    }
+    if (known.empty()) known = "none";
+    throw fail("no --map or iri-map entry maps this IRI (known prefixes: " + known + ")");
+  }
+  if (int c = control_character(path); c >= 0) {
+    throw fail("the IRI contains the percent-encoded control character " + code_point(c) +
+               "; IRIs that name files may not contain U+0000-U+001F or U+007F");
+  }
+  if (confined_) {
+    const std::string canonical = canonical_path(path).string();
+    if (!inside_sandbox(canonical)) {
+      throw fail("it resolves to '" + escaped(canonical) +
+                 "', outside the model tree (the directories of --map, --root, the app's "
+                 "iri-map, the inputs and mospec's metamodels: " +
+                 sandbox_roots() +
+                 "); models may only load files inside it (pass --map IRI=DIR to add a "
+                 "directory you trust)");
+    }
+    return canonical;
+  }
+  return path;
 }
 
 std::string MappedDocumentLoader::resolve(std::string_view iri) const {
@@ -155,37 +267,36 @@ RemoteDocument MappedDocumentLoader::load(std::string_view iri, SourceLoc refere
   std::string_view code = for_context ? kContextFailed : kDocumentFailed;
   std::string_view what = for_context ? "remote context" : "document";
   const std::string& ref_file = files_.path(referenced_from.file);
-  std::string path = resolve(iri);
-  if (path.empty()) {
-    std::string known;
-    for (const auto& entry : prefixes_) {
-      if (!known.empty()) known += ", ";
-      known += entry.first;
-    }
-    if (known.empty()) known = "none";
-    throw Error(std::string(code),
-                "cannot load " + std::string(what) + " <" + std::string(iri) +
-                    ">: no --map or iri-map entry maps this IRI (known prefixes: " + known + ")",
-                ref_file, referenced_from.line, referenced_from.column);
-  }
+  // Confined, the file read is the checked canonical path (no link swapped in
+  // between check and read changes which file that is); messages keep the
+  // mapped path the user recognises.
+  const std::string read_path = resolve_for_loading(iri, referenced_from, code, what);
   try {
-    return load_file(path, std::string(iri));
+    return load_path(resolve(iri), read_path, std::string(iri));
   } catch (const Error& e) {
     if (e.code() != kDocumentFailed) throw;  // JSON syntax errors keep their own location
     // Re-issue at the reference, with the code the caller asked for.
-    throw Error(std::string(code),
-                "cannot load " + std::string(what) + " <" + std::string(iri) +
-                    ">: " + e.diagnostic().message,
-                ref_file, referenced_from.line, referenced_from.column);
+    throw Error(
+        std::string(code),
+        "cannot load " + std::string(what) + " <" + escaped(iri) + ">: " + e.diagnostic().message,
+        ref_file, referenced_from.line, referenced_from.column);
   }
 }
 
 RemoteDocument MappedDocumentLoader::load_file(const std::string& path, std::string document_url) {
-  std::string key = canonical_key(path);
+  return load_path(path, path, std::move(document_url));
+}
+
+RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
+                                               const std::string& read_path,
+                                               std::string document_url) {
+  std::string key = canonical_key(read_path);
   auto it = cache_.find(key);
   if (it == cache_.end()) {
     std::string text;
-    if (std::string reason = read_whole_file(path, text); !reason.empty()) {
+    // Regular files of bounded size only: a device or a FIFO would block or
+    // never end, and a huge file would exhaust memory.
+    if (std::string reason = read_file_reason(read_path, text); !reason.empty()) {
       throw Error(std::string(kDocumentFailed), "cannot read '" + path + "': " + reason, path);
     }
     ++reads_;

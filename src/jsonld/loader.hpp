@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
 #include "jsonld/json.hpp"
 #include "support/diagnostics.hpp"
@@ -39,6 +40,14 @@ class DocumentLoader {
 
 // Maps IRI prefixes to local directories (longest prefix wins) and plain file
 // paths to themselves. Parsed documents are cached by absolute path.
+//
+// Confined (confine()), it is a sandbox for untrusted models: a document loaded
+// by reference (load(), resolve_for_loading()) must lie inside one of the
+// directories given to map(), map_fallback() or allow(), checked after
+// percent-decoding, `..` and symbolic links are resolved (by whole path
+// components, so /tree2 is not inside /tree). IRIs with control characters
+// (U+0000-U+001F, U+007F, written raw or percent-encoded) are refused whether
+// confined or not. load_file() is for paths the user named and is not confined.
 class MappedDocumentLoader : public DocumentLoader {
  public:
   // `prefix` is an IRI prefix such as "https://comp-rob2b.github.io/"; `dir` a
@@ -48,15 +57,35 @@ class MappedDocumentLoader : public DocumentLoader {
   // own metamodels live, so users need no iri-map entry for them while an app
   // that maps the same IRIs elsewhere (e.g. to the authors' files) keeps its own.
   void map_fallback(std::string prefix, std::string dir);
+  // One more directory a confined loader may read from (an input's directory,
+  // --root).
+  void allow(std::string dir);
+  // Turns the sandbox on (or off).
+  void confine(bool on = true) { confined_ = on; }
+  bool confined() const { return confined_; }
   // Local path for an IRI, or empty when no prefix maps it.
   std::string resolve(std::string_view iri) const;
+  // The local path to read for `iri`, written at `referenced_from`: resolve()
+  // plus the checks above. Throws mospec::Error with `code`, located at the
+  // reference, when the IRI is unmapped, holds a control character or (when
+  // confined) leaves the sandbox; the message calls the document `what`
+  // ("document", "remote context", "shape file") and never quotes its content.
+  std::string resolve_for_loading(std::string_view iri, SourceLoc referenced_from,
+                                  std::string_view code, std::string_view what) const;
   RemoteDocument load(std::string_view iri, SourceLoc referenced_from, bool for_context) override;
   // Reads and parses a local file (cached), registering it in files().
   RemoteDocument load_file(const std::string& path, std::string document_url = {});
   size_t documents_read() const { return reads_; }
 
  private:
+  RemoteDocument load_path(const std::string& path, const std::string& read_path,
+                           std::string document_url);
+  bool inside_sandbox(const std::string& canonical) const;
+  std::string sandbox_roots() const;
+
   std::map<std::string, std::string, std::greater<>> prefixes_;  // longest first
+  std::vector<std::string> allowed_;                             // allow()'s directories
+  bool confined_ = false;
   std::map<std::string, std::string, std::greater<>> fallbacks_;
   std::unordered_map<std::string, RemoteDocument> cache_;  // by path
   size_t reads_ = 0;

@@ -16,6 +16,7 @@
 #include "jsonld/context.hpp"
 #include "jsonld/expand.hpp"
 #include "jsonld/loader.hpp"
+#include "rdf/iri.hpp"
 #include "rdf/term.hpp"
 
 namespace mospec::jsonld {
@@ -47,54 +48,6 @@ bool is_alpha(char c) {
 }
 bool is_digit(char c) {
   return c >= '0' && c <= '9';
-}
-bool is_hex(char c) {
-  return is_digit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
-}
-
-// RFC 3987 well-formedness as far as it matters for RDF output: a scheme,
-// no characters that IRIs exclude (space, controls, <>"{}|\^`), at most one
-// '#', and percent signs that start an escape. Expansion leaves relative references in
-// place when there is no base; those are not IRIs and their triples are dropped.
-// Per byte after the scheme: 0 ordinary, 1 excluded (controls, space, DEL and
-// <>"{}|\^`), 2 '#', 3 '%'.
-constexpr std::array<uint8_t, 256> kIriByteClass = [] {
-  std::array<uint8_t, 256> t{};
-  for (int c = 0; c <= 0x20; ++c) t[static_cast<size_t>(c)] = 1;
-  t[0x7f] = 1;
-  for (char c : std::string_view("<>\"{}|\\^`")) t[static_cast<unsigned char>(c)] = 1;
-  t['#'] = 2;
-  t['%'] = 3;
-  return t;
-}();
-
-bool is_well_formed_iri(std::string_view s) {
-  if (s.empty() || !is_alpha(s[0])) return false;
-  size_t colon = 0;
-  for (size_t i = 1; i < s.size(); ++i) {
-    char c = s[i];
-    if (c == ':') {
-      colon = i;
-      break;
-    }
-    if (!is_alpha(c) && !is_digit(c) && c != '+' && c != '-' && c != '.') return false;
-  }
-  if (colon == 0) return false;
-  bool fragment = false;  // a fragment may not contain another '#'
-  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
-  const size_t n = s.size();
-  for (size_t i = colon + 1; i < n; ++i) {
-    const uint8_t cls = kIriByteClass[p[i]];
-    if (cls == 0) continue;
-    if (cls == 1) return false;
-    if (cls == 2) {
-      if (fragment) return false;
-      fragment = true;
-    } else if (i + 2 >= n || !is_hex(s[i + 1]) || !is_hex(s[i + 2])) {
-      return false;
-    }
-  }
-  return true;
 }
 
 // BCP 47 shape (subtags of 1-8 alphanumerics, the first alphabetic); the
@@ -416,7 +369,7 @@ class Converter {
       return out_.terms().blank(key.substr(2));
     }
     auto [it, fresh] = iri_terms_.try_emplace(key, rdf::TermId::any());
-    if (fresh && is_well_formed_iri(key)) it->second = out_.terms().iri(key);
+    if (fresh && rdf::is_well_formed_iri(key)) it->second = out_.terms().iri(key);
     if (it->second.is_any()) return std::nullopt;
     return it->second;
   }
@@ -485,7 +438,7 @@ class Converter {
     std::optional<std::string_view> datatype;
     if (type != nullptr) {
       if (!type->is_string()) return std::nullopt;
-      if (type->as_string() != "@json" && !is_well_formed_iri(type->as_string())) {
+      if (type->as_string() != "@json" && !rdf::is_well_formed_iri(type->as_string())) {
         return std::nullopt;
       }
       datatype = type->as_string();

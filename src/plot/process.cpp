@@ -140,7 +140,7 @@ CapturedRun run_captured(const std::vector<std::string>& argv, std::string_view 
 }
 
 pid_t spawn_logged(const std::vector<std::string>& argv, const std::string& log_path) {
-  Fd log(::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+  Fd log(::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644));
   if (log.fd < 0) {
     std::string message = "cannot write '";
     message.append(log_path).append("'");

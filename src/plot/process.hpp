@@ -33,7 +33,8 @@ CapturedRun run_captured(const std::vector<std::string>& argv, std::string_view 
                          const std::string& dir = {});
 
 // Starts argv[0] (an absolute or relative path, not searched) with stdin from
-// /dev/null and stdout and stderr appended to `log_path` (created/truncated).
+// /dev/null and stdout and stderr appended to `log_path` (created/truncated; a
+// symbolic link there is refused, not followed).
 // Throws mospec::Error code "io" when the log cannot be opened or the child
 // cannot be started.
 pid_t spawn_logged(const std::vector<std::string>& argv, const std::string& log_path);

@@ -1,5 +1,8 @@
 #include "rdf/iri.hpp"
 
+#include <array>
+#include <cstdint>
+
 namespace mospec::rdf {
 
 namespace {
@@ -9,6 +12,9 @@ bool is_alpha(char c) {
 }
 bool is_digit(char c) {
   return c >= '0' && c <= '9';
+}
+bool is_hex(char c) {
+  return is_digit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
 }
 
 // Length of "scheme:" at the start of s (0 when there is none).
@@ -180,6 +186,78 @@ std::string resolve_iri(std::string_view base, std::string_view reference) {
     out.append(t.fragment);
   }
   return out;
+}
+
+namespace {
+
+// RFC 3987 well-formedness as far as it matters for RDF output: a scheme,
+// no characters that IRIs exclude (space, controls, <>"{}|\^`), at most one
+// '#', and percent signs that start an escape. Expansion leaves relative references in
+// place when there is no base; those are not IRIs and their triples are dropped.
+// Per byte after the scheme: 0 ordinary, 1 excluded (controls, space, DEL and
+// <>"{}|\^`), 2 '#', 3 '%'.
+constexpr std::array<uint8_t, 256> kIriByteClass = [] {
+  std::array<uint8_t, 256> t{};
+  for (int c = 0; c <= 0x20; ++c) t[static_cast<size_t>(c)] = 1;
+  t[0x7f] = 1;
+  for (char c : std::string_view("<>\"{}|\\^`")) t[static_cast<unsigned char>(c)] = 1;
+  t['#'] = 2;
+  t['%'] = 3;
+  return t;
+}();
+
+}  // namespace
+
+bool is_well_formed_iri(std::string_view s) {
+  if (s.empty() || !is_alpha(s[0])) return false;
+  size_t colon = 0;
+  for (size_t i = 1; i < s.size(); ++i) {
+    char c = s[i];
+    if (c == ':') {
+      colon = i;
+      break;
+    }
+    if (!is_alpha(c) && !is_digit(c) && c != '+' && c != '-' && c != '.') return false;
+  }
+  if (colon == 0) return false;
+  bool fragment = false;  // a fragment may not contain another '#'
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  const size_t n = s.size();
+  for (size_t i = colon + 1; i < n; ++i) {
+    const uint8_t cls = kIriByteClass[p[i]];
+    if (cls == 0) continue;
+    if (cls == 1) return false;
+    if (cls == 2) {
+      if (fragment) return false;
+      fragment = true;
+    } else if (i + 2 >= n || !is_hex(s[i + 1]) || !is_hex(s[i + 2])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string iri_problem(std::string_view s) {
+  if (is_well_formed_iri(s)) return {};
+  if (scheme_length(s) == 0) return "it has no scheme (it is not an absolute IRI)";
+  size_t hashes = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const auto u = static_cast<unsigned char>(s[i]);
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    std::string code = "U+00";
+    code += kHex[u >> 4];
+    code += kHex[u & 15];
+    if (u == ' ') return "it contains a space (U+0020; write %20)";
+    if (u < 0x20 || u == 0x7f) return "it contains the control character " + code;
+    if (std::string_view("<>\"{}|\\^`").find(s[i]) != std::string_view::npos) {
+      return std::string("it contains '") + s[i] + "' (" + code + "), which IRIs exclude";
+    }
+    if (s[i] == '#' && ++hashes > 1) return "it contains a second '#'";
+    if (s[i] == '%' && (i + 2 >= s.size() || !is_hex(s[i + 1]) || !is_hex(s[i + 2]))) {
+      return "it contains a '%' that starts no %XX escape";
+    }
+  }
+  return "it is not a well-formed IRI";
 }
 
 }  // namespace mospec::rdf

@@ -141,6 +141,8 @@ std::vector<ShapeFile> shape_files(app::LoadedModel& model, const std::vector<st
             throw Error("io", message, model.files().path(at.file), at.line, at.column);
           throw Error("io", message);
         }
+        // The sandbox and control-character checks of imports and contexts.
+        model.loader().resolve_for_loading(iri, at, "io", "shape file");
         out.push_back(ShapeFile{path, iri, at});
       }
     }

@@ -293,6 +293,43 @@ TEST_F(ContextTest, RemoteContexts) {
   EXPECT_EQ(last_error->diagnostic().column, 20u);
 }
 
+// A context listed twice (or reached twice along different branches) is not a
+// cycle; only one that includes itself through its own ancestors is.
+TEST_F(ContextTest, RepeatedRemoteContextsAreNotCycles) {
+  loader.add("http://ctx.org/base.jsonld", R"({"@context": {"a": "http://e/a"}})");
+  loader.add("http://ctx.org/other.jsonld", R"({"@context": {"o": "http://e/o"}})");
+  loader.add("http://ctx.org/both.jsonld",
+             R"({"@context": ["base.jsonld", "other.jsonld", "base.jsonld"]})");
+  ContextPtr c = process(R"(["http://ctx.org/base.jsonld", "http://ctx.org/base.jsonld"])");
+  EXPECT_EQ(c->find("a")->iri, "http://e/a");
+  // Diamond: both.jsonld and the top level each list base.jsonld.
+  c = process(R"(["http://ctx.org/both.jsonld", "http://ctx.org/base.jsonld"])");
+  EXPECT_EQ(c->find("a")->iri, "http://e/a");
+  EXPECT_EQ(c->find("o")->iri, "http://e/o");
+
+  // Each context listing the next one twice: 2^20 inclusions, refused after a bound.
+  for (int i = 0; i < 20; ++i) {
+    const std::string next = "http://ctx.org/d" + std::to_string(i + 1) + ".jsonld";
+    loader.add("http://ctx.org/d" + std::to_string(i) + ".jsonld",
+               R"({"@context": [")" + next + R"(", ")" + next + R"("]})");
+  }
+  loader.add("http://ctx.org/d20.jsonld", R"({"@context": {}})");
+  EXPECT_EQ(error_of(R"("http://ctx.org/d0.jsonld")"), "context overflow");
+  EXPECT_NE(last_error->diagnostic().message.find("remote contexts processed"), std::string::npos)
+      << last_error->diagnostic().message;
+
+  // A includes B includes A: the error is located where B names A, and says how.
+  loader.add("http://ctx.org/A.jsonld", R"({"@context": ["B.jsonld"]})");
+  loader.add("http://ctx.org/B.jsonld", "{\"@context\": [\n  \"A.jsonld\"]}");
+  EXPECT_EQ(error_of(R"(["http://ctx.org/A.jsonld"])"), "context overflow");
+  ASSERT_TRUE(last_error.has_value());
+  EXPECT_EQ(last_error->diagnostic().file, "http://ctx.org/B.jsonld");
+  EXPECT_EQ(last_error->diagnostic().line, 2u);
+  EXPECT_EQ(last_error->diagnostic().message,
+            "remote context http://ctx.org/A.jsonld includes itself (http://ctx.org/A.jsonld -> "
+            "http://ctx.org/B.jsonld -> http://ctx.org/A.jsonld)");
+}
+
 TEST_F(ContextTest, Import) {
   loader.add("http://ctx.org/imp.jsonld",
              R"({"@context": {"a": "http://e/a", "b": "http://e/b"}})");

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -372,6 +373,39 @@ TEST_F(Expand, KeywordLikeIdIsKeptAsNullAndReported) {
   ASSERT_EQ(sink_.diagnostics().size(), 1u);
   EXPECT_EQ(sink_.diagnostics()[0].code, "dropped-id");
   EXPECT_EQ(sink_.diagnostics()[0].column, 25u);
+}
+
+// toRdf drops an @id that is no well-formed IRI (the W3C suites expect that);
+// it is reported where it is written, escaped, never silently.
+TEST_F(Expand, MalformedIdsAreReported) {
+  run(R"({"@context": {"ex": "http://ex/", "ref": {"@id": "ex:ref", "@type": "@id"}},
+    "@graph": [{"@id": "http://ex/a b", "ex:p": 1},
+               {"@id": "http://ex/ok", "ref": ["http://ex/c\"d", "http://ex/fine", "ex:e\\f"]},
+               {"@id": "http://ex/ok2", "ex:q": {"@id": "http://ex/<g>"}}]})");
+  ASSERT_EQ(sink_.diagnostics().size(), 4u);
+  for (const auto& d : sink_.diagnostics()) {
+    EXPECT_EQ(d.code, "malformed-id");
+    EXPECT_EQ(d.severity, mospec::Severity::Warning);
+  }
+  std::vector<std::string> messages;
+  for (const auto& d : sink_.diagnostics()) {
+    messages.push_back(std::to_string(d.line) + ":" + std::to_string(d.column) + " " + d.message);
+  }
+  std::sort(messages.begin(), messages.end());
+  EXPECT_EQ(
+      messages[0],
+      "2:24 @id value \"http://ex/a b\" is not a well-formed IRI (it contains a space "
+      "(U+0020; write %20)); JSON-LD drops it and the triples that use it (node <http://ex/a b>)");
+  EXPECT_EQ(messages[1],
+            "3:48 @id value \"http://ex/c\\\"d\" is not a well-formed IRI (it contains '\"' "
+            "(U+0022), which IRIs exclude); JSON-LD drops it and the triples that use it");
+  EXPECT_EQ(messages[2],
+            "3:84 @id value \"ex:e\\\\f\" is not a well-formed IRI (it contains '\\' (U+005C), "
+            "which IRIs exclude); JSON-LD drops it and the triples that use it");
+  EXPECT_EQ(messages[3],
+            "4:57 @id value \"http://ex/<g>\" is not a well-formed IRI (it contains '<' "
+            "(U+003C), which IRIs exclude); JSON-LD drops it and the triples that use it (node "
+            "<http://ex/<g>>)");
 }
 
 TEST_F(Expand, DroppedKeyInsideNestIsReportedForItsNode) {

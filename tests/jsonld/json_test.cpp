@@ -130,6 +130,10 @@ TEST(JsonParseErrors, Messages) {
   expect_error("\"a\nb\"", "unescaped control character U+000A in string", 1, 3);
   expect_error("\"abc", "unterminated string", 1, 1);
   expect_error(R"("\x")", "invalid escape sequence '\\x' in string", 1, 2);
+  // Bytes that are not printable are named by their code, never echoed raw.
+  expect_error("\"\\\x01\"", "invalid escape sequence: '\\' followed by byte 0x01 in string", 1, 2);
+  expect_error("\x01{}", "unexpected byte 0x01; expected a JSON value", 1, 1);
+  expect_error("\xff", "unexpected byte 0xFF; expected a JSON value", 1, 1);
   expect_error(R"("\u12G4")", "invalid \\u escape: expected 4 hex digits", 1, 2);
   expect_error(R"(["\uD83D"])",
                "lone high surrogate \\uD83D in string (expected a following \\uDC00-\\uDFFF "

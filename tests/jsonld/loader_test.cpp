@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using mospec::Error;
@@ -163,6 +164,105 @@ TEST_F(LoaderTest, JsonSyntaxErrorsKeepTheirLocation) {
     EXPECT_EQ(e.diagnostic().file, bad);
     EXPECT_EQ(e.diagnostic().line, 3u);
   }
+}
+
+// ---- the sandbox ------------------------------------------------------------
+
+// A confined loader over dir()/tree, with a secret beside the tree.
+class SandboxTest : public LoaderTest {
+ protected:
+  void SetUp() override {
+    LoaderTest::SetUp();
+    write("tree/ok.json", R"({"@context": {"x": "http://x/"}})");
+    write("secret.json", R"({"@context": {"TOPSECRET": "http://x/"}})");
+    write("tree2/ok.json", R"({"@context": {"TOPSECRET": "http://x/"}})");
+    fs::create_symlink(dir("secret.json"), dir("tree/link.json"));
+    fs::create_directories(dir("tree/sub"));
+    fs::create_directory_symlink(dir(), dir("tree/sub/up"));
+    app_ = write("tree/app.json", "{\n  \"@context\": [\n    \"x\"]}");
+    loader_.map("https://ex.org/", dir("tree"));
+    loader_.confine();
+    ref_ = loader_.load_file(app_).document->get("@context")->as_array()[0].location();
+  }
+  // The error of loading `iri` as a context from app.json:3:5.
+  std::string error_of(const std::string& iri) {
+    try {
+      loader_.load(iri, ref_, true);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), "loading remote context failed");
+      EXPECT_EQ(e.diagnostic().file, app_);
+      EXPECT_EQ(e.diagnostic().line, 3u);
+      std::string what = e.what();
+      EXPECT_EQ(what.find("TOPSECRET"), std::string::npos) << what;
+      return what;
+    }
+    ADD_FAILURE() << iri << " loaded";
+    return {};
+  }
+  std::string outside(const std::string& iri, const std::string& resolved) {
+    return app_ + ":3:5: error: cannot load remote context <" + iri + ">: it resolves to '" +
+           resolved + "', outside the model tree";
+  }
+
+  MappedDocumentLoader loader_;
+  std::string app_;
+  SourceLoc ref_;
+};
+
+TEST_F(SandboxTest, LoadsInsideTheTree) {
+  EXPECT_NO_THROW(loader_.load("https://ex.org/ok.json", ref_, true));
+  EXPECT_NO_THROW(loader_.load("https://ex.org/sub/../ok.json", ref_, true));
+  EXPECT_NO_THROW(
+      loader_.load("file://" + fs::canonical(dir("tree/ok.json")).string(), ref_, true));
+}
+
+TEST_F(SandboxTest, RefusesEveryWayOut) {
+  const std::string secret = fs::canonical(dir("secret.json")).string();
+  for (const std::string& iri : std::vector<std::string>{
+           "https://ex.org/../secret.json", "https://ex.org/%2e%2e/secret.json",
+           "https://ex.org/%2E%2E%2Fsecret.json", "https://ex.org/link.json",
+           "https://ex.org/sub/up/secret.json", "file://" + secret}) {
+    std::string what = error_of(iri);
+    EXPECT_EQ(what.substr(0, outside(iri, secret).size()), outside(iri, secret)) << what;
+  }
+  // A sibling whose name starts like the tree's is not inside it.
+  const std::string sibling = fs::canonical(dir("tree2/ok.json")).string();
+  EXPECT_EQ(error_of("file://" + sibling).substr(0, outside("file://" + sibling, sibling).size()),
+            outside("file://" + sibling, sibling));
+  // Plain absolute paths and devices: refused before anything is opened.
+  EXPECT_NE(error_of("file:///etc/passwd").find("outside the model tree"), std::string::npos);
+  EXPECT_NE(error_of("file:///proc/self/environ").find("outside the model tree"),
+            std::string::npos);
+  EXPECT_NE(error_of("file:///dev/zero").find("outside the model tree"), std::string::npos);
+  EXPECT_EQ(loader_.documents_read(), 1u);  // app.json only
+}
+
+TEST_F(SandboxTest, AllowedDirectoriesAndFallbacksCount) {
+  const std::string sibling = "file://" + fs::canonical(dir("tree2/ok.json")).string();
+  loader_.allow(dir("tree2"));
+  EXPECT_NO_THROW(loader_.load(sibling, ref_, true));
+  loader_.map_fallback("https://meta.example/", dir("meta"));
+  write("meta/m.json", R"({"@context": {}})");
+  EXPECT_NO_THROW(loader_.load("https://meta.example/m.json", ref_, true));
+}
+
+TEST_F(SandboxTest, ControlCharactersAreRefusedRawOrEncoded) {
+  EXPECT_EQ(error_of("https://ex.org/ok.json%00.txt"),
+            app_ +
+                ":3:5: error: cannot load remote context <https://ex.org/ok.json%00.txt>: the "
+                "IRI contains the percent-encoded control character U+0000; IRIs that name "
+                "files may not contain U+0000-U+001F or U+007F");
+  EXPECT_NE(error_of("https://ex.org/ok%0a.json").find("control character U+000A"),
+            std::string::npos);
+  EXPECT_EQ(error_of(std::string("https://ex.org/ok\x01.json")),
+            app_ +
+                ":3:5: error: cannot load remote context <https://ex.org/ok\\x01.json>: the "
+                "IRI contains the control character U+0001; IRIs that name files may not "
+                "contain U+0000-U+001F or U+007F");
+  // Unconfined too: a %00 would otherwise cut the path short.
+  MappedDocumentLoader open;
+  open.map("https://ex.org/", dir("tree"));
+  EXPECT_THROW(open.load("https://ex.org/ok.json%00", {}, true), Error);
 }
 
 }  // namespace
