@@ -275,10 +275,11 @@ class ShapesCompiler {
     return classes;
   }
 
-  [[noreturn]] void fail(uint32_t shape, SourceLoc where, const std::string& message) {
+  [[noreturn]] void fail(uint32_t shape, SourceLoc where, const std::string& message,
+                         const char* code = "shacl-ill-formed") {
     std::string file = out_.files_ != nullptr && where.known() ? out_.files_->path(where.file) : "";
-    throw Error("shacl-ill-formed", "shape " + out_.describe(shape) + ": " + message, file,
-                where.line, where.column);
+    throw Error(code, "shape " + out_.describe(shape) + ": " + message, file, where.line,
+                where.column);
   }
 
   std::string show(TermId id) const { return term_text(t_, id); }
@@ -336,6 +337,13 @@ class ShapesCompiler {
     if (!term.is_blank()) fail(shape, where, "sh:path value " + show(node) + " is not a path");
     if (std::find(stack.begin(), stack.end(), node.index) != stack.end())
       fail(shape, where, "sh:path " + show(node) + " refers to itself");
+    if (stack.size() >= kMaxPathDepth)
+      fail(shape, where,
+           "sh:path nests deeper than " + std::to_string(kMaxPathDepth) +
+               " levels (sh:inversePath, sh:alternativePath, sequence and repetition paths inside "
+               "each other) at " +
+               show(node) + "; write a flatter path",
+           "shacl-too-deep");
     stack.push_back(node.index);
     sparql::PathPtr result;
     if (g_.count(node, first_, TermId::any(), TermId::any(), 1) != 0) {
@@ -509,6 +517,21 @@ class ShapesCompiler {
       });
       out_.shapes_.push_back(std::move(s));
     }
+    // A shape compiles the shapes it references first (sh:node, sh:not,
+    // sh:and, sh:property, ...), one nested call each: bound the nesting
+    // before the stack does.
+    if (depth_ >= kMaxShapeDepth)
+      fail(self, out_.shapes_[self].where,
+           "shapes nest deeper than " + std::to_string(kMaxShapeDepth) +
+               " levels (sh:node, sh:not, sh:and, sh:or, sh:xone, sh:property or "
+               "sh:qualifiedValueShape referring to further shapes); split the chain or "
+               "flatten it",
+           "shacl-too-deep");
+    ++depth_;
+    struct Leave {
+      int& depth;
+      ~Leave() { --depth; }
+    } leave{depth_};
     // Shapes may be appended while this one compiles (referenced shapes), so
     // the shape is built locally and stored at the end.
     Shape s = out_.shapes_[self];
@@ -941,9 +964,14 @@ class ShapesCompiler {
     out_.referenced_ = std::move(referenced_);
   }
 
+  // Nesting limits: shape references and path nodes are compiled recursively.
+  static constexpr int kMaxShapeDepth = 256;
+  static constexpr size_t kMaxPathDepth = 256;
+
   const rdf::Dataset& g_;
   const rdf::TermTable& t_;
   Shapes out_;
+  int depth_ = 0;  // shapes being compiled (nested compile() calls)
   std::unordered_map<uint32_t, uint32_t> index_;
   std::unordered_map<uint32_t, Component> params_;
   std::vector<TermId> referenced_;
