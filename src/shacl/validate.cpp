@@ -890,7 +890,9 @@ class Validator {
       if (x.path == PathSource::Predicate) r.path = sparql::Path::iri(import(report, x.predicate));
       r.level = s.level;
       if (s.level == Level::Other) r.severity = import_shape_term(report, s.severity);
-      if (x.own_messages) {
+      // SHACL-SPARQL results carry their own messages (?message, the
+      // constraint's, validator's or component's); without any, the shape's.
+      if (x.own_messages && !x.messages.empty()) {
         for (const auto& [text, language] : x.messages)
           r.messages.push_back(report.terms.literal(text, TermId::default_graph(), language));
       } else {

@@ -175,6 +175,18 @@ ex:S a sh:NodeShape ; sh:targetNode 1, 2 ; ex:notEqualTo 2 .
   EXPECT_EQ(r.results[0].default_message, "Value must differ from 2");
 }
 
+TEST(SparqlComponent, TheShapesMessageWhenTheComponentHasNone) {
+  Report r = check_one(R"(
+ex:C a sh:ConstraintComponent ;
+  sh:parameter [ sh:path ex:notEqualTo ] ;
+  sh:validator [ sh:ask "ASK { FILTER($value != $notEqualTo) }" ] .
+ex:S a sh:NodeShape ; sh:targetNode 1, 2 ; ex:notEqualTo 2 ; sh:message "not two"@en .
+)");
+  ASSERT_EQ(r.results.size(), 1u) << text(r);
+  EXPECT_EQ(message(r, r.results[0]), "not two");
+  EXPECT_EQ(r.terms[r.results[0].messages[0]].language, "en");
+}
+
 // Compiles `body` and returns the error.
 Error refused(const std::string& body) {
   auto g = turtle(body);
