@@ -24,8 +24,7 @@ struct ValidateOptions {
 //
 // Recursion: a shape that reaches itself for the same focus node (through
 // sh:node, sh:property, sh:and, ...) throws mospec::Error "shacl-recursion"
-// naming the shape cycle and the focus node; so do shapes nesting deeper than
-// 512 levels (e.g. a recursive shape along a long chain of data).
+// naming the shape cycle and the focus node.
 Report validate(const Shapes& shapes, const rdf::Dataset& data,
                 const ValidateOptions& options = {});
 

@@ -46,7 +46,7 @@ void expect_too_deep(const Error& e, const std::string& what) {
 
 const std::string kHead = "ex:S0 a sh:NodeShape ; sh:targetNode ex:a .";
 
-TEST(ShapeLimits, TenThousandChainedNodeShapes) {
+TEST(ShapeNesting, TenThousandChainedNodeShapes) {
   Error e = refused(chain(kHead, 10000, [](int i) {
     return "ex:S" + std::to_string(i) + " sh:node ex:S" + std::to_string(i + 1) + " .";
   }));
@@ -56,7 +56,7 @@ TEST(ShapeLimits, TenThousandChainedNodeShapes) {
   EXPECT_EQ(e.diagnostic().line, kPrefixLines + 1 + 256 + 1) << e.what();
 }
 
-TEST(ShapeLimits, NestedLogicalAndShapeComponents) {
+TEST(ShapeNesting, NestedLogicalAndShapeComponents) {
   // Each link nests one blank-node shape inside the previous one.
   const std::vector<std::pair<std::string, std::function<std::string(int)>>> cases{
       {"sh:not",
@@ -93,7 +93,7 @@ TEST(ShapeLimits, NestedLogicalAndShapeComponents) {
   }
 }
 
-TEST(ShapeLimits, FiftyThousandChainedInversePaths) {
+TEST(ShapeNesting, FiftyThousandChainedInversePaths) {
   std::string head =
       "ex:S0 a sh:NodeShape ; sh:targetNode ex:a ; sh:property ex:P .\n"
       "ex:P sh:path _:i0 ; sh:minCount 1 .";
@@ -104,7 +104,7 @@ TEST(ShapeLimits, FiftyThousandChainedInversePaths) {
   EXPECT_NE(std::string(e.what()).find("<http://example.org/P>"), std::string::npos) << e.what();
 }
 
-TEST(ShapeLimits, NestedSequenceAndAlternativePaths) {
+TEST(ShapeNesting, NestedSequenceAndAlternativePaths) {
   // A sequence whose first member is a sequence, ...; an alternative whose
   // first member is an alternative, ...
   auto sequence = [](int i) {
@@ -124,7 +124,7 @@ TEST(ShapeLimits, NestedSequenceAndAlternativePaths) {
   }
 }
 
-TEST(ShapeLimits, NestingWithinTheLimitsStillValidates) {
+TEST(ShapeNesting, NestingWithinTheLimitsStillValidates) {
   // 200 chained sh:node shapes and a 200-deep inverse path are fine.
   std::string body = chain(kHead, 200, [](int i) {
     return "ex:S" + std::to_string(i) + " sh:node ex:S" + std::to_string(i + 1) + " .";
@@ -139,7 +139,7 @@ TEST(ShapeLimits, NestingWithinTheLimitsStillValidates) {
   EXPECT_TRUE(r.conforms()) << to_text(r, nullptr);
 }
 
-TEST(ShapeLimits, ChainsWrittenInnermostFirstStopInTheValidator) {
+TEST(ShapeNesting, ChainsWrittenInnermostFirstStopInTheValidator) {
   // Written innermost shape first, each shape compiles without nesting; the
   // validator then nests one level per shape and stops with its own error.
   std::string body;
