@@ -1005,8 +1005,8 @@ class ShapesCompiler {
     sparql::Query query =
         parse_sparql(self, s, v.object, selects[0], sparql::QueryForm::Select,
                      "sh:select of SPARQL constraint " + show(v.object), prebound);
-    auto c = std::make_shared<SparqlConstraint>(SparqlConstraint{
-        v.object, std::move(query), {}, false, TermId::any(), TermId::any(), false, {}, {}, {}});
+    auto c = std::make_shared<SparqlConstraint>(
+        SparqlConstraint{v.object, std::move(query), {}, false, TermId::any(), false, {}, {}, {}});
     c->binds_current_shape = c->query.mentions("currentShape");
     c->messages = literal_values("shape " + out_.describe(self), v.object, message_);
     referenced_.push_back(v.object);
@@ -1238,8 +1238,8 @@ class ShapesCompiler {
                                        std::string(ask ? "sh:ask" : "sh:select") +
                                            " of validator " + show(validator) + " of " + who,
                                        prebound);
-    auto shared = std::make_shared<SparqlConstraint>(SparqlConstraint{
-        TermId::any(), std::move(query), {}, false, c.node, validator, ask, {}, {}, {}});
+    auto shared = std::make_shared<SparqlConstraint>(
+        SparqlConstraint{validator, std::move(query), {}, false, c.node, ask, {}, {}, {}});
     shared->binds_current_shape = shared->query.mentions("currentShape");
     shared->messages = literal_values(who, validator, message_);
     if (shared->messages.empty()) shared->messages = c.messages;

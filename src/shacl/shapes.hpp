@@ -70,7 +70,8 @@ enum class Level : uint8_t { Info, Warning, Violation, Other };
 // a SPARQL-based constraint component (SHACL 6) by a shape, with the values
 // of the component's parameters.
 struct SparqlConstraint {
-  // The sh:sparql value (sh:sourceConstraint); any() for a component.
+  // The node that holds the query: the sh:sparql value (reported as
+  // sh:sourceConstraint), or the validator of a component (not reported).
   rdf::TermId node = rdf::TermId::any();
   // sh:select (or the validator's sh:ask) with sh:prefixes applied, $PATH
   // substituted in property shapes' SELECT queries.
@@ -82,7 +83,6 @@ struct SparqlConstraint {
 
   // SPARQL-based constraint components only.
   rdf::TermId component = rdf::TermId::any();  // its IRI (sh:sourceConstraintComponent)
-  rdf::TermId validator = rdf::TermId::any();  // the validator node used
   bool ask = false;  // an sh:SPARQLAskValidator: one ASK per value node ($value pre-bound)
   // Pre-bound parameters: (parameter name, value in the shapes graph), in the
   // order the component declares them; optional parameters without a value

@@ -657,7 +657,7 @@ class Validator {
       r.shape = shape;
       r.constraint = k;
       r.component = s.constraints[k].component;
-      r.source_constraint = q.node;
+      if (q.component.is_any()) r.source_constraint = q.node;  // sh:sparql only
       r.component_node = q.component;
       r.own_messages = true;
       return r;
@@ -701,7 +701,7 @@ class Validator {
               shapes_.files() != nullptr && at.known() ? shapes_.files()->path(at.file) : "";
           const std::string what = q.component.is_any()
                                        ? "SPARQL constraint " + rdf::to_ntriples(st_, q.node)
-                                       : "validator " + rdf::to_ntriples(st_, q.validator) +
+                                       : "validator " + rdf::to_ntriples(st_, q.node) +
                                              " of constraint component " +
                                              rdf::to_ntriples(st_, q.component);
           throw Error("shacl-failure",
