@@ -124,6 +124,12 @@ std::string location(const SourceFiles* files, SourceLoc loc) {
 
 }  // namespace
 
+std::string result_component_iri(const Report& report, const Result& r) {
+  if (r.component == Component::SparqlComponent && !r.component_node.is_any())
+    return std::string(report.terms[r.component_node].value);
+  return std::string(component_iri(r.component));
+}
+
 std::string_view level_name(Level level) {
   switch (level) {
     case Level::Info:
@@ -149,9 +155,10 @@ void Report::sort() {
     uint32_t file, line, column;
     std::string focus, shape;
     Component component;
-    std::string path, value;
+    std::string component_node, path, value;
     auto tie() const {
-      return std::tie(unlocated, file, line, column, focus, shape, component, path, value);
+      return std::tie(unlocated, file, line, column, focus, shape, component, component_node, path,
+                      value);
     }
   };
   std::vector<Key> keys;
@@ -159,7 +166,8 @@ void Report::sort() {
   for (const Result& r : results) {
     keys.push_back(Key{!r.focus_loc.known(), r.focus_loc.file, r.focus_loc.line, r.focus_loc.column,
                        term_key(terms, r.focus), term_key(terms, r.shape), r.component,
-                       path_key(terms, r.path), term_key(terms, r.value)});
+                       term_key(terms, r.component_node), path_key(terms, r.path),
+                       term_key(terms, r.value)});
   }
   std::vector<size_t> order(results.size());
   std::iota(order.begin(), order.end(), size_t{0});
@@ -199,7 +207,10 @@ std::string to_turtle(const Report& report) {
                 ? turtle_term(t, r.severity)
                 : "sh:" + std::string(severity_iri(r.level).substr(vocab::kSh.size()))) +
            " ;\n";
-    out += "    sh:sourceConstraintComponent " + std::string(component_name(r.component)) + " ;\n";
+    out += "    sh:sourceConstraintComponent " +
+           (r.component == Component::SparqlComponent ? turtle_term(t, r.component_node)
+                                                      : std::string(component_name(r.component))) +
+           " ;\n";
     if (!r.source_constraint.is_any())
       out += "    sh:sourceConstraint " + turtle_term(t, r.source_constraint) + " ;\n";
     out += "    sh:sourceShape " + turtle_term(t, r.shape) + " ;\n";
@@ -229,7 +240,8 @@ std::string to_text(const Report& report, const SourceFiles* data_files,
       if (!at.empty()) out += " at " + at;
     }
     out += ", ";
-    out += component_name(r.component);
+    out += r.component == Component::SparqlComponent ? rdf::to_ntriples(t, r.component_node)
+                                                     : std::string(component_name(r.component));
     if (r.path) out += ", path " + path_to_sparql(t, *r.path);
     if (!r.value.is_any()) out += ", value " + rdf::to_ntriples(t, r.value);
     out += "]\n";
@@ -319,7 +331,7 @@ rdf::Dataset to_dataset(const Report& report) {
     if (!ids[2].is_any()) add(node, iri(vocab::value), ids[2]);
     add(node, iri(vocab::resultSeverity), ids[3].is_any() ? iri(severity_iri(r.level)) : ids[3]);
     if (!ids[4].is_any()) add(node, iri(vocab::sourceConstraint), ids[4]);
-    add(node, iri(vocab::sourceConstraintComponent), iri(component_iri(r.component)));
+    add(node, iri(vocab::sourceConstraintComponent), iri(result_component_iri(report, r)));
     for (size_t m = 5; m < ids.size(); ++m) add(node, iri(vocab::resultMessage), ids[m]);
     if (r.messages.empty() && !r.default_message.empty())
       add(node, iri(vocab::resultMessage), t.literal(r.default_message));
@@ -424,7 +436,9 @@ std::string to_jsonld(const Report& report) {
     if (!messages.empty()) o.set("sh:resultMessage", json::Value(std::move(messages)));
     o.set("sh:resultSeverity",
           r.level == Level::Other ? jsonld_term(t, r.severity) : sh_id(severity_iri(r.level)));
-    o.set("sh:sourceConstraintComponent", sh_id(component_iri(r.component)));
+    o.set("sh:sourceConstraintComponent", r.component == Component::SparqlComponent
+                                              ? jsonld_term(t, r.component_node)
+                                              : sh_id(component_iri(r.component)));
     if (!r.source_constraint.is_any())
       o.set("sh:sourceConstraint", jsonld_term(t, r.source_constraint));
     o.set("sh:sourceShape", jsonld_term(t, r.shape));

@@ -15,10 +15,12 @@ namespace mospec::shacl {
 
 // One sh:ValidationResult. Term ids refer to Report::terms.
 struct Result {
-  rdf::TermId focus;                                   // sh:focusNode
-  rdf::TermId value = rdf::TermId::any();              // sh:value (any(): none)
-  rdf::TermId shape;                                   // sh:sourceShape
-  Component component = Component::Class;              // sh:sourceConstraintComponent
+  rdf::TermId focus;                       // sh:focusNode
+  rdf::TermId value = rdf::TermId::any();  // sh:value (any(): none)
+  rdf::TermId shape;                       // sh:sourceShape
+  Component component = Component::Class;  // sh:sourceConstraintComponent
+  // The component's IRI when component is SparqlComponent (else any()).
+  rdf::TermId component_node = rdf::TermId::any();
   rdf::TermId source_constraint = rdf::TermId::any();  // sh:sourceConstraint (SHACL-SPARQL)
   sparql::PathPtr path;                                // sh:resultPath (null: none)
   Level level = Level::Violation;                      // sh:resultSeverity
@@ -42,6 +44,9 @@ class Report {
 };
 
 std::string_view level_name(Level);  // "violation", "warning", "info", "other"
+
+// The IRI of a result's sh:sourceConstraintComponent.
+std::string result_component_iri(const Report& report, const Result& result);
 
 // The report graph in Turtle: sh:ValidationReport with nested results,
 // standard prefixes, byte-for-byte deterministic for a sorted report.

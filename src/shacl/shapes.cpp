@@ -4,6 +4,8 @@
 #include <array>
 #include <cctype>
 #include <optional>
+#include <span>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -74,10 +76,12 @@ std::string term_text(const rdf::TermTable& t, TermId id) {
 }  // namespace
 
 std::string_view component_iri(Component c) {
-  return kComponents[static_cast<size_t>(c)].iri;
+  return c == Component::SparqlComponent ? std::string_view()
+                                         : kComponents[static_cast<size_t>(c)].iri;
 }
 std::string_view component_name(Component c) {
-  return kComponents[static_cast<size_t>(c)].name;
+  return c == Component::SparqlComponent ? std::string_view()
+                                         : kComponents[static_cast<size_t>(c)].name;
 }
 
 std::string describe_location(const SourceFiles* files, SourceLoc loc) {
@@ -183,6 +187,14 @@ class ShapesCompiler {
              {vocab::prefix, &prefix_},
              {vocab::sh_namespace, &namespace_},
              {vocab::owl_imports, &owl_imports_},
+             {vocab::ConstraintComponent, &constraint_component_},
+             {vocab::parameter, &parameter_},
+             {vocab::optional, &optional_},
+             {vocab::validator, &validator_},
+             {vocab::nodeValidator, &node_validator_},
+             {vocab::propertyValidator, &property_validator_},
+             {vocab::ask, &ask_},
+             {vocab::labelTemplate, &label_template_},
              {vocab::BlankNode, &nk_blank_},
              {vocab::IRI, &nk_iri_},
              {vocab::Literal, &nk_literal_},
@@ -226,14 +238,40 @@ class ShapesCompiler {
     }
     for (TermId p : {qvs_, qmin_, qmax_})
       if (p != kAbsent) params_.emplace(p.index, Component::QualifiedMinCount);
+    // What a shape may say in the SHACL namespace besides the parameters of
+    // the core components: anything else is refused (check_shape_properties).
+    for (auto [p, c] : params_) shape_properties_.insert(p);
+    for (std::string_view iri :
+         {vocab::targetNode, vocab::targetClass, vocab::targetSubjectsOf, vocab::targetObjectsOf,
+          vocab::path, vocab::deactivated, vocab::severity, vocab::message, vocab::flags,
+          vocab::qualifiedMinCount, vocab::qualifiedMaxCount, vocab::qualifiedValueShapesDisjoint,
+          vocab::ignoredProperties, vocab::declare, vocab::name, vocab::description, vocab::order,
+          vocab::group, vocab::defaultValue})
+      if (TermId id = sh(iri); id != kAbsent) shape_properties_.insert(id.index);
+    auto allow = [&](std::unordered_set<uint32_t>& set,
+                     std::initializer_list<std::string_view> iris) {
+      for (std::string_view iri : iris)
+        if (TermId id = sh(iri); id != kAbsent) set.insert(id.index);
+    };
+    allow(sparql_properties_, {vocab::select, vocab::message, vocab::prefixes, vocab::deactivated,
+                               vocab::name, vocab::description, vocab::declare});
+    allow(component_properties_,
+          {vocab::parameter, vocab::validator, vocab::nodeValidator, vocab::propertyValidator,
+           vocab::message, vocab::labelTemplate, vocab::name, vocab::description, vocab::declare});
+    allow(validator_properties_, {vocab::select, vocab::ask, vocab::message, vocab::prefixes,
+                                  vocab::name, vocab::description, vocab::declare});
   }
 
   Shapes run() {
+    refuse_unsupported_constructs();
+    declare_components();
     // Every node that the spec calls a shape, in the order it is first written.
+    // Parameter declarations of constraint components are property shapes of
+    // the component, not of the shapes graph: compiled when a shape uses them.
     std::vector<std::pair<uint32_t, TermId>> candidates;
     std::unordered_set<uint32_t> seen;
     auto add = [&](TermId node, uint32_t quad) {
-      if (t_[node].is_literal()) return;
+      if (t_[node].is_literal() || parameter_nodes_.count(node.index) != 0) return;
       if (seen.insert(node.index).second) candidates.emplace_back(quad, node);
     };
     for (TermId cls : shape_classes()) {
@@ -245,6 +283,7 @@ class ShapesCompiler {
     std::vector<TermId> subject_preds{target_node_, target_class_, target_subjects_,
                                       target_objects_};
     for (auto [p, c] : params_) subject_preds.push_back(TermId{p});
+    for (const auto& [p, components] : custom_params_) subject_preds.push_back(TermId{p});
     for (TermId p : subject_preds) {
       g_.scan(TermId::any(), p, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
         add(q.subject, i);
@@ -254,6 +293,7 @@ class ShapesCompiler {
     std::sort(candidates.begin(), candidates.end());
     for (auto& [quad, node] : candidates) compile(node);
     finish();
+    detail::check_component_parameters(out_);
     return std::move(out_);
   }
 
@@ -275,10 +315,11 @@ class ShapesCompiler {
     return classes;
   }
 
-  [[noreturn]] void fail(uint32_t shape, SourceLoc where, const std::string& message) {
+  [[noreturn]] void fail(uint32_t shape, SourceLoc where, const std::string& message,
+                         const char* code = "shacl-ill-formed") {
     std::string file = out_.files_ != nullptr && where.known() ? out_.files_->path(where.file) : "";
-    throw Error("shacl-ill-formed", "shape " + out_.describe(shape) + ": " + message, file,
-                where.line, where.column);
+    throw Error(code, "shape " + out_.describe(shape) + ": " + message, file, where.line,
+                where.column);
   }
 
   std::string show(TermId id) const { return term_text(t_, id); }
@@ -336,6 +377,13 @@ class ShapesCompiler {
     if (!term.is_blank()) fail(shape, where, "sh:path value " + show(node) + " is not a path");
     if (std::find(stack.begin(), stack.end(), node.index) != stack.end())
       fail(shape, where, "sh:path " + show(node) + " refers to itself");
+    if (stack.size() >= kMaxPathDepth)
+      fail(shape, where,
+           "sh:path nests deeper than " + std::to_string(kMaxPathDepth) +
+               " levels (sh:inversePath, sh:alternativePath, sequence and repetition paths inside "
+               "each other) at " +
+               show(node) + "; write a flatter path",
+           "shacl-too-deep");
     stack.push_back(node.index);
     sparql::PathPtr result;
     if (g_.count(node, first_, TermId::any(), TermId::any(), 1) != 0) {
@@ -509,6 +557,21 @@ class ShapesCompiler {
       });
       out_.shapes_.push_back(std::move(s));
     }
+    // A shape compiles the shapes it references first (sh:node, sh:not,
+    // sh:and, sh:property, ...), one nested call each: bound the nesting
+    // before the stack does.
+    if (depth_ >= kMaxShapeDepth)
+      fail(self, out_.shapes_[self].where,
+           "shapes nest deeper than " + std::to_string(kMaxShapeDepth) +
+               " levels (sh:node, sh:not, sh:and, sh:or, sh:xone, sh:property or "
+               "sh:qualifiedValueShape referring to further shapes); split the chain or "
+               "flatten it",
+           "shacl-too-deep");
+    ++depth_;
+    struct Leave {
+      int& depth;
+      ~Leave() { --depth; }
+    } leave{depth_};
     // Shapes may be appended while this one compiles (referenced shapes), so
     // the shape is built locally and stored at the end.
     Shape s = out_.shapes_[self];
@@ -559,16 +622,37 @@ class ShapesCompiler {
       s.target_objects_of.push_back(iri_param(self, v, "sh:targetObjectsOf"));
 
     // Constraints, in the order their parameters are written.
+    // Everything the shape says in the SHACL namespace is implemented or refused.
+    check_properties(node, shape_properties_, "a shape");
     std::vector<std::pair<uint32_t, TermId>> predicates;
+    std::vector<Value> custom_values;  // first value of each custom parameter
+    std::vector<uint32_t> custom;      // custom components used, in the order written
     std::unordered_set<uint32_t> seen;
     g_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
-      if (params_.count(q.predicate.index) != 0 && seen.insert(q.predicate.index).second)
-        predicates.emplace_back(i, q.predicate);
+      if (!seen.insert(q.predicate.index).second) return true;
+      if (params_.count(q.predicate.index) != 0) predicates.emplace_back(i, q.predicate);
+      if (auto it = custom_params_.find(q.predicate.index); it != custom_params_.end()) {
+        custom_values.push_back({q.predicate, g_.location(i)});
+        for (uint32_t c : it->second)
+          if (std::find(custom.begin(), custom.end(), c) == custom.end()) custom.push_back(c);
+      }
       return true;
     });
     for (auto& [quad, predicate] : predicates) {
       Component c = params_.at(predicate.index);
       add_constraints(self, s, c, predicate);
+    }
+    std::unordered_set<uint32_t> used;
+    for (uint32_t c : custom) add_component_constraints(self, s, c, used);
+    for (const Value& v : custom_values) {
+      if (used.count(v.object.index) != 0 || params_.count(v.object.index) != 0) continue;
+      std::string components;
+      for (uint32_t c : custom_params_.at(v.object.index))
+        components += (components.empty() ? "" : ", ") + show(components_[c].node);
+      fail(self, v.where,
+           show(v.object) + " is a parameter of " + components +
+               ", but the shape lacks a value for a mandatory parameter, so the value would be "
+               "ignored");
     }
     out_.shapes_[self] = std::move(s);
     return self;
@@ -766,6 +850,8 @@ class ShapesCompiler {
         s.constraints.push_back(std::move(k));
         return;
       }
+      case Component::SparqlComponent:  // not a core parameter
+        return;
       case Component::Sparql:
         for (const Value& v : vs) {
           auto sparql = sparql_constraint(self, s, v);
@@ -809,10 +895,104 @@ class ShapesCompiler {
     return out;
   }
 
+  // The text of an sh:select / sh:ask, with $PATH replaced by the property
+  // shape's path (SHACL-SPARQL 5.3: in predicate position).
+  std::string query_text(const Shape& s, const Value& literal, bool substitute_path) const {
+    std::string text(t_[literal.object].value);
+    if (!s.is_property || !substitute_path) return text;
+    const std::string path = "(" + path_to_sparql(t_, *s.path) + ")";
+    std::string replaced;
+    for (size_t i = 0; i < text.size(); ++i) {
+      bool var = (text[i] == '$' || text[i] == '?') && text.compare(i + 1, 4, "PATH") == 0;
+      size_t end = i + 5;
+      if (var && (end >= text.size() ||
+                  !(std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_'))) {
+        replaced += path;
+        i = end - 1;
+      } else {
+        replaced += text[i];
+      }
+    }
+    return replaced;
+  }
+
+  // Parses the query of `holder` (an sh:sparql constraint or a validator)
+  // written as `literal` (its sh:select or sh:ask), with the holder's
+  // sh:prefixes. `what` names the holder in messages ("sh:select of SPARQL
+  // constraint _:b"). Errors point into the shapes file.
+  sparql::Query parse_sparql(uint32_t self, const Shape& s, TermId holder, const Value& literal,
+                             sparql::QueryForm form, const std::string& what,
+                             std::span<const std::string_view> prebound) {
+    auto where_query = [&](const std::string& m) { return what + ": " + m; };
+    try {
+      sparql::Query query = sparql::parse_query(
+          query_text(s, literal, form == sparql::QueryForm::Select), prefixes(self, holder));
+      if (query.form() != form)
+        fail(self, literal.where,
+             where_query(form == sparql::QueryForm::Select ? "must be a SELECT query"
+                                                           : "must be an ASK query"));
+      const auto& vars = query.variables();
+      if (form == sparql::QueryForm::Select &&
+          std::find(vars.begin(), vars.end(), "this") == vars.end())
+        fail(self, literal.where, where_query("must project $this"));
+      if (query.mentions("shapesGraph"))
+        fail(self, literal.where,
+             where_query("uses $shapesGraph, which mospec does not support (the shapes graph is "
+                         "not a named graph of the data)"),
+             "unsupported-shacl");
+      query.check_prebinding(prebound);
+      return query;
+    } catch (const sparql::QueryError& e) {
+      // Point into the shapes file: the quad is located just past the sh:select
+      // literal, so a long string (""""..."""" with its newlines written out) starts
+      // as many lines above as its value holds newlines; query line L is then
+      // file line start + L - 1 (same column for L > 1). Written with escapes,
+      // the estimate would be off, so the message also keeps the query position
+      // and where the sh:select is written.
+      std::string_view original = t_[literal.object].value;
+      const auto newlines =
+          static_cast<uint32_t>(std::count(original.begin(), original.end(), '\n'));
+      SourceLoc at = literal.where;
+      if (at.known() && e.line() != 0 && newlines < at.line && e.line() <= newlines + 1) {
+        at.line = at.line - newlines + (e.line() - 1);
+        at.column = e.line() > 1 ? e.column() : 0;
+      }
+      std::string m = "line " + std::to_string(e.line());
+      m += ", column " + std::to_string(e.column());
+      m += " of the query";
+      const std::string literal_at = describe_location(out_.files_, literal.where);
+      if (!literal_at.empty())
+        m += std::string(" (") + (form == sparql::QueryForm::Select ? "sh:select" : "sh:ask") +
+             " ending at " + literal_at + ")";
+      m += ": ";
+      // The parser's message starts with its own "line L, column C: ".
+      std::string_view message = e.diagnostic().message;
+      if (size_t colon = message.find(": ");
+          message.rfind("line ", 0) == 0 && colon != std::string_view::npos)
+        message.remove_prefix(colon + 2);
+      m += message;
+      fail(self, at, where_query(m));
+    }
+  }
+
+  // The values of `predicate` at `node`, which must be literals; `who` starts
+  // the message otherwise.
+  std::vector<TermId> literal_values(const std::string& who, TermId node, TermId predicate) {
+    std::vector<TermId> out;
+    for (const Value& m : values(node, predicate)) {
+      if (!t_[m.object].is_literal())
+        fail_at(m.where,
+                who + ": " + show(predicate) + " must be a literal, got " + show(m.object));
+      out.push_back(m.object);
+    }
+    return out;
+  }
+
   std::shared_ptr<const SparqlConstraint> sparql_constraint(uint32_t self, const Shape& s,
                                                             const Value& v) {
     if (t_[v.object].is_literal())
       fail(self, v.where, "sh:sparql must be an IRI or blank node, got " + show(v.object));
+    check_properties(v.object, sparql_properties_, "a SPARQL-based constraint");
     auto deactivated = values(v.object, deactivated_);
     at_most_one(self, deactivated, "sh:deactivated");
     if (!deactivated.empty() && bool_param(self, deactivated[0], "sh:deactivated").value_or(false))
@@ -821,80 +1001,379 @@ class ShapesCompiler {
     if (selects.size() != 1 || !t_[selects[0].object].is_literal())
       fail(self, selects.empty() ? v.where : selects[0].where,
            "SPARQL constraint " + show(v.object) + " needs exactly one sh:select string");
-    const Value& select = selects[0];
-    std::string text(t_[select.object].value);
-    if (s.is_property) {
-      // SHACL-SPARQL 5.3: $PATH stands for the shape's path in predicate position.
-      const std::string path = "(" + path_to_sparql(t_, *s.path) + ")";
-      std::string replaced;
-      for (size_t i = 0; i < text.size(); ++i) {
-        bool var = (text[i] == '$' || text[i] == '?') && text.compare(i + 1, 4, "PATH") == 0;
-        size_t end = i + 5;
-        if (var && (end >= text.size() ||
-                    !(std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_'))) {
-          replaced += path;
-          i = end - 1;
-        } else {
-          replaced += text[i];
-        }
-      }
-      text = std::move(replaced);
-    }
-    auto where_query = [&](const std::string& what) {
-      return "sh:select of SPARQL constraint " + show(v.object) + ": " + what;
-    };
-    std::optional<sparql::Query> query;
-    try {
-      query = sparql::parse_query(text, prefixes(self, v.object));
-      if (query->form() != sparql::QueryForm::Select)
-        fail(self, select.where, where_query("must be a SELECT query"));
-      const auto& vars = query->variables();
-      if (std::find(vars.begin(), vars.end(), "this") == vars.end())
-        fail(self, select.where, where_query("must project $this"));
-      if (query->mentions("shapesGraph"))
-        fail(self, select.where,
-             where_query("uses $shapesGraph, which mospec does not support (the shapes graph is "
-                         "not a named graph of the data)"));
-      const std::string_view prebound[] = {"this", "currentShape"};
-      query->check_prebinding(prebound);
-    } catch (const sparql::QueryError& e) {
-      // Point into the shapes file: the quad is located just past the sh:select
-      // literal, so a long string (""""..."""" with its newlines written out) starts
-      // as many lines above as its value holds newlines; query line L is then
-      // file line start + L - 1 (same column for L > 1). Written with escapes,
-      // the estimate would be off, so the message also keeps the query position
-      // and where the sh:select is written.
-      std::string_view original = t_[select.object].value;
-      const auto newlines =
-          static_cast<uint32_t>(std::count(original.begin(), original.end(), '\n'));
-      SourceLoc at = select.where;
-      if (at.known() && e.line() != 0 && newlines < at.line && e.line() <= newlines + 1) {
-        at.line = at.line - newlines + (e.line() - 1);
-        at.column = e.line() > 1 ? e.column() : 0;
-      }
-      std::string what = "line " + std::to_string(e.line());
-      what += ", column " + std::to_string(e.column());
-      what += " of the query";
-      const std::string literal_at = describe_location(out_.files_, select.where);
-      if (!literal_at.empty()) what += " (sh:select ending at " + literal_at + ")";
-      what += ": ";
-      // The parser's message starts with its own "line L, column C: ".
-      std::string_view message = e.diagnostic().message;
-      if (size_t colon = message.find(": ");
-          message.rfind("line ", 0) == 0 && colon != std::string_view::npos)
-        message.remove_prefix(colon + 2);
-      what += message;
-      fail(self, at, where_query(what));
-    }
-    auto c = std::make_shared<SparqlConstraint>(SparqlConstraint{v.object, *query, {}, false});
+    const std::string_view prebound[] = {"this", "currentShape"};
+    sparql::Query query =
+        parse_sparql(self, s, v.object, selects[0], sparql::QueryForm::Select,
+                     "sh:select of SPARQL constraint " + show(v.object), prebound);
+    auto c = std::make_shared<SparqlConstraint>(
+        SparqlConstraint{v.object, std::move(query), {}, false, TermId::any(), false, {}, {}, {}});
     c->binds_current_shape = c->query.mentions("currentShape");
-    for (const Value& m : values(v.object, message_)) {
-      if (!t_[m.object].is_literal())
-        fail(self, m.where, "sh:message must be a literal, got " + show(m.object));
-      c->messages.push_back(m.object);
-    }
+    c->messages = literal_values("shape " + out_.describe(self), v.object, message_);
     referenced_.push_back(v.object);
     return c;
+  }
+
+  // ---- SPARQL-based constraint components (SHACL 6) ---------------------
+
+  struct Parameter {
+    TermId path;       // the parameter's predicate (an IRI)
+    std::string name;  // its local name: the pre-bound variable
+    bool optional = false;
+    TermId declaration;
+    SourceLoc where;           // the sh:parameter triple
+    bool constrained = false;  // the declaration carries constraints of its own
+  };
+
+  struct CustomComponent {
+    TermId node;  // the component's IRI
+    SourceLoc where;
+    std::vector<Parameter> parameters;
+    // sh:validator (ASK), sh:nodeValidator, sh:propertyValidator (SELECT);
+    // object any() when absent.
+    Value ask{TermId::any(), {}}, node_select{TermId::any(), {}},
+        property_select{TermId::any(), {}};
+    std::vector<TermId> messages, labels;
+  };
+
+  [[noreturn]] void fail_at(SourceLoc where, const std::string& message,
+                            const char* code = "shacl-ill-formed") {
+    std::string file = out_.files_ != nullptr && where.known() ? out_.files_->path(where.file) : "";
+    throw Error(code, message, file, where.line, where.column);
+  }
+
+  SourceLoc first_location(TermId node) const {
+    SourceLoc where;
+    g_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad&, uint32_t i) {
+      where = g_.location(i);
+      return false;
+    });
+    return where;
+  }
+
+  // The local name of a parameter's IRI (SHACL 6.1: the longest NCName at its
+  // end), which must also be a SPARQL variable name.
+  static std::string local_name(std::string_view iri) {
+    size_t start = iri.size();
+    auto name_char = [](unsigned char c) {
+      return std::isalnum(c) || c == '_' || c == '-' || c == '.' || c >= 0x80;
+    };
+    while (start > 0 && name_char(static_cast<unsigned char>(iri[start - 1]))) --start;
+    while (start < iri.size() &&
+           !(std::isalpha(static_cast<unsigned char>(iri[start])) || iri[start] == '_' ||
+             static_cast<unsigned char>(iri[start]) >= 0x80))
+      ++start;
+    return std::string(iri.substr(start));
+  }
+
+  // Every sh:ConstraintComponent of the shapes graph, checked once; SHACL's
+  // own components (the sh: namespace) are built in and skipped.
+  void declare_components() {
+    if (constraint_component_ == kAbsent) return;
+    std::vector<Value> declared;
+    g_.scan(TermId::any(), type_, constraint_component_, TermId::any(),
+            [&](const rdf::Quad& q, uint32_t i) {
+              for (const Value& d : declared)
+                if (d.object == q.subject) return true;
+              declared.push_back({q.subject, g_.location(i)});
+              return true;
+            });
+    for (const Value& d : declared) {
+      const rdf::Term& term = t_[d.object];
+      if (term.is_iri() && term.value.substr(0, vocab::kSh.size()) == vocab::kSh) continue;
+      const std::string who = "constraint component " + show(d.object);
+      if (!term.is_iri()) fail_at(d.where, who + " must be an IRI (SHACL 6.2)");
+      check_properties(d.object, component_properties_, "a constraint component");
+      CustomComponent c;
+      c.node = d.object;
+      c.where = d.where;
+      for (const Value& p : values(d.object, parameter_)) {
+        if (t_[p.object].is_literal())
+          fail_at(p.where, who + ": sh:parameter must be a node, got " + show(p.object));
+        auto paths = values(p.object, path_);
+        if (paths.size() != 1 || !t_[paths[0].object].is_iri())
+          fail_at(p.where, who + ": parameter declaration " + show(p.object) +
+                               " needs exactly one sh:path, an IRI");
+        Parameter param;
+        param.path = paths[0].object;
+        param.declaration = p.object;
+        param.where = p.where;
+        param.name = local_name(t_[param.path].value);
+        auto optional = values(p.object, optional_);
+        if (optional.size() > 1)
+          fail_at(optional[1].where,
+                  who + ": more than one sh:optional for parameter " + show(param.path));
+        if (!optional.empty()) {
+          const rdf::Term& o = t_[optional[0].object];
+          if (!o.is_literal() || t_[o.datatype].value != vocab::xsd_boolean ||
+              (o.value != "true" && o.value != "false"))
+            fail_at(optional[0].where,
+                    who + ": sh:optional must be true or false, got " + show(optional[0].object));
+          param.optional = o.value == "true";
+        }
+        const bool valid_name =
+            !param.name.empty() && std::all_of(param.name.begin(), param.name.end(), [](char ch) {
+              return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+            });
+        if (!valid_name)
+          fail_at(p.where, who + ": parameter " + show(param.path) + " has the name \"" +
+                               param.name +
+                               "\" (its local name), which is not a SPARQL variable name");
+        for (std::string_view reserved :
+             {"this", "shapesGraph", "currentShape", "path", "PATH", "value"})
+          if (param.name == reserved)
+            fail_at(p.where, who + ": parameter " + show(param.path) + " may not be named \"" +
+                                 param.name + "\" (a variable SHACL pre-binds itself)");
+        for (const Parameter& other : c.parameters)
+          if (other.name == param.name)
+            fail_at(p.where, who + ": two parameters are named \"" + param.name + "\" (" +
+                                 show(other.path) + " and " + show(param.path) + ")");
+        // Constraints on the parameter's values (sh:datatype, sh:minLength,
+        // ...): checked against each shape that uses the component.
+        g_.scan(p.object, TermId::any(), TermId::any(), TermId::any(),
+                [&](const rdf::Quad& q, uint32_t) {
+                  param.constrained = param.constrained || params_.count(q.predicate.index) != 0;
+                  return !param.constrained;
+                });
+        parameter_nodes_.insert(p.object.index);
+        check_properties(p.object, shape_properties_, "a parameter declaration");
+        c.parameters.push_back(std::move(param));
+      }
+      if (std::all_of(c.parameters.begin(), c.parameters.end(),
+                      [](const Parameter& p) { return p.optional; }))
+        fail_at(d.where, who + " needs at least one sh:parameter that is not sh:optional");
+      for (auto [predicate, slot, form] :
+           {std::tuple{validator_, &c.ask, sparql::QueryForm::Ask},
+            {node_validator_, &c.node_select, sparql::QueryForm::Select},
+            {property_validator_, &c.property_select, sparql::QueryForm::Select}}) {
+        auto vs = values(d.object, predicate);
+        if (vs.empty()) continue;
+        const std::string param = show(predicate);
+        if (vs.size() > 1)
+          fail_at(vs[1].where, who + ": more than one value for " + param +
+                                   " (mospec would have to pick one at random)");
+        const Value& v = vs[0];
+        if (t_[v.object].is_literal())
+          fail_at(v.where, who + ": " + param + " must be a validator node, got " + show(v.object));
+        check_properties(v.object, validator_properties_, "a SPARQL validator");
+        const bool has_ask = !values(v.object, ask_).empty();
+        const bool has_select = !values(v.object, select_).empty();
+        if (!has_ask && !has_select)
+          fail_at(v.where,
+                  who + ": validator " + show(v.object) +
+                      " has neither sh:ask nor sh:select; mospec implements SPARQL-based "
+                      "validators only (SHACL-JS and other languages are not supported)",
+                  "unsupported-shacl");
+        if (form == sparql::QueryForm::Ask && !has_ask)
+          fail_at(v.where, who +
+                               ": the value of sh:validator must be an ASK-based validator "
+                               "(sh:SPARQLAskValidator with sh:ask); use sh:nodeValidator or "
+                               "sh:propertyValidator for a SELECT query");
+        if (form == sparql::QueryForm::Select && !has_select)
+          fail_at(v.where, who + ": the value of " + param +
+                               " must be a SELECT-based validator (sh:SPARQLSelectValidator "
+                               "with sh:select); use sh:validator for an ASK query");
+        if (has_ask && has_select)
+          fail_at(v.where,
+                  who + ": validator " + show(v.object) + " has both sh:ask and sh:select");
+        *slot = v;
+      }
+      if (c.ask.object.is_any() && c.node_select.object.is_any() &&
+          c.property_select.object.is_any())
+        fail_at(d.where,
+                who + " has no validator (sh:validator, sh:nodeValidator or sh:propertyValidator)",
+                "unsupported-shacl");
+      c.messages = literal_values(who, d.object, message_);
+      c.labels = literal_values(who, d.object, label_template_);
+      const uint32_t index = static_cast<uint32_t>(components_.size());
+      for (const Parameter& p : c.parameters) custom_params_[p.path.index].push_back(index);
+      components_.push_back(std::move(c));
+    }
+  }
+
+  // The constraints of custom component `ci` that shape `s` declares (one per
+  // combination of parameter values), if it has values for every mandatory
+  // parameter. Marks the parameters it used in `used`.
+  void add_component_constraints(uint32_t self, Shape& s, uint32_t ci,
+                                 std::unordered_set<uint32_t>& used) {
+    const CustomComponent& c = components_[ci];
+    std::vector<std::vector<Value>> given;
+    for (const Parameter& p : c.parameters) {
+      given.push_back(values(s.node, p.path));
+      if (!p.optional && given.back().empty()) return;
+    }
+    for (const Parameter& p : c.parameters) used.insert(p.path.index);
+    const Value* first = nullptr;  // the first mandatory parameter value: the constraint's place
+    size_t combinations = 1;
+    for (size_t i = 0; i < c.parameters.size(); ++i) {
+      if (!given[i].empty()) combinations *= given[i].size();
+      if (first == nullptr && !c.parameters[i].optional) first = &given[i][0];
+      if (combinations > kMaxCombinations)
+        fail(self, given[i][0].where,
+             "the values of the parameters of constraint component " + show(c.node) +
+                 " make more than " + std::to_string(kMaxCombinations) +
+                 " combinations (one constraint each)");
+    }
+    const std::string who = "constraint component " + show(c.node);
+    const Value& chosen = s.is_property && !c.property_select.object.is_any() ? c.property_select
+                          : !s.is_property && !c.node_select.object.is_any()  ? c.node_select
+                                                                              : c.ask;
+    if (chosen.object.is_any())
+      fail(self, first->where,
+           "uses " + who + ", which has no validator for " +
+               (s.is_property ? "property shapes (sh:propertyValidator or sh:validator)"
+                              : "node shapes (sh:nodeValidator or sh:validator)") +
+               "; SHACL would ignore this constraint, mospec refuses it",
+           "unsupported-shacl");
+    const bool ask = &chosen == &c.ask;
+    const TermId validator = chosen.object;
+    const Value literal = values(validator, ask ? ask_ : select_)[0];
+    if (!t_[literal.object].is_literal())
+      fail_at(literal.where, who + ": the sh:" + std::string(ask ? "ask" : "select") +
+                                 " of validator " + show(validator) + " must be a string");
+    std::vector<std::string_view> prebound{"this", "currentShape"};
+    if (ask) prebound.push_back("value");
+    for (const Parameter& p : c.parameters) prebound.push_back(p.name);
+    sparql::Query query = parse_sparql(self, s, validator, literal,
+                                       ask ? sparql::QueryForm::Ask : sparql::QueryForm::Select,
+                                       std::string(ask ? "sh:ask" : "sh:select") +
+                                           " of validator " + show(validator) + " of " + who,
+                                       prebound);
+    auto shared = std::make_shared<SparqlConstraint>(
+        SparqlConstraint{validator, std::move(query), {}, false, c.node, ask, {}, {}, {}});
+    shared->binds_current_shape = shared->query.mentions("currentShape");
+    shared->messages = literal_values(who, validator, message_);
+    if (shared->messages.empty()) shared->messages = c.messages;
+    shared->labels = c.labels;
+    for (const Parameter& p : c.parameters)
+      if (p.constrained) shared->parameter_shapes.push_back(compile(p.declaration));
+    // One constraint per combination of values (odometer over the parameters).
+    std::vector<size_t> pick(c.parameters.size(), 0);
+    for (size_t n = 0; n < combinations; ++n) {
+      auto k = std::make_shared<SparqlConstraint>(*shared);
+      for (size_t i = 0; i < c.parameters.size(); ++i)
+        if (!given[i].empty())
+          k->parameters.emplace_back(c.parameters[i].name, given[i][pick[i]].object);
+      Constraint constraint;
+      constraint.component = Component::SparqlComponent;
+      constraint.where = first->where;
+      constraint.sparql = std::move(k);
+      s.constraints.push_back(std::move(constraint));
+      for (size_t i = 0; i < pick.size(); ++i) {
+        if (given[i].empty()) continue;
+        if (++pick[i] < given[i].size()) break;
+        pick[i] = 0;
+      }
+    }
+  }
+
+  // ---- what mospec does not implement -----------------------------------
+
+  bool in_sh(TermId id) const {
+    const rdf::Term& term = t_[id];
+    return term.is_iri() && term.value.substr(0, vocab::kSh.size()) == vocab::kSh;
+  }
+
+  std::string sh_name(TermId id) const {
+    return "sh:" + std::string(t_[id].value.substr(vocab::kSh.size()));
+  }
+
+  // Why a SHACL term is not implemented, for the ones with a known reason.
+  static std::string_view unsupported_reason(std::string_view local) {
+    static constexpr std::pair<std::string_view, std::string_view> kReasons[] = {
+        {"rule", "rules (SHACL Advanced Features) are not implemented"},
+        {"target", "custom targets (sh:target, SHACL Advanced Features) are not implemented"},
+        {"js", "SHACL-JS constraints are not implemented"},
+        {"jsFunctionName", "SHACL-JS is not implemented"},
+        {"jsLibrary", "SHACL-JS is not implemented"},
+        {"jsLibraryURL", "SHACL-JS is not implemented"},
+        {"entailment",
+         "entailment regimes are not implemented (mospec validates the graph as "
+         "written)"},
+        {"condition", "rule conditions (SHACL Advanced Features) are not implemented"},
+        {"construct", "SPARQL CONSTRUCT rules (SHACL Advanced Features) are not implemented"},
+        {"expression", "node expressions (SHACL Advanced Features) are not implemented"},
+        {"filterShape", "node expressions (SHACL Advanced Features) are not implemented"},
+        {"shapesGraph",
+         "mospec takes shapes from the files the app names, not from "
+         "sh:shapesGraph"},
+        {"suggestedShapesGraph",
+         "mospec takes shapes from the files the app names, not from "
+         "sh:suggestedShapesGraph"},
+        {"SPARQLTarget", "SPARQL-based targets (SHACL Advanced Features) are not implemented"},
+        {"SPARQLTargetType",
+         "SPARQL-based target types (SHACL Advanced Features) are not "
+         "implemented"},
+        {"JSTarget", "SHACL-JS is not implemented"},
+        {"JSTargetType", "SHACL-JS is not implemented"},
+        {"JSConstraint", "SHACL-JS is not implemented"},
+        {"JSValidator", "SHACL-JS is not implemented"},
+        {"JSFunction", "SHACL-JS is not implemented"},
+        {"JSLibrary", "SHACL-JS is not implemented"},
+        {"JSRule", "SHACL-JS is not implemented"},
+        {"SPARQLRule", "rules (SHACL Advanced Features) are not implemented"},
+        {"TripleRule", "rules (SHACL Advanced Features) are not implemented"},
+        {"SPARQLFunction", "SHACL functions (SHACL Advanced Features) are not implemented"},
+        {"Function", "SHACL functions (SHACL Advanced Features) are not implemented"},
+    };
+    for (auto [name, reason] : kReasons)
+      if (name == local) return reason;
+    return {};
+  }
+
+  static bool known_class(std::string_view local) {
+    for (std::string_view name :
+         {"Shape", "NodeShape", "PropertyShape", "SPARQLConstraint", "ConstraintComponent",
+          "Parameter", "Validator", "SPARQLAskValidator", "SPARQLSelectValidator",
+          "SPARQLExecutable", "SPARQLAskExecutable", "SPARQLSelectExecutable", "PrefixDeclaration",
+          "ValidationReport", "ValidationResult", "AbstractResult", "Severity", "NodeKind",
+          "PropertyGroup"})
+      if (name == local) return true;
+    return false;
+  }
+
+  // Terms of SHACL Advanced Features, SHACL-JS and the like, anywhere in the
+  // shapes graph (as a predicate, or as the class of a node): mospec would
+  // ignore them, so it refuses them.
+  void refuse_unsupported_constructs() {
+    g_.scan(TermId::any(), TermId::any(), TermId::any(), TermId::any(),
+            [&](const rdf::Quad& q, uint32_t i) {
+              const bool is_class = q.predicate == type_ && in_sh(q.object);
+              const TermId term = is_class ? q.object : q.predicate;
+              if (!in_sh(term)) return true;
+              const std::string_view local = t_[term].value.substr(vocab::kSh.size());
+              std::string_view reason = unsupported_reason(local);
+              if (reason.empty() && is_class && !known_class(local))
+                fail_at(g_.location(i),
+                        show(q.subject) + ": " + sh_name(term) +
+                            " is not a SHACL class that mospec knows (misspelt? a node of an "
+                            "unknown type would not be treated as a shape)",
+                        "unsupported-shacl");
+              if (reason.empty()) return true;
+              fail_at(g_.location(i),
+                      show(q.subject) + ": " + sh_name(term) +
+                          " is not supported: " + std::string(reason) +
+                          "; remove it, or express the check with "
+                          "sh:sparql",
+                      "unsupported-shacl");
+            });
+  }
+
+  // Refuses the SHACL-namespace properties of `node` that are not in
+  // `allowed` (nor a parameter of a custom constraint component): a
+  // misspelt parameter would otherwise be silently ignored.
+  void check_properties(TermId node, const std::unordered_set<uint32_t>& allowed,
+                        std::string_view what) {
+    g_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
+      if (!in_sh(q.predicate) || allowed.count(q.predicate.index) != 0 ||
+          custom_params_.count(q.predicate.index) != 0)
+        return true;
+      if (q.predicate == optional_ && parameter_nodes_.count(node.index) != 0) return true;
+      fail_at(g_.location(i),
+              show(node) + " (" + std::string(what) + "): " + sh_name(q.predicate) +
+                  " is not a SHACL property that mospec implements here; check the spelling, or "
+                  "remove it (see docs/validation.md for what is supported)",
+              "unsupported-shacl");
+    });
   }
 
   // Cross-shape facts: closed shapes' allowed predicates and qualified siblings.
@@ -941,11 +1420,26 @@ class ShapesCompiler {
     out_.referenced_ = std::move(referenced_);
   }
 
+  // Nesting limits: shape references and path nodes are compiled recursively.
+  static constexpr int kMaxShapeDepth = 256;
+  static constexpr size_t kMaxPathDepth = 256;
+  // Constraints one shape may declare through one custom component.
+  static constexpr size_t kMaxCombinations = 64;
+
   const rdf::Dataset& g_;
   const rdf::TermTable& t_;
   Shapes out_;
+  int depth_ = 0;  // shapes being compiled (nested compile() calls)
   std::unordered_map<uint32_t, uint32_t> index_;
   std::unordered_map<uint32_t, Component> params_;
+  // SHACL-namespace properties allowed on shapes, sh:sparql constraints,
+  // constraint components and validators (predicate ids).
+  std::unordered_set<uint32_t> shape_properties_, sparql_properties_, component_properties_,
+      validator_properties_;
+  std::vector<CustomComponent> components_;
+  // Parameter predicate -> the custom components that declare it.
+  std::unordered_map<uint32_t, std::vector<uint32_t>> custom_params_;
+  std::unordered_set<uint32_t> parameter_nodes_;  // parameter declarations
   std::vector<TermId> referenced_;
   TermId type_, first_, rest_, nil_, subclass_, rdfs_class_, node_shape_, property_shape_;
   TermId violation_, warning_, info_;
@@ -954,6 +1448,8 @@ class ShapesCompiler {
   TermId alternative_, inverse_, zero_or_more_, one_or_more_, zero_or_one_, flags_;
   TermId qvs_, qmin_, qmax_, qdisjoint_, ignored_, property_;
   TermId select_, prefixes_, declare_, prefix_, namespace_, owl_imports_;
+  TermId constraint_component_, parameter_, optional_, validator_, node_validator_,
+      property_validator_, ask_, label_template_;
   TermId nk_blank_, nk_iri_, nk_literal_, nk_blank_iri_, nk_blank_literal_, nk_iri_literal_;
 };
 

@@ -51,23 +51,48 @@ enum class Component : uint8_t {
   HasValue,
   In,
   Sparql,
+  // A SPARQL-based constraint component declared in the shapes graph (SHACL
+  // 6); its IRI is SparqlConstraint::component.
+  SparqlComponent,
 };
 
-// "http://www.w3.org/ns/shacl#ClassConstraintComponent" etc.
+// "http://www.w3.org/ns/shacl#ClassConstraintComponent" etc. (empty for
+// SparqlComponent, whose IRI is the constraint's).
 std::string_view component_iri(Component);
-// "sh:ClassConstraintComponent" etc.
+// "sh:ClassConstraintComponent" etc. (empty for SparqlComponent).
 std::string_view component_name(Component);
 
 enum NodeKindMask : uint8_t { kBlankNode = 1, kIri = 2, kLiteral = 4 };
 
 enum class Level : uint8_t { Info, Warning, Violation, Other };
 
-// A SHACL-SPARQL constraint (a value of sh:sparql), parsed once.
+// A SHACL-SPARQL constraint, parsed once: a value of sh:sparql, or one use of
+// a SPARQL-based constraint component (SHACL 6) by a shape, with the values
+// of the component's parameters.
 struct SparqlConstraint {
-  rdf::TermId node;                   // the sh:sparql value (sh:sourceConstraint)
-  sparql::Query query;                // sh:select with sh:prefixes applied, $PATH substituted
-  std::vector<rdf::TermId> messages;  // sh:message of the constraint (may hold {?var})
-  bool binds_current_shape = false;   // the query mentions $currentShape
+  // The node that holds the query: the sh:sparql value (reported as
+  // sh:sourceConstraint), or the validator of a component (not reported).
+  rdf::TermId node = rdf::TermId::any();
+  // sh:select (or the validator's sh:ask) with sh:prefixes applied, $PATH
+  // substituted in property shapes' SELECT queries.
+  sparql::Query query;
+  // sh:message of the constraint, else of the validator, else of the
+  // component (may hold {?var} / {$param}).
+  std::vector<rdf::TermId> messages;
+  bool binds_current_shape = false;  // the query mentions $currentShape
+
+  // SPARQL-based constraint components only.
+  rdf::TermId component = rdf::TermId::any();  // its IRI (sh:sourceConstraintComponent)
+  bool ask = false;  // an sh:SPARQLAskValidator: one ASK per value node ($value pre-bound)
+  // Pre-bound parameters: (parameter name, value in the shapes graph), in the
+  // order the component declares them; optional parameters without a value
+  // are left out.
+  std::vector<std::pair<std::string, rdf::TermId>> parameters;
+  std::vector<rdf::TermId> labels;  // the component's sh:labelTemplate (default message)
+  // Each parameter declaration that carries constraints of its own (SHACL 6.1:
+  // "Shapes that do not conform ... are ill-formed"): the index of the
+  // declaration compiled as a property shape (for the check after compiling).
+  std::vector<uint32_t> parameter_shapes;
 };
 
 struct Constraint {
@@ -113,7 +138,10 @@ class Shapes {
   // Compiles every shape of `graph` (which must outlive the Shapes). `files`
   // names the file ids of the graph's source locations in error messages.
   // Ill-formed shapes throw mospec::Error (code "shacl-ill-formed") naming the
-  // shape and the file:line:col of the offending triple.
+  // shape and the file:line:col of the offending triple. So do, with code
+  // "unsupported-shacl", constructs mospec does not implement (SHACL-AF, SHACL-JS,
+  // unknown sh: properties and classes; docs/validation.md), and with code
+  // "shacl-too-deep" shapes or paths nesting deeper than 256 levels.
   static Shapes compile(const rdf::Dataset& graph, const SourceFiles* files = nullptr);
 
   const rdf::Dataset& graph() const { return *graph_; }
@@ -133,6 +161,14 @@ class Shapes {
   std::vector<Shape> shapes_;
   std::vector<rdf::TermId> referenced_;
 };
+
+namespace detail {
+// Checks every shape that uses a SPARQL-based constraint component against
+// the constraints its parameter declarations carry (SHACL 6.1: such a shape is
+// ill-formed otherwise); throws "shacl-ill-formed". Defined in validate.cpp,
+// called by Shapes::compile.
+void check_component_parameters(const Shapes& shapes);
+}  // namespace detail
 
 // "file:line:col" of a location (empty when unknown).
 std::string describe_location(const SourceFiles* files, SourceLoc loc);

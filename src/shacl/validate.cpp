@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -33,6 +34,7 @@ struct RawResult {
   // SHACL-SPARQL: the sh:sparql node (shapes-graph id) and the messages made
   // from ?message or the constraint's sh:message (used instead of the shape's).
   TermId source_constraint = TermId::any();
+  TermId component_node = TermId::any();  // SPARQL-based constraint component (shapes id)
   bool own_messages = false;
   std::vector<std::pair<std::string, std::string>> messages;  // (text, language)
 };
@@ -109,6 +111,20 @@ class Validator {
       for (TermId focus : focus_nodes(s)) validate_shape(i, focus, sink);
     }
     return render(raw);
+  }
+
+  // The first result of validating `focus` against `shape` as text ("value:
+  // message"), empty when it conforms (for check_component_parameters).
+  std::string first_failure(uint32_t shape, TermId focus) {
+    std::vector<RawResult> out;
+    Sink sink{&out};
+    validate_shape(shape, focus, sink);
+    if (out.empty()) return {};
+    const RawResult& r = out[0];
+    std::string text = r.value.is_any() ? std::string() : show(r.value) + ": ";
+    const Shape& s = shapes_[r.shape];
+    text += s.messages.empty() ? default_message(r) : std::string(st_[s.messages[0]].value);
+    return text;
   }
 
   std::vector<size_t> focus_counts() {
@@ -303,8 +319,11 @@ class Validator {
   }
 
   // Shapes that reach themselves over ever new data nodes (a recursive shape
-  // along a long chain) nest one call per node; stop before the stack does.
-  static constexpr size_t kMaxDepth = 1000;
+  // along a long chain) nest one call per node, and so does a long chain of
+  // shapes written innermost first; stop before the stack does. One level
+  // takes about 1.2 KiB of stack in a release build (several times that under
+  // ASan); the compiler's own limit (256) keeps non-recursive chains below.
+  static constexpr size_t kMaxDepth = 512;
 
   [[noreturn]] void too_deep(uint32_t shape, TermId focus) {
     const Shape& s = shapes_[shape];
@@ -563,7 +582,8 @@ class Validator {
         return;
       }
       case Component::Sparql:
-        evaluate_sparql(shape, k, focus, sink);
+      case Component::SparqlComponent:
+        evaluate_sparql(shape, k, focus, values, sink);
         return;
     }
   }
@@ -582,20 +602,28 @@ class Validator {
     return outside(extra_.import(*table, id));
   }
 
-  // {?var} / {$var} in a message, replaced by the row's bindings.
-  std::string substitute(std::string_view text, const sparql::ResultSet& rows, size_t row) const {
+  // A term as message text: a literal's lexical form, else N-Triples.
+  std::string eval_text(TermId v) const {
+    const rdf::Term& t = eval_->term(v);
+    return t.is_literal() ? std::string(t.value) : eval_->to_ntriples(v);
+  }
+
+  std::string shape_text(TermId v) const {
+    const rdf::Term& t = st_[v];
+    return t.is_literal() ? std::string(t.value) : rdf::to_ntriples(st_, v);
+  }
+
+  // {?var} / {$var} in a message, replaced by lookup(var) (left as written
+  // when the lookup has no value).
+  template <typename Lookup>
+  static std::string substitute(std::string_view text, const Lookup& lookup) {
     std::string out;
     for (size_t i = 0; i < text.size(); ++i) {
       if (text[i] == '{' && i + 2 < text.size() && (text[i + 1] == '?' || text[i + 1] == '$')) {
         size_t close = text.find('}', i + 2);
         if (close != std::string_view::npos) {
-          int col = rows.column(text.substr(i + 2, close - i - 2));
-          if (col >= 0) {
-            TermId v = rows.at(row, static_cast<size_t>(col));
-            if (v != sparql::kUnbound) {
-              const rdf::Term& t = eval_->term(v);
-              out += t.is_literal() ? std::string(t.value) : eval_->to_ntriples(v);
-            }
+          if (std::optional<std::string> value = lookup(text.substr(i + 2, close - i - 2))) {
+            out += *value;
             i = close;
             continue;
           }
@@ -606,12 +634,57 @@ class Validator {
     return out;
   }
 
-  void evaluate_sparql(uint32_t shape, uint32_t k, TermId focus, Sink& sink) {
+  // A parameter of a SPARQL-based constraint component, for messages.
+  std::optional<std::string> parameter_text(const SparqlConstraint& q,
+                                            std::string_view name) const {
+    for (const auto& [param, value] : q.parameters)
+      if (param == name) return shape_text(value);
+    return std::nullopt;
+  }
+
+  void evaluate_sparql(uint32_t shape, uint32_t k, TermId focus, const std::vector<TermId>& values,
+                       Sink& sink) {
     const Shape& s = shapes_[shape];
     const SparqlConstraint& q = *s.constraints[k].sparql;
     if (!eval_) eval_ = std::make_unique<sparql::Evaluator>(data_);
     std::vector<sparql::Binding> bindings{{"this", to_eval(focus)}};
     if (q.binds_current_shape) bindings.push_back({"currentShape", eval_->import(st_, s.node)});
+    for (const auto& [name, value] : q.parameters)
+      bindings.push_back({name, eval_->import(st_, value)});
+    auto result = [&]() {
+      RawResult r;
+      r.focus = focus;
+      r.shape = shape;
+      r.constraint = k;
+      r.component = s.constraints[k].component;
+      if (q.component.is_any()) r.source_constraint = q.node;  // sh:sparql only
+      r.component_node = q.component;
+      r.own_messages = true;
+      return r;
+    };
+    if (q.ask) {
+      // SHACL 6.3: one ASK per value node; false means the value node fails.
+      bindings.push_back({"value", TermId::any()});
+      for (TermId v : values) {
+        if (sink.done()) return;
+        bindings.back().value = to_eval(v);
+        if (eval_->ask(q.query, bindings)) continue;
+        RawResult r = result();
+        r.value = v;
+        if (s.is_property) r.path = PathSource::Shape;
+        for (TermId m : q.messages)
+          r.messages.emplace_back(
+              substitute(st_[m].value,
+                         [&](std::string_view name) -> std::optional<std::string> {
+                           if (name == "this") return eval_text(bindings[0].value);
+                           if (name == "value") return eval_text(bindings.back().value);
+                           return parameter_text(q, name);
+                         }),
+              std::string(st_[m].language));
+        sink.add(std::move(r));
+      }
+      return;
+    }
     sparql::ResultSet rows;
     eval_->select(q.query, bindings, rows);
     const int value_col = rows.column("value"), path_col = rows.column("path"),
@@ -626,20 +699,18 @@ class Validator {
           const SourceLoc& at = s.constraints[k].where;
           std::string file =
               shapes_.files() != nullptr && at.known() ? shapes_.files()->path(at.file) : "";
+          const std::string what = q.component.is_any()
+                                       ? "SPARQL constraint " + rdf::to_ntriples(st_, q.node)
+                                       : "validator " + rdf::to_ntriples(st_, q.node) +
+                                             " of constraint component " +
+                                             rdf::to_ntriples(st_, q.component);
           throw Error("shacl-failure",
-                      "SPARQL constraint " + rdf::to_ntriples(st_, q.node) + " of shape " +
-                          shapes_.describe(shape) + " reported a failure for focus node " +
-                          show(focus),
+                      what + " of shape " + shapes_.describe(shape) +
+                          " reported a failure for focus node " + show(focus),
                       file, at.line, at.column);
         }
       }
-      RawResult r;
-      r.focus = focus;
-      r.shape = shape;
-      r.constraint = k;
-      r.component = Component::Sparql;
-      r.source_constraint = q.node;
-      r.own_messages = true;
+      RawResult r = result();
       if (bound(value_col, row))
         r.value = from_eval(rows.at(row, static_cast<size_t>(value_col)));
       else if (!s.is_property)
@@ -657,8 +728,17 @@ class Validator {
         r.messages.emplace_back(std::string(m.value), std::string(m.language));
       } else {
         for (TermId m : q.messages)
-          r.messages.emplace_back(substitute(st_[m].value, rows, row),
-                                  std::string(st_[m].language));
+          r.messages.emplace_back(
+              substitute(st_[m].value,
+                         [&](std::string_view name) -> std::optional<std::string> {
+                           int col = rows.column(name);
+                           if (col >= 0) {
+                             TermId v = rows.at(row, static_cast<size_t>(col));
+                             return v == sparql::kUnbound ? std::string() : eval_text(v);
+                           }
+                           return parameter_text(q, name);
+                         }),
+              std::string(st_[m].language));
       }
       sink.add(std::move(r));
     }
@@ -763,6 +843,20 @@ class Validator {
         return "value is not in sh:in";
       case Component::Sparql:
         return "violates SPARQL constraint " + rdf::to_ntriples(st_, c.sparql->node);
+      case Component::SparqlComponent: {
+        // The component's label template (untagged or English first), with
+        // its parameters filled in.
+        const SparqlConstraint& q = *c.sparql;
+        for (std::string_view want : {std::string_view(), std::string_view("en")})
+          for (TermId label : q.labels)
+            if (st_[label].language == want)
+              return substitute(st_[label].value,
+                                [&](std::string_view name) { return parameter_text(q, name); });
+        if (!q.labels.empty())
+          return substitute(st_[q.labels[0]].value,
+                            [&](std::string_view name) { return parameter_text(q, name); });
+        return "violates constraint component " + rdf::to_ntriples(st_, q.component);
+      }
     }
     return {};
   }
@@ -796,7 +890,9 @@ class Validator {
       if (x.path == PathSource::Predicate) r.path = sparql::Path::iri(import(report, x.predicate));
       r.level = s.level;
       if (s.level == Level::Other) r.severity = import_shape_term(report, s.severity);
-      if (x.own_messages) {
+      // SHACL-SPARQL results carry their own messages (?message, the
+      // constraint's, validator's or component's); without any, the shape's.
+      if (x.own_messages && !x.messages.empty()) {
         for (const auto& [text, language] : x.messages)
           r.messages.push_back(report.terms.literal(text, TermId::default_graph(), language));
       } else {
@@ -804,6 +900,8 @@ class Validator {
       }
       if (!x.source_constraint.is_any())
         r.source_constraint = import_shape_term(report, x.source_constraint);
+      if (!x.component_node.is_any())
+        r.component_node = import_shape_term(report, x.component_node);
       if (r.messages.empty()) r.default_message = default_message(x);
       if (x.focus.index < base_) r.focus_loc = locate(x.focus);
       r.shape_loc = s.where;
@@ -841,6 +939,42 @@ class Validator {
 Report validate(const Shapes& shapes, const rdf::Dataset& data, const ValidateOptions& options) {
   return Validator(shapes, data, options).run();
 }
+
+namespace detail {
+
+void check_component_parameters(const Shapes& shapes) {
+  const ValidateOptions options;
+  std::unique_ptr<Validator> validator;  // made when a declaration has constraints
+  std::unordered_set<uint64_t> done;     // (shape, parameter shape)
+  for (uint32_t i = 0; i < shapes.shapes().size(); ++i) {
+    const Shape& s = shapes[i];
+    for (const Constraint& c : s.constraints) {
+      if (c.component != Component::SparqlComponent) continue;
+      for (uint32_t p : c.sparql->parameter_shapes) {
+        if (!done.insert(pair_key(p, TermId{i})).second) continue;
+        if (!validator) validator = std::make_unique<Validator>(shapes, shapes.graph(), options);
+        const std::string failure = validator->first_failure(p, s.node);
+        if (failure.empty()) continue;
+        const Shape& declaration = shapes[p];
+        const SourceFiles* files = shapes.files();
+        std::string file = files != nullptr && c.where.known() ? files->path(c.where.file) : "";
+        const rdf::TermTable& t = shapes.graph().terms();
+        throw Error("shacl-ill-formed",
+                    "shape " + shapes.describe(i) + ": a value of parameter " +
+                        (declaration.path ? path_to_sparql(t, *declaration.path) : "?") +
+                        " of constraint component " + rdf::to_ntriples(t, c.sparql->component) +
+                        " does not conform to the parameter's declaration" +
+                        (declaration.where.known()
+                             ? " (at " + describe_location(files, declaration.where) + ")"
+                             : std::string()) +
+                        ": " + failure,
+                    file, c.where.line, c.where.column);
+      }
+    }
+  }
+}
+
+}  // namespace detail
 
 std::vector<size_t> count_focus_nodes(const Shapes& shapes, const rdf::Dataset& data) {
   ValidateOptions options;

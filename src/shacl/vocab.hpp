@@ -104,6 +104,24 @@ MOSPEC_SH(prefix);
 MOSPEC_SH(SPARQLConstraint);
 inline constexpr std::string_view sh_namespace = "http://www.w3.org/ns/shacl#namespace";
 
+// SPARQL-based constraint components (SHACL 6).
+MOSPEC_SH(ConstraintComponent);
+MOSPEC_SH(parameter);
+MOSPEC_SH(optional);
+MOSPEC_SH(validator);
+MOSPEC_SH(nodeValidator);
+MOSPEC_SH(propertyValidator);
+MOSPEC_SH(ask);
+MOSPEC_SH(labelTemplate);
+
+// Non-validating properties (SHACL 2.3.2) and annotations mospec accepts and
+// does not need.
+MOSPEC_SH(name);
+MOSPEC_SH(description);
+MOSPEC_SH(order);
+MOSPEC_SH(group);
+MOSPEC_SH(defaultValue);
+
 #undef MOSPEC_SH
 
 }  // namespace mospec::shacl::vocab
