@@ -61,6 +61,62 @@ TEST(World, TorquesAreLimitedToThePublishedEfforts) {
   EXPECT_EQ(s.arm[0].tau, expected);
 }
 
+// The robot interface clamps what it latches and counts it per actuator: a
+// gain of 1e300 asks for 1e300 N·m, the robot applies 39 N·m.
+TEST(World, CommandsBeyondTheLimitsAreClampedAndCounted) {
+  NEED_GEN3();
+  World w(arm_only(), arm_chain);
+  robot::Command cmd;
+  run(w, 5, [](const robot::MeasuredState& s, robot::Command& c) {
+    c = robot::Command{};
+    if (s.clock.tick >= 2) c.arm_tau[robot::kLeftArm][4] = -1e300;
+  });
+  robot::MeasuredState s;
+  w.read(s);
+  EXPECT_EQ(s.arm[robot::kLeftArm].tau[4], -9.0);
+  const robot::ClampRecord& r = w.limiter().records()[robot::kArmJoints + 4];
+  EXPECT_EQ(r.ticks, 3u);
+  EXPECT_EQ(r.first_tick, 2u);
+  EXPECT_EQ(r.max_requested, 1e300);
+  EXPECT_EQ(r.limit, 9.0);
+  int clamped = 0;
+  for (const robot::ClampRecord& q : w.limiter().records()) clamped += q.ticks > 0 ? 1 : 0;
+  EXPECT_EQ(clamped, 1);
+}
+
+// A platform force of 4e10 N: every hub saturates, the wrench is held to the
+// traction limit μ m g, and all of it is reported.
+TEST(World, APlatformForceBeyondTractionIsClampedAndReported) {
+  NEED_GEN3();
+  WorldConfig c = default_world();
+  c.base = BaseFidelity::Planar;
+  c.table.present = false;
+  World w(c, arm_chain);
+  GravityCompensation arms(arm_chain, mounts(c));
+  PlatformWrenchController drives(c.drives);
+  drives.F_p = runtime::Vec3(4e10, 0, 0);
+  run(w, 50, [&](const robot::MeasuredState& s, robot::Command& cmd) {
+    arms.compute(s, cmd);
+    drives.compute(s, cmd);
+  });
+  const auto records = w.limiter().records();
+  const double traction = c.platform.wheel_friction * w.robot_mass() * 9.81;
+  EXPECT_NEAR(w.limiter().limits().platform_force, traction, 1e-9 * traction);
+  const robot::ClampRecord& force = records[robot::kPlatformForceLimit];
+  EXPECT_EQ(force.ticks, 50u);
+  EXPECT_EQ(force.first_tick, 0u);
+  EXPECT_GT(force.max_requested, 1e10);
+  for (int wh = 0; wh < robot::kWheels; ++wh) {
+    EXPECT_GT(records[robot::kArmTorqueLimits + wh].ticks, 0u) << wh;
+  }
+  // What the base receives stays within the limit.
+  const runtime::Vec3 F = w.ground_wrench_P();
+  EXPECT_LE(std::hypot(F.x(), F.y()), traction * (1 + 1e-9));
+  EXPECT_GT(F.x(), 0.5 * traction);  // and still pushes forward
+  // The arms held by gravity compensation: nothing else clamped.
+  for (int j = 0; j < robot::kArmTorqueLimits; ++j) EXPECT_EQ(records[j].ticks, 0u) << j;
+}
+
 TEST(World, ClockCountsTicks) {
   NEED_GEN3();
   World w(arm_only(), arm_chain);
@@ -258,7 +314,7 @@ TEST(WorldFile, ErrorsAreLocated) {
             "w.json:1:11: error: base: expected \"wheeled\", \"planar\" or \"fixed\"");
   EXPECT_EQ(error_of("{ \"arms\": { \"right\": { \"q\": [1, 2] } } }"),
             "w.json:1:29: error: arms.right.q: expected an array of 7 numbers");
-  EXPECT_EQ(error_of("{ \"seed\": -1 }"), "w.json:1:11: error: seed: expected a number >= 0");
+  EXPECT_EQ(error_of("{ \"seed\": -1 }"), "w.json:1:11: error: seed: expected an integer 0..2^53");
   EXPECT_EQ(error_of("{ \"arms\": { \"left\": { \"mount\": { \"direction-cosine-x\": [1, 1, 0] } "
                      "} } }"),
             "w.json:1:32: error: arms.left.mount: the direction cosines are not a rotation");
