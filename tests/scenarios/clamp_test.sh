@@ -39,6 +39,18 @@ assert c and all(e["ticks"] > 0 and e["limit"] in (9, 39) and e["unit"] == "N·m
 ' "$work/sc0a.json"
 check "the log was still written" test -s "$work/sc0a.csv"
 
+# The generated controller's commands go through the same robot interface.
+expect "sc0a with a gain of 1e300, generated controller: clamped, exit 1" 1 \
+  "^  right_arm\.tau\[[0-6]\]: clamped in [0-9]+ ticks? from tick [0-9]+" -- \
+  "$mospec" run models/sc0a --sim --duration 0.5 --cache "$work/cache" \
+  --summary "$work/sc0a-generated.json"
+check "generated: the same clamps as interpreted" \
+  python3 -c '
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert a["clamped_actuators"] == b["clamped_actuators"], (a["clamped_actuators"], b["clamped_actuators"])
+' "$work/sc0a.json" "$work/sc0a-generated.json"
+
 # sc1 with distance gains of 1e9: a platform force far beyond traction.
 sed -i 's/"proportional-gain": "-600.0"/"proportional-gain": "-1e9"/' \
   models/sc1/05-distance-controller.json
