@@ -457,24 +457,26 @@ Vec3 World::ground_wrench_P() const noexcept {
   return {f_P.x(), f_P.y(), n_P.z()};
 }
 
-robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, runtime::KeloData& data,
-                                 const robot::DriveVector& pivot_q,
+robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::DriveVector& pivot_q,
                                  const robot::WheelVector& wheel_tau) noexcept {
-  const Eigen::Vector4d q(pivot_q[0], pivot_q[1], pivot_q[2], pivot_q[3]);
-  runtime::kelo_set_pivots(model, data, q);
+  // F_p = sum_i G_i(q_i) F_d,i with kelo.hpp's 3x2 block G_i.
+  robot::PlatformWrench F_p{0.0, 0.0, 0.0};
   const double r = model.wheel_radius;
-  runtime::KeloDriveVector F_d;
   for (int i = 0; i < robot::kDrives; ++i) {
-    const double f_l = wheel_tau[static_cast<size_t>(2 * i)] / r;
-    const double f_r = wheel_tau[static_cast<size_t>(2 * i + 1)] / r;
-    F_d[2 * i] = f_l + f_r;
-    F_d[2 * i + 1] = model.lateral_ratio * (f_r - f_l);
+    const auto ii = static_cast<size_t>(i);
+    const double f_l = wheel_tau[2 * ii] / r, f_r = wheel_tau[2 * ii + 1] / r;
+    const double f_x = f_l + f_r, f_y = model.lateral_ratio * (f_r - f_l);
+    const double c = std::cos(pivot_q[ii]), s = std::sin(pivot_q[ii]);
+    const double x = model.config.geometry.p_PoAi_P[ii].x();
+    const double y = model.config.geometry.p_PoAi_P[ii].y();
+    F_p[0] += c * f_x - s * f_y;
+    F_p[1] += s * f_x + c * f_y;
+    F_p[2] += (x * s - y * c) * f_x + (x * c + y * s) * f_y;
   }
-  const Vec3 F_p = data.G * F_d;
-  return {F_p[0], F_p[1], F_p[2]};
+  return F_p;
 }
 
-robot::PlatformWrench World::platform_wrench(const robot::WheelVector& wheel_tau) noexcept {
+robot::PlatformWrench World::platform_wrench(const robot::WheelVector& wheel_tau) const noexcept {
   robot::DriveVector q{};
   switch (config_.base) {
     case BaseFidelity::Wheeled:
@@ -489,7 +491,7 @@ robot::PlatformWrench World::platform_wrench(const robot::WheelVector& wheel_tau
       q = config_.initial.pivot_q;
       break;
   }
-  return hub_wrench(kelo_, kelo_data_, q, wheel_tau);
+  return hub_wrench(kelo_, q, wheel_tau);
 }
 
 int World::instabilities() const noexcept {

@@ -52,9 +52,8 @@ struct ArmContact {
 // The platform wrench [f_x, f_y, m_z] (seen by P) that hub torques produce at
 // the pivot angles `pivot_q`: F_p = G(q) F_d with kelo.hpp's massless drive
 // model (f = τ/r, f_x = f_l + f_r, f_y = d/(2s) (f_r - f_l)). Per tick:
-// noexcept and allocation-free (writes data.G).
-robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, runtime::KeloData& data,
-                                 const robot::DriveVector& pivot_q,
+// noexcept and allocation-free.
+robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::DriveVector& pivot_q,
                                  const robot::WheelVector& wheel_tau) noexcept;
 
 class World final : public robot::RobotInterface {
@@ -117,7 +116,7 @@ class World final : public robot::RobotInterface {
   // Total mass of the simulated robot [kg].
   double robot_mass() const noexcept;
   // hub_wrench() at the current pivot angles.
-  robot::PlatformWrench platform_wrench(const robot::WheelVector& wheel_tau) noexcept;
+  robot::PlatformWrench platform_wrench(const robot::WheelVector& wheel_tau) const noexcept;
 
   // MuJoCo's model and data, read-only, for tests and benchmarks.
   const mjModel_* mj_model() const noexcept { return m_; }

@@ -140,7 +140,6 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
   limits.platform_moment = 300.0;
   robot::CommandLimiter limiter(limits);
   const runtime::KeloModel kelo(runtime::KeloConfig{world.drives});
-  runtime::KeloData kelo_data(kelo);
   long allocations = 0;
   for (int k = 0; k < 10000; ++k) {
     advance(state, k);
@@ -149,7 +148,7 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
       in.log_values(values);
       if (k % 100 < 10) command.arm_tau[0][0] = 1e300;  // beyond the limit
       limiter.clamp(command, state.clock.tick, [&](const robot::WheelVector& tau) noexcept {
-        return sim::hub_wrench(kelo, kelo_data, state.pivot_q, tau);
+        return sim::hub_wrench(kelo, state.pivot_q, tau);
       });
     });
   }

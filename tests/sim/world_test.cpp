@@ -84,6 +84,26 @@ TEST(World, CommandsBeyondTheLimitsAreClampedAndCounted) {
   EXPECT_EQ(clamped, 1);
 }
 
+// hub_wrench (what the limiter bounds) is kelo.hpp's composition G(q) F_d of
+// the drive forces the hub torques make.
+TEST(World, HubWrenchIsTheKeloComposition) {
+  const runtime::KeloModel kelo(runtime::KeloConfig{});
+  runtime::KeloData data(kelo);
+  const robot::DriveVector q{0.7, -1.2, 2.0, 0.3};
+  const robot::WheelVector tau{1.0, -2.0, 0.5, 3.0, -1.5, 2.5, 0.25, -0.75};
+  runtime::kelo_set_pivots(kelo, data, Eigen::Vector4d(q[0], q[1], q[2], q[3]));
+  runtime::KeloDriveVector F_d;
+  for (int i = 0; i < robot::kDrives; ++i) {
+    const double f_l = tau[static_cast<size_t>(2 * i)] / kelo.wheel_radius;
+    const double f_r = tau[static_cast<size_t>(2 * i + 1)] / kelo.wheel_radius;
+    F_d[2 * i] = f_l + f_r;
+    F_d[2 * i + 1] = kelo.lateral_ratio * (f_r - f_l);
+  }
+  const runtime::Vec3 expected = data.G * F_d;
+  const robot::PlatformWrench F = hub_wrench(kelo, q, tau);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(F[static_cast<size_t>(k)], expected[k], 1e-9) << k;
+}
+
 // A platform force of 4e10 N: every hub saturates, the wrench is held to the
 // traction limit μ m g, and all of it is reported.
 TEST(World, APlatformForceBeyondTractionIsClampedAndReported) {
