@@ -82,17 +82,25 @@ expect "an exponent in an xsd:decimal string is refused, located" 1 \
   "$mospec" ir --root "$work/notdecimal" "$work/notdecimal/tiny.json" -o "$work/notdecimal.json"
 
 # A timeout (a threshold on the clock's time) must be > 0 s: a negative or
-# zero one is decided before the first tick. Located at the threshold's value.
-for t in -0.5 0 0.0; do
+# zero one is decided before the first tick. mospec/time.ttl's Timeout shape
+# refuses it at validation (located at the constraint); lowering refuses it
+# too (located at the threshold's value) when an app does not list the shape.
+for t in -0.5 0 0.0 NaN; do
   variant "timeout$t" "s/\"value\": \"0.5\"/\"value\": \"$t\"/"
-  expect "a timeout of $t s is refused, located" 1 \
-    "tiny/model.json:15:[0-9]+: error: the timeout 'https://mospec.example/tests/tiny/time-start' of 'https://mospec.example/tests/tiny/cstr-started' is -?0(\\.5)? s; a threshold on the clock's time 'https://mospec.example/tests/tiny/time' must be > 0 s" -- \
+  expect "a timeout of $t s is a violation of mospec/time.ttl's Timeout shape" 1 \
+    "tiny/model.json:22:[0-9]+: violation: <https://mospec.example/tests/tiny/cstr-started>: a timeout \(a threshold on a clock's time\) must be a number of seconds > 0 \[shape <https://comp-rob2b.github.io/metamodels/mospec/shapes#Timeout>" -- \
     "$mospec" ir --root "$work/timeout$t" "$work/timeout$t/tiny.json" -o "$work/timeout$t.json"
   check "no IR written for a timeout of $t" test ! -e "$work/timeout$t.json"
+  # The same model, the app without mospec/time.ttl: lowering refuses it.
+  sed -i 's|metamodels/mospec/time.ttl|metamodels/task/monitors.ttl|' "$work/timeout$t/tiny.json"
+  if [ "$t" = NaN ]; then
+    pattern="tiny/model.json:15:[0-9]+: error: the threshold '.*time-start' of '.*cstr-started' has the value \"NaN\"\\^\\^xsd:decimal, which is not a finite number"
+  else
+    pattern="tiny/model.json:15:[0-9]+: error: the timeout 'https://mospec.example/tests/tiny/time-start' of 'https://mospec.example/tests/tiny/cstr-started' is -?0(\\.5)? s; a threshold on the clock's time 'https://mospec.example/tests/tiny/time' must be > 0 s"
+  fi
+  expect "without the shape, lowering refuses a timeout of $t s, located" 1 "$pattern" -- \
+    "$mospec" ir --root "$work/timeout$t" "$work/timeout$t/tiny.json" -o "$work/timeout$t.json"
+  check "no IR written for a timeout of $t (lowering)" test ! -e "$work/timeout$t.json"
 done
-variant timeoutnan 's/"value": "0.5"/"value": "NaN"/'
-expect "a NaN timeout is refused" 1 "time-start" -- \
-  "$mospec" ir --root "$work/timeoutnan" "$work/timeoutnan/tiny.json" -o "$work/timeoutnan.json"
-check "no IR written for a NaN timeout" test ! -e "$work/timeoutnan.json"
 
 finish ir-cli
