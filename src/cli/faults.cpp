@@ -2,6 +2,7 @@
 
 #include <cstdint>
 
+#include "sim/run.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::cli {
@@ -25,9 +26,12 @@ void add_fault(robot::FaultInjector& faults, const std::string& spec) {
     const std::string a = when.substr(0, plus);
     const std::string b = plus == std::string::npos ? "" : when.substr(plus + 1);
     auto number = [&](const std::string& text, std::uint64_t& out) {
-      if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
-          text.size() > 15) {
+      if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
         throw bad("'" + text + "' is not a tick count");
+      }
+      // A run has at most 10^7 ticks (sim::kMaxTicks): a later tick is a typo.
+      if (text.size() > 8 || std::stoull(text) > sim::kMaxTicks) {
+        throw bad("tick " + text + " is beyond 10^7, the most ticks a run has");
       }
       out = std::stoull(text);
     };

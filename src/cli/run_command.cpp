@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/faults.hpp"
+#include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
@@ -60,6 +61,23 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   j["torque_limit_exceeded"] = r.torque_limit_exceeded;
   j["joint_limit_exceeded"] = r.joint_limit_exceeded;
   j["instabilities"] = r.instabilities;
+  // What the robot interface clamped to the actuation limits (robot/limits.hpp).
+  j["command_clamped"] = r.clamped;
+  nlohmann::ordered_json clamps = nlohmann::ordered_json::array();
+  for (int q = 0; q < robot::kLimitedQuantities; ++q) {
+    const robot::ClampRecord& c = r.clamps[static_cast<size_t>(q)];
+    if (c.ticks == 0) continue;
+    nlohmann::ordered_json e;
+    e["actuator"] = robot::limited_quantity_name(q);
+    e["ticks"] = c.ticks;
+    e["first_tick"] = c.first_tick;
+    e["max_requested"] = std::isfinite(c.max_requested) ? nlohmann::ordered_json(c.max_requested)
+                                                        : nlohmann::ordered_json(nullptr);
+    e["limit"] = c.limit;
+    e["unit"] = robot::limited_quantity_unit(q);
+    clamps.push_back(std::move(e));
+  }
+  j["clamped_actuators"] = std::move(clamps);
   // Every bilateral constraint (a tube, e.g. the shoulder–contact distances):
   // where it ended and whether that is inside.
   nlohmann::ordered_json tubes = nlohmann::ordered_json::array();
@@ -124,10 +142,12 @@ Action add_run_command(CLI::App& app) {
       ->required();
   cmd->add_flag("--interpret", flags->interpret,
                 "Execute the IR directly instead of generating and building C++");
-  cmd->add_option("--duration", flags->duration, "Simulated time [s]")
-      ->check(CLI::Range(0.0, 86400.0))
+  cmd->add_option("--duration", flags->duration,
+                  "Simulated time [s], in (0, 86400] and at most 10^7 control ticks")
+      ->check(finite_number(0.0, 86400.0, true, "s"))
       ->capture_default_str();
-  cmd->add_option("--seed", flags->seed, "Seed of the world's initial perturbations");
+  cmd->add_option("--seed", flags->seed, "Seed of the world's initial perturbations (0..2^53)")
+      ->check(integer_in(0, kMaxSeed));
   cmd->add_option("--world", flags->world, "World file (JSON, see docs/simulation.md)")
       ->type_name("FILE");
   cmd->add_option("--base", flags->base, "Base model (overrides the world)")
@@ -152,6 +172,9 @@ Action add_run_command(CLI::App& app) {
     sim::WorldConfig config = scenario_world(app_path, flags->world);
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
     if (flags->seed) config.seed = *flags->seed;
+    // Refuse a run too long to simulate before building anything.
+    (void)sim::tick_count(flags->duration, config.control_period,
+                          static_cast<std::uint64_t>(flags->log_every));
     const runtime::Chain arm = sim::load_arm_chain(config.robot);
     sim::RunOptions options;
     options.duration = flags->duration;
@@ -176,6 +199,7 @@ Action add_run_command(CLI::App& app) {
     std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall
               << " s\n";
+    const bool clamped = sim::report_clamps(std::cerr, r.clamps);
     if (r.instabilities > 0) {
       std::cerr << "mospec: error: MuJoCo reported " << r.instabilities
                 << " instability warning(s); the log is not trustworthy\n";
@@ -185,7 +209,7 @@ Action add_run_command(CLI::App& app) {
       std::cerr << "mospec: error: the controller commanded a value that is not finite\n";
       return kExitFindings;
     }
-    return kExitOk;
+    return clamped ? kExitFindings : kExitOk;
   };
 }
 

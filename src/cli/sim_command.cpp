@@ -8,10 +8,12 @@
 
 #include "cli/commands.hpp"
 #include "cli/faults.hpp"
+#include "cli/numbers.hpp"
 #include "sim/config.hpp"
 #include "sim/controllers.hpp"
 #include "sim/log.hpp"
 #include "sim/robot_model.hpp"
+#include "sim/run.hpp"
 #include "sim/world.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
@@ -37,8 +39,9 @@ Action add_sim_command(CLI::App& app) {
       "generated from the robot description; WORLD is a JSON file of initial conditions (see "
       "docs/simulation.md), the default world if omitted.");
   cmd->add_option("world", flags->world, "World file (JSON)")->type_name("WORLD");
-  cmd->add_option("--duration", flags->duration, "Simulated time [s]")
-      ->check(CLI::Range(0.0, 86400.0))
+  cmd->add_option("--duration", flags->duration,
+                  "Simulated time [s], in (0, 86400] and at most 10^7 control ticks")
+      ->check(finite_number(0.0, 86400.0, true, "s"))
       ->capture_default_str();
   cmd->add_option("--base", flags->base, "Base model (overrides the world file)")
       ->check(CLI::IsMember({"wheeled", "planar", "fixed"}));
@@ -47,13 +50,14 @@ Action add_sim_command(CLI::App& app) {
   cmd->add_option("--log-every", flags->log_every, "Log every N-th control tick")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
-  cmd->add_option("--seed", flags->seed, "Seed of the initial perturbations (overrides the file)");
+  cmd->add_option("--seed", flags->seed,
+                  "Seed of the initial perturbations, 0..2^53 (overrides the file)")
+      ->check(integer_in(0, kMaxSeed));
   cmd->add_option("--controller", flags->controller, "Arm controller")
       ->check(CLI::IsMember({"zero", "gravity"}))
       ->capture_default_str();
   cmd->add_flag("--mount", flags->mount, "Activate SC2's end-effector mounts to the table");
-  cmd->add_option("--fault", flags->faults, kFaultHelp)
-      ->type_name("SPEC");
+  cmd->add_option("--fault", flags->faults, kFaultHelp)->type_name("SPEC");
 
   return [flags]() {
     sim::WorldConfig config =
@@ -69,8 +73,9 @@ Action add_sim_command(CLI::App& app) {
     sim::CsvLog log;
     const bool logging = !flags->log.empty();
 
-    const auto ticks =
-        static_cast<std::uint64_t>(std::llround(flags->duration / config.control_period));
+    const std::uint64_t ticks =
+        sim::tick_count(flags->duration, config.control_period,
+                        logging ? static_cast<std::uint64_t>(flags->log_every) : 0);
     robot::MeasuredState state;
     robot::Command command;
     const auto start = std::chrono::steady_clock::now();
@@ -91,12 +96,13 @@ Action add_sim_command(CLI::App& app) {
               << wall << " s";
     if (wall > 0) std::cerr << " (" << std::round(world.time() / wall) << "x real time)";
     std::cerr << '\n';
+    const bool clamped = sim::report_clamps(std::cerr, world.limiter().records());
     if (world.instabilities() > 0) {
       std::cerr << "mospec: error: MuJoCo reported " << world.instabilities()
                 << " instability or capacity warning(s); the log is not trustworthy\n";
       return kExitFindings;
     }
-    return kExitOk;
+    return clamped ? kExitFindings : kExitOk;
   };
 }
 

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "cli/numbers.hpp"
 #include "plot/process.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
@@ -107,11 +108,12 @@ Action add_trials_command(CLI::App& app) {
   cmd->add_option("--jobs,-j", flags->jobs, "Trials run at a time (default: the number of cores)")
       ->check(CLI::Range(1u, 4096u));
   cmd->add_option("--duration", flags->duration,
-                  "Simulated time per trial [s] (default: `mospec run`'s)")
-      ->check(CLI::Range(0.0, 86400.0));
+                  "Simulated time per trial [s], in (0, 86400] (default: `mospec run`'s)")
+      ->check(finite_number(0.0, 86400.0, true, "s"));
   cmd->add_flag("--interpret", flags->interpret,
                 "Execute the IR directly instead of generated C++");
-  cmd->add_option("--seed-base", flags->seed_base, "Trial i runs with seed K+i")
+  cmd->add_option("--seed-base", flags->seed_base, "Trial i runs with seed K+i (K+N-1 <= 2^53)")
+      ->check(integer_in(0, kMaxSeed))
       ->type_name("K")
       ->capture_default_str();
   cmd->add_option("-o,--output", flags->out, "Directory of the trials (created)")
@@ -133,6 +135,12 @@ Action add_trials_command(CLI::App& app) {
   cmd->add_option("--cache", flags->cache, "Passed to `mospec run`: controller cache")
       ->type_name("DIR");
   return [flags]() {
+    if (flags->seed_base > kMaxSeed - (flags->n - 1)) {
+      throw Error("usage", "--seed-base " + std::to_string(flags->seed_base) + " with -n " +
+                               std::to_string(flags->n) +
+                               ": the last trial's seed would exceed "
+                               "2^53 (seeds are integers 0..2^53)");
+    }
     const fs::path dir(flags->out);
     std::error_code ec;
     fs::create_directories(dir, ec);

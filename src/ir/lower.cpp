@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <set>
 #include <unordered_map>
 
 #include "runtime/chain_rdf.hpp"
+#include "shacl/literal.hpp"
 
 namespace mospec::ir {
 
@@ -56,6 +58,71 @@ std::string vocab(std::string_view domain, std::string_view local) {
   return s;
 }
 const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
+const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
+
+// The value of a numeric literal by XSD 1.1's lexical rules for its datatype
+// (shacl/literal.hpp, the validator's own reading, so that lowering accepts
+// exactly what sh:datatype accepts):
+//   xsd:double / xsd:float   [+-]?(digits(.digits?)?|.digits)([eE][+-]?digits)?,
+//                            INF, +INF, -INF, NaN;
+//   xsd:decimal              [+-]?(digits(.digits?)?|.digits), and the canonical
+//                            xsd:double form JSON-LD's toRdf writes for a JSON
+//                            number under a decimal coercion ("1.0E-3");
+//   xsd:integer and the types derived from it: [+-]?digits within the type's range;
+//   xsd:string (a number written as a string without a coercion): read as
+//                            xsd:double.
+// Anything else — another datatype, a form XSD rejects — is not a number.
+// The canonical xsd:double form of a finite JSON number, as JSON-LD's
+// object-to-RDF conversion writes it: -?d.d+E-?d+ with a non-zero leading
+// digit (or 0.0E0).
+bool canonical_double_form(std::string_view s) {
+  auto digits = [](std::string_view d) {
+    return !d.empty() &&
+           std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  if (!s.empty() && s.front() == '-') s.remove_prefix(1);
+  const size_t e = s.find('E');
+  if (e == std::string_view::npos || e < 3 || s[1] != '.') return false;
+  std::string_view exponent = s.substr(e + 1);
+  if (!exponent.empty() && exponent.front() == '-') exponent.remove_prefix(1);
+  return digits(s.substr(0, 1)) && digits(s.substr(2, e - 2)) && digits(exponent) &&
+         (s.front() != '0' || s.substr(0, e) == "0.0");
+}
+
+std::optional<double> xsd_number(std::string_view lexical, std::string_view datatype) {
+  shacl::DatatypeInfo type = shacl::classify_datatype(datatype);
+  if (type.kind == shacl::Xsd::String) type = shacl::DatatypeInfo(shacl::Xsd::Double);
+  bool ok = false;
+  switch (type.kind) {
+    case shacl::Xsd::Decimal:
+      ok = shacl::well_formed(lexical, type) || canonical_double_form(lexical);
+      break;
+    case shacl::Xsd::Integer:
+    case shacl::Xsd::Float:
+    case shacl::Xsd::Double:
+      ok = shacl::well_formed(lexical, type);
+      break;
+    default:
+      break;
+  }
+  if (!ok) return std::nullopt;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (lexical == "INF" || lexical == "+INF") return kInf;
+  if (lexical == "-INF") return -kInf;
+  if (lexical == "NaN") return std::numeric_limits<double>::quiet_NaN();
+  // from_chars reads neither a leading '+' nor INF/NaN in XSD's spelling.
+  const bool negative = !lexical.empty() && lexical.front() == '-';
+  if (!lexical.empty() && (lexical.front() == '+' || negative)) lexical.remove_prefix(1);
+  double v = 0;
+  auto [p, ec] = std::from_chars(lexical.data(), lexical.data() + lexical.size(), v);
+  if (p != lexical.data() + lexical.size()) return std::nullopt;
+  if (ec == std::errc::result_out_of_range) {
+    v = std::strtod(std::string(lexical).c_str(), nullptr);  // "1e400": inf; "1e-400": 0
+  } else if (ec != std::errc()) {
+    return std::nullopt;
+  }
+  return negative ? -v : v;
+}
 const std::string kRdfFirst = "http://www.w3.org/1999/02/22-rdf-syntax-ns#first";
 const std::string kRdfRest = "http://www.w3.org/1999/02/22-rdf-syntax-ns#rest";
 const std::string kRdfNil = "http://www.w3.org/1999/02/22-rdf-syntax-ns#nil";
@@ -131,6 +198,15 @@ class Lowerer {
     }
     return where(s);
   }
+  // Whether `q` is the time some clock gives (mospec/time).
+  bool is_clock_time(TermId q) const {
+    const TermId time = term(vocab("mospec/time", "time"));
+    if (absent(time)) return false;
+    for (uint32_t i : g_.match(TermId::any(), time, q)) {
+      if (has_type(g_.quads()[i].subject, vocab("mospec/time", "Clock"))) return true;
+    }
+    return false;
+  }
   std::vector<TermId> list(TermId head) const {
     std::vector<TermId> out;
     const TermId nil = term(kRdfNil);
@@ -144,13 +220,22 @@ class Lowerer {
     }
     return out;
   }
+  // A literal's numeric value by the XSD lexical rules of its datatype
+  // (xsd_number()); nothing for a non-literal, an ill-formed lexical form or
+  // a value that is not finite (INF, NaN).
   std::optional<double> number(TermId lit) const {
     if (absent(lit) || !g_.terms()[lit].is_literal()) return std::nullopt;
-    const std::string s = str(lit);
-    double v = 0;
-    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || p != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+    const rdf::Term& t = g_.terms()[lit];
+    auto v = xsd_number(t.value, g_.terms()[t.datatype].value);
+    if (!v || !std::isfinite(*v)) return std::nullopt;
     return v;
+  }
+  // The literal as messages quote it: "+1e400"^^xsd:double.
+  std::string literal_text(TermId lit) const {
+    const rdf::Term& t = g_.terms()[lit];
+    std::string dt(g_.terms()[t.datatype].value);
+    if (dt.rfind(kXsd, 0) == 0) dt = "xsd:" + dt.substr(kXsd.size());
+    return "\"" + std::string(t.value) + "\"^^" + dt;
   }
   std::optional<double> number(TermId s, const std::string& p) const {
     auto o = object(s, p);
@@ -939,8 +1024,15 @@ void Lowerer::lower_evaluators() {
       const int d = datum(*t, DataType::Scalar, *c, prop);
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       if (dd.value.empty()) {
-        error(*t, "not-a-constant",
-              "the " + prop + " '" + dd.iri + "' of '" + str(*c) + "' has no value");
+        const auto lit = object(*t, kQudt + "value");
+        if (lit && g_.terms()[*lit].is_literal()) {
+          error(where(*t, kQudt + "value", *lit), "invalid-number",
+                "the " + prop + " '" + dd.iri + "' of '" + str(*c) + "' has the value " +
+                    literal_text(*lit) + ", which is not a finite number of its datatype");
+        } else {
+          error(*t, "not-a-constant",
+                "the " + prop + " '" + dd.iri + "' of '" + str(*c) + "' has no value");
+        }
         return std::nullopt;
       }
       if (dd.unit != unit) {
@@ -979,6 +1071,18 @@ void Lowerer::lower_evaluators() {
         continue;
       }
       spec.threshold = *t;
+      // A timeout: a threshold on a clock's time, which starts at 0 and only
+      // grows. A threshold <= 0 s is decided before the first tick (a
+      // greater-than constraint holds at once, a less-than never does).
+      if (!(spec.threshold > 0.0) && is_clock_time(*q)) {
+        const TermId th = *object(*c, vocab(cs, "threshold"));
+        const auto lit = object(th, kQudt + "value");
+        error(lit ? where(th, kQudt + "value", *lit) : where(th), "invalid-timeout",
+              "the timeout '" + str(th) + "' of '" + str(*c) + "' is " +
+                  exact_number(spec.threshold) + " s; a threshold on the clock's time '" + str(*q) +
+                  "' must be > 0 s");
+        continue;
+      }
     } else if (has_type(*c, vocab(cs, "EqualityConstraint"))) {
       spec.kind =
           assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
@@ -1140,9 +1244,16 @@ void Lowerer::lower_controllers() {
     }
     Step s = step_for(StepKind::Pid, c);
     const auto gain = [&](const std::string& p, bool required) {
-      auto v = number(c, vocab(ch, p));
-      if (!v && required)
+      const auto lit = object(c, vocab(ch, p));
+      auto v = lit ? number(*lit) : std::nullopt;
+      if (!v && required && lit && g_.terms()[*lit].is_literal()) {
+        error(where(c, vocab(ch, p), *lit), "invalid-number",
+              "the controller '" + str(c) + "' has " + p + " " + literal_text(*lit) +
+                  ", which is not a finite number of its datatype (xsd:double: e.g. 100, "
+                  "+100.0, -1.5e2)");
+      } else if (!v && required) {
         error(c, "missing-property", "the controller '" + str(c) + "' needs a numeric " + p);
+      }
       return v.value_or(0.0);
     };
     s.pid.kp = gain("proportional-gain", true);

@@ -1,6 +1,7 @@
 #include "sim/config.hpp"
 
 #include <Eigen/SVD>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <initializer_list>
@@ -84,6 +85,25 @@ WorldConfig default_world() {
 
 namespace {
 
+// The accepted ranges of a world file's numbers (docs/simulation.md): wide
+// enough for any plausible robot and table, narrow enough that a typo (or a
+// hostile file) cannot make the simulation run forever or go unstable.
+constexpr double kMinControlPeriod = 1e-5;  // [s]: 100 kHz
+constexpr double kMaxControlPeriod = 1.0;   // [s]
+constexpr double kMaxLength = 100.0;        // [m]: sizes, positions, offsets
+constexpr double kMaxAngle = 100.0;         // [rad]: joint and heading angles
+constexpr double kMaxMass = 1e4;            // [kg]
+constexpr double kMaxTorque = 1e4;          // [N·m]: effort and hub torque limits
+constexpr double kMaxDamping = 1e3;         // [N·m·s/rad]
+constexpr double kMaxFriction = 10.0;       // Coulomb coefficients
+
+// A number as a message quotes it: the shortest form that reads back the same.
+std::string shortest(double x) {
+  char buffer[32];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return ec == std::errc() ? std::string(buffer, end) : exact_number(x);
+}
+
 // Reads one JSON world file; every error names file:line:col.
 class Reader {
  public:
@@ -115,22 +135,34 @@ class Reader {
   }
 
   double number(const json::Value& v, std::string_view what) const {
-    if (!v.is_number() || !std::isfinite(v.as_number())) {
-      fail(v, std::string(what) + ": expected a number");
+    if (!v.is_number()) fail(v, std::string(what) + ": expected a number");
+    if (!std::isfinite(v.as_number())) {
+      fail(v, std::string(what) + ": " + shortest(v.as_number()) + " is not a finite number");
     }
     return v.as_number();
   }
 
-  double non_negative(const json::Value& v, std::string_view what) const {
+  // A number in [lo, hi], or (lo, hi] with `lo_open`; the message names the
+  // key, the value and the accepted range with its unit.
+  double in_range(const json::Value& v, std::string_view what, double lo, double hi,
+                  std::string_view unit, bool lo_open = false) const {
     const double x = number(v, what);
-    if (x < 0) fail(v, std::string(what) + ": expected a number >= 0");
+    if (x < lo || (lo_open && x == lo) || x > hi) {
+      fail(v, std::string(what) + ": " + shortest(x) + " is outside the accepted range " +
+                  (lo_open ? "(" : "[") + shortest(lo) + ", " + shortest(hi) + "]" +
+                  (unit.empty() ? "" : " ") + std::string(unit));
+    }
     return x;
   }
 
-  double positive(const json::Value& v, std::string_view what) const {
-    const double x = number(v, what);
-    if (x <= 0) fail(v, std::string(what) + ": expected a number > 0");
-    return x;
+  double non_negative(const json::Value& v, std::string_view what, double hi,
+                      std::string_view unit) const {
+    return in_range(v, what, 0.0, hi, unit);
+  }
+
+  double positive(const json::Value& v, std::string_view what, double hi,
+                  std::string_view unit) const {
+    return in_range(v, what, 0.0, hi, unit, true);
   }
 
   bool boolean(const json::Value& v, std::string_view what) const {
@@ -143,13 +175,18 @@ class Reader {
     return v.as_string();
   }
 
+  // N numbers, each in [lo, hi] (or (lo, hi] with `lo_open`).
   template <size_t N>
-  std::array<double, N> numbers(const json::Value& v, std::string_view what) const {
+  std::array<double, N> numbers(const json::Value& v, std::string_view what, double lo, double hi,
+                                std::string_view unit, bool lo_open = false) const {
     if (!v.is_array() || v.as_array().size() != N) {
       fail(v, std::string(what) + ": expected an array of " + std::to_string(N) + " numbers");
     }
     std::array<double, N> out{};
-    for (size_t i = 0; i < N; ++i) out[i] = number(v.as_array()[i], what);
+    for (size_t i = 0; i < N; ++i) {
+      out[i] = in_range(v.as_array()[i], std::string(what) + "[" + std::to_string(i) + "]", lo, hi,
+                        unit, lo_open);
+    }
     return out;
   }
 
@@ -181,18 +218,18 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       if (!b) r.fail(v, "base: expected \"wheeled\", \"planar\" or \"fixed\"");
       c.base = *b;
     } else if (key == "control_period") {
-      c.control_period = r.positive(v, key);
+      c.control_period = r.in_range(v, key, kMinControlPeriod, kMaxControlPeriod, "s");
     } else if (key == "substeps") {
-      const double n = r.positive(v, key);
-      if (n != std::floor(n) || n > 100) r.fail(v, "substeps: expected an integer 1..100");
+      const double n = r.number(v, key);
+      if (n != std::floor(n) || n < 1 || n > 100) r.fail(v, "substeps: expected an integer 1..100");
       c.substeps = static_cast<int>(n);
     } else if (key == "command_delay_ticks") {
       const double n = r.number(v, key);
       if (n != 0 && n != 1) r.fail(v, "command_delay_ticks: expected 0 or 1");
       c.command_delay_ticks = static_cast<int>(n);
     } else if (key == "seed") {
-      const double n = r.non_negative(v, key);
-      if (n != std::floor(n) || n > 9007199254740992.0) {
+      const double n = r.number(v, key);
+      if (n != std::floor(n) || n < 0 || n > 9007199254740992.0) {
         r.fail(v, "seed: expected an integer 0..2^53");
       }
       c.seed = static_cast<std::uint64_t>(n);
@@ -222,7 +259,8 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
         const std::string what = "arms." + o.key(k);
         const json::Object& a = r.object(o.value(k), what, {"q", "mount"});
         if (auto* q = a.find("q"))
-          c.arms[static_cast<size_t>(arm)].q0 = r.numbers<7>(*q, what + ".q");
+          c.arms[static_cast<size_t>(arm)].q0 =
+              r.numbers<7>(*q, what + ".q", -kMaxAngle, kMaxAngle, "rad");
         if (auto* m = a.find("mount")) {
           const json::Object& mo = r.object(
               *m, what + ".mount",
@@ -232,14 +270,17 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
           const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
           for (int j = 0; j < 3; ++j) {
             if (auto* d = mo.find(names[j])) {
-              auto n = r.numbers<3>(*d, what + ".mount." + names[j]);
+              auto n = r.numbers<3>(*d, what + ".mount." + names[j], -1.01, 1.01, "");
               cols[j] = runtime::Vec3(n[0], n[1], n[2]);
             }
           }
           runtime::Vec3 p = X.p;
-          if (auto* x = mo.find("x")) p.x() = r.number(*x, "x");
-          if (auto* y = mo.find("y")) p.y() = r.number(*y, "y");
-          if (auto* z = mo.find("z")) p.z() = r.number(*z, "z");
+          if (auto* x = mo.find("x"))
+            p.x() = r.in_range(*x, what + ".mount.x", -kMaxLength, kMaxLength, "m");
+          if (auto* y = mo.find("y"))
+            p.y() = r.in_range(*y, what + ".mount.y", -kMaxLength, kMaxLength, "m");
+          if (auto* z = mo.find("z"))
+            p.z() = r.in_range(*z, what + ".mount.z", -kMaxLength, kMaxLength, "m");
           const runtime::Mat3 R = (runtime::Mat3() << cols[0], cols[1], cols[2]).finished();
           if (std::abs(R.determinant() - 1.0) > 1e-3 ||
               !(R.transpose() * R).isApprox(runtime::Mat3::Identity(), 1e-3)) {
@@ -252,61 +293,95 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       const json::Object& o =
           r.object(v, "actuation", {"effort_limit", "lower", "upper", "damping"});
       if (auto* x = o.find("effort_limit"))
-        c.actuation.effort_limit = r.numbers<7>(*x, "effort_limit");
-      if (auto* x = o.find("lower")) c.actuation.lower = r.numbers<7>(*x, "lower");
-      if (auto* x = o.find("upper")) c.actuation.upper = r.numbers<7>(*x, "upper");
-      if (auto* x = o.find("damping")) c.actuation.damping = r.non_negative(*x, "damping");
+        c.actuation.effort_limit = r.numbers<7>(*x, "effort_limit", 0.0, kMaxTorque, "N·m", true);
+      if (auto* x = o.find("lower"))
+        c.actuation.lower = r.numbers<7>(*x, "lower", -1e9, 1e9, "rad");
+      if (auto* x = o.find("upper"))
+        c.actuation.upper = r.numbers<7>(*x, "upper", -1e9, 1e9, "rad");
+      if (auto* x = o.find("damping")) {
+        c.actuation.damping = r.non_negative(*x, "damping", kMaxDamping, "N·m·s/rad");
+      }
     } else if (key == "end_effector") {
       const json::Object& o = r.object(v, "end_effector", {"radius", "friction"});
-      if (auto* x = o.find("radius")) c.end_effector.radius = r.positive(*x, "radius");
-      if (auto* x = o.find("friction")) c.end_effector.friction = r.non_negative(*x, "friction");
+      if (auto* x = o.find("radius")) c.end_effector.radius = r.positive(*x, "radius", 1.0, "m");
+      if (auto* x = o.find("friction")) {
+        c.end_effector.friction = r.non_negative(*x, "friction", kMaxFriction, "");
+      }
     } else if (key == "platform") {
       const json::Object& o =
           r.object(v, "platform",
                    {"mass", "size", "deck_height", "drive_mass", "wheel_mass", "pivot_damping",
                     "wheel_damping", "wheel_torque_limit", "wheel_friction"});
       PlatformParameters& p = c.platform;
-      if (auto* x = o.find("mass")) p.mass = r.positive(*x, "mass");
-      if (auto* x = o.find("size")) p.size = r.numbers<3>(*x, "size");
-      if (auto* x = o.find("deck_height")) p.deck_height = r.positive(*x, "deck_height");
-      if (auto* x = o.find("drive_mass")) p.drive_mass = r.positive(*x, "drive_mass");
-      if (auto* x = o.find("wheel_mass")) p.wheel_mass = r.positive(*x, "wheel_mass");
-      if (auto* x = o.find("pivot_damping")) p.pivot_damping = r.non_negative(*x, "pivot_damping");
-      if (auto* x = o.find("wheel_damping")) p.wheel_damping = r.non_negative(*x, "wheel_damping");
-      if (auto* x = o.find("wheel_torque_limit")) {
-        p.wheel_torque_limit = r.positive(*x, "wheel_torque_limit");
+      if (auto* x = o.find("mass")) p.mass = r.positive(*x, "mass", kMaxMass, "kg");
+      if (auto* x = o.find("size")) p.size = r.numbers<3>(*x, "size", 0.0, kMaxLength, "m", true);
+      if (auto* x = o.find("deck_height")) {
+        p.deck_height = r.positive(*x, "deck_height", kMaxLength, "m");
       }
-      if (auto* x = o.find("wheel_friction")) p.wheel_friction = r.positive(*x, "wheel_friction");
+      if (auto* x = o.find("drive_mass"))
+        p.drive_mass = r.positive(*x, "drive_mass", kMaxMass, "kg");
+      if (auto* x = o.find("wheel_mass"))
+        p.wheel_mass = r.positive(*x, "wheel_mass", kMaxMass, "kg");
+      if (auto* x = o.find("pivot_damping")) {
+        p.pivot_damping = r.non_negative(*x, "pivot_damping", kMaxDamping, "N·m·s/rad");
+      }
+      if (auto* x = o.find("wheel_damping")) {
+        p.wheel_damping = r.non_negative(*x, "wheel_damping", kMaxDamping, "N·m·s/rad");
+      }
+      if (auto* x = o.find("wheel_torque_limit")) {
+        p.wheel_torque_limit = r.positive(*x, "wheel_torque_limit", kMaxTorque, "N·m");
+      }
+      if (auto* x = o.find("wheel_friction")) {
+        p.wheel_friction = r.positive(*x, "wheel_friction", kMaxFriction, "");
+      }
     } else if (key == "table") {
       const json::Object& o =
           r.object(v, "table", {"present", "depth", "width", "edge_height_offset", "friction"});
       if (auto* x = o.find("present")) c.table.present = r.boolean(*x, "present");
-      if (auto* x = o.find("depth")) c.table.depth = r.positive(*x, "depth");
-      if (auto* x = o.find("width")) c.table.width = r.positive(*x, "width");
+      if (auto* x = o.find("depth")) c.table.depth = r.positive(*x, "depth", kMaxLength, "m");
+      if (auto* x = o.find("width")) c.table.width = r.positive(*x, "width", kMaxLength, "m");
       if (auto* x = o.find("edge_height_offset")) {
-        c.table.edge_height_offset = r.number(*x, "edge_height_offset");
+        c.table.edge_height_offset =
+            r.in_range(*x, "edge_height_offset", -kMaxLength, kMaxLength, "m");
       }
-      if (auto* x = o.find("friction")) c.table.friction = r.non_negative(*x, "friction");
+      if (auto* x = o.find("friction")) {
+        c.table.friction = r.non_negative(*x, "friction", kMaxFriction, "");
+      }
     } else if (key == "mount") {
       const json::Object& o = r.object(v, "mount", {"active", "time_constant"});
       if (auto* x = o.find("active")) c.mount.active = r.boolean(*x, "active");
       if (auto* x = o.find("time_constant"))
-        c.mount.time_constant = r.positive(*x, "time_constant");
+        c.mount.time_constant = r.in_range(*x, "time_constant", 1e-4, 10.0, "s");
     } else if (key == "initial") {
       const json::Object& o =
           r.object(v, "initial", {"base_x", "base_y", "base_yaw", "contact_gap", "pivot_q"});
-      if (auto* x = o.find("base_x")) c.initial.base_x = r.number(*x, "base_x");
-      if (auto* x = o.find("base_y")) c.initial.base_y = r.number(*x, "base_y");
-      if (auto* x = o.find("base_yaw")) c.initial.base_yaw = r.number(*x, "base_yaw");
-      if (auto* x = o.find("contact_gap")) c.initial.contact_gap = r.number(*x, "contact_gap");
-      if (auto* x = o.find("pivot_q")) c.initial.pivot_q = r.numbers<4>(*x, "pivot_q");
+      auto length = [&](const json::Value& x, const char* what) {
+        return r.in_range(x, what, -kMaxLength, kMaxLength, "m");
+      };
+      auto angle = [&](const json::Value& x, const char* what) {
+        return r.in_range(x, what, -kMaxAngle, kMaxAngle, "rad");
+      };
+      if (auto* x = o.find("base_x")) c.initial.base_x = length(*x, "base_x");
+      if (auto* x = o.find("base_y")) c.initial.base_y = length(*x, "base_y");
+      if (auto* x = o.find("base_yaw")) c.initial.base_yaw = angle(*x, "base_yaw");
+      if (auto* x = o.find("contact_gap")) c.initial.contact_gap = length(*x, "contact_gap");
+      if (auto* x = o.find("pivot_q")) {
+        c.initial.pivot_q = r.numbers<4>(*x, "pivot_q", -kMaxAngle, kMaxAngle, "rad");
+      }
     } else if (key == "perturbation") {
       const json::Object& o =
           r.object(v, "perturbation", {"arm_q", "base_xy", "base_yaw", "pivot_q"});
-      if (auto* x = o.find("arm_q")) c.perturbation.arm_q = r.non_negative(*x, "arm_q");
-      if (auto* x = o.find("base_xy")) c.perturbation.base_xy = r.non_negative(*x, "base_xy");
-      if (auto* x = o.find("base_yaw")) c.perturbation.base_yaw = r.non_negative(*x, "base_yaw");
-      if (auto* x = o.find("pivot_q")) c.perturbation.pivot_q = r.non_negative(*x, "pivot_q");
+      constexpr double kPi = 3.141592653589793;
+      if (auto* x = o.find("arm_q")) c.perturbation.arm_q = r.non_negative(*x, "arm_q", kPi, "rad");
+      if (auto* x = o.find("base_xy")) {
+        c.perturbation.base_xy = r.non_negative(*x, "base_xy", 1.0, "m");
+      }
+      if (auto* x = o.find("base_yaw")) {
+        c.perturbation.base_yaw = r.non_negative(*x, "base_yaw", kPi, "rad");
+      }
+      if (auto* x = o.find("pivot_q")) {
+        c.perturbation.pivot_q = r.non_negative(*x, "pivot_q", kPi, "rad");
+      }
     }
   }
   return c;

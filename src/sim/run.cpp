@@ -1,11 +1,14 @@
 #include "sim/run.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <ostream>
 
 #include "sim/controllers.hpp"
+#include "support/diagnostics.hpp"
 
 namespace mospec::sim {
 
@@ -27,9 +30,49 @@ const char* const kWorldColumns[] = {
     "right_fx", "right_fy", "right_fz", "left_ee_x",  "left_ee_y",  "left_ee_z",  "left_fn",
     "left_fx",  "left_fy",  "left_fz",  "ground_fx",  "ground_fy",  "ground_mz",  "tau_ratio"};
 
+// A number as a message quotes it: the shortest form that reads back the same.
+std::string shortest(double x) {
+  char buffer[32];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return ec == std::errc() ? std::string(buffer, end) : exact_number(x);
+}
+
 }  // namespace
 
+std::uint64_t tick_count(double duration, double control_period, std::uint64_t log_every) {
+  auto fail = [](const std::string& message) { throw Error("invalid-duration", message); };
+  if (!std::isfinite(duration) || duration <= 0) {
+    fail("--duration " + shortest(duration) + ": expected a finite number of seconds > 0");
+  }
+  if (!std::isfinite(control_period) || control_period <= 0) {
+    fail("control_period " + shortest(control_period) + ": expected a finite number > 0");
+  }
+  const double ticks = std::round(duration / control_period);
+  if (ticks < 1) {
+    fail("--duration " + shortest(duration) + " s is shorter than one control tick (" +
+         shortest(control_period) + " s)");
+  }
+  if (ticks > static_cast<double>(kMaxTicks)) {
+    fail("--duration " + shortest(duration) + " s at the world's control_period of " +
+         shortest(control_period) + " s is " +
+         (ticks < 1e18 ? std::to_string(static_cast<std::uint64_t>(ticks)) : shortest(ticks)) +
+         " control ticks; at most 10^7 are simulated (shorten --duration or lengthen "
+         "control_period)");
+  }
+  const auto n = static_cast<std::uint64_t>(ticks);
+  if (log_every > 0 && (n + log_every - 1) / log_every > kMaxLogRows) {
+    fail("--duration " + shortest(duration) + " s is " + std::to_string(n) +
+         " control ticks; logging every " + std::to_string(log_every) + " would keep " +
+         std::to_string((n + log_every - 1) / log_every) +
+         " rows in memory, at most 10^6 are kept (raise --log-every)");
+  }
+  return n;
+}
+
 RunResult run(World& world, robot::Controller& controller, const RunOptions& options) {
+  const WorldConfig& config = world.config();
+  const auto every = static_cast<std::uint64_t>(options.log_every < 1 ? 1 : options.log_every);
+  const std::uint64_t ticks = tick_count(options.duration, config.control_period, every);
   RunResult r;
   const auto columns = controller.log_columns();
   r.columns.push_back("t");
@@ -42,10 +85,6 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   r.csv.push_back('\n');
   std::vector<double> values(columns.size(), 0.0);
   std::vector<double> row(r.columns.size(), 0.0);
-  const WorldConfig& config = world.config();
-  const auto ticks =
-      static_cast<std::uint64_t>(std::llround(options.duration / config.control_period));
-  const auto every = static_cast<std::uint64_t>(options.log_every < 1 ? 1 : options.log_every);
   robot::MeasuredState state;
   robot::Command command, idle_command;
   std::unique_ptr<GravityCompensation> hold;
@@ -125,7 +164,25 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   r.last_row = row;
   r.torque_limit_exceeded = r.max_torque_ratio > 1.0;
   r.instabilities = world.instabilities();
+  const auto clamps = world.limiter().records();
+  std::copy(clamps.begin(), clamps.end(), r.clamps.begin());
+  r.clamped = world.limiter().any();
   return r;
+}
+
+bool report_clamps(std::ostream& out,
+                   std::span<const robot::ClampRecord, robot::kLimitedQuantities> clamps) {
+  const std::string lines = robot::describe_clamps(clamps);
+  if (lines.empty()) return false;
+  out << "mospec: warning: commands beyond the robot's limits were clamped at the robot "
+         "interface (the controller asks for more than the actuators can give):\n";
+  size_t start = 0;
+  while (start < lines.size()) {
+    const size_t end = lines.find('\n', start);
+    out << "  " << lines.substr(start, end - start) << '\n';
+    start = end + 1;
+  }
+  return true;
 }
 
 double last_value(const RunResult& result, const std::string& column) {

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cstdint>
+#include <iosfwd>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,21 @@
 #include "sim/world.hpp"
 
 namespace mospec::sim {
+
+// How long a run may be: at most 10^7 control ticks (2.8 h of simulated time
+// at 1 ms), and at most 10^6 logged rows (the log is kept in memory until the
+// run ends: about 2 GB at 10^6 rows of 100 columns).
+inline constexpr std::uint64_t kMaxTicks = 10'000'000;
+inline constexpr std::uint64_t kMaxLogRows = 1'000'000;
+
+// The control ticks of `duration` [s] at `control_period` [s] (rounded to
+// the nearest tick). Throws mospec::Error("invalid-duration") when the
+// duration is not a finite number > 0, when the period is not finite and
+// > 0, when the duration is shorter than one tick, or when the run would take
+// more than kMaxTicks ticks or, logging every `log_every`-th tick (0: no log),
+// more than kMaxLogRows rows; the message names --duration, the world's
+// control_period and --log-every.
+std::uint64_t tick_count(double duration, double control_period, std::uint64_t log_every);
 
 struct RunOptions {
   double duration = 10.0;  // [s] simulated
@@ -37,15 +54,27 @@ struct RunResult {
   bool non_finite = false;              // a command was NaN/inf (never sent: the world zeroes it)
   std::uint64_t non_finite_values = 0;  // logged rows with a NaN/inf value (e.g. from a NaN sensor)
   std::uint64_t dropped_commands = 0;   // ticks whose command the world rejected or dropped
-  double max_torque_ratio = 0.0;        // max |tau_i| / effort_limit_i over arms and ticks
+  double max_torque_ratio = 0.0;        // max |tau_i| / effort_limit_i over arms and ticks,
+                                        // as requested (before the clamp)
   bool torque_limit_exceeded = false;   // max_torque_ratio > 1
-  bool joint_limit_exceeded = false;    // a measured joint position left its limits
-  int instabilities = 0;                // MuJoCo warnings (untrustworthy when > 0)
+  // What the robot interface clamped (World::limiter()), per limited quantity
+  // in robot/limits.hpp's order; `clamped` when any entry has ticks > 0.
+  std::array<robot::ClampRecord, robot::kLimitedQuantities> clamps{};
+  bool clamped = false;
+  bool joint_limit_exceeded = false;  // a measured joint position left its limits
+  int instabilities = 0;              // MuJoCo warnings (untrustworthy when > 0)
 };
 
 // Runs `controller` against `world` from its current state. The per-tick path
-// allocates nothing except the log text.
+// allocates nothing except the log text. Throws as tick_count() for a bad
+// duration or log interval (before the first tick).
 RunResult run(World& world, robot::Controller& controller, const RunOptions& options);
+
+// Writes the console warning about clamped commands — "mospec: warning: ..."
+// and one line per clamped quantity (robot::describe_clamps) — and returns
+// true, or writes nothing and returns false when nothing was clamped.
+bool report_clamps(std::ostream& out,
+                   std::span<const robot::ClampRecord, robot::kLimitedQuantities> clamps);
 
 // The value of a named column in the last row (NaN when absent).
 double last_value(const RunResult& result, const std::string& column);

@@ -88,7 +88,30 @@ World::World(const WorldConfig& config, const runtime::Chain& arm)
     mj_deleteModel(m_);
     throw;
   }
+  limiter_ = robot::CommandLimiter(command_limits());
   set_initial_state();
+}
+
+// The arms' limits are Kinova's published efforts (config.actuation), the
+// hubs' the drive's torque limit (config.platform). The platform wrench is
+// bounded by traction: the floor pushes the robot with at most μ m g in total
+// (μ the wheel–floor friction coefficient, m the robot's mass), and turns it
+// with at most that force at the wheel contact farthest from Po. Beyond it the
+// wheels would only slip.
+robot::CommandLimits World::command_limits() const {
+  robot::CommandLimits l;
+  for (auto& arm : l.arm_effort) arm = config_.actuation.effort_limit;
+  l.wheel_torque.fill(config_.platform.wheel_torque_limit);
+  const double g =
+      std::sqrt(m_->opt.gravity[0] * m_->opt.gravity[0] + m_->opt.gravity[1] * m_->opt.gravity[1] +
+                m_->opt.gravity[2] * m_->opt.gravity[2]);
+  l.platform_force = config_.platform.wheel_friction * robot_mass() * g;
+  const runtime::KeloGeometry& geo = config_.drives;
+  const double contact = std::hypot(geo.castor_offset, geo.wheel_distance / 2);
+  double reach = 0.0;
+  for (const runtime::Vec2& p : geo.p_PoAi_P) reach = std::max(reach, p.norm() + contact);
+  l.platform_moment = l.platform_force * reach;
+  return l;
 }
 
 void World::declare(const runtime::Chain& arm) {
@@ -286,6 +309,8 @@ void World::write(const robot::Command& command) noexcept {
     for (double& t : arm) clean(t);
   }
   for (double& t : current_.wheel_tau) clean(t);
+  limiter_.clamp(current_, tick_,
+                 [this](const robot::WheelVector& tau) noexcept { return platform_wrench(tau); });
   // Before the first tick there is no earlier command: the robot starts with
   // the first one (brakes released as the loop starts), not with zero torque.
   if (tick_ == 0) previous_ = current_;
@@ -430,6 +455,43 @@ Vec3 World::ground_wrench_P() const noexcept {
   }
   const Vec3 f_P = X.R.transpose() * f_W, n_P = X.R.transpose() * n_W;
   return {f_P.x(), f_P.y(), n_P.z()};
+}
+
+robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::DriveVector& pivot_q,
+                                 const robot::WheelVector& wheel_tau) noexcept {
+  // F_p = sum_i G_i(q_i) F_d,i with kelo.hpp's 3x2 block G_i.
+  robot::PlatformWrench F_p{0.0, 0.0, 0.0};
+  const double r = model.wheel_radius;
+  for (int i = 0; i < robot::kDrives; ++i) {
+    const auto ii = static_cast<size_t>(i);
+    const double f_l = wheel_tau[2 * ii] / r, f_r = wheel_tau[2 * ii + 1] / r;
+    const double f_x = f_l + f_r, f_y = model.lateral_ratio * (f_r - f_l);
+    const double c = std::cos(pivot_q[ii]), s = std::sin(pivot_q[ii]);
+    const double x = model.config.geometry.p_PoAi_P[ii].x();
+    const double y = model.config.geometry.p_PoAi_P[ii].y();
+    F_p[0] += c * f_x - s * f_y;
+    F_p[1] += s * f_x + c * f_y;
+    F_p[2] += (x * s - y * c) * f_x + (x * c + y * s) * f_y;
+  }
+  return F_p;
+}
+
+robot::PlatformWrench World::platform_wrench(const robot::WheelVector& wheel_tau) const noexcept {
+  robot::DriveVector q{};
+  switch (config_.base) {
+    case BaseFidelity::Wheeled:
+      for (int i = 0; i < robot::kDrives; ++i) {
+        q[static_cast<size_t>(i)] = d_->qpos[pivot_qpos_[static_cast<size_t>(i)]];
+      }
+      break;
+    case BaseFidelity::Planar:
+      q = planar_pivot_q_;
+      break;
+    case BaseFidelity::Fixed:
+      q = config_.initial.pivot_q;
+      break;
+  }
+  return hub_wrench(kelo_, q, wheel_tau);
 }
 
 int World::instabilities() const noexcept {

@@ -30,6 +30,7 @@
 
 #include "robot/faults.hpp"
 #include "robot/interface.hpp"
+#include "robot/limits.hpp"
 #include "runtime/chain.hpp"
 #include "runtime/kelo.hpp"
 #include "sim/config.hpp"
@@ -48,6 +49,13 @@ struct ArmContact {
   runtime::Vec3 f_mount_W = runtime::Vec3::Zero();  // SC2 mount's force on the end-effector [N]
 };
 
+// The platform wrench [f_x, f_y, m_z] (seen by P) that hub torques produce at
+// the pivot angles `pivot_q`: F_p = G(q) F_d with kelo.hpp's massless drive
+// model (f = τ/r, f_x = f_l + f_r, f_y = d/(2s) (f_r - f_l)). Per tick:
+// noexcept and allocation-free.
+robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::DriveVector& pivot_q,
+                                 const robot::WheelVector& wheel_tau) noexcept;
+
 class World final : public robot::RobotInterface {
  public:
   // Throws mospec::Error("invalid-world") when the chain does not fit the
@@ -61,7 +69,10 @@ class World final : public robot::RobotInterface {
   // The sample at the current tick, with the sensor faults applied.
   void read(robot::MeasuredState& state) noexcept override;
   // Latches the command for the coming period (unless a fault drops it).
-  // Non-finite entries are replaced by 0 and counted (rejected_entries()).
+  // Non-finite entries are replaced by 0 and counted (rejected_entries());
+  // then every joint and hub torque is clamped to its limit and the platform
+  // wrench to the traction limit (limiter(), robot/limits.hpp), counted per
+  // actuator.
   void write(const robot::Command& command) noexcept override;
   // Advances one control tick.
   void step() noexcept;
@@ -82,6 +93,10 @@ class World final : public robot::RobotInterface {
   const WorldLayout& layout() const noexcept { return layout_; }
   const std::string& mjcf() const noexcept { return mjcf_; }
   std::uint64_t rejected_entries() const noexcept { return rejected_; }
+  // The actuation limits and what they clamped so far. The arms' limits are
+  // config.actuation.effort_limit, the hubs' config.platform.wheel_torque_limit;
+  // the platform wrench is bounded by traction (platform_limits()).
+  const robot::CommandLimiter& limiter() const noexcept { return limiter_; }
   // How often MuJoCo had to intervene: bad positions, velocities or
   // accelerations (it resets the state) or a full contact or constraint
   // buffer. Zero in a healthy run.
@@ -100,6 +115,8 @@ class World final : public robot::RobotInterface {
   runtime::Pose X_WP() const noexcept;
   // Total mass of the simulated robot [kg].
   double robot_mass() const noexcept;
+  // hub_wrench() at the current pivot angles.
+  robot::PlatformWrench platform_wrench(const robot::WheelVector& wheel_tau) const noexcept;
 
   // MuJoCo's model and data, read-only, for tests and benchmarks.
   const mjModel_* mj_model() const noexcept { return m_; }
@@ -112,6 +129,7 @@ class World final : public robot::RobotInterface {
   void planar_forces() noexcept;
   void planar_drives_after_step() noexcept;
   void anchor_mounts() noexcept;
+  robot::CommandLimits command_limits() const;
 
   WorldConfig config_;
   WorldLayout layout_;
@@ -135,6 +153,7 @@ class World final : public robot::RobotInterface {
   runtime::Vec3 planar_F_p_ = runtime::Vec3::Zero();
 
   robot::FaultInjector faults_;
+  robot::CommandLimiter limiter_;
   robot::Command current_{};   // the last accepted command
   robot::Command previous_{};  // the one accepted before the last step
   std::uint64_t tick_ = 0;

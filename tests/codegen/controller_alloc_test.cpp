@@ -1,5 +1,6 @@
-// A built controller's tick allocates nothing: 10 000 ticks (and log reads) of
-// each dlopened generated library under the counting allocator. Run by
+// A built controller's tick allocates nothing: 10 000 ticks (and log reads,
+// and the robot interface's clamp) of each dlopened generated library under
+// the counting allocator. Run by
 // build_test.sh; its own executable because it replaces the global allocator.
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 #include "codegen/build.hpp"
 #include "load_controller.hpp"
 #include "programs.hpp"
+#include "robot/limits.hpp"
 // Defines the replacement allocator: this translation unit only, and last.
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order)
 
@@ -26,15 +28,31 @@ void expect_no_allocation(const char* env) {
   std::vector<robot::MeasuredState> states;
   for (std::uint64_t k = 0; k < 1000; ++k) states.push_back(testing::measurement(k));
   robot::Command command;
+  // The robot interface's clamp after each tick (Gen3 and KELO hub limits;
+  // the platform wrench here a plain sum of the hub torques).
+  robot::CommandLimits limits;
+  limits.arm_effort[0] = limits.arm_effort[1] = {39, 39, 39, 39, 9, 9, 9};
+  limits.wheel_torque.fill(10.0);
+  limits.platform_force = 1000.0;
+  limits.platform_moment = 300.0;
+  robot::CommandLimiter limiter(limits);
+  const auto wrench = [](const robot::WheelVector& tau) noexcept {
+    robot::PlatformWrench F{0, 0, 0};
+    for (double t : tau) F[0] += t;
+    return F;
+  };
   double sum = 0.0;
   const long n = alloc_counter::during([&] {
     for (int k = 0; k < 10000; ++k) {
       c.tick(states[static_cast<std::size_t>(k % 1000)], command);
       c.log_values(values);
+      if (k % 100 < 10) command.arm_tau[0][0] = 1e300;  // beyond the limit
+      limiter.clamp(command, static_cast<std::uint64_t>(k), wrench);
       sum += values.empty() ? 0.0 : values[0];
     }
   });
   EXPECT_EQ(n, 0) << "allocations in 10 000 ticks";
+  EXPECT_TRUE(limiter.any()) << "the clamp was exercised";
   EXPECT_TRUE(sum == sum);
 }
 

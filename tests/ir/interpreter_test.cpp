@@ -13,7 +13,10 @@
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order): after every other header
 #include "app/app.hpp"
 #include "ir/lower.hpp"
+#include "robot/limits.hpp"
+#include "runtime/kelo.hpp"
 #include "sim/config.hpp"
+#include "sim/world.hpp"
 
 namespace mospec::ir {
 namespace {
@@ -128,15 +131,29 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
   robot::MeasuredState state = standing_robot();
   robot::Command command;
   std::vector<double> values(in.log_columns().size());
+  // The robot interface's clamp, as the simulator applies it after the tick.
+  const sim::WorldConfig world = sim::default_world();
+  robot::CommandLimits limits;
+  limits.arm_effort = {world.actuation.effort_limit, world.actuation.effort_limit};
+  limits.wheel_torque.fill(world.platform.wheel_torque_limit);
+  limits.platform_force = 1000.0;
+  limits.platform_moment = 300.0;
+  robot::CommandLimiter limiter(limits);
+  const runtime::KeloModel kelo(runtime::KeloConfig{world.drives});
   long allocations = 0;
   for (int k = 0; k < 10000; ++k) {
     advance(state, k);
     allocations += alloc_counter::during([&] {
       in.tick(state, command);
       in.log_values(values);
+      if (k % 100 < 10) command.arm_tau[0][0] = 1e300;  // beyond the limit
+      limiter.clamp(command, state.clock.tick, [&](const robot::WheelVector& tau) noexcept {
+        return sim::hub_wrench(kelo, state.pivot_q, tau);
+      });
     });
   }
   EXPECT_EQ(allocations, 0);
+  EXPECT_TRUE(limiter.any()) << "the clamp was exercised";
 #endif
 }
 

@@ -51,4 +51,56 @@ variant constant 's/"control-signal": "effort"/"control-signal": "time-ref"/'
 expect "writing a model constant is refused" 1 "time-ref' has a fixed value in the model" -- \
   "$mospec" ir --root "$work/constant" "$work/constant/tiny.json"
 
+# Numbers by XSD's lexical rules (issue #12): a gain written "+100.0" is a
+# valid xsd:double; so are ".5", "1." and exponent forms; INF and NaN are
+# valid lexical forms but not finite gains, and are refused, located.
+variant plus 's/"proportional-gain": "2.0"/"proportional-gain": "+100.0"/; s/"integral-gain": "0.5"/"integral-gain": ".5"/; s/"derivative-gain": "0.1"/"derivative-gain": "-1.5E-1"/'
+expect "a gain written +100.0 (and .5, -1.5E-1) is a number" 0 "" -- \
+  "$mospec" ir --root "$work/plus" "$work/plus/tiny.json" -o "$work/plus.json"
+check "... read as 100, 0.5 and -0.15" \
+  grep -q '"kp": 100' "$work/plus.json"
+for bad in INF -INF NaN; do
+  variant "gain$bad" "s/\"proportional-gain\": \"2.0\"/\"proportional-gain\": \"$bad\"/"
+  expect "a gain of $bad is refused, located" 1 \
+    "tiny/model.json:[0-9]+:[0-9]+: error: the controller 'https://mospec.example/tests/tiny/ctrl-track' has proportional-gain \"$bad\"\\^\\^xsd:double, which is not a finite number" -- \
+    "$mospec" ir --root "$work/gain$bad" "$work/gain$bad/tiny.json" -o "$work/gain$bad.json"
+done
+variant gainhex 's/"proportional-gain": "2.0"/"proportional-gain": "0x10"/'
+expect "a gain XSD does not read (0x10) is refused" 1 "proportional-gain|0x10" -- \
+  "$mospec" ir --root "$work/gainhex" "$work/gainhex/tiny.json" -o "$work/gainhex.json"
+
+# qudt:value is an xsd:decimal: "2.5" is one, a JSON number 2.5 becomes JSON-LD's
+# canonical "2.5E0" and is read too; "2.5e0" written as a string is not a
+# decimal, and is refused, located at the value.
+variant decimal 's/"value": "2.0"/"value": 2.5/'
+expect "a JSON number under the decimal coercion is read" 0 "" -- \
+  "$mospec" ir --root "$work/decimal" "$work/decimal/tiny.json" -o "$work/decimal.json"
+check "... as 2.5" grep -q '2.5' "$work/decimal.json"
+variant notdecimal 's/"value": "2.0"/"value": "2.5e0"/'
+expect "an exponent in an xsd:decimal string is refused, located" 1 \
+  "tiny/model.json:16:[0-9]+: error: .*time-end.* has the value \"2.5e0\"\\^\\^xsd:decimal, which is not a finite number of its datatype" -- \
+  "$mospec" ir --root "$work/notdecimal" "$work/notdecimal/tiny.json" -o "$work/notdecimal.json"
+
+# A timeout (a threshold on the clock's time) must be > 0 s: a negative or
+# zero one is decided before the first tick. mospec/time.ttl's Timeout shape
+# refuses it at validation (located at the constraint); lowering refuses it
+# too (located at the threshold's value) when an app does not list the shape.
+for t in -0.5 0 0.0 NaN; do
+  variant "timeout$t" "s/\"value\": \"0.5\"/\"value\": \"$t\"/"
+  expect "a timeout of $t s is a violation of mospec/time.ttl's Timeout shape" 1 \
+    "tiny/model.json:22:[0-9]+: violation: <https://mospec.example/tests/tiny/cstr-started>: a timeout \(a threshold on a clock's time\) must be a number of seconds > 0 \[shape <https://comp-rob2b.github.io/metamodels/mospec/shapes#Timeout>" -- \
+    "$mospec" ir --root "$work/timeout$t" "$work/timeout$t/tiny.json" -o "$work/timeout$t.json"
+  check "no IR written for a timeout of $t" test ! -e "$work/timeout$t.json"
+  # The same model, the app without mospec/time.ttl: lowering refuses it.
+  sed -i 's|metamodels/mospec/time.ttl|metamodels/task/monitors.ttl|' "$work/timeout$t/tiny.json"
+  if [ "$t" = NaN ]; then
+    pattern="tiny/model.json:15:[0-9]+: error: the threshold '.*time-start' of '.*cstr-started' has the value \"NaN\"\\^\\^xsd:decimal, which is not a finite number"
+  else
+    pattern="tiny/model.json:15:[0-9]+: error: the timeout 'https://mospec.example/tests/tiny/time-start' of 'https://mospec.example/tests/tiny/cstr-started' is -?0(\\.5)? s; a threshold on the clock's time 'https://mospec.example/tests/tiny/time' must be > 0 s"
+  fi
+  expect "without the shape, lowering refuses a timeout of $t s, located" 1 "$pattern" -- \
+    "$mospec" ir --root "$work/timeout$t" "$work/timeout$t/tiny.json" -o "$work/timeout$t.json"
+  check "no IR written for a timeout of $t (lowering)" test ! -e "$work/timeout$t.json"
+done
+
 finish ir-cli

@@ -112,7 +112,10 @@ bad unilateral task/unilateral-constraint.ttl 8 \
   '<https://ex.org/u8>: a threshold is a quantity with exactly one value and one unit'
 
 good time mospec/time.ttl
-bad time mospec/time.ttl 6 \
+bad time mospec/time.ttl 9 \
+  '<https://ex.org/timeout-negative>: a timeout \(a threshold on a clock.s time\) must be a number of seconds > 0' \
+  '<https://ex.org/timeout-zero>: a timeout \(a threshold on a clock.s time\) must be a number of seconds > 0' \
+  '<https://ex.org/timeout-nan>: a timeout \(a threshold on a clock.s time\) must be a number of seconds > 0' \
   '<https://ex.org/c1>: a clock gives exactly one time' \
   "<https://ex.org/c1>: a clock's time is in seconds: exactly one unit, SEC" \
   '<https://ex.org/c2>: a clock gives exactly one time' \

@@ -1,5 +1,6 @@
 // The control tick through the simulator allocates nothing: read, the
-// controllers, write and step (MuJoCo included) run 2000 ticks with every heap
+// controllers, write (with commands beyond the limits on some ticks, so the
+// clamp runs) and step (MuJoCo included) run 2000 ticks with every heap
 // entry point of this executable counting. Own executable, because it replaces
 // operator new/delete and glibc's malloc family; skipped under AddressSanitizer.
 #include <gtest/gtest.h>
@@ -37,6 +38,11 @@ TEST(Allocation, TheControlTickAllocatesNothing) {
         w.read(s);
         arms.compute(s, cmd);
         drives.compute(s, cmd);
+        // Some ticks ask for far more than the robot has: the write clamps.
+        if (k % 100 < 10) {
+          cmd.arm_tau[0][k % robot::kArmJoints] = 1e300;
+          cmd.wheel_tau[static_cast<size_t>(k % robot::kWheels)] = -1e10;
+        }
         w.write(cmd);
         w.step();
         (void)w.contact(k % 2);
@@ -44,6 +50,7 @@ TEST(Allocation, TheControlTickAllocatesNothing) {
       }
     });
     EXPECT_EQ(n, 0) << to_string(b);
+    EXPECT_TRUE(w.limiter().any()) << "the clamp was exercised";
   }
   // The counter itself works (both C++ and C heaps).
   EXPECT_EQ(alloc_counter::during([] {

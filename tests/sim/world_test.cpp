@@ -61,6 +61,82 @@ TEST(World, TorquesAreLimitedToThePublishedEfforts) {
   EXPECT_EQ(s.arm[0].tau, expected);
 }
 
+// The robot interface clamps what it latches and counts it per actuator: a
+// gain of 1e300 asks for 1e300 N·m, the robot applies 39 N·m.
+TEST(World, CommandsBeyondTheLimitsAreClampedAndCounted) {
+  NEED_GEN3();
+  World w(arm_only(), arm_chain);
+  robot::Command cmd;
+  run(w, 5, [](const robot::MeasuredState& s, robot::Command& c) {
+    c = robot::Command{};
+    if (s.clock.tick >= 2) c.arm_tau[robot::kLeftArm][4] = -1e300;
+  });
+  robot::MeasuredState s;
+  w.read(s);
+  EXPECT_EQ(s.arm[robot::kLeftArm].tau[4], -9.0);
+  const robot::ClampRecord& r = w.limiter().records()[robot::kArmJoints + 4];
+  EXPECT_EQ(r.ticks, 3u);
+  EXPECT_EQ(r.first_tick, 2u);
+  EXPECT_EQ(r.max_requested, 1e300);
+  EXPECT_EQ(r.limit, 9.0);
+  int clamped = 0;
+  for (const robot::ClampRecord& q : w.limiter().records()) clamped += q.ticks > 0 ? 1 : 0;
+  EXPECT_EQ(clamped, 1);
+}
+
+// hub_wrench (what the limiter bounds) is kelo.hpp's composition G(q) F_d of
+// the drive forces the hub torques make.
+TEST(World, HubWrenchIsTheKeloComposition) {
+  const runtime::KeloModel kelo(runtime::KeloConfig{});
+  runtime::KeloData data(kelo);
+  const robot::DriveVector q{0.7, -1.2, 2.0, 0.3};
+  const robot::WheelVector tau{1.0, -2.0, 0.5, 3.0, -1.5, 2.5, 0.25, -0.75};
+  runtime::kelo_set_pivots(kelo, data, Eigen::Vector4d(q[0], q[1], q[2], q[3]));
+  runtime::KeloDriveVector F_d;
+  for (int i = 0; i < robot::kDrives; ++i) {
+    const double f_l = tau[static_cast<size_t>(2 * i)] / kelo.wheel_radius;
+    const double f_r = tau[static_cast<size_t>(2 * i + 1)] / kelo.wheel_radius;
+    F_d[2 * i] = f_l + f_r;
+    F_d[2 * i + 1] = kelo.lateral_ratio * (f_r - f_l);
+  }
+  const runtime::Vec3 expected = data.G * F_d;
+  const robot::PlatformWrench F = hub_wrench(kelo, q, tau);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(F[static_cast<size_t>(k)], expected[k], 1e-9) << k;
+}
+
+// A platform force of 4e10 N: every hub saturates, the wrench is held to the
+// traction limit μ m g, and all of it is reported.
+TEST(World, APlatformForceBeyondTractionIsClampedAndReported) {
+  NEED_GEN3();
+  WorldConfig c = default_world();
+  c.base = BaseFidelity::Planar;
+  c.table.present = false;
+  World w(c, arm_chain);
+  GravityCompensation arms(arm_chain, mounts(c));
+  PlatformWrenchController drives(c.drives);
+  drives.F_p = runtime::Vec3(4e10, 0, 0);
+  run(w, 50, [&](const robot::MeasuredState& s, robot::Command& cmd) {
+    arms.compute(s, cmd);
+    drives.compute(s, cmd);
+  });
+  const auto records = w.limiter().records();
+  const double traction = c.platform.wheel_friction * w.robot_mass() * 9.81;
+  EXPECT_NEAR(w.limiter().limits().platform_force, traction, 1e-9 * traction);
+  const robot::ClampRecord& force = records[robot::kPlatformForceLimit];
+  EXPECT_EQ(force.ticks, 50u);
+  EXPECT_EQ(force.first_tick, 0u);
+  EXPECT_GT(force.max_requested, 1e10);
+  for (int wh = 0; wh < robot::kWheels; ++wh) {
+    EXPECT_GT(records[robot::kArmTorqueLimits + wh].ticks, 0u) << wh;
+  }
+  // What the base receives stays within the limit.
+  const runtime::Vec3 F = w.ground_wrench_P();
+  EXPECT_LE(std::hypot(F.x(), F.y()), traction * (1 + 1e-9));
+  EXPECT_GT(F.x(), 0.5 * traction);  // and still pushes forward
+  // The arms held by gravity compensation: nothing else clamped.
+  for (int j = 0; j < robot::kArmTorqueLimits; ++j) EXPECT_EQ(records[j].ticks, 0u) << j;
+}
+
 TEST(World, ClockCountsTicks) {
   NEED_GEN3();
   World w(arm_only(), arm_chain);
@@ -258,7 +334,7 @@ TEST(WorldFile, ErrorsAreLocated) {
             "w.json:1:11: error: base: expected \"wheeled\", \"planar\" or \"fixed\"");
   EXPECT_EQ(error_of("{ \"arms\": { \"right\": { \"q\": [1, 2] } } }"),
             "w.json:1:29: error: arms.right.q: expected an array of 7 numbers");
-  EXPECT_EQ(error_of("{ \"seed\": -1 }"), "w.json:1:11: error: seed: expected a number >= 0");
+  EXPECT_EQ(error_of("{ \"seed\": -1 }"), "w.json:1:11: error: seed: expected an integer 0..2^53");
   EXPECT_EQ(error_of("{ \"arms\": { \"left\": { \"mount\": { \"direction-cosine-x\": [1, 1, 0] } "
                      "} } }"),
             "w.json:1:32: error: arms.left.mount: the direction cosines are not a rotation");

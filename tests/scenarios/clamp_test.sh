@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Commands beyond the robot's limits (issue #12): a copy of the project's
+# models whose right-arm gain is 1e300 asks for ~1e300 N·m; a copy of sc1 whose
+# distance gains are 1e9 asks the base for a platform force far beyond
+# traction. The robot interface clamps both, `mospec run` says which actuator,
+# from which tick, how much was asked and the limit, the summary records it
+# and the run exits 1. Usage: clamp_test.sh MOSPEC SOURCE_DIR
+SRC="$2"
+source "$SRC/tests/support/cli_lib.sh"
+
+tree="$work/tree"
+mkdir -p "$tree"
+cp -r "$SRC/models" "$SRC/robots" "$SRC/metamodels" "$tree/"
+cd "$tree" || exit 1
+
+# The right arm's first PID (proportional-gain 200.0) at 1e300.
+sed -i '0,/"proportional-gain": "200.0"/s//"proportional-gain": "1e300"/' \
+  models/right-arm/05-constraint-handler.json
+check "the copy has the huge gain" grep -q '"proportional-gain": "1e300"' \
+  models/right-arm/05-constraint-handler.json
+
+expect "sc0a with a gain of 1e300: clamped, exit 1" 1 \
+  "^mospec: warning: commands beyond the robot's limits were clamped at the robot interface" -- \
+  "$mospec" run models/sc0a --sim --interpret --duration 0.5 --summary "$work/sc0a.json" \
+  --log "$work/sc0a.csv"
+check "the warning names a right-arm joint, its ticks, first tick, request and limit" \
+  grep -Eq '^  right_arm\.tau\[[0-6]\]: clamped in [0-9]+ ticks? from tick [0-9]+, requested up to [0-9.]+e\+(29[0-9]|30[0-9]) N·m, limit (39|9) N·m$' \
+  "$work/stderr.txt"
+check "the summary says the command was clamped" grep -q '"command_clamped": true' "$work/sc0a.json"
+check "the summary lists the actuator with its limit" \
+  grep -Eq '"actuator": "right_arm\.tau\[[0-6]\]"' "$work/sc0a.json"
+check "the summary's first clamped actuator has ticks and a limit" \
+  python3 -c '
+import json, sys
+s = json.load(open(sys.argv[1]))
+c = s["clamped_actuators"]
+assert c and all(e["ticks"] > 0 and e["limit"] in (9, 39) and e["unit"] == "N·m" and
+                 e["max_requested"] > 1e200 for e in c), c
+' "$work/sc0a.json"
+check "the log was still written" test -s "$work/sc0a.csv"
+
+# The generated controller's commands go through the same robot interface.
+expect "sc0a with a gain of 1e300, generated controller: clamped, exit 1" 1 \
+  "^  right_arm\.tau\[[0-6]\]: clamped in [0-9]+ ticks? from tick [0-9]+" -- \
+  "$mospec" run models/sc0a --sim --duration 0.5 --cache "$work/cache" \
+  --summary "$work/sc0a-generated.json"
+check "generated: the same clamps as interpreted" \
+  python3 -c '
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert a["clamped_actuators"] == b["clamped_actuators"], (a["clamped_actuators"], b["clamped_actuators"])
+' "$work/sc0a.json" "$work/sc0a-generated.json"
+
+# sc1 with distance gains of 1e9: a platform force far beyond traction.
+sed -i 's/"proportional-gain": "-600.0"/"proportional-gain": "-1e9"/' \
+  models/sc1/05-distance-controller.json
+expect "sc1 with a base force beyond the limit: clamped, exit 1" 1 \
+  "^  platform\.force: clamped in [0-9]+ ticks? from tick [0-9]+, requested up to [0-9.e+]+ N, limit [0-9.]+ N$" -- \
+  "$mospec" run models/sc1 --sim --interpret --duration 0.3 --summary "$work/sc1.json"
+check "sc1: the hub torques are clamped too" grep -Eq '^  wheel_tau\[[0-7]\]: clamped' "$work/stderr.txt"
+check "sc1: the summary lists platform.force" grep -q '"actuator": "platform.force"' "$work/sc1.json"
+
+finish scenarios-clamp
