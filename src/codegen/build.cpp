@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <link.h>
 #include <openssl/evp.h>
 #include <spawn.h>
 #include <sys/file.h>
@@ -235,6 +236,22 @@ std::string library_sha256(const fs::path& library) {
   } catch (const Error&) {
     return {};
   }
+}
+
+// Whether the dynamic loader holds an object loaded under `name`.
+bool loaded_under(const std::string& name) {
+  struct Search {
+    const std::string* name;
+    bool found;
+  } search{&name, false};
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void* data) {
+        auto* s = static_cast<Search*>(data);
+        if (info->dlpi_name != nullptr && *s->name == info->dlpi_name) s->found = true;
+        return 0;
+      },
+      &search);
+  return search.found;
 }
 
 [[noreturn]] void unsafe_cache(const std::string& dir, const std::string& why,
@@ -523,7 +540,21 @@ std::unique_ptr<robot::Controller> load_controller(const std::string& library,
                               " recorded when it was built; it was not loaded");
     }
   }
-  const std::string via = "/proc/self/fd/" + std::to_string(fd.get());
+  // The dynamic loader matches a name it has loaded before, and a controller
+  // library stays loaded for good (its unique symbols): a name like
+  // /proc/self/fd/N that an earlier library was loaded under would return
+  // that library. Use a descriptor number no loaded object is named after.
+  int use = fd.get();
+  std::vector<std::unique_ptr<Fd>> duplicates;
+  std::string via = "/proc/self/fd/" + std::to_string(use);
+  while (loaded_under(via)) {
+    const int next = fcntl(use, F_DUPFD_CLOEXEC, use + 1);
+    if (next < 0)
+      load_error(library, std::string("cannot duplicate its descriptor: ") + std::strerror(errno));
+    duplicates.push_back(std::make_unique<Fd>(next));
+    use = next;
+    via = "/proc/self/fd/" + std::to_string(use);
+  }
   void* handle = dlopen(via.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (handle == nullptr) {
     const char* why = dlerror();
