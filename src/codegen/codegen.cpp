@@ -146,10 +146,6 @@ std::string comment_text(std::string_view text) {
 
 namespace {
 
-std::string comment(std::string_view text) {
-  return comment_text(text);
-}
-
 bool is_alnum(unsigned char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
 }
@@ -346,7 +342,7 @@ class Builder {
 
   mus::data build() {
     mus::data root;
-    root.set("app_comment", comment(p_.app));
+    root.set("app_comment", comment_text(p_.app));
     root.set("app_literal", cpp_string(p_.app));
     add_slots(root);
     add_model(root);
@@ -407,7 +403,7 @@ class Builder {
     }
     s.append(":").append(std::to_string(loc.line));
     if (loc.column != 0) s.append(":").append(std::to_string(loc.column));
-    return comment(s);
+    return comment_text(s);
   }
   const ir::ArmSolver& arm(const ir::Step& st) const {
     if (st.solver < 0 || static_cast<std::size_t>(st.solver) >= p_.arms.size()) {
@@ -440,9 +436,9 @@ class Builder {
         mus::data s;
         s.set("name", data_names_[i]);
         s.set("slot", std::to_string(d.slot));
-        s.set("iri", comment(d.iri));
+        s.set("iri", comment_text(d.iri));
         s.set("has_unit", !d.unit.empty());
-        s.set("unit", comment(d.unit));
+        s.set("unit", comment_text(d.unit));
         slots.push_back(s);
       }
       mus::data entry;
@@ -462,10 +458,10 @@ class Builder {
       const ArmNames& n = arm_names_[a];
       const std::string& member = n.arm;
       mus::data e;
-      e.set("name", comment(s.name));
-      e.set("iri", comment(s.iri));
-      e.set("chain_iri", comment(s.chain_iri));
-      e.set("root", comment(s.chain.root()));
+      e.set("name", comment_text(s.name));
+      e.set("iri", comment_text(s.iri));
+      e.set("chain_iri", comment_text(s.chain_iri));
+      e.set("root", comment_text(s.chain.root()));
       e.set("root_literal", cpp_string(s.chain.root()));
       e.set("segments", std::to_string(s.chain.size()));
       e.set("port", std::to_string(s.port));
@@ -480,7 +476,7 @@ class Builder {
       e.set("X_RB_R", mat3(s.X_RB.R));
       e.set("X_RB_p", vec3(s.X_RB.p));
       e.set("has_mount", !s.mount_pose_iri.empty());
-      e.set("mount_iri", comment(s.mount_pose_iri));
+      e.set("mount_iri", comment_text(s.mount_pose_iri));
       e.set("tip_is_last_segment", s.tip_is_last_segment);
       const runtime::Pose X_NT = s.tip_is_last_segment ? runtime::Pose{} : s.chain.X_NT();
       e.set("X_NT_R", mat3(X_NT.R));
@@ -526,7 +522,7 @@ class Builder {
         c.set("workspace", n.ws);
         c.set("component", std::to_string(s.acceleration_constraints[k].component));
         c.set("column", std::to_string(k));
-        c.set("iri", comment(s.acceleration_constraints[k].iri));
+        c.set("iri", comment_text(s.acceleration_constraints[k].iri));
         alpha.push_back(c);
       }
       e.set("alpha", alpha);
@@ -543,8 +539,8 @@ class Builder {
     root.set("has_base", p_.base.has_value());
     if (p_.base) {
       const ir::BaseSolver& b = *p_.base;
-      root.set("base_name", comment(b.name));
-      root.set("base_iri", comment(b.iri));
+      root.set("base_name", comment_text(b.name));
+      root.set("base_iri", comment_text(b.iri));
       for (int i = 0; i < runtime::kKeloDrives; ++i) {
         root.set("pivot" + std::to_string(i),
                  join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
@@ -562,7 +558,7 @@ class Builder {
       const runtime::ConstraintSpec& c = st.constraint;
       mus::data e;
       e.set("member", step_members_[i]);
-      e.set("iri", comment(st.iri));
+      e.set("iri", comment_text(st.iri));
       evaluators.push_back(e);
       std::string init = step_members_[i];
       init.append("(rt::ConstraintSpec{.kind = ").append(constraint_kind(c.kind));
@@ -580,7 +576,7 @@ class Builder {
       const runtime::PidSpec& c = st.pid;
       mus::data e;
       e.set("member", step_members_[i]);
-      e.set("iri", comment(st.iri));
+      e.set("iri", comment_text(st.iri));
       pids.push_back(e);
       std::string init = step_members_[i];
       init.append("(rt::PidSpec{.kp = ").append(cpp_double(c.kp));
@@ -599,7 +595,7 @@ class Builder {
       if (st.kind != StepKind::LevelMonitor && st.kind != StepKind::EdgeMonitor) continue;
       mus::data e;
       e.set("member", step_members_[i]);
-      e.set("iri", comment(st.iri));
+      e.set("iri", comment_text(st.iri));
       e.set("tolerance", cpp_double(st.constraint.tolerance));
       monitors.push_back(e);
     }
@@ -699,9 +695,9 @@ class Builder {
       c.set("member", member);
       c.set("assign", assign);
       c.set("copy", ref(static_cast<int>(i), "") + " = m." + member + ";");
-      c.set("name", comment(d.iri.empty() ? d.name : d.iri));
+      c.set("name", comment_text(d.iri.empty() ? d.name : d.iri));
       c.set("has_unit", !d.unit.empty());
-      c.set("unit", comment(d.unit));
+      c.set("unit", comment_text(d.unit));
       constants.push_back(c);
     }
     root.set("has_constants", !constants.list_value().empty());
@@ -719,13 +715,16 @@ class Builder {
     mus::data s;
     s.set("index", std::to_string(index));
     s.set("kind", std::string(ir::to_string(st.kind)));
-    s.set("name", comment(st.name));
-    s.set("iri", comment(st.iri));
+    s.set("name", comment_text(st.name));
+    s.set("iri", comment_text(st.iri));
     s.set("where", where(st.where));
     // A blank line, then what the block implements and where it is written.
     std::string header = "\n  // [";
     header.append(std::to_string(index)).append("] ").append(ir::to_string(st.kind)).append(" '");
-    header.append(comment(st.name)).append("': ").append(comment(st.iri)).append("\n  //     ");
+    header.append(comment_text(st.name))
+        .append("': ")
+        .append(comment_text(st.iri))
+        .append("\n  //     ");
     header.append(where(st.where));
     s.set("header", header);
     const auto call = [&](int arity, const char* function) {
@@ -907,7 +906,7 @@ class Builder {
           e.set("workspace", arm_names_[k].ws);
           e.set("segment", std::to_string(f.segment));
           e.set("source", ref(f.wrench));
-          e.set("iri", comment(f.iri));
+          e.set("iri", comment_text(f.iri));
           forces.push_back(e);
         }
         for (const ir::JointForce& f : a.joint_forces) {
@@ -915,7 +914,7 @@ class Builder {
           e.set("workspace", arm_names_[k].ws);
           e.set("joint", std::to_string(f.joint));
           e.set("source", ref(f.force));
-          e.set("iri", comment(f.iri));
+          e.set("iri", comment_text(f.iri));
           joint_forces.push_back(e);
         }
         for (std::size_t c = 0; c < a.acceleration_constraints.size(); ++c) {
@@ -923,7 +922,7 @@ class Builder {
           e.set("workspace", arm_names_[k].ws);
           e.set("column", std::to_string(c));
           e.set("source", ref(a.acceleration_constraints[c].energy));
-          e.set("iri", comment(a.acceleration_constraints[c].iri));
+          e.set("iri", comment_text(a.acceleration_constraints[c].iri));
           betas.push_back(e);
         }
         s.set("forces", forces);

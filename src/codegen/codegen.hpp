@@ -34,7 +34,9 @@ std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles*
 
 // render() written into `out_dir` (created if missing), each file atomically
 // (temporary sibling + rename): a reader never sees half a file. Throws
-// mospec::Error("io") naming the path on failure.
+// mospec::Error("io") naming the path on failure, and
+// mospec::Error("unsafe-path") before writing anything when `out_dir` holds
+// a character CMake could not quote in a build of it (check_cmake_path).
 void generate(const ir::Program& program, const std::string& out_dir,
               const SourceFiles* files = nullptr);
 
