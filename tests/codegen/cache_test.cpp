@@ -193,7 +193,8 @@ TEST(Sha256, MatchesTheKnownDigests) {
 }
 
 TEST(CmakePath, WhatCMakeCannotQuoteIsRefused) {
-  for (const std::string& bad : std::vector<std::string>{"/tmp/a\"b", "/tmp/a\nb", "/tmp/a\\b", "/tmp/$HOME", "/tmp/a;b",
+  for (const std::string& bad :
+       std::vector<std::string>{"/tmp/a\"b", "/tmp/a\nb", "/tmp/a\\b", "/tmp/$HOME", "/tmp/a;b",
                                 "/tmp/a\rb", std::string("/tmp/a\0b", 8), "/tmp/a\x7f"}) {
     std::string code;
     const std::string msg = error_of([&] { check_cmake_path(bad, "the thing"); }, &code);
@@ -201,7 +202,8 @@ TEST(CmakePath, WhatCMakeCannotQuoteIsRefused) {
     EXPECT_EQ(msg.rfind("mospec: error: the thing '", 0), 0u) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << "the message quotes the path escaped: " << msg;
   }
-  for (const std::string& good : std::vector<std::string>{"/tmp/odd dir 'x'/p", "/tmp/a#b", "/tmp/é", "relative/dir"}) {
+  for (const std::string& good :
+       std::vector<std::string>{"/tmp/odd dir 'x'/p", "/tmp/a#b", "/tmp/é", "relative/dir"}) {
     EXPECT_EQ(error_of([&] { check_cmake_path(good, "the thing"); }), "") << good;
   }
 }
