@@ -38,14 +38,21 @@ sim::WorldConfig scenario_world(const std::string& app, const std::string& world
 }
 
 // The generated controller for `program`, generated and built once into the
-// cache (keyed by the generated files and the runtime package, under a file
-// lock so concurrent runs share one build), then loaded.
+// cache (the user's cache directory unless --cache, keyed by SHA-256 of
+// everything that affects the build, under a file lock so concurrent runs
+// share one build), then loaded after checking its content against the hash
+// recorded when it was built (src/codegen/build.hpp).
 std::unique_ptr<robot::Controller> generated_controller(const ir::Program& program,
                                                         const SourceFiles& files,
                                                         const std::string& cache) {
-  const codegen::CachedController c = codegen::cached_controller(program, cache, &files);
+  const codegen::CachedController c = codegen::cached_controller(
+      program, cache.empty() ? codegen::default_cache_dir() : cache, &files);
+  if (!c.rebuilt_because.empty()) {
+    std::cerr << "mospec: warning: the cached controller in " << c.project
+              << " was not used: " << c.rebuilt_because << "; built it again\n";
+  }
   if (c.built) std::cerr << "mospec: generated and built the controller in " << c.project << '\n';
-  return codegen::load_controller(c.library);
+  return codegen::load_controller(c.library, c.sha256);
 }
 
 std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted) {
@@ -161,7 +168,8 @@ Action add_run_command(CLI::App& app) {
       ->type_name("FILE.json");
   cmd->add_option("--fault", flags->faults, kFaultHelp)->type_name("SPEC");
   cmd->add_option("--cache", flags->cache,
-                  "Directory of generated and built controllers (default: .mospec-cache)")
+                  "Directory of generated and built controllers, private to you (default: "
+                  "$XDG_CACHE_HOME/mospec, else ~/.cache/mospec)")
       ->type_name("DIR");
   return [flags]() {
     int code = kExitOk;
@@ -186,8 +194,7 @@ Action add_run_command(CLI::App& app) {
     if (flags->interpret) {
       controller = std::make_unique<ir::Interpreter>(std::move(*program));
     } else {
-      controller = generated_controller(*program, files,
-                                        flags->cache.empty() ? ".mospec-cache" : flags->cache);
+      controller = generated_controller(*program, files, flags->cache);
     }
     sim::World world(config, arm);
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);

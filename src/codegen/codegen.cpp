@@ -6,9 +6,10 @@
 #include <cstring>
 #include <filesystem>
 #include <kainjow/mustache.hpp>
-#include <set>
+#include <map>
 #include <string_view>
 
+#include "codegen/build.hpp"
 #include "codegen/templates.hpp"
 #include "support/io.hpp"
 
@@ -38,9 +39,11 @@ std::string cpp_string(std::string_view text) {
     if (c == '"' || c == '\\') {
       out.push_back('\\');
       out.push_back(c);
-    } else if (u < 0x20 || u == 0x7f || c == '?') {
-      // Octal escapes (three digits, so a following digit is never absorbed);
-      // '?' too, so no trigraph can form.
+    } else if (u < 0x20 || u >= 0x7f || c == '?') {
+      // Octal escapes (three digits, so a following digit is never absorbed):
+      // control characters, every byte outside ASCII (the literal holds the
+      // same bytes, and no bidi control reaches the source), and '?', so no
+      // trigraph can form.
       std::array<char, 8> buf{};
       std::snprintf(buf.data(), buf.size(), "\\%03o", static_cast<unsigned>(u));
       out.append(buf.data());
@@ -60,93 +63,125 @@ namespace {
   throw Error("codegen", msg);
 }
 
-// Text for a // comment: one line, and no trailing backslash (a line splice).
-std::string comment(std::string_view text) {
+// One character of UTF-8 at text[at] (advancing `at`): its code point, or -1
+// for a byte that does not start a well-formed, shortest-form sequence.
+long decode_utf8(std::string_view text, std::size_t& at) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  const unsigned char b0 = byte(at);
+  int extra = 0;
+  long cp = 0;
+  if (b0 >= 0xC2 && b0 <= 0xDF) {
+    extra = 1;
+    cp = b0 & 0x1F;
+  } else if (b0 >= 0xE0 && b0 <= 0xEF) {
+    extra = 2;
+    cp = b0 & 0x0F;
+  } else if (b0 >= 0xF0 && b0 <= 0xF4) {
+    extra = 3;
+    cp = b0 & 0x07;
+  } else {
+    ++at;
+    return -1;
+  }
+  if (at + static_cast<std::size_t>(extra) >= text.size()) {
+    ++at;
+    return -1;
+  }
+  for (int k = 1; k <= extra; ++k) {
+    const unsigned char b = byte(at + static_cast<std::size_t>(k));
+    if ((b & 0xC0) != 0x80) {
+      ++at;
+      return -1;
+    }
+    cp = (cp << 6) | (b & 0x3F);
+  }
+  const long min = extra == 1 ? 0x80 : extra == 2 ? 0x800 : 0x10000;
+  if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
+    ++at;
+    return -1;
+  }
+  at += static_cast<std::size_t>(extra) + 1;
+  return cp;
+}
+
+std::string hex_escape(const char* format, unsigned long value) {
+  std::array<char, 16> buf{};
+  std::snprintf(buf.data(), buf.size(), format, value);
+  return buf.data();
+}
+
+}  // namespace
+
+std::string comment_text(std::string_view text) {
   std::string out;
-  for (const char c : text) out.push_back(static_cast<unsigned char>(c) < 0x20 ? ' ' : c);
-  while (!out.empty() && out.back() == '\\') out.back() = '/';
+  for (std::size_t at = 0; at < text.size();) {
+    const char c = text[at];
+    const auto u = static_cast<unsigned char>(c);
+    const char next = at + 1 < text.size() ? text[at + 1] : '\0';
+    if (u >= 0x80) {
+      const std::size_t start = at;
+      const long cp = decode_utf8(text, at);
+      if (cp < 0) {
+        out.append(hex_escape("\\x%02X", static_cast<unsigned char>(text[start])));
+      } else {
+        out.append(
+            hex_escape(cp > 0xFFFF ? "\\U%08lX" : "\\u%04lX", static_cast<unsigned long>(cp)));
+      }
+      continue;
+    }
+    // Control characters (line breaks above all), the backslash (a line
+    // splice), '?' before '?' (a trigraph), and the two characters of "*/"
+    // and "/*" (a block comment's end or start).
+    const bool escape = u < 0x20 || u == 0x7f || c == '\\' || (c == '?' && next == '?') ||
+                        (c == '*' && next == '/') || (c == '/' && next == '*');
+    if (escape) {
+      out.append(hex_escape("\\x%02X", u));
+    } else {
+      out.push_back(c);
+    }
+    ++at;
+  }
   return out;
 }
 
-const std::set<std::string_view>& cpp_keywords() {
-  static const std::set<std::string_view> k{"alignas",       "alignof",     "and",
-                                            "and_eq",        "asm",         "auto",
-                                            "bitand",        "bitor",       "bool",
-                                            "break",         "case",        "catch",
-                                            "char",          "char8_t",     "char16_t",
-                                            "char32_t",      "class",       "compl",
-                                            "concept",       "const",       "consteval",
-                                            "constexpr",     "constinit",   "const_cast",
-                                            "continue",      "co_await",    "co_return",
-                                            "co_yield",      "decltype",    "default",
-                                            "delete",        "do",          "double",
-                                            "dynamic_cast",  "else",        "enum",
-                                            "explicit",      "export",      "extern",
-                                            "false",         "float",       "for",
-                                            "friend",        "goto",        "if",
-                                            "inline",        "int",         "long",
-                                            "mutable",       "namespace",   "new",
-                                            "noexcept",      "not",         "not_eq",
-                                            "nullptr",       "operator",    "or",
-                                            "or_eq",         "private",     "protected",
-                                            "public",        "register",    "reinterpret_cast",
-                                            "requires",      "return",      "short",
-                                            "signed",        "sizeof",      "static",
-                                            "static_assert", "static_cast", "struct",
-                                            "switch",        "template",    "this",
-                                            "thread_local",  "throw",       "true",
-                                            "try",           "typedef",     "typeid",
-                                            "typename",      "union",       "unsigned",
-                                            "using",         "virtual",     "void",
-                                            "volatile",      "wchar_t",     "while",
-                                            "xor",           "xor_eq"};
-  return k;
+namespace {
+
+bool is_alnum(unsigned char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
 }
 
-bool is_identifier(std::string_view s) {
-  if (s.empty() || (s[0] >= '0' && s[0] <= '9')) return false;
-  for (const char c : s) {
-    const bool ok =
-        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-    if (!ok) return false;
-  }
-  // Reserved: a double underscore anywhere, or an underscore and a capital first.
-  if (s.find("__") != std::string_view::npos) return false;
-  if (s.size() > 1 && s[0] == '_' && s[1] >= 'A' && s[1] <= 'Z') return false;
-  return cpp_keywords().count(s) == 0;
-}
+}  // namespace
 
-// Unique identifiers within one scope: the IR's name when it is a usable C++
-// identifier not yet taken, else the fallback (made unique with a suffix).
-class Names {
- public:
-  std::string take(const std::string& wanted, const std::string& fallback) {
-    std::string name = is_identifier(wanted) && !used_.count(wanted) ? wanted : fallback;
-    if (used_.count(name)) {
-      for (int k = 2;; ++k) {
-        std::string candidate = name;
-        candidate.append("_").append(std::to_string(k));
-        if (!used_.count(candidate)) {
-          name = candidate;
-          break;
-        }
+std::string mangle(std::string_view role, std::string_view name) {
+  std::string out(role);
+  out.push_back('_');
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    if (i == 0) {
+      // First: a letter or digit stands for itself, except 'x', which (like
+      // every other byte) is written xHH.
+      if (is_alnum(c) && c != 'x') {
+        out.push_back(static_cast<char>(c));
+      } else {
+        out.append(hex_escape("x%02X", c));
       }
+      continue;
     }
-    used_.insert(name);
-    return name;
+    const bool next_plain = i + 1 < name.size() &&
+                            is_alnum(static_cast<unsigned char>(name[i + 1])) && name[i + 1] != 'x';
+    if (is_alnum(c) || (c == '_' && next_plain)) {
+      // A letter or digit, or an underscore between that and a letter or
+      // digit other than 'x': itself. So "_x" only ever starts an escape, and
+      // no "__" can form.
+      out.push_back(static_cast<char>(c));
+    } else {
+      out.append(hex_escape("_x%02X", c));
+    }
   }
-
- private:
-  std::set<std::string> used_;
-};
-
-// `prefix` + name, unless the name already starts with it ("pid_" + "pid_x"
-// stays "pid_x").
-std::string prefixed(std::string_view prefix, const std::string& name) {
-  if (name.compare(0, prefix.size(), prefix) == 0) return name;
-  std::string s(prefix);
-  return s.append(name);
+  return out;
 }
+
+namespace {
 
 // The member of Data that holds each data type's slots.
 std::string_view type_member(DataType t) {
@@ -227,34 +262,79 @@ mus::data list() {
 
 // Builds the template data for one Program. Every choice is made here.
 class Builder {
+  // The identifiers of one arm solver's members and functions.
+  struct ArmNames {
+    std::string arm;       // Model: its AchdModel (gravity); Data: its AchdData
+    std::string task;      // Model: the AchdModel of the ACHD solve (no gravity)
+    std::string X_BR;      // Model: the solver's root R in the chain's root B
+    std::string model_fn;  // function: builds the AchdModel for a gravity
+    std::string X_RB_fn;   // function: the mount pose
+    std::string ws;        // Data: the steps' workspace
+  };
+
+  // The identifiers one role of entities takes: an entity whose identifier is
+  // already taken is an error naming both entities' IRIs and locations.
+  class Scope {
+   public:
+    Scope(const Builder& b, std::string what) : b_(b), what_(std::move(what)) {}
+    std::string take(std::string_view role, const std::string& name, const std::string& iri,
+                     const SourceLoc& where) {
+      std::string id = mangle(role, name);
+      const auto [it, inserted] = taken_.emplace(id, Entity{iri, where});
+      if (!inserted) {
+        std::string msg = "codegen: the ";
+        msg.append(what_).append(" '").append(it->second.iri).append("' (");
+        msg.append(b_.location(it->second.where)).append(") and '").append(iri);
+        msg.append("' share the name '").append(name).append("', so both would be the C++ '");
+        msg.append(id).append("'; give one of them another local name");
+        const std::string file = b_.file_of(where);
+        throw Error("codegen-name-collision", msg, file, where.line, where.column);
+      }
+      return id;
+    }
+
+   private:
+    struct Entity {
+      std::string iri;
+      SourceLoc where;
+    };
+    const Builder& b_;
+    std::string what_;
+    std::map<std::string, Entity> taken_;
+  };
+
  public:
   Builder(const ir::Program& p, const SourceFiles* files) : p_(p), files_(files) {
-    Names slot_names;
+    // Every model-derived identifier is mangle(role, IR name): distinct roles
+    // never meet, and within a role distinct names never meet (mangle is
+    // injective), so only two entities with the same IR name in one role can
+    // collide: that is an error naming both.
+    Scope slots(*this, "data"), arms(*this, "arm solvers"), evals(*this, "evaluation steps"),
+        pids(*this, "PID steps"), monitors(*this, "monitor steps");
     for (std::size_t i = 0; i < p.data.size(); ++i) {
       const ir::Data& d = p.data[i];
       if (d.slot < 0 || d.slot >= p.count(d.type)) {
         fail("datum '" + d.name + "' has slot " + std::to_string(d.slot) + ", outside its type's " +
              std::to_string(p.count(d.type)) + " slot(s)");
       }
-      std::string fallback(type_member(d.type));
-      fallback.append("_").append(std::to_string(d.slot));
-      data_names_.push_back(slot_names.take(d.name, fallback));
+      data_names_.push_back(slots.take("v", d.name, d.iri, d.where));
     }
-    Names members;
-    for (std::size_t a = 0; a < p.arms.size(); ++a) {
-      arm_members_.push_back(members.take("arm_" + p.arms[a].name, "arm_" + std::to_string(a)));
-      ws_members_.push_back(members.take("ws_" + p.arms[a].name, "ws_" + std::to_string(a)));
+    for (const ir::ArmSolver& a : p.arms) {
+      ArmNames n;
+      n.arm = arms.take("arm", a.name, a.iri, a.where);
+      n.task = mangle("task", a.name);
+      n.X_BR = mangle("XBR", a.name);
+      n.model_fn = mangle("model", a.name);
+      n.X_RB_fn = mangle("XRB", a.name);
+      n.ws = mangle("ws", a.name);
+      arm_names_.push_back(std::move(n));
     }
-    members.take("base", "base");
-    for (std::size_t i = 0; i < p.steps.size(); ++i) {
-      const ir::Step& st = p.steps[i];
-      const std::string idx = std::to_string(i);
+    for (const ir::Step& st : p.steps) {
       std::string m;
-      if (st.kind == StepKind::Evaluate)
-        m = members.take(prefixed("eval_", st.name), "eval_" + idx);
-      if (st.kind == StepKind::Pid) m = members.take(prefixed("pid_", st.name), "pid_" + idx);
+      if (st.kind == StepKind::Evaluate) m = evals.take("eval", st.name, st.iri, st.where);
+      if (st.kind == StepKind::Pid) m = pids.take("pid", st.name, st.iri, st.where);
       if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor) {
-        m = members.take(prefixed("tolerance_", st.name), "tolerance_" + idx);
+        m = monitors.take("tolerance", st.name, st.iri, st.where);
       }
       step_members_.push_back(m);
     }
@@ -262,7 +342,7 @@ class Builder {
 
   mus::data build() {
     mus::data root;
-    root.set("app_comment", comment(p_.app));
+    root.set("app_comment", comment_text(p_.app));
     root.set("app_literal", cpp_string(p_.app));
     add_slots(root);
     add_model(root);
@@ -298,6 +378,21 @@ class Builder {
     if (k >= st.out.size()) fail("step '" + st.name + "' has no output " + std::to_string(k));
     return ref(st.out[k]);
   }
+  // The path of a location's file ("" when unknown).
+  std::string file_of(const SourceLoc& loc) const {
+    if (files_ != nullptr && loc.file != 0 && loc.file < files_->size())
+      return files_->path(loc.file);
+    return {};
+  }
+  // "file:line:col" as messages quote it.
+  std::string location(const SourceLoc& loc) const {
+    if (!loc.known()) return "no source location";
+    std::string s = file_of(loc);
+    if (s.empty()) s = "<file " + std::to_string(loc.file) + ">";
+    s.append(":").append(std::to_string(loc.line));
+    if (loc.column != 0) s.append(":").append(std::to_string(loc.column));
+    return s;
+  }
   std::string where(const SourceLoc& loc) const {
     if (!loc.known()) return "(no source location)";
     std::string s;
@@ -308,7 +403,7 @@ class Builder {
     }
     s.append(":").append(std::to_string(loc.line));
     if (loc.column != 0) s.append(":").append(std::to_string(loc.column));
-    return comment(s);
+    return comment_text(s);
   }
   const ir::ArmSolver& arm(const ir::Step& st) const {
     if (st.solver < 0 || static_cast<std::size_t>(st.solver) >= p_.arms.size()) {
@@ -341,9 +436,9 @@ class Builder {
         mus::data s;
         s.set("name", data_names_[i]);
         s.set("slot", std::to_string(d.slot));
-        s.set("iri", comment(d.iri));
+        s.set("iri", comment_text(d.iri));
         s.set("has_unit", !d.unit.empty());
-        s.set("unit", comment(d.unit));
+        s.set("unit", comment_text(d.unit));
         slots.push_back(s);
       }
       mus::data entry;
@@ -360,23 +455,28 @@ class Builder {
     mus::data arms = list();
     for (std::size_t a = 0; a < p_.arms.size(); ++a) {
       const ir::ArmSolver& s = p_.arms[a];
-      const std::string& member = arm_members_[a];
+      const ArmNames& n = arm_names_[a];
+      const std::string& member = n.arm;
       mus::data e;
-      e.set("name", comment(s.name));
-      e.set("iri", comment(s.iri));
-      e.set("chain_iri", comment(s.chain_iri));
-      e.set("root", comment(s.chain.root()));
+      e.set("name", comment_text(s.name));
+      e.set("iri", comment_text(s.iri));
+      e.set("chain_iri", comment_text(s.chain_iri));
+      e.set("root", comment_text(s.chain.root()));
       e.set("root_literal", cpp_string(s.chain.root()));
       e.set("segments", std::to_string(s.chain.size()));
       e.set("port", std::to_string(s.port));
       e.set("member", member);
-      e.set("workspace", ws_members_[a]);
+      e.set("workspace", n.ws);
+      e.set("task", n.task);
+      e.set("X_BR", n.X_BR);
+      e.set("model_fn", n.model_fn);
+      e.set("X_RB_fn", n.X_RB_fn);
       e.set("constraints", std::to_string(s.acceleration_constraints.size()));
       e.set("gravity", join_doubles(s.gravity.data(), 3));
       e.set("X_RB_R", mat3(s.X_RB.R));
       e.set("X_RB_p", vec3(s.X_RB.p));
       e.set("has_mount", !s.mount_pose_iri.empty());
-      e.set("mount_iri", comment(s.mount_pose_iri));
+      e.set("mount_iri", comment_text(s.mount_pose_iri));
       e.set("tip_is_last_segment", s.tip_is_last_segment);
       const runtime::Pose X_NT = s.tip_is_last_segment ? runtime::Pose{} : s.chain.X_NT();
       e.set("X_NT_R", mat3(X_NT.R));
@@ -419,28 +519,28 @@ class Builder {
       mus::data alpha = list();
       for (std::size_t k = 0; k < s.acceleration_constraints.size(); ++k) {
         mus::data c;
-        c.set("workspace", ws_members_[a]);
+        c.set("workspace", n.ws);
         c.set("component", std::to_string(s.acceleration_constraints[k].component));
         c.set("column", std::to_string(k));
-        c.set("iri", comment(s.acceleration_constraints[k].iri));
+        c.set("iri", comment_text(s.acceleration_constraints[k].iri));
         alpha.push_back(c);
       }
       e.set("alpha", alpha);
       arms.push_back(e);
       // The physical model (the solver's gravity: kinematics and the torque
       // command), the task model (no gravity: the ACHD solve), the mount.
-      inits.push_back(member + "(" + member + "_model(rt::Vec3(" +
-                      join_doubles(s.gravity.data(), 3) + ")))");
-      inits.push_back(member + "_task(" + member + "_model(rt::Vec3::Zero()))");
-      inits.push_back(member + "_X_BR(" + member + "_X_RB().inverse())");
+      inits.push_back(member + "(" + n.model_fn + "(rt::Vec3(" + join_doubles(s.gravity.data(), 3) +
+                      ")))");
+      inits.push_back(n.task + "(" + n.model_fn + "(rt::Vec3::Zero()))");
+      inits.push_back(n.X_BR + "(" + n.X_RB_fn + "().inverse())");
     }
     root.set("arms", arms);
 
     root.set("has_base", p_.base.has_value());
     if (p_.base) {
       const ir::BaseSolver& b = *p_.base;
-      root.set("base_name", comment(b.name));
-      root.set("base_iri", comment(b.iri));
+      root.set("base_name", comment_text(b.name));
+      root.set("base_iri", comment_text(b.iri));
       for (int i = 0; i < runtime::kKeloDrives; ++i) {
         root.set("pivot" + std::to_string(i),
                  join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
@@ -458,7 +558,7 @@ class Builder {
       const runtime::ConstraintSpec& c = st.constraint;
       mus::data e;
       e.set("member", step_members_[i]);
-      e.set("iri", comment(st.iri));
+      e.set("iri", comment_text(st.iri));
       evaluators.push_back(e);
       std::string init = step_members_[i];
       init.append("(rt::ConstraintSpec{.kind = ").append(constraint_kind(c.kind));
@@ -476,7 +576,7 @@ class Builder {
       const runtime::PidSpec& c = st.pid;
       mus::data e;
       e.set("member", step_members_[i]);
-      e.set("iri", comment(st.iri));
+      e.set("iri", comment_text(st.iri));
       pids.push_back(e);
       std::string init = step_members_[i];
       init.append("(rt::PidSpec{.kp = ").append(cpp_double(c.kp));
@@ -495,7 +595,7 @@ class Builder {
       if (st.kind != StepKind::LevelMonitor && st.kind != StepKind::EdgeMonitor) continue;
       mus::data e;
       e.set("member", step_members_[i]);
-      e.set("iri", comment(st.iri));
+      e.set("iri", comment_text(st.iri));
       e.set("tolerance", cpp_double(st.constraint.tolerance));
       monitors.push_back(e);
     }
@@ -537,8 +637,8 @@ class Builder {
 
     std::vector<std::string> inits;
     for (std::size_t a = 0; a < p_.arms.size(); ++a) {
-      inits.push_back(arm_members_[a] + "(m." + arm_members_[a] + ")");
-      inits.push_back(ws_members_[a] + "(m." + arm_members_[a] + ", " +
+      inits.push_back(arm_names_[a].arm + "(m." + arm_names_[a].arm + ")");
+      inits.push_back(arm_names_[a].ws + "(m." + arm_names_[a].arm + ", " +
                       std::to_string(p_.arms[a].acceleration_constraints.size()) + ")");
     }
     if (p_.base) inits.emplace_back("base(m.base)");
@@ -551,7 +651,7 @@ class Builder {
     for (std::size_t i = 0; i < p_.data.size(); ++i) {
       const ir::Data& d = p_.data[i];
       if (d.value.empty() || d.type == DataType::Event) continue;  // events clear every tick
-      const std::string member = "value_" + data_names_[i];
+      const std::string member = mangle("value", d.name);
       const auto need = [&](std::size_t n) {
         if (d.value.size() != n) {
           fail("constant '" + d.name + "' has " + std::to_string(d.value.size()) +
@@ -595,9 +695,9 @@ class Builder {
       c.set("member", member);
       c.set("assign", assign);
       c.set("copy", ref(static_cast<int>(i), "") + " = m." + member + ";");
-      c.set("name", comment(d.iri.empty() ? d.name : d.iri));
+      c.set("name", comment_text(d.iri.empty() ? d.name : d.iri));
       c.set("has_unit", !d.unit.empty());
-      c.set("unit", comment(d.unit));
+      c.set("unit", comment_text(d.unit));
       constants.push_back(c);
     }
     root.set("has_constants", !constants.list_value().empty());
@@ -615,13 +715,16 @@ class Builder {
     mus::data s;
     s.set("index", std::to_string(index));
     s.set("kind", std::string(ir::to_string(st.kind)));
-    s.set("name", comment(st.name));
-    s.set("iri", comment(st.iri));
+    s.set("name", comment_text(st.name));
+    s.set("iri", comment_text(st.iri));
     s.set("where", where(st.where));
     // A blank line, then what the block implements and where it is written.
     std::string header = "\n  // [";
     header.append(std::to_string(index)).append("] ").append(ir::to_string(st.kind)).append(" '");
-    header.append(comment(st.name)).append("': ").append(comment(st.iri)).append("\n  //     ");
+    header.append(comment_text(st.name))
+        .append("': ")
+        .append(comment_text(st.iri))
+        .append("\n  //     ");
     header.append(where(st.where));
     s.set("header", header);
     const auto call = [&](int arity, const char* function) {
@@ -641,8 +744,9 @@ class Builder {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
         s.set("is_arm_kinematics", true);
-        s.set("arm", arm_members_[k]);
-        s.set("workspace", ws_members_[k]);
+        s.set("arm", arm_names_[k].arm);
+        s.set("task", arm_names_[k].task);
+        s.set("workspace", arm_names_[k].ws);
         s.set("port", std::to_string(a.port));
         mus::data outputs = list();
         for (const ir::ArmOutput& o : a.outputs) {
@@ -650,12 +754,12 @@ class Builder {
           e.set("target", ref(o.data));
           std::string call = "rt::steps::";
           if (o.what == ir::ArmOutput::What::SegmentPose) {
-            call.append("segment_pose(d.").append(arm_members_[k]).append(", ");
+            call.append("segment_pose(d.").append(arm_names_[k].arm).append(", ");
           } else if (o.what == ir::ArmOutput::What::ChainRootPose) {
-            call.append("segment_pose_in_chain_root(d.").append(arm_members_[k]).append(", m.");
-            call.append(arm_members_[k]).append("_X_BR, ");
+            call.append("segment_pose_in_chain_root(d.").append(arm_names_[k].arm).append(", m.");
+            call.append(arm_names_[k].X_BR).append(", ");
           } else {
-            call.append("segment_twist(d.").append(arm_members_[k]).append(", ");
+            call.append("segment_twist(d.").append(arm_names_[k].arm).append(", ");
           }
           call.append(std::to_string(o.segment)).append(")");
           e.set("call", call);
@@ -777,8 +881,9 @@ class Builder {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
         s.set("is_arm_solve", true);
-        s.set("arm", arm_members_[k]);
-        s.set("workspace", ws_members_[k]);
+        s.set("arm", arm_names_[k].arm);
+        s.set("task", arm_names_[k].task);
+        s.set("workspace", arm_names_[k].ws);
         s.set("port", std::to_string(a.port));
         // in[0, drivers) are the drivers' data; the rest gate the solve: the
         // running flags of the motions that drive this arm (none running: hold).
@@ -798,26 +903,26 @@ class Builder {
         mus::data forces = list(), joint_forces = list(), betas = list();
         for (const ir::CartesianForce& f : a.cartesian_forces) {
           mus::data e;
-          e.set("workspace", ws_members_[k]);
+          e.set("workspace", arm_names_[k].ws);
           e.set("segment", std::to_string(f.segment));
           e.set("source", ref(f.wrench));
-          e.set("iri", comment(f.iri));
+          e.set("iri", comment_text(f.iri));
           forces.push_back(e);
         }
         for (const ir::JointForce& f : a.joint_forces) {
           mus::data e;
-          e.set("workspace", ws_members_[k]);
+          e.set("workspace", arm_names_[k].ws);
           e.set("joint", std::to_string(f.joint));
           e.set("source", ref(f.force));
-          e.set("iri", comment(f.iri));
+          e.set("iri", comment_text(f.iri));
           joint_forces.push_back(e);
         }
         for (std::size_t c = 0; c < a.acceleration_constraints.size(); ++c) {
           mus::data e;
-          e.set("workspace", ws_members_[k]);
+          e.set("workspace", arm_names_[k].ws);
           e.set("column", std::to_string(c));
           e.set("source", ref(a.acceleration_constraints[c].energy));
-          e.set("iri", comment(a.acceleration_constraints[c].iri));
+          e.set("iri", comment_text(a.acceleration_constraints[c].iri));
           betas.push_back(e);
         }
         s.set("forces", forces);
@@ -894,8 +999,8 @@ class Builder {
 
   const ir::Program& p_;
   const SourceFiles* files_;
-  std::vector<std::string> data_names_;  // by data index: its slot:: identifier
-  std::vector<std::string> arm_members_, ws_members_;
+  std::vector<std::string> data_names_;    // by data index: its slot:: identifier
+  std::vector<ArmNames> arm_names_;        // by arm solver index
   std::vector<std::string> step_members_;  // by step index: its Model member ("" if none)
 };
 
@@ -1000,6 +1105,10 @@ std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles*
 }
 
 void generate(const ir::Program& program, const std::string& out_dir, const SourceFiles* files) {
+  // A project there could not be built safely (build.hpp): refused before anything is written.
+  std::error_code absolute_ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(out_dir, absolute_ec);
+  check_cmake_path(absolute_ec ? out_dir : absolute.string(), "the output directory");
   const std::vector<GeneratedFile> rendered = render(program, files);
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);

@@ -34,7 +34,9 @@ std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles*
 
 // render() written into `out_dir` (created if missing), each file atomically
 // (temporary sibling + rename): a reader never sees half a file. Throws
-// mospec::Error("io") naming the path on failure.
+// mospec::Error("io") naming the path on failure, and
+// mospec::Error("unsafe-path") before writing anything when `out_dir` holds
+// a character CMake could not quote in a build of it (check_cmake_path).
 void generate(const ir::Program& program, const std::string& out_dir,
               const SourceFiles* files = nullptr);
 
@@ -43,7 +45,26 @@ void generate(const ir::Program& program, const std::string& out_dir,
 // numeric_limits spelling of infinities and NaN.
 std::string cpp_double(double value);
 
-// A C++ string literal (quotes included) for arbitrary bytes.
+// A C++ string literal (quotes included) for arbitrary bytes: printable ASCII
+// as it is, everything else (control characters, bytes outside ASCII, '?')
+// as octal escapes, so the literal holds exactly `text`'s bytes.
 std::string cpp_string(std::string_view text);
+
+// Model text for a // comment (or a CMake # comment): printable ASCII only.
+// Control characters (line breaks), the backslash, '?' before '?' (a
+// trigraph), '*' before '/' and '/' before '*' are written \xHH; characters
+// outside ASCII (bidi controls among them) \uXXXX or \UXXXXXXXX, and bytes
+// that are not UTF-8 \xHH. So the comment cannot end early, splice a line,
+// or show a reader something the compiler does not see.
+std::string comment_text(std::string_view text);
+
+// The C++ identifier of a model-derived name in one role ("v" for a datum's
+// slot, "arm", "eval", ...): role + '_' + the name, letters and digits as
+// they are, every other byte as _xHH (xHH first, and a leading 'x' too); an
+// underscore stays when a letter or digit other than 'x' follows it. Injective
+// for a given role (the name can be read back), never holds "__" and, with a
+// lower-case role, never starts with '_' or a capital: no keyword, no reserved
+// name and no standard macro (errno, assert, NULL, unix, ...) can result.
+std::string mangle(std::string_view role, std::string_view name);
 
 }  // namespace mospec::codegen

@@ -12,6 +12,12 @@
 //                    by a PID, a Cartesian force and a joint force, gated by a
 //                    motion (the arm holds once it ends).
 //   empty_program()  no data, no steps, no log.
+//   hostile_program() names and IRIs no C++ name or comment may hold as they
+//                    are: a trigraph, a lone U+202E, C macros (errno, assert,
+//                    NULL, EOF, stdin, INFINITY, unix, linux), keywords,
+//                    reserved spellings, "*/", line breaks, a trailing
+//                    backslash; and two arm solvers, "r" and "r_task", whose
+//                    members collided under the old naming (arm_r_task).
 #pragma once
 
 #include <cmath>
@@ -297,6 +303,80 @@ inline ir::Program arm_program(SourceFiles& files) {
   }
   b.log("height_ok", ok);
   b.log("reach", reach);
+  return b.p;
+}
+
+inline ir::Program hostile_program(SourceFiles& files) {
+  using T = ir::DataType;
+  using K = ir::StepKind;
+  ProgramBuilder b(files);
+  b.p.app = "https://mospec.example/tests/codegen/app*/\n#error injected ?\?/\n\xE2\x80\xAE";
+  const std::string rlo = "\xE2\x80\xAE";  // U+202E RIGHT-TO-LEFT OVERRIDE, alone
+  const int time = b.datum("?\?/", T::Scalar, {}, "SEC");
+  b.step(K::ReadClock, "?\?/", {}, {time});
+  const int ok = b.datum("assert", T::Flag);
+  const int err = b.datum("errno", T::Scalar, {}, "SEC\\");
+  ir::Step& ev = b.step(K::Evaluate, rlo, {time}, {ok, err});
+  ev.constraint = {runtime::ConstraintKind::GreaterThan, 0.0, 0.2, 0.0, 0.0, 0.0};
+  ev.has_error_output = true;
+  ev.iri.append("*/\n#error injected\\");
+  const int out = b.datum("NULL", T::Scalar, {}, "N-M");
+  ir::Step& pid = b.step(K::Pid, "switch", {err}, {out});
+  pid.pid.kp = 2.0;
+  pid.pid.ki = 0.5;
+  pid.state = b.state(ir::StateKind::Pid);
+  const int level = b.datum("unix", T::Flag);
+  ir::Step& lm = b.step(K::LevelMonitor, "EOF", {err}, {level});
+  lm.constraint.tolerance = 0.01;
+  lm.state = b.state(ir::StateKind::Monitor);
+  const int edge = b.datum("linux", T::Event);
+  ir::Step& em = b.step(K::EdgeMonitor, "stdin", {err}, {edge});
+  em.constraint.tolerance = 0.01;
+  em.state = b.state(ir::StateKind::Monitor);
+  const int tau = b.datum("INFINITY", T::Scalar, {0.25}, "N-M");
+  const int reserved = b.datum("__x", T::Scalar, {-0.125}, "N-M");
+  const int capital = b.datum("_Capital", T::Scalar, {}, "M");
+  const int keyword = b.datum("class", T::Scalar, {}, "M");
+  const int x_first = b.datum("x_", T::Pose);
+  const int x_second = b.datum("x5F", T::Pose);  // what "_" alone once became
+
+  // Two arm solvers on the same chain, one per arm port.
+  const runtime::Chain chain = gen3_chain();
+  const int n = chain.size();
+  const std::vector<std::pair<std::string, int>> solvers{{"r", robot::kRightArm},
+                                                         {"r_task", robot::kLeftArm}};
+  const std::vector<std::vector<int>> outputs{{x_first, capital}, {x_second, keyword}};
+  const std::vector<int> forces{tau, reserved};
+  for (std::size_t a = 0; a < solvers.size(); ++a) {
+    ir::ArmSolver arm;
+    arm.iri = "https://mospec.example/tests/codegen/" + solvers[a].first;
+    arm.name = solvers[a].first;
+    arm.chain_iri = "https://mospec.example/robots/kinova-gen3/chain";
+    arm.root_frame = "https://mospec.example/robots/kinova-gen3/frame-base_link";
+    arm.port = solvers[a].second;
+    arm.chain = chain;
+    arm.gravity = {0.0, 0.0, -9.81};
+    arm.outputs = {{ir::ArmOutput::What::SegmentPose, n - 1, outputs[a][0]}};
+    arm.joint_forces = {{"https://mospec.example/tests/codegen/tau?\?/", 1, forces[a], 0},
+                        {"https://mospec.example/tests/codegen/pid", 2, out, 0}};
+    arm.where = {1, static_cast<uint32_t>(200 + a), 1};
+    b.p.arms.push_back(std::move(arm));
+    ir::Step& kin = b.step(K::ArmKinematics, solvers[a].first + "_kinematics", {}, {outputs[a][0]});
+    kin.solver = static_cast<int>(a);
+    b.step(K::ViewRead, solvers[a].first + "_view", {outputs[a][0]}, {outputs[a][1]}).views = {5};
+  }
+  for (std::size_t a = 0; a < solvers.size(); ++a) {
+    ir::Step& solve = b.step(K::ArmSolve, solvers[a].first + "_solve", {forces[a], out}, {});
+    solve.solver = static_cast<int>(a);
+  }
+  b.log("?\?/", time, "SEC");
+  b.log(rlo, err, "SEC\\");
+  b.log("NULL \"quoted\" \\", out, "N-M");
+  b.log("*/", capital, "M");
+  b.log("class", keyword, "M");
+  b.log("assert", ok);
+  b.log("unix", level);
+  b.log("linux", edge);
   return b.p;
 }
 

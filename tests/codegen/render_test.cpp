@@ -2,9 +2,12 @@
 // exactly, one commented block per IR step, atomic writes.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <optional>
+#include <set>
 
 #include "codegen/codegen.hpp"
 #include "programs.hpp"
@@ -69,12 +72,12 @@ TEST(Codegen, EveryStepIsACommentedBlockInScheduleOrder) {
     ASSERT_NE(found, std::string::npos) << head;
     at = found + head.size();
   }
-  EXPECT_NE(cpp.find("d.scalar[slot::time] = state.clock.t;"), std::string::npos);
-  EXPECT_NE(cpp.find("rt::steps::pid(m.pid_height, d.pid[0], d.scalar[slot::height_err], "
-                     "state.clock.dt, d.flag[slot::approach]);"),
+  EXPECT_NE(cpp.find("d.scalar[slot::v_time] = state.clock.t;"), std::string::npos);
+  EXPECT_NE(cpp.find("rt::steps::pid(m.pid_pid_height, d.pid[0], d.scalar[slot::v_height_err], "
+                     "state.clock.dt, d.flag[slot::v_approach]);"),
             std::string::npos);
   const std::string hpp = file(render(p, &files), "controller.hpp");
-  EXPECT_NE(hpp.find("inline constexpr std::size_t height_err = "), std::string::npos);
+  EXPECT_NE(hpp.find("inline constexpr std::size_t v_height_err = "), std::string::npos);
   EXPECT_NE(hpp.find("std::array<double, 13> scalar{};"), std::string::npos);
 }
 
@@ -82,15 +85,14 @@ TEST(Codegen, TheArmIsRebuiltFromItsSegmentConstants) {
   SourceFiles files;
   const ir::Program p = testing::arm_program(files);
   const std::string cpp = file(render(p, &files), "controller.cpp");
-  EXPECT_NE(cpp.find("rt::AchdModel arm_right_arm_model(const rt::Vec3& g_B) {"),
-            std::string::npos);
+  EXPECT_NE(cpp.find("rt::AchdModel model_right_arm(const rt::Vec3& g_B) {"), std::string::npos);
   std::size_t segments = 0;
   for (std::size_t at = cpp.find("chain.add_segment("); at != std::string::npos;
        at = cpp.find("chain.add_segment(", at + 1)) {
     ++segments;
   }
   EXPECT_EQ(segments, 7u);
-  EXPECT_NE(cpp.find("rt::steps::arm_solve(m.arm_right_arm_task, m.arm_right_arm, d.arm_right_arm, "
+  EXPECT_NE(cpp.find("rt::steps::arm_solve(m.task_right_arm, m.arm_right_arm, d.arm_right_arm, "
                      "d.ws_right_arm, command.arm_tau[0]);"),
             std::string::npos);
 }
@@ -117,16 +119,213 @@ TEST(Codegen, StringsAreEscaped) {
   EXPECT_EQ(cpp_string("?\?="), R"("\077\077=")");
 }
 
-// Names that are no C++ identifier, or already taken, fall back to the type and slot.
-TEST(Codegen, UnusableNamesFallBackToTheSlot) {
+TEST(Codegen, StringsHoldNoByteOutsideAscii) {
+  // A lone U+202E (a bidi control) in a literal: the same bytes, escaped.
+  EXPECT_EQ(cpp_string("a\xE2\x80\xAE"
+                       "b"),
+            R"("a\342\200\256b")");
+}
+
+TEST(Codegen, CommentsCannotEndSpliceOrHide) {
+  EXPECT_EQ(comment_text("plain https://x/y#z (1) ?"), "plain https://x/y#z (1) ?");
+  EXPECT_EQ(comment_text("a\nb\rc"), R"(a\x0Ab\x0Dc)");
+  EXPECT_EQ(comment_text("ends with \\"), R"(ends with \x5C)");
+  EXPECT_EQ(comment_text("?\?/"), R"(\x3F?/)");
+  EXPECT_EQ(comment_text("?\?\?="), R"(\x3F\x3F?=)");
+  EXPECT_EQ(comment_text("a*/b/*c"), R"(a\x2A/b\x2F*c)");
+  EXPECT_EQ(comment_text("\xE2\x80\xAE"), R"(\u202E)");
+  EXPECT_EQ(comment_text("caf\xC3\xA9 \xF0\x9F\x98\x80"), R"(caf\u00E9 \U0001F600)");
+  EXPECT_EQ(comment_text("bad \xC3 \xFF \xE2\x80"), R"(bad \xC3 \xFF \xE2\x80)");
+  EXPECT_EQ(comment_text("\xC0\xAF"), R"(\xC0\xAF)");          // overlong '/'
+  EXPECT_EQ(comment_text("\xED\xA0\x80"), R"(\xED\xA0\x80)");  // a surrogate
+}
+
+// mangle() read backwards: the test's proof that it is injective.
+std::optional<std::string> unmangle(std::string_view role, std::string_view id) {
+  if (id.substr(0, role.size() + 1) != std::string(role) + "_") return std::nullopt;
+  id.remove_prefix(role.size() + 1);
+  std::string out;
+  const auto hex = [&](std::size_t at) -> std::optional<char> {
+    if (at + 2 > id.size()) return std::nullopt;
+    return static_cast<char>(std::stoi(std::string(id.substr(at, 2)), nullptr, 16));
+  };
+  for (std::size_t i = 0; i < id.size();) {
+    if (i == 0 && id[0] == 'x') {
+      auto c = hex(1);
+      if (!c) return std::nullopt;
+      out.push_back(*c);
+      i = 3;
+    } else if (id[i] == '_' && i + 1 < id.size() && id[i + 1] == 'x') {
+      auto c = hex(i + 2);
+      if (!c) return std::nullopt;
+      out.push_back(*c);
+      i += 4;
+    } else {
+      out.push_back(id[i]);
+      ++i;
+    }
+  }
+  return out;
+}
+
+bool is_safe_identifier(const std::string& id) {
+  if (id.empty() || !std::islower(static_cast<unsigned char>(id[0]))) return false;
+  for (const char c : id) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
+  }
+  return id.find("__") == std::string::npos;
+}
+
+TEST(Mangle, IsInjectiveAndGivesSafeIdentifiers) {
+  std::vector<std::string> names{
+      "",    "a",     "x",        "_",        "__",     "_x",           "x_",
+      "x5F", "_x5F",  "a_b",      "a__b",     "a_x",    "a_x5Fb",       "a-b",
+      "a.b", "a_",    "a_B",      "_Capital", "errno",  "assert",       "NULL",
+      "EOF", "stdin", "INFINITY", "unix",     "linux",  "class",        "int",
+      "?\?/", "r",     "r_task",   "r_X_BR",   "9lives", "\xE2\x80\xAE", "a b",
+      "x78", "xx",    "_xx",      "a\nb"};
+  std::set<std::string> ids;
+  for (const std::string& n : names) {
+    const std::string id = mangle("v", n);
+    EXPECT_TRUE(is_safe_identifier(id)) << "'" << n << "' -> " << id;
+    EXPECT_EQ(unmangle("v", id), n) << id;
+    ids.insert(id);
+  }
+  EXPECT_EQ(ids.size(), names.size());
+  // Every byte, alone and between letters.
+  for (int b = 0; b < 256; ++b) {
+    const std::string byte(1, static_cast<char>(b));
+    std::string between = "a";
+    between.append(byte).append("b");
+    std::string last = "q";
+    last.append(byte);
+    for (const std::string& n : {byte, between, last}) {
+      const std::string id = mangle("arm", n);
+      EXPECT_TRUE(is_safe_identifier(id)) << b << " -> " << id;
+      EXPECT_EQ(unmangle("arm", id), n) << id;
+    }
+  }
+  EXPECT_EQ(mangle("v", "height_err"), "v_height_err");
+  EXPECT_EQ(mangle("v", "errno"), "v_errno");
+  EXPECT_EQ(mangle("v", "?\?/"), "v_x3F_x3F_x2F");
+}
+
+// Names, IRIs, units and file names that are hostile to C++: only mangled
+// identifiers, escaped comments and escaped literals reach the files.
+TEST(Codegen, HostileNamesReachTheFilesOnlyMangledOrEscaped) {
   SourceFiles files;
-  ir::Program p = testing::small_program(files);
-  p.data[0].name = "class";   // a keyword
-  p.data[1].name = "height";  // the scalar named so later falls back
-  const std::string hpp = file(render(p, &files), "controller.hpp");
-  EXPECT_NE(hpp.find("inline constexpr std::size_t scalar_0 = 0;"), std::string::npos);
-  EXPECT_NE(hpp.find("inline constexpr std::size_t height = 0;"), std::string::npos);
-  EXPECT_NE(hpp.find("inline constexpr std::size_t scalar_1 = 1;"), std::string::npos);
+  const ir::Program p = testing::hostile_program(files);
+  ir::verify(p);
+  const auto out = render(p, &files);
+  const std::vector<std::string> raw{"errno",    "assert", "NULL",  "EOF",    "stdin",
+                                     "INFINITY", "unix",   "linux", "switch", "__x"};
+  for (const GeneratedFile& f : out) {
+    for (std::size_t i = 0; i < f.content.size(); ++i) {
+      const auto u = static_cast<unsigned char>(f.content[i]);
+      ASSERT_TRUE(u == '\n' || (u >= 0x20 && u < 0x7f))
+          << f.path << ": byte " << int(u) << " at " << i;
+    }
+    EXPECT_EQ(f.content.find("??"), std::string::npos) << f.path;
+    EXPECT_EQ(f.content.find("\n#error"), std::string::npos) << f.path;
+    // Line by line: the code outside comments and string literals names no
+    // model text as it is.
+    std::size_t at = 0;
+    while (at < f.content.size()) {
+      std::size_t end = f.content.find('\n', at);
+      if (end == std::string::npos) end = f.content.size();
+      std::string line = f.content.substr(at, end - at);
+      at = end + 1;
+      EXPECT_TRUE(line.empty() || line.back() != '\\') << f.path << ": a line splice: " << line;
+      std::string code;
+      bool in_string = false;
+      for (std::size_t k = 0; k < line.size(); ++k) {
+        if (in_string) {
+          if (line[k] == '\\')
+            ++k;
+          else if (line[k] == '"')
+            in_string = false;
+          continue;
+        }
+        if (line[k] == '"') {
+          in_string = true;
+          code.push_back(' ');
+          continue;
+        }
+        if (line.compare(k, 2, "//") == 0 || (f.path == "CMakeLists.txt" && line[k] == '#')) {
+          const std::string text = line.substr(k + 1);
+          EXPECT_EQ(text.find("*/"), std::string::npos) << f.path << ": " << line;
+          EXPECT_EQ(text.find("/*"), std::string::npos) << f.path << ": " << line;
+          break;
+        }
+        code.push_back(line[k]);
+      }
+      for (const std::string& r : raw) {
+        for (std::size_t hit = code.find(r); hit != std::string::npos;
+             hit = code.find(r, hit + 1)) {
+          const bool starts =
+              hit == 0 ||
+              !(std::isalnum(static_cast<unsigned char>(code[hit - 1])) || code[hit - 1] == '_');
+          const std::size_t after = hit + r.size();
+          const bool ends =
+              after >= code.size() ||
+              !(std::isalnum(static_cast<unsigned char>(code[after])) || code[after] == '_');
+          EXPECT_FALSE(starts && ends) << f.path << ": '" << r << "' as a token in: " << line;
+        }
+      }
+    }
+  }
+  const std::string hpp = file(out, "controller.hpp");
+  const std::string cpp = file(out, "controller.cpp");
+  EXPECT_NE(hpp.find("inline constexpr std::size_t v_errno = "), std::string::npos);
+  EXPECT_NE(hpp.find("inline constexpr std::size_t v_x3F_x3F_x2F = "), std::string::npos);
+  EXPECT_NE(hpp.find("rt::ConstraintEvaluator eval_xE2_x80_xAE;"), std::string::npos);
+  // The two solvers that once collided (arm_r_task): distinct members now.
+  EXPECT_NE(hpp.find("rt::AchdModel task_r;"), std::string::npos);
+  EXPECT_NE(hpp.find("rt::AchdModel arm_r_task;"), std::string::npos);
+  EXPECT_NE(cpp.find("rt::steps::arm_solve(m.task_r_task, m.arm_r_task, d.arm_r_task, "
+                     "d.ws_r_task, command.arm_tau[1]);"),
+            std::string::npos);
+  // The comment of the step named U+202E, with its IRI's "*/", line break
+  // and trailing backslash escaped.
+  EXPECT_NE(
+      cpp.find("  // [1] evaluate '\\u202E': https://mospec.example/tests/codegen/\\u202E\\x2A/"
+               "\\x0A#error injected\\x5C\n"),
+      std::string::npos);
+}
+
+// Two entities of one role with the same name: an error naming both, located.
+TEST(Codegen, ANameCollisionIsAnErrorNamingBothEntities) {
+  SourceFiles files;
+  ir::Program p = testing::hostile_program(files);
+  p.arms[1].name = p.arms[0].name;
+  p.arms[1].iri = "https://mospec.example/tests/codegen/r-2";
+  try {
+    render(p, &files);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "codegen-name-collision");
+    const std::string what = e.what();
+    EXPECT_EQ(
+        what.rfind("tests/codegen/programs.hpp:201:1: error: codegen: the arm solvers "
+                   "'https://mospec.example/tests/codegen/r' (tests/codegen/programs.hpp:200:1) "
+                   "and 'https://mospec.example/tests/codegen/r-2' share the name 'r', so both "
+                   "would be the C++ 'arm_r'",
+                   0),
+        0u)
+        << what;
+  }
+  SourceFiles files2;
+  ir::Program q = testing::small_program(files2);
+  q.data[1].name = q.data[0].name;
+  try {
+    render(q, &files2);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "codegen-name-collision");
+    EXPECT_NE(std::string(e.what()).find("the data 'https://mospec.example/tests/codegen/time'"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Codegen, ABadReferenceIsAnErrorNamingTheStep) {
