@@ -30,6 +30,11 @@
 //
 // Default graph: the union of all graphs of the dataset (as a set of triples).
 //
+// Bounded work: the parser refuses queries nested deeper than 256 levels
+// (sparql-syntax), and each evaluation runs under an Evaluator's Limits (a time
+// budget, a step count and a row count, limits.hpp): past one it throws
+// mospec::Error with code "sparql-limit".
+//
 // Deviations from the specification, on purpose:
 //  - xsd:integer arithmetic is 64-bit; an overflow is an expression error.
 //    xsd:decimal is computed in long double (not arbitrary precision).
@@ -55,6 +60,7 @@
 #include <vector>
 
 #include "rdf/dataset.hpp"
+#include "sparql/limits.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::sparql {
@@ -183,6 +189,11 @@ class Evaluator {
   rdf::TermId import(const rdf::TermTable& table, rdf::TermId id);
 
   const rdf::Dataset& data() const;
+
+  // Bounds on each select()/ask() call (limits.hpp): past one, the call throws
+  // mospec::Error with code "sparql-limit". Defaults: Limits{}.
+  void set_limits(const Limits& limits);
+  const Limits& limits() const;
 
  private:
   std::unique_ptr<detail::Engine> engine_;
