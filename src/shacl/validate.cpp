@@ -429,7 +429,7 @@ class Validator {
         each([&](TermId v) {
           if (term(v).is_blank()) return true;
           std::string_view text = str(v);
-          return !std::regex_search(text.begin(), text.end(), *c.regex);
+          return !c.regex->search(text);
         });
         return;
       case Component::LanguageIn:

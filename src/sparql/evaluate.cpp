@@ -43,6 +43,8 @@ constexpr uint32_t kTierMask = 0xC0000000u;
 // The table of computed terms is dropped at the start of an evaluation once it
 // holds this many terms, so a long validation run does not grow it forever.
 constexpr size_t kComputedLimit = size_t{1} << 16;
+// Patterns computed by expressions are compiled once each, up to this many.
+constexpr size_t kRegexCacheLimit = 1024;
 // Join ordering only needs to tell selective patterns from unselective ones,
 // so match counts stop here (keeps preparing a query cheap on large data).
 constexpr size_t kCountCap = 4096;
@@ -1030,7 +1032,7 @@ class Engine {
   Value regex(const Expr& e) {
     const Value text = eval_expr(e.args[0]);
     if (!stringish(text)) return Value::make_error();
-    const std::regex* re = nullptr;
+    const Regex* re = nullptr;
     if (e.regex >= 0) {
       re = &plan_->regexes[static_cast<size_t>(e.regex)];
     } else {
@@ -1044,18 +1046,20 @@ class Engine {
       key += pattern.str;
       auto it = regex_cache_.find(key);
       if (it == regex_cache_.end()) {
-        std::regex compiled;
-        std::string error;
-        bool unsupported = false;
-        std::optional<std::regex> entry;
-        if (compile_regex(pattern.str, flags.str, compiled, error, unsupported))
-          entry = std::move(compiled);
+        // Patterns computed per solution could grow the cache without bound.
+        if (regex_cache_.size() >= kRegexCacheLimit) regex_cache_.clear();
+        std::optional<Regex> entry;
+        try {
+          entry.emplace(pattern.str, flags.str);
+        } catch (const RegexError&) {
+          // An invalid computed pattern is an expression error (17.3).
+        }
         it = regex_cache_.emplace(std::move(key), std::move(entry)).first;
       }
       if (!it->second) return Value::make_error();
       re = &*it->second;
     }
-    return Value::boolean(std::regex_search(text.str.begin(), text.str.end(), *re));
+    return Value::boolean(re->search(text.str));
   }
 
   bool exists(uint32_t op_index) {
@@ -1085,7 +1089,7 @@ class Engine {
   rdf::TermTable constants_;  // query constants and imported terms the data lacks
   rdf::TermTable computed_;   // terms computed by expressions
   std::unordered_map<const Plan*, std::unique_ptr<Prepared>> prepared_;
-  std::unordered_map<std::string, std::optional<std::regex>> regex_cache_;
+  std::unordered_map<std::string, std::optional<Regex>> regex_cache_;
   std::vector<TermId> all_nodes_;
   bool all_nodes_ready_ = false;
   Limits limits_;

@@ -44,10 +44,12 @@
 //    than a type error; only literals of unknown datatypes (or ill-typed ones)
 //    raise the type error of RDFterm-equal. Language tags compare
 //    case-insensitively.
-//  - REGEX uses std::regex (ECMAScript) after translating XPath flags: s makes
-//    '.' match newlines, x drops whitespace outside classes, m and i map
-//    directly. XPath-only syntax (\p{..}, \i, \c, class subtraction) is
-//    rejected as unsupported-sparql when the pattern is a constant.
+//  - REGEX runs in RE2 (linear time) after translating XPath syntax and the
+//    flags s, m, i, x, q (regex.hpp, shared with SHACL's sh:pattern). What RE2
+//    cannot express (class subtraction, \p{Is..} blocks, back-references) is
+//    rejected when the pattern is a constant (unsupported-sparql, or
+//    sparql-syntax for an invalid pattern or flag) and an expression error
+//    when it is computed.
 //  - Property-path patterns other than sequences of plain/inverse IRIs yield
 //    distinct bindings (alternatives do not duplicate a node reached twice).
 #pragma once

@@ -1,6 +1,6 @@
-// Bounded work in validation: a SPARQL constraint or a path that exceeds its
-// limits ends validation with a located "sparql-limit" error, never a crash and
-// never "conforms".
+// Bounded work in validation: sh:pattern runs in RE2 (linear time), and a
+// SPARQL constraint or a path that exceeds its limits ends validation with a
+// located "sparql-limit" error, never a crash and never "conforms".
 #include <gtest/gtest.h>
 
 #include "test_util.hpp"
@@ -36,6 +36,18 @@ std::string chain(size_t n) {
         .append(std::to_string(i + 1))
         .append(" .\n");
   return out;
+}
+
+TEST(ValidateLimits, PatternsThatBacktrackedRunInLinearTime) {
+  const std::string shapes =
+      "ex:S a sh:NodeShape ; sh:targetSubjectsOf ex:v ;\n"
+      "  sh:property [ sh:path ex:v ; sh:pattern \"^(a|b)*$\" ] ;\n"
+      "  sh:property [ sh:path ex:w ; sh:pattern \"^(a|a)*$\" ] .\n";
+  const std::string data =
+      "ex:x ex:v \"" + std::string(20000, 'a') + "\" ; ex:w \"" + std::string(35, 'a') + "b\" .\n";
+  Report r = test_util::check(shapes, data);
+  ASSERT_EQ(r.results.size(), 1u) << to_text(r, nullptr);
+  EXPECT_EQ(r.results[0].component, Component::Pattern);
 }
 
 TEST(ValidateLimits, ASparqlConstraintThatJoinsEveryTripleIsALocatedError) {
