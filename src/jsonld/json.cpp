@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <system_error>
@@ -106,6 +107,75 @@ namespace {
 // Deep enough for any real document, shallow enough that recursion cannot
 // exhaust the stack on hostile input.
 constexpr int kMaxDepth = 512;
+
+// Finds an earlier member with the same key while an object is being parsed,
+// so that the duplicate-key check costs O(1) per member instead of a scan of
+// the members so far (quadratic: 100k keys took minutes). Small objects, the
+// common case, are scanned; once an object passes kScanLimit members, an
+// open-addressing table of member indices takes over. The table stores indices
+// rather than views of the keys because the members' vector reallocates.
+class KeyIndex {
+ public:
+  void clear() {
+    slots_.clear();
+    used_ = 0;
+  }
+
+  Object::Member* find(std::vector<Object::Member>& members, std::string_view key) const {
+    if (slots_.empty()) {
+      for (Object::Member& m : members) {
+        if (m.key == key) return &m;
+      }
+      return nullptr;
+    }
+    const size_t mask = slots_.size() - 1;
+    for (size_t s = hash(key) & mask;; s = (s + 1) & mask) {
+      const uint32_t slot = slots_[s];
+      if (slot == kEmpty) return nullptr;
+      if (members[slot].key == key) return &members[slot];
+    }
+  }
+
+  // Records members.back(), which find() did not find.
+  void added(const std::vector<Object::Member>& members) {
+    if (slots_.empty()) {
+      if (members.size() <= kScanLimit) return;
+      rebuild(members);
+      return;
+    }
+    if (2 * (used_ + 1) > slots_.size()) {
+      rebuild(members);
+      return;
+    }
+    insert(members.back().key, static_cast<uint32_t>(members.size() - 1));
+  }
+
+ private:
+  static constexpr size_t kScanLimit = 16;
+  static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> slots_;
+  size_t used_ = 0;
+
+  static size_t hash(std::string_view key) { return std::hash<std::string_view>{}(key); }
+
+  void insert(std::string_view key, uint32_t index) {
+    const size_t mask = slots_.size() - 1;
+    size_t s = hash(key) & mask;
+    while (slots_[s] != kEmpty) s = (s + 1) & mask;
+    slots_[s] = index;
+    ++used_;
+  }
+
+  void rebuild(const std::vector<Object::Member>& members) {
+    size_t capacity = 64;
+    while (capacity < 4 * members.size()) capacity *= 2;
+    slots_.assign(capacity, kEmpty);
+    used_ = 0;
+    for (size_t i = 0; i < members.size(); ++i) {
+      insert(members[i].key, static_cast<uint32_t>(i));
+    }
+  }
+};
 
 class Parser {
  public:
@@ -230,9 +300,10 @@ class Parser {
   // object or array costs one allocation.
   std::vector<std::vector<Object::Member>> member_scratch_;
   std::vector<std::vector<Value>> element_scratch_;
+  std::vector<KeyIndex> key_index_scratch_;
 
   template <class T>
-  static std::vector<T>& scratch_at(std::vector<std::vector<T>>& s, int depth) {
+  static T& scratch_at(std::vector<T>& s, int depth) {
     const auto d = static_cast<size_t>(depth);
     if (s.size() <= d) s.resize(d + 1);
     return s[d];
@@ -247,6 +318,7 @@ class Parser {
       return Value(Object());
     }
     scratch_at(member_scratch_, depth).clear();
+    scratch_at(key_index_scratch_, depth).clear();
     for (;;) {
       if (at_end()) fail("unexpected end of input; expected a string key in object");
       if (peek() != '"') fail("expected a string key in object, found " + describe(peek()));
@@ -259,13 +331,13 @@ class Parser {
       Value v = parse_value(depth + 1);
       // Duplicate keys: the last wins, as in JavaScript's JSON.parse.
       std::vector<Object::Member>& members = member_scratch_[static_cast<size_t>(depth)];
-      auto same = std::find_if(members.begin(), members.end(),
-                               [&key](const Object::Member& m) { return m.key == key; });
-      if (same != members.end()) {
+      KeyIndex& index = scratch_at(key_index_scratch_, depth);
+      if (Object::Member* same = index.find(members, key)) {
         same->value = std::move(v);
         same->key_loc = key_loc;
       } else {
         members.push_back(Object::Member{std::move(key), std::move(v), key_loc});
+        index.added(members);
       }
       skip_ws();
       if (at_end()) fail("unexpected end of input; expected ',' or '}' after object member");

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <regex>
 
 #include "support/diagnostics.hpp"
 
@@ -31,6 +30,18 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 
 bool contains(std::string_view s, std::string_view part) {
   return s.find(part) != std::string_view::npos;
+}
+
+// "ctrl-dist-<anything>-shoulder-ee.output": a distance controller's output
+// column. Plain string tests (a regex engine that recurses per character
+// overflowed the stack on a 100k-character column name).
+bool is_distance_controller_output(std::string_view column) {
+  constexpr std::string_view kPrefix = "ctrl-dist-", kSuffix = "-shoulder-ee.output";
+  if (column.size() < kPrefix.size() + kSuffix.size()) return false;
+  if (column.substr(0, kPrefix.size()) != kPrefix || !ends_with(column, kSuffix)) return false;
+  const std::string_view middle =
+      column.substr(kPrefix.size(), column.size() - kPrefix.size() - kSuffix.size());
+  return middle.find_first_of("\r\n") == std::string_view::npos;
 }
 
 // Which arm a column belongs to, by mospec's naming ("...-rightarm-...").
@@ -136,8 +147,7 @@ CurveSpec force_curve(const std::string& column, size_t& next_other) {
     spec.look.label = "τ";
     spec.look.color = kTorque;
     spec.look.right_axis = true;
-  } else if (arm != Arm::None &&
-             std::regex_match(column, std::regex(R"(ctrl-dist-.*-shoulder-ee\.output)"))) {
+  } else if (arm != Arm::None && is_distance_controller_output(column)) {
     spec.look.label = arm == Arm::Right ? "F_{⊥,r}" : "F_{⊥,l}";
     spec.look.color = arm == Arm::Right ? kRight : kLeft;
   } else {
@@ -151,10 +161,9 @@ CurveSpec force_curve(const std::string& column, size_t& next_other) {
 
 // Every arm's distance-controller output, right arm first.
 std::vector<std::string> distance_controller_outputs(const Table& table) {
-  static const std::regex pattern(R"(ctrl-dist-.*-shoulder-ee\.output)");
   std::vector<std::string> out;
   for (const std::string& c : table.columns) {
-    if (std::regex_match(c, pattern)) out.push_back(c);
+    if (is_distance_controller_output(c)) out.push_back(c);
   }
   std::stable_sort(out.begin(), out.end(), [](const std::string& a, const std::string& b) {
     return arm_of(a) == Arm::Right && arm_of(b) != Arm::Right;

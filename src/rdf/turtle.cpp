@@ -238,17 +238,115 @@ void require_utf8(std::string_view text, std::string_view file_name) {
               static_cast<uint32_t>(bad - line_start + 1));
 }
 
+// serd reads blank node property lists `[ ... ]` and collections `( ... )` by
+// recursion, so a document nested thousands deep exhausts the stack. The same
+// limit as for JSON (deep enough for any real document) is enforced here, before
+// serd sees the text, by counting brackets outside the tokens that may contain
+// them: comments, IRIs, short and long strings, and backslash escapes (which in
+// prefixed names may escape a quote or '#'). Where this scan and serd's grammar
+// disagree (only in a document serd rejects anyway), the scan can only count
+// more brackets, never fewer.
+constexpr int kMaxNesting = 512;
+
+void require_bounded_nesting(std::string_view text, std::string_view file_name) {
+  uint32_t line = 1;
+  size_t line_start = 0;
+  int depth = 0;
+  const size_t n = text.size();
+  auto newline_at = [&](size_t i) {
+    ++line;
+    line_start = i + 1;
+  };
+  size_t i = 0;
+  while (i < n) {
+    const char c = text[i];
+    switch (c) {
+      case '\n':
+        newline_at(i);
+        ++i;
+        break;
+      case '#':  // a comment runs to the end of the line
+        while (i < n && text[i] != '\n') ++i;
+        break;
+      case '\\':  // an escape in a prefixed name: the next byte is not syntax
+        i += 2;
+        break;
+      case '<':  // IRIREF: ends at '>' or at any byte an IRI cannot contain
+        ++i;
+        while (i < n) {
+          const auto u = static_cast<unsigned char>(text[i]);
+          if (u <= 0x20 || text[i] == '<' || text[i] == '"' || text[i] == '{' || text[i] == '}' ||
+              text[i] == '|' || text[i] == '^' || text[i] == '`') {
+            break;
+          }
+          ++i;
+          if (text[i - 1] == '>') break;
+        }
+        break;
+      case '"':
+      case '\'': {
+        const bool long_string = i + 2 < n && text[i + 1] == c && text[i + 2] == c;
+        i += long_string ? 3 : 1;
+        while (i < n) {
+          if (text[i] == '\\') {
+            i += 2;
+            continue;
+          }
+          if (text[i] == '\n') {
+            newline_at(i);
+            ++i;
+            if (!long_string) break;  // a short string cannot span lines
+            continue;
+          }
+          if (text[i] == c) {
+            if (!long_string) {
+              ++i;
+              break;
+            }
+            if (i + 2 < n && text[i + 1] == c && text[i + 2] == c) {
+              i += 3;
+              break;
+            }
+          }
+          ++i;
+        }
+        break;
+      }
+      case '[':
+      case '(':
+        if (++depth > kMaxNesting) {
+          throw Error("syntax",
+                      std::string("blank nodes '[' and collections '(' nested deeper than ") +
+                          std::to_string(kMaxNesting) +
+                          " levels; flatten the data with named or labelled nodes (_:b)",
+                      std::string(file_name), line, static_cast<uint32_t>(i - line_start + 1));
+        }
+        ++i;
+        break;
+      case ']':
+      case ')':
+        if (depth > 0) --depth;
+        ++i;
+        break;
+      default:
+        ++i;
+    }
+  }
+}
+
 }  // namespace
 
 void read_turtle(std::string_view text, std::string_view base_iri, Dataset& into, uint32_t file_id,
                  std::string_view file_name) {
   require_utf8(text, file_name);
+  require_bounded_nesting(text, file_name);
   TurtleReader(text, base_iri, into, file_id, file_name).run(SERD_TURTLE);
 }
 
 void read_trig(std::string_view text, std::string_view base_iri, Dataset& into, uint32_t file_id,
                std::string_view file_name) {
   require_utf8(text, file_name);
+  require_bounded_nesting(text, file_name);
   TurtleReader(text, base_iri, into, file_id, file_name).run(SERD_TRIG);
 }
 

@@ -21,7 +21,10 @@ namespace mospec::rdf {
 // resolve_iri); @base / BASE directives change it as they appear. A relative
 // IRI with no base to resolve it against is an error. Blank nodes get a prefix
 // fresh to this document. Syntax errors throw mospec::Error (code "syntax")
-// with file:line:col; quads read before the error stay in `into`.
+// with file:line:col; quads read before the error stay in `into`. serd reads
+// nested blank nodes `[ ... ]` and collections `( ... )` by recursion, so a
+// document nesting them deeper than 512 levels is refused (code "syntax", located
+// at the bracket that goes too deep) before serd reads any of it.
 void read_turtle(std::string_view text, std::string_view base_iri, Dataset& into,
                  uint32_t file_id = 0, std::string_view file_name = "<input>");
 void read_trig(std::string_view text, std::string_view base_iri, Dataset& into,

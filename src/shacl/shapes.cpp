@@ -471,13 +471,13 @@ class ShapesCompiler {
     return v.object;
   }
 
-  std::shared_ptr<const std::regex> compile_regex(uint32_t shape, const Value& pattern,
-                                                  const std::vector<Value>& flags) {
+  std::shared_ptr<const sparql::Regex> compile_regex(uint32_t shape, const Value& pattern,
+                                                     const std::vector<Value>& flags) {
     const rdf::Term& p = t_[pattern.object];
     if (!p.is_literal() || !p.language.empty())
       fail(shape, pattern.where,
            "sh:pattern must be a string literal, got " + show(pattern.object));
-    std::string f;
+    std::string_view f;
     if (!flags.empty()) {
       const rdf::Term& ft = t_[flags[0].object];
       if (!ft.is_literal())
@@ -485,62 +485,12 @@ class ShapesCompiler {
              "sh:flags must be a string literal, got " + show(flags[0].object));
       f = ft.value;
     }
-    auto options = std::regex::ECMAScript;
-    std::string source(p.value);
-    bool dot_all = false, extended = false, quote = false;
-    for (char c : f) {
-      switch (c) {
-        case 'i':
-          options |= std::regex::icase;
-          break;
-        case 'm':
-          options |= std::regex::multiline;
-          break;
-        case 's':
-          dot_all = true;
-          break;
-        case 'x':
-          extended = true;
-          break;
-        case 'q':
-          quote = true;
-          break;
-        default:
-          fail(shape, flags[0].where,
-               "unsupported regular expression flag '" + std::string(1, c) + "'");
-      }
-    }
-    // XPath's flags, translated into ECMAScript syntax.
-    std::string translated;
-    bool in_class = false;
-    for (size_t i = 0; i < source.size(); ++i) {
-      char c = source[i];
-      if (quote) {
-        if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos)
-          translated += '\\';
-        translated += c;
-        continue;
-      }
-      if (c == '\\' && i + 1 < source.size()) {
-        translated += c;
-        translated += source[++i];
-        continue;
-      }
-      if (extended && !in_class && (c == ' ' || c == '\t' || c == '\n' || c == '\r')) continue;
-      if (c == '[') in_class = true;
-      if (c == ']') in_class = false;
-      if (c == '.' && dot_all && !in_class) {
-        translated += "[\\s\\S]";
-        continue;
-      }
-      translated += c;
-    }
     try {
-      return std::make_shared<const std::regex>(translated, options);
-    } catch (const std::regex_error& e) {
-      fail(shape, pattern.where,
-           "sh:pattern " + show(pattern.object) + " is not a valid regular expression (" +
-               e.what() + ")");
+      return std::make_shared<const sparql::Regex>(p.value, f);
+    } catch (const sparql::RegexError& e) {
+      const bool flag = e.kind() == sparql::RegexError::Kind::Flag;
+      fail(shape, flag ? flags[0].where : pattern.where,
+           std::string(flag ? "sh:flags: " : "sh:pattern: ") + e.what());
     }
   }
 

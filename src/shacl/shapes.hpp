@@ -8,13 +8,13 @@
 
 #include <cstdint>
 #include <memory>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "rdf/dataset.hpp"
 #include "sparql/path.hpp"
 #include "sparql/query.hpp"
+#include "sparql/regex.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::shacl {
@@ -107,7 +107,7 @@ struct Constraint {
   std::vector<std::string> ranges;  // LanguageIn ranges as text
   std::vector<uint32_t> shapes;     // Not/Node/Property/QualifiedX: one; And/Or/Xone: members
   std::vector<uint32_t> siblings;   // QualifiedX with sh:qualifiedValueShapesDisjoint true
-  std::shared_ptr<const std::regex> regex;  // Pattern
+  std::shared_ptr<const sparql::Regex> regex;  // Pattern (sh:flags applied)
   std::shared_ptr<const SparqlConstraint> sparql;
 };
 

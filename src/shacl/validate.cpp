@@ -185,8 +185,25 @@ class Validator {
       objects(focus, path->predicate, out);
       return;
     }
-    sparql::evaluate_path(data_, *path, focus, out);
+    try {
+      sparql::Budget budget(options_.sparql_limits);
+      sparql::evaluate_path(data_, *path, focus, out, TermId::any(), &budget);
+    } catch (const Error& e) {
+      if (e.code() != "sparql-limit") throw;
+      limit_reached(shapes_[shape].where,
+                    "sh:path " + path_to_sparql(st_, *shapes_[shape].path) + " of shape " +
+                        shapes_.describe(shape) + " from focus node " + show(focus),
+                    e);
+    }
     dedupe(out);
+  }
+
+  // A SPARQL constraint or a path that exceeded its sparql::Limits: the same
+  // code, located at the shape (or constraint) that asked for the work.
+  [[noreturn]] void limit_reached(SourceLoc where, const std::string& what, const Error& e) const {
+    std::string file =
+        shapes_.files() != nullptr && where.known() ? shapes_.files()->path(where.file) : "";
+    throw Error(e.code(), what + ": " + e.diagnostic().message, file, where.line, where.column);
   }
 
   // Every class that is rdfs:subClassOf* `cls` in the data graph, sorted.
@@ -431,7 +448,7 @@ class Validator {
         each([&](TermId v) {
           if (term(v).is_blank()) return true;
           std::string_view text = str(v);
-          return !std::regex_search(text.begin(), text.end(), *c.regex);
+          return !c.regex->search(text);
         });
         return;
       case Component::LanguageIn:
@@ -646,7 +663,10 @@ class Validator {
                        Sink& sink) {
     const Shape& s = shapes_[shape];
     const SparqlConstraint& q = *s.constraints[k].sparql;
-    if (!eval_) eval_ = std::make_unique<sparql::Evaluator>(data_);
+    if (!eval_) {
+      eval_ = std::make_unique<sparql::Evaluator>(data_);
+      eval_->set_limits(options_.sparql_limits);
+    }
     std::vector<sparql::Binding> bindings{{"this", to_eval(focus)}};
     if (q.binds_current_shape) bindings.push_back({"currentShape", eval_->import(st_, s.node)});
     for (const auto& [name, value] : q.parameters)
@@ -686,7 +706,15 @@ class Validator {
       return;
     }
     sparql::ResultSet rows;
-    eval_->select(q.query, bindings, rows);
+    try {
+      eval_->select(q.query, bindings, rows);
+    } catch (const Error& e) {
+      if (e.code() != "sparql-limit") throw;
+      limit_reached(s.constraints[k].where,
+                    "SPARQL constraint " + rdf::to_ntriples(st_, q.node) + " of shape " +
+                        shapes_.describe(shape) + " on focus node " + show(focus),
+                    e);
+    }
     const int value_col = rows.column("value"), path_col = rows.column("path"),
               message_col = rows.column("message"), failure_col = rows.column("failure");
     auto bound = [&](int col, size_t row) {

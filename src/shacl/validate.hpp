@@ -8,6 +8,7 @@
 #include "rdf/dataset.hpp"
 #include "shacl/report.hpp"
 #include "shacl/shapes.hpp"
+#include "sparql/limits.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::shacl {
@@ -17,6 +18,9 @@ struct ValidateOptions {
   // report's order and the text output (nullopt: not located). Unset: the
   // location of the first triple that has the node as subject (else as object).
   std::function<std::optional<SourceLoc>(rdf::TermId)> locate;
+  // Bounds on each SPARQL constraint's query (per focus node) and each sh:path
+  // evaluation (per focus node).
+  sparql::Limits sparql_limits;
 };
 
 // Validates `data` (every graph of it, as one graph) against every shape with
@@ -25,6 +29,10 @@ struct ValidateOptions {
 // Recursion: a shape that reaches itself for the same focus node (through
 // sh:node, sh:property, sh:and, ...) throws mospec::Error "shacl-recursion"
 // naming the shape cycle and the focus node.
+//
+// Work: a SPARQL constraint or a path that exceeds options.sparql_limits
+// throws mospec::Error "sparql-limit", located at the constraint (or the
+// shape) and naming it and the focus node.
 Report validate(const Shapes& shapes, const rdf::Dataset& data,
                 const ValidateOptions& options = {});
 

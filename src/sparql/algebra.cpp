@@ -592,12 +592,13 @@ class Builder {
     const std::string* pattern = constant_string(a.args[1]);
     const std::string* flags = a.args.size() > 2 ? constant_string(a.args[2]) : nullptr;
     if (pattern == nullptr || (a.args.size() > 2 && flags == nullptr)) return;
-    std::regex re;
-    std::string error;
-    bool unsupported = false;
-    if (!compile_regex(*pattern, flags ? *flags : std::string_view(), re, error, unsupported))
-      ast::fail(unsupported ? kUnsupported : kSyntax, a.args[1].pos, error);
-    plan_.regexes.push_back(std::move(re));
+    try {
+      plan_.regexes.emplace_back(*pattern, flags ? *flags : std::string_view());
+    } catch (const RegexError& error) {
+      ast::fail(error.kind() == RegexError::Kind::Unsupported ? kUnsupported : kSyntax,
+                error.kind() == RegexError::Kind::Flag ? a.args[2].pos : a.args[1].pos,
+                error.what());
+    }
     e.regex = static_cast<int32_t>(plan_.regexes.size() - 1);
   }
 
@@ -610,79 +611,6 @@ class Builder {
 };
 
 }  // namespace
-
-bool compile_regex(std::string_view pattern, std::string_view flags, std::regex& out,
-                   std::string& error, bool& unsupported) {
-  unsupported = false;
-  bool dot_all = false, extended = false;
-  auto syntax = std::regex::ECMAScript;
-  for (char f : flags) {
-    switch (f) {
-      case 's':
-        dot_all = true;
-        break;
-      case 'x':
-        extended = true;
-        break;
-      case 'i':
-        syntax |= std::regex::icase;
-        break;
-      case 'm':
-        syntax |= std::regex::multiline;
-        break;
-      default:
-        error = std::string("invalid REGEX flag '") + f + "' (allowed: s, m, i, x)";
-        return false;
-    }
-  }
-  std::string translated;
-  bool in_class = false;
-  for (size_t i = 0; i < pattern.size(); ++i) {
-    const char c = pattern[i];
-    if (c == '\\' && i + 1 < pattern.size()) {
-      const char n = pattern[i + 1];
-      if (n == 'p' || n == 'P' || n == 'i' || n == 'I' || n == 'c' || n == 'C') {
-        error = std::string("XPath regular expression escape \\") + n + " is not supported";
-        unsupported = true;
-        return false;
-      }
-      translated += c;
-      translated += n;
-      ++i;
-      continue;
-    }
-    if (in_class) {
-      if (c == '-' && i + 1 < pattern.size() && pattern[i + 1] == '[') {
-        error = "XPath character class subtraction '-[' is not supported";
-        unsupported = true;
-        return false;
-      }
-      if (c == ']') in_class = false;
-      translated += c;
-      continue;
-    }
-    if (extended && (c == ' ' || c == '\t' || c == '\n' || c == '\r')) continue;
-    if (c == '[') {
-      in_class = true;
-      translated += c;
-      if (i + 1 < pattern.size() && pattern[i + 1] == '^') translated += pattern[++i];
-      if (i + 1 < pattern.size() && pattern[i + 1] == ']') translated += pattern[++i];
-      continue;
-    }
-    if (c == '.' && dot_all) {
-      translated += "[\\s\\S]";
-      continue;
-    }
-    translated += c;
-  }
-  try {
-    out = std::regex(translated, syntax);
-  } catch (const std::regex_error& e) {
-    error = "invalid regular expression \"" + std::string(pattern) + "\": " + e.what();
-    return false;
-  }
-  return true;
-}
 
 namespace {
 

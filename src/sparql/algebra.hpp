@@ -16,13 +16,13 @@
 #pragma once
 
 #include <cstdint>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "rdf/term.hpp"
 #include "sparql/ast.hpp"
 #include "sparql/path.hpp"
+#include "sparql/regex.hpp"
 
 namespace mospec::sparql::detail {
 
@@ -176,7 +176,7 @@ struct Plan {
   std::vector<Expr> exprs;
   std::vector<std::vector<Var>> expr_vars;  // by expr: every variable it mentions
   std::vector<PathPtr> paths;               // plan term ids
-  std::vector<std::regex> regexes;
+  std::vector<Regex> regexes;               // constant REGEX patterns, compiled once
   uint32_t root = 0;
 
   std::vector<std::string> result_names;
@@ -205,11 +205,5 @@ std::shared_ptr<Plan> build_plan(ast::Query&& query);
 
 // The algebra as an S-expression, for tests and debugging (see Query::algebra).
 std::string to_sse(const Plan& plan);
-
-// Compiles a REGEX pattern with XPath flags into a std::regex (see query.hpp).
-// Returns false with `error` set when the pattern or flags are invalid or use
-// XPath-only syntax.
-bool compile_regex(std::string_view pattern, std::string_view flags, std::regex& out,
-                   std::string& error, bool& unsupported);
 
 }  // namespace mospec::sparql::detail

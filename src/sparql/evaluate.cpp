@@ -43,6 +43,8 @@ constexpr uint32_t kTierMask = 0xC0000000u;
 // The table of computed terms is dropped at the start of an evaluation once it
 // holds this many terms, so a long validation run does not grow it forever.
 constexpr size_t kComputedLimit = size_t{1} << 16;
+// Patterns computed by expressions are compiled once each, up to this many.
+constexpr size_t kRegexCacheLimit = 1024;
 // Join ordering only needs to tell selective patterns from unselective ones,
 // so match counts stop here (keeps preparing a query cheap on large data).
 constexpr size_t kCountCap = 4096;
@@ -96,6 +98,8 @@ class Engine {
   }
 
   const rdf::Dataset& data() const { return data_; }
+  void set_limits(const Limits& limits) { limits_ = limits; }
+  const Limits& limits() const { return limits_; }
 
   // ---- terms ----
   std::pair<const rdf::TermTable*, TermId> locate(TermId id) const {
@@ -159,6 +163,7 @@ class Engine {
     saved_.clear();
     filled_.clear();
     arena_used_ = 0;
+    budget_.emplace(limits_);
     for (const Binding& b : prebound) {
       std::string_view name = b.name;
       if (!name.empty() && (name[0] == '?' || name[0] == '$')) name.remove_prefix(1);
@@ -294,7 +299,7 @@ class Engine {
         keep = false;
         cells.resize(cells.size() - width);
       }
-      if (keep) ++rows;
+      if (keep) budget_->rows(++rows);
       for (size_t i = 0; i < extended; ++i) {
         row_[filled_.back()] = kUnbound;
         filled_.pop_back();
@@ -538,10 +543,12 @@ class Engine {
     const TermId s_key = s == kUnbound ? TermId::any() : s;
     const TermId o_key = o == kUnbound ? TermId::any() : o;
     bool cont = true;
+    budget_->tick();  // the lookup itself, for scans that match nothing
     if (pe.path < 0) {
       const TermId p = slot_value(pe.p);
       data_.scan(s_key, p == kUnbound ? TermId::any() : p, o_key, TermId::any(),
                  [&](const rdf::Quad& q, uint32_t index) {
+                   budget_->tick();
                    if (multi_graph_ && duplicate(q, index)) return true;
                    Var bound[3];
                    int nbound = 0;
@@ -558,6 +565,7 @@ class Engine {
     std::vector<TermId>& buffer = st.buffers[level];
     auto each_end = [&](const Slot& end_slot, TermId start_value) {
       for (size_t i = 0; i < buffer.size() && cont; ++i) {
+        budget_->tick();
         Var bound[3];
         int nbound = 0;
         if (bind(end_slot, buffer[i], bound, nbound) && filters_pass(st, level))
@@ -567,17 +575,17 @@ class Engine {
       (void)start_value;
     };
     if (s != kUnbound) {
-      evaluate_path(data_, path, s, buffer);
+      evaluate_path(data_, path, s, buffer, TermId::any(), &*budget_);
       each_end(pe.o, s);
     } else if (o != kUnbound) {
-      evaluate_path_inverse(data_, path, o, buffer);
+      evaluate_path_inverse(data_, path, o, buffer, TermId::any(), &*budget_);
       each_end(pe.s, o);
     } else {
       // Neither end known: every node of the graph is a start (zero-length
       // paths match every subject and object).
       for (TermId start : all_nodes()) {
         if (!cont) break;
-        evaluate_path(data_, path, start, buffer);
+        evaluate_path(data_, path, start, buffer, TermId::any(), &*budget_);
         Var bound[3];
         int nbound = 0;
         if (bind(pe.s, start, bound, nbound)) each_end(pe.o, start);
@@ -1024,7 +1032,7 @@ class Engine {
   Value regex(const Expr& e) {
     const Value text = eval_expr(e.args[0]);
     if (!stringish(text)) return Value::make_error();
-    const std::regex* re = nullptr;
+    const Regex* re = nullptr;
     if (e.regex >= 0) {
       re = &plan_->regexes[static_cast<size_t>(e.regex)];
     } else {
@@ -1038,18 +1046,20 @@ class Engine {
       key += pattern.str;
       auto it = regex_cache_.find(key);
       if (it == regex_cache_.end()) {
-        std::regex compiled;
-        std::string error;
-        bool unsupported = false;
-        std::optional<std::regex> entry;
-        if (compile_regex(pattern.str, flags.str, compiled, error, unsupported))
-          entry = std::move(compiled);
+        // Patterns computed per solution could grow the cache without bound.
+        if (regex_cache_.size() >= kRegexCacheLimit) regex_cache_.clear();
+        std::optional<Regex> entry;
+        try {
+          entry.emplace(pattern.str, flags.str);
+        } catch (const RegexError&) {
+          // An invalid computed pattern is an expression error (17.3).
+        }
         it = regex_cache_.emplace(std::move(key), std::move(entry)).first;
       }
       if (!it->second) return Value::make_error();
       re = &*it->second;
     }
-    return Value::boolean(std::regex_search(text.str.begin(), text.str.end(), *re));
+    return Value::boolean(re->search(text.str));
   }
 
   bool exists(uint32_t op_index) {
@@ -1079,11 +1089,13 @@ class Engine {
   rdf::TermTable constants_;  // query constants and imported terms the data lacks
   rdf::TermTable computed_;   // terms computed by expressions
   std::unordered_map<const Plan*, std::unique_ptr<Prepared>> prepared_;
-  std::unordered_map<std::string, std::optional<std::regex>> regex_cache_;
+  std::unordered_map<std::string, std::optional<Regex>> regex_cache_;
   std::vector<TermId> all_nodes_;
   bool all_nodes_ready_ = false;
+  Limits limits_;
 
   // Per evaluation.
+  std::optional<Budget> budget_;
   Prepared* P_ = nullptr;
   const Plan* plan_ = nullptr;
   std::vector<TermId> row_;
@@ -1168,6 +1180,12 @@ TermId Evaluator::import(const rdf::TermTable& table, TermId id) {
 }
 const rdf::Dataset& Evaluator::data() const {
   return engine_->data();
+}
+void Evaluator::set_limits(const Limits& limits) {
+  engine_->set_limits(limits);
+}
+const Limits& Evaluator::limits() const {
+  return engine_->limits();
 }
 
 }  // namespace mospec::sparql

@@ -159,6 +159,33 @@ class Parser {
     fail(kSyntax, at(offset), message);
   }
 
+  // ---- nesting ----
+  // Every recursive production (groups, blank nodes and collections, property
+  // path groups, parenthesised expressions and argument lists, unary operators)
+  // passes through a Nested guard, so the parser's recursion, and the later
+  // stages' recursion over the tree it builds, are bounded by kMaxNesting no
+  // matter how the constructs are mixed.
+  static constexpr int kMaxNesting = 256;
+  int nesting_ = 0;
+  class Nested {
+   public:
+    explicit Nested(Parser& p) : p_(p) {
+      if (p_.nesting_ >= kMaxNesting) {
+        fail(kSyntax, p_.pos(p_.peek()),
+             "query nested deeper than " + std::to_string(kMaxNesting) +
+                 " levels (groups, parentheses, blank nodes, collections, paths and unary "
+                 "operators count together); simplify the query");
+      }
+      ++p_.nesting_;
+    }
+    ~Nested() { --p_.nesting_; }
+    Nested(const Nested&) = delete;
+    Nested& operator=(const Nested&) = delete;
+
+   private:
+    Parser& p_;
+  };
+
   // ---- lexer ----
   void skip_space(size_t& i) const {
     while (i < text_.size()) {
@@ -601,6 +628,7 @@ class Parser {
 
   // VarOrTerm, or a blank node property list / collection (triples nodes).
   Node parse_node() {
+    const Nested nested(*this);
     const Token& t = peek();
     Node n;
     n.pos = pos(t);
@@ -682,6 +710,7 @@ class Parser {
     return parse_path_alternative();
   }
   Path parse_path_alternative() {
+    const Nested nested(*this);
     Pos p = pos(peek());
     Path first = parse_path_sequence();
     if (!is_punct(peek(), "|")) return first;
@@ -824,6 +853,7 @@ class Parser {
 
   // ---- group graph patterns ----
   Group parse_group() {
+    const Nested nested(*this);
     Token open = next();  // '{'
     Group g;
     g.pos = pos(open);
@@ -923,7 +953,10 @@ class Parser {
     next();
     return e;
   }
-  Expr parse_expression() { return parse_or(); }
+  Expr parse_expression() {
+    const Nested nested(*this);
+    return parse_or();
+  }
   Expr binary(Expr::Kind k, std::string name, Expr a, Expr b, Pos p) {
     Expr e;
     e.kind = k;
@@ -1021,6 +1054,7 @@ class Parser {
     } else {
       return parse_primary();
     }
+    const Nested nested(*this);
     Expr e;
     e.kind = k;
     e.pos = pos(next());

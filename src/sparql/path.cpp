@@ -9,6 +9,7 @@
 #include "sparql/path.hpp"
 
 #include <algorithm>
+#include <optional>
 
 namespace mospec::sparql {
 
@@ -68,14 +69,15 @@ struct Workspace {
 
 class Walker {
  public:
-  Walker(const rdf::Dataset& data, TermId graph, Workspace& ws)
-      : data_(data), graph_(graph), ws_(ws) {}
+  Walker(const rdf::Dataset& data, TermId graph, Workspace& ws, Budget& budget)
+      : data_(data), graph_(graph), ws_(ws), budget_(budget) {}
 
   // Appends to `out` every node reachable from one of `starts` along `p`
   // (backwards when `inv`) that `seen` does not hold yet.
   void reach(const Path& p, bool inv, std::span<const TermId> starts, std::vector<TermId>& out,
              MarkSet& seen) {
     auto emit = [&](TermId t) {
+      budget_.tick();
       if (seen.insert(t)) out.push_back(t);
     };
     switch (p.kind) {
@@ -134,6 +136,7 @@ class Walker {
           reach(*p.items[0], inv, starts, queue.list(), visited.marks());
         }
         for (size_t i = 0; i < queue.list().size(); ++i) {
+          budget_.tick();
           const TermId node = queue.list()[i];
           emit(node);
           reach(*p.items[0], inv, std::span<const TermId>(&node, 1), queue.list(), visited.marks());
@@ -209,6 +212,7 @@ class Walker {
   const rdf::Dataset& data_;
   TermId graph_;
   Workspace& ws_;
+  Budget& budget_;
 };
 
 Workspace& workspace() {
@@ -217,10 +221,12 @@ Workspace& workspace() {
 }
 
 void run(const rdf::Dataset& data, const Path& path, TermId node, bool inverse,
-         std::vector<TermId>& out, TermId graph) {
+         std::vector<TermId>& out, TermId graph, Budget* budget) {
   out.clear();
   Workspace& ws = workspace();
-  Walker walker(data, graph, ws);
+  std::optional<Budget> own;
+  if (budget == nullptr) budget = &own.emplace();
+  Walker walker(data, graph, ws, *budget);
   Walker::MarkGuard seen(ws, data);
   walker.reach(path, inverse, std::span<const TermId>(&node, 1), out, seen.marks());
 }
@@ -228,13 +234,13 @@ void run(const rdf::Dataset& data, const Path& path, TermId node, bool inverse,
 }  // namespace
 
 void evaluate_path(const rdf::Dataset& data, const Path& path, rdf::TermId start,
-                   std::vector<rdf::TermId>& out, rdf::TermId graph) {
-  run(data, path, start, false, out, graph);
+                   std::vector<rdf::TermId>& out, rdf::TermId graph, Budget* budget) {
+  run(data, path, start, false, out, graph, budget);
 }
 
 void evaluate_path_inverse(const rdf::Dataset& data, const Path& path, rdf::TermId end,
-                           std::vector<rdf::TermId>& out, rdf::TermId graph) {
-  run(data, path, end, true, out, graph);
+                           std::vector<rdf::TermId>& out, rdf::TermId graph, Budget* budget) {
+  run(data, path, end, true, out, graph, budget);
 }
 
 }  // namespace mospec::sparql

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rdf/dataset.hpp"
+#include "sparql/limits.hpp"
 
 namespace mospec::sparql {
 
@@ -36,11 +37,18 @@ struct Path {
 // union of all graphs). Results are distinct, in first-reached order
 // (deterministic). Zero-length paths include `start` itself, as SPARQL and SHACL
 // define it. `out` is cleared first.
+//
+// Work is counted against `budget` (one step per triple followed and per node
+// reached; nested `*` paths can take quadratic time in the data); without
+// one, the call gets its own Budget with the default Limits. Past a limit the
+// call throws mospec::Error "sparql-limit" (limits.hpp).
 void evaluate_path(const rdf::Dataset& data, const Path& path, rdf::TermId start,
-                   std::vector<rdf::TermId>& out, rdf::TermId graph = rdf::TermId::any());
+                   std::vector<rdf::TermId>& out, rdf::TermId graph = rdf::TermId::any(),
+                   Budget* budget = nullptr);
 
 // Every node from which `end` is reachable along `path` (the inverse direction).
 void evaluate_path_inverse(const rdf::Dataset& data, const Path& path, rdf::TermId end,
-                           std::vector<rdf::TermId>& out, rdf::TermId graph = rdf::TermId::any());
+                           std::vector<rdf::TermId>& out, rdf::TermId graph = rdf::TermId::any(),
+                           Budget* budget = nullptr);
 
 }  // namespace mospec::sparql

@@ -30,6 +30,11 @@
 //
 // Default graph: the union of all graphs of the dataset (as a set of triples).
 //
+// Bounded work: the parser refuses queries nested deeper than 256 levels
+// (sparql-syntax), and each evaluation runs under an Evaluator's Limits (a time
+// budget, a step count and a row count, limits.hpp): past one it throws
+// mospec::Error with code "sparql-limit".
+//
 // Deviations from the specification, on purpose:
 //  - xsd:integer arithmetic is 64-bit; an overflow is an expression error.
 //    xsd:decimal is computed in long double (not arbitrary precision).
@@ -39,10 +44,12 @@
 //    than a type error; only literals of unknown datatypes (or ill-typed ones)
 //    raise the type error of RDFterm-equal. Language tags compare
 //    case-insensitively.
-//  - REGEX uses std::regex (ECMAScript) after translating XPath flags: s makes
-//    '.' match newlines, x drops whitespace outside classes, m and i map
-//    directly. XPath-only syntax (\p{..}, \i, \c, class subtraction) is
-//    rejected as unsupported-sparql when the pattern is a constant.
+//  - REGEX runs in RE2 (linear time) after translating XPath syntax and the
+//    flags s, m, i, x, q (regex.hpp, shared with SHACL's sh:pattern). What RE2
+//    cannot express (class subtraction, \p{Is..} blocks, back-references) is
+//    rejected when the pattern is a constant (unsupported-sparql, or
+//    sparql-syntax for an invalid pattern or flag) and an expression error
+//    when it is computed.
 //  - Property-path patterns other than sequences of plain/inverse IRIs yield
 //    distinct bindings (alternatives do not duplicate a node reached twice).
 #pragma once
@@ -55,6 +62,7 @@
 #include <vector>
 
 #include "rdf/dataset.hpp"
+#include "sparql/limits.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::sparql {
@@ -183,6 +191,11 @@ class Evaluator {
   rdf::TermId import(const rdf::TermTable& table, rdf::TermId id);
 
   const rdf::Dataset& data() const;
+
+  // Bounds on each select()/ask() call (limits.hpp): past one, the call throws
+  // mospec::Error with code "sparql-limit". Defaults: Limits{}.
+  void set_limits(const Limits& limits);
+  const Limits& limits() const;
 
  private:
   std::unique_ptr<detail::Engine> engine_;

@@ -95,6 +95,19 @@ TEST(PlotFigure, WithoutAPlatformWrenchTheDistanceControllersOutputs) {
   EXPECT_TRUE(f.panels[1].y2label.empty());
 }
 
+// Column names are matched with plain string tests: a regex engine that
+// recursed per character overflowed the stack on a 100k-character name.
+TEST(PlotFigure, HugeColumnNamesAreMatchedWithoutRecursion) {
+  const std::string huge(100000, 'x');
+  std::string text = kDistances;
+  text += ",ctrl-dist-rightarm-" + huge + "-shoulder-ee.output";
+  text += ",ctrl-dist-leftarm-" + huge + "-shoulder-ee.outputs";
+  text.append("\n0,0.6,0.68,0.72,0.8,0.66,0.74,1,2,3,4\n");
+  const Figure f = run_figure(parse_csv(text, "long.csv"), {}, "long");
+  ASSERT_EQ(f.panels.size(), 2u);
+  EXPECT_EQ(labels(f.panels[1]), (std::vector<std::string>{"F_{⊥,r}", "F_{⊥,r}", "F_{⊥,l}"}));
+}
+
 TEST(PlotFigure, TrialsAreMeanAndSampleStandardDeviation) {
   std::vector<Table> trials;
   for (int k = 0; k < 3; ++k) {

@@ -80,6 +80,26 @@ TEST(JsonParse, DuplicateKeysLastWins) {
   EXPECT_EQ(o.key_location(0), (SourceLoc{7, 3, 3}));
 }
 
+// The duplicate-key check used to scan the members so far: 100k keys took
+// minutes. A duplicate far into a large object still wins and is located.
+TEST(JsonParse, LargeObjectsParseInLinearTimeAndKeepDuplicateRules) {
+  const size_t n = 100000;
+  std::string text = "{";
+  for (size_t i = 0; i < n; ++i) {
+    const std::string k = std::to_string(i);
+    text.append("\"k").append(k).append("\": ").append(k).append(",");
+  }
+  text += "\n\"k12345\": -1}";
+  const Value v = parse(text, 3);
+  const Object& o = v.as_object();
+  ASSERT_EQ(o.size(), n);
+  EXPECT_EQ(o.key(12345), "k12345");
+  EXPECT_EQ(o.value(12345).as_number(), -1);
+  EXPECT_EQ(o.key_location(12345), (SourceLoc{3, 2, 1}));
+  EXPECT_EQ(o.value(n - 1).as_number(), static_cast<double>(n - 1));
+  EXPECT_EQ(o.find("k99999")->as_number(), 99999);
+}
+
 TEST(JsonParse, Locations) {
   const std::string text =
       "{\n"

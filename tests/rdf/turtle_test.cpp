@@ -200,5 +200,58 @@ TEST(ReadTurtle, RelativeIriWithoutBaseIsAnError) {
             "doc.ttl:1:40: error: relative IRI <p> and no base IRI to resolve it against");
 }
 
+std::string repeat(std::string_view unit, size_t n) {
+  std::string out;
+  out.reserve(unit.size() * n);
+  for (size_t i = 0; i < n; ++i) out += unit;
+  return out;
+}
+
+// serd reads nested blank nodes and collections by recursion: 20,000 levels
+// used to overflow the stack. The bracket that goes past 512 levels is reported.
+TEST(ReadTurtle, DeepNestingIsALocatedErrorNotACrash) {
+  const std::string message =
+      "error: blank nodes '[' and collections '(' nested deeper than 512 levels; flatten the "
+      "data with named or labelled nodes (_:b)";
+  const size_t n = 20000;
+  // ":s :p " is 6 columns and each "[ :p " 5 more: the 513th '[' is at 6 + 512 * 5 + 1.
+  EXPECT_EQ(turtle_error("@prefix : <http://e/> .\n:s :p " + repeat("[ :p ", n) + ":o" +
+                         repeat(" ]", n) + " .\n"),
+            "doc.ttl:2:2567: " + message);
+  EXPECT_EQ(turtle_error("<http://e/s> <http://e/p>\n" + repeat("(", n) + repeat(")", n) + " .\n"),
+            "doc.ttl:2:513: " + message);
+  Dataset d;
+  try {
+    read_trig(
+        "{ <http://e/s> <http://e/p> " + repeat("[ <http://e/p> ", n) + repeat("] ", n) + ". }\n",
+        "", d, 1, "doc.trig");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "doc.trig:1:7709: " + message);
+  }
+}
+
+// Brackets inside comments, IRIs, strings and escapes are not nesting, and 512
+// levels of real nesting are read.
+TEST(ReadTurtle, NestingLimitCountsOnlyRealBrackets) {
+  const std::string noise = repeat("[(", 600);
+  const std::string text =
+      "@prefix : <http://e/> .\n"
+      "# " +
+      noise +
+      "\n"
+      ":s :p \"" +
+      noise + "\\\" " + noise + "\", '" + noise + "', \"\"\"" + noise + "\n\"" + noise +
+      "\"\"\", \'\'\'" + noise + "\n\'" + noise + "\'\'\' , <http://e/" + noise +
+      "> .\n"
+      ":a\\'b :p :c .\n"
+      ":s :q " +
+      repeat("[ :p ", 256) + repeat("( ", 256) + ":o" + repeat(" )", 256) + repeat(" ]", 256) +
+      " .\n";
+  Dataset d;
+  read_turtle(text, "", d, 1, "doc.ttl");
+  EXPECT_EQ(d.size(), 6u + 1u + 256u + 2u * 256u);
+}
+
 }  // namespace
 }  // namespace mospec::rdf
