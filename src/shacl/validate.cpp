@@ -651,6 +651,13 @@ class Validator {
     return out;
   }
 
+  // "SPARQL constraint _:b" or "validator _:v of constraint component <C>".
+  std::string describe_sparql(const SparqlConstraint& q) const {
+    if (q.component.is_any()) return "SPARQL constraint " + rdf::to_ntriples(st_, q.node);
+    return "validator " + rdf::to_ntriples(st_, q.node) + " of constraint component " +
+           rdf::to_ntriples(st_, q.component);
+  }
+
   // A parameter of a SPARQL-based constraint component, for messages.
   std::optional<std::string> parameter_text(const SparqlConstraint& q,
                                             std::string_view name) const {
@@ -688,7 +695,17 @@ class Validator {
       for (TermId v : values) {
         if (sink.done()) return;
         bindings.back().value = to_eval(v);
-        if (eval_->ask(q.query, bindings)) continue;
+        bool conforms = false;
+        try {
+          conforms = eval_->ask(q.query, bindings);
+        } catch (const Error& e) {
+          if (e.code() != "sparql-limit") throw;
+          limit_reached(s.constraints[k].where,
+                        describe_sparql(q) + " of shape " + shapes_.describe(shape) +
+                            " on focus node " + show(focus) + ", value node " + show(v),
+                        e);
+        }
+        if (conforms) continue;
         RawResult r = result();
         r.value = v;
         if (s.is_property) r.path = PathSource::Shape;
@@ -711,8 +728,8 @@ class Validator {
     } catch (const Error& e) {
       if (e.code() != "sparql-limit") throw;
       limit_reached(s.constraints[k].where,
-                    "SPARQL constraint " + rdf::to_ntriples(st_, q.node) + " of shape " +
-                        shapes_.describe(shape) + " on focus node " + show(focus),
+                    describe_sparql(q) + " of shape " + shapes_.describe(shape) +
+                        " on focus node " + show(focus),
                     e);
     }
     const int value_col = rows.column("value"), path_col = rows.column("path"),
@@ -727,13 +744,8 @@ class Validator {
           const SourceLoc& at = s.constraints[k].where;
           std::string file =
               shapes_.files() != nullptr && at.known() ? shapes_.files()->path(at.file) : "";
-          const std::string what = q.component.is_any()
-                                       ? "SPARQL constraint " + rdf::to_ntriples(st_, q.node)
-                                       : "validator " + rdf::to_ntriples(st_, q.node) +
-                                             " of constraint component " +
-                                             rdf::to_ntriples(st_, q.component);
           throw Error("shacl-failure",
-                      what + " of shape " + shapes_.describe(shape) +
+                      describe_sparql(q) + " of shape " + shapes_.describe(shape) +
                           " reported a failure for focus node " + show(focus),
                       file, at.line, at.column);
         }

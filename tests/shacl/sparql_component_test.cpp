@@ -261,3 +261,44 @@ TEST(SparqlComponent, ComponentsMospecWouldHaveToIgnoreAreErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// Validators run under the same SPARQL limits as sh:sparql constraints; the
+// error names the validator and the component and points at the constraint.
+TEST(SparqlComponent, ValidatorsThatExceedTheSparqlLimitsAreLocatedErrors) {
+  std::string data;
+  for (int i = 0; i < 100; ++i)
+    data += "ex:n" + std::to_string(i) + " ex:next ex:n" + std::to_string(i + 1) + " .\n";
+  const std::string join = "?a ?p ?b . ?c ?q ?d . ?e ?r ?f";
+  const std::vector<std::pair<std::string, std::string>> validators{
+      // (ASK stops at the first solution: this one has none.)
+      {"sh:validator", "sh:ask \"ASK { " + join + " FILTER(STR(?f) = 'none') }\""},
+      {"sh:nodeValidator", "sh:select \"SELECT $this WHERE { " + join + " }\""},
+  };
+  for (const auto& [predicate, query] : validators) {
+    SCOPED_TRACE(predicate);
+    auto g = turtle(data + "ex:C a sh:ConstraintComponent ; sh:parameter [ sh:path ex:x ] ;\n  " +
+                    predicate + " [ " + query + " ] .\n" +
+                    "ex:S a sh:NodeShape ; sh:targetNode ex:n0 ;\n  ex:x 1 .\n");
+    Shapes shapes = Shapes::compile(g->data, &g->files);
+    ValidateOptions options;
+    options.sparql_limits = sparql::Limits{0, 100000, 0};
+    try {
+      validate(shapes, g->data, options);
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), "sparql-limit") << e.what();
+      EXPECT_EQ(e.diagnostic().file, "shapes.ttl") << e.what();
+      EXPECT_EQ(e.diagnostic().line, kPrefixLines + 100 + 4) << e.what();  // ex:x 1
+      const std::string& message = e.diagnostic().message;
+      EXPECT_EQ(message.substr(0, 12), "validator _:") << message;
+      EXPECT_NE(message.find(" of constraint component <http://example.org/C> of shape "
+                             "<http://example.org/S> on focus node <http://example.org/n0>"),
+                std::string::npos)
+          << message;
+    }
+  }
+}
+
+}  // namespace
