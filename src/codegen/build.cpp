@@ -479,8 +479,8 @@ CachedController cached_controller(const ir::Program& program, const std::string
   ensure_private_dir(root.string());
   const fs::path entry = root / key;
   const fs::path library = entry / "build" / kLibraryName;
+  const FileLock lock((root / (key + ".lock")).string());
   CachedController c;
-  c.lock = std::make_shared<const FileLock>((root / (key + ".lock")).string());
   c.project = entry.string();
   c.library = library.string();
   struct stat st {};

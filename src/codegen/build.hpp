@@ -94,9 +94,6 @@ struct CachedController {
   std::string project;          // the generated project's directory
   bool built = false;           // generated and built now (not found in the cache)
   std::string rebuilt_because;  // an entry was found but not usable: why
-  // The entry's lock, held while this object (or a copy) lives: keep it until
-  // the library is loaded, so no other run rebuilds the entry in between.
-  std::shared_ptr<const void> lock;
 };
 CachedController cached_controller(const ir::Program& program, const std::string& cache_dir,
                                    const SourceFiles* files = nullptr, int jobs = 2);
