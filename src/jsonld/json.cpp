@@ -14,10 +14,113 @@
 
 namespace mospec::json {
 
+namespace detail {
+
+// Positions of an object's members by key: the duplicate-key check of the
+// parser and Object's own lookups cost O(1) per member instead of a scan of
+// the members (quadratic: an object with 100k keys took minutes). Small
+// objects, the common case, are scanned; past kScanLimit members an
+// open-addressing table of member indices takes over. The table stores indices
+// rather than views of the keys because the members' vector reallocates.
+class KeyIndex {
+ public:
+  static constexpr size_t kScanLimit = 16;
+  static constexpr size_t kNone = std::numeric_limits<size_t>::max();
+
+  void clear() {
+    slots_.clear();
+    used_ = 0;
+  }
+
+  // The position of `key` in `members`, or kNone.
+  size_t find(const std::vector<Object::Member>& members, std::string_view key) const {
+    if (slots_.empty()) {
+      for (size_t i = 0; i < members.size(); ++i) {
+        if (members[i].key == key) return i;
+      }
+      return kNone;
+    }
+    const size_t mask = slots_.size() - 1;
+    for (size_t s = hash(key) & mask;; s = (s + 1) & mask) {
+      const uint32_t slot = slots_[s];
+      if (slot == kEmpty) return kNone;
+      if (members[slot].key == key) return slot;
+    }
+  }
+
+  // Records members.back(), which find() did not find.
+  void added(const std::vector<Object::Member>& members) {
+    if (slots_.empty()) {
+      if (members.size() > kScanLimit) rebuild(members);
+      return;
+    }
+    if (2 * (used_ + 1) > slots_.size()) {
+      rebuild(members);
+      return;
+    }
+    insert(members.back().key, static_cast<uint32_t>(members.size() - 1));
+  }
+
+  // Indexes `members` afresh (after an erase or a bulk append).
+  void rebuild(const std::vector<Object::Member>& members) {
+    clear();
+    if (members.size() <= kScanLimit) return;
+    size_t capacity = 64;
+    while (capacity < 4 * members.size()) capacity *= 2;
+    slots_.assign(capacity, kEmpty);
+    for (size_t i = 0; i < members.size(); ++i) {
+      insert(members[i].key, static_cast<uint32_t>(i));
+    }
+  }
+
+ private:
+  static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> slots_;
+  size_t used_ = 0;
+
+  static size_t hash(std::string_view key) { return std::hash<std::string_view>{}(key); }
+
+  void insert(std::string_view key, uint32_t index) {
+    const size_t mask = slots_.size() - 1;
+    size_t s = hash(key) & mask;
+    while (slots_[s] != kEmpty) s = (s + 1) & mask;
+    slots_[s] = index;
+    ++used_;
+  }
+};
+
+}  // namespace detail
+
+using detail::KeyIndex;
+
 // ---------------------------------------------------------------------------
 // Object
 
+Object::IndexPtr::IndexPtr() noexcept = default;
+Object::IndexPtr::IndexPtr(const IndexPtr& o)
+    : p(o.p ? std::make_unique<KeyIndex>(*o.p) : nullptr) {}
+Object::IndexPtr& Object::IndexPtr::operator=(const IndexPtr& o) {
+  if (this != &o) p = o.p ? std::make_unique<KeyIndex>(*o.p) : nullptr;
+  return *this;
+}
+Object::IndexPtr::IndexPtr(IndexPtr&&) noexcept = default;
+Object::IndexPtr& Object::IndexPtr::operator=(IndexPtr&&) noexcept = default;
+Object::IndexPtr::~IndexPtr() = default;
+
+void Object::reindex() {
+  if (members_.size() <= KeyIndex::kScanLimit) {
+    index_.p.reset();
+    return;
+  }
+  if (!index_.p) index_.p = std::make_unique<KeyIndex>();
+  index_.p->rebuild(members_);
+}
+
 const Value* Object::find(std::string_view key) const {
+  if (index_.p) {
+    const size_t i = index_.p->find(members_, key);
+    return i == KeyIndex::kNone ? nullptr : &members_[i].value;
+  }
   for (const Member& m : members_) {
     if (m.key == key) return &m.value;
   }
@@ -29,17 +132,17 @@ Value* Object::find(std::string_view key) {
 }
 
 Value& Object::set(std::string key, Value v) {
-  for (Member& m : members_) {
-    if (m.key == key) {
-      m.value = std::move(v);
-      return m.value;
-    }
+  if (Value* slot = find(key)) {
+    *slot = std::move(v);
+    return *slot;
   }
   return append_new(std::move(key), std::move(v));
 }
 
 Value& Object::append_new(std::string key, Value v) {
   members_.push_back(Member{std::move(key), std::move(v), SourceLoc{}});
+  if (!index_.p && members_.size() > KeyIndex::kScanLimit) index_.p = std::make_unique<KeyIndex>();
+  if (index_.p) index_.p->added(members_);
   return members_.back().value;
 }
 
@@ -47,6 +150,7 @@ bool Object::erase(std::string_view key) {
   for (auto it = members_.begin(); it != members_.end(); ++it) {
     if (it->key == key) {
       members_.erase(it);
+      reindex();
       return true;
     }
   }
@@ -107,75 +211,6 @@ namespace {
 // Deep enough for any real document, shallow enough that recursion cannot
 // exhaust the stack on hostile input.
 constexpr int kMaxDepth = 512;
-
-// Finds an earlier member with the same key while an object is being parsed,
-// so that the duplicate-key check costs O(1) per member instead of a scan of
-// the members so far (quadratic: 100k keys took minutes). Small objects, the
-// common case, are scanned; once an object passes kScanLimit members, an
-// open-addressing table of member indices takes over. The table stores indices
-// rather than views of the keys because the members' vector reallocates.
-class KeyIndex {
- public:
-  void clear() {
-    slots_.clear();
-    used_ = 0;
-  }
-
-  Object::Member* find(std::vector<Object::Member>& members, std::string_view key) const {
-    if (slots_.empty()) {
-      for (Object::Member& m : members) {
-        if (m.key == key) return &m;
-      }
-      return nullptr;
-    }
-    const size_t mask = slots_.size() - 1;
-    for (size_t s = hash(key) & mask;; s = (s + 1) & mask) {
-      const uint32_t slot = slots_[s];
-      if (slot == kEmpty) return nullptr;
-      if (members[slot].key == key) return &members[slot];
-    }
-  }
-
-  // Records members.back(), which find() did not find.
-  void added(const std::vector<Object::Member>& members) {
-    if (slots_.empty()) {
-      if (members.size() <= kScanLimit) return;
-      rebuild(members);
-      return;
-    }
-    if (2 * (used_ + 1) > slots_.size()) {
-      rebuild(members);
-      return;
-    }
-    insert(members.back().key, static_cast<uint32_t>(members.size() - 1));
-  }
-
- private:
-  static constexpr size_t kScanLimit = 16;
-  static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
-  std::vector<uint32_t> slots_;
-  size_t used_ = 0;
-
-  static size_t hash(std::string_view key) { return std::hash<std::string_view>{}(key); }
-
-  void insert(std::string_view key, uint32_t index) {
-    const size_t mask = slots_.size() - 1;
-    size_t s = hash(key) & mask;
-    while (slots_[s] != kEmpty) s = (s + 1) & mask;
-    slots_[s] = index;
-    ++used_;
-  }
-
-  void rebuild(const std::vector<Object::Member>& members) {
-    size_t capacity = 64;
-    while (capacity < 4 * members.size()) capacity *= 2;
-    slots_.assign(capacity, kEmpty);
-    used_ = 0;
-    for (size_t i = 0; i < members.size(); ++i) {
-      insert(members[i].key, static_cast<uint32_t>(i));
-    }
-  }
-};
 
 class Parser {
  public:
@@ -332,9 +367,9 @@ class Parser {
       // Duplicate keys: the last wins, as in JavaScript's JSON.parse.
       std::vector<Object::Member>& members = member_scratch_[static_cast<size_t>(depth)];
       KeyIndex& index = scratch_at(key_index_scratch_, depth);
-      if (Object::Member* same = index.find(members, key)) {
-        same->value = std::move(v);
-        same->key_loc = key_loc;
+      if (const size_t same = index.find(members, key); same != KeyIndex::kNone) {
+        members[same].value = std::move(v);
+        members[same].key_loc = key_loc;
       } else {
         members.push_back(Object::Member{std::move(key), std::move(v), key_loc});
         index.added(members);

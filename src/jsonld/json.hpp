@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -18,6 +19,10 @@ namespace mospec::json {
 
 class Value;
 using Array = std::vector<Value>;
+
+namespace detail {
+class KeyIndex;  // json.cpp
+}
 
 class Object {
  public:
@@ -61,7 +66,22 @@ class Object {
   void append_members(It first, It last);
 
  private:
+  // Member positions by key, kept once the object has more than 16 members so
+  // that find() and set() stay O(1) on large objects (null below that).
+  class IndexPtr {
+   public:
+    IndexPtr() noexcept;
+    IndexPtr(const IndexPtr&);
+    IndexPtr& operator=(const IndexPtr&);
+    IndexPtr(IndexPtr&&) noexcept;
+    IndexPtr& operator=(IndexPtr&&) noexcept;
+    ~IndexPtr();
+    std::unique_ptr<detail::KeyIndex> p;
+  };
+  void reindex();
+
   std::vector<Member> members_;
+  IndexPtr index_;
 };
 
 enum class Kind : uint8_t { Null, Boolean, Number, String, Array, Object };
@@ -145,6 +165,7 @@ inline void Object::reserve(size_t n) {
 template <class It>
 void Object::append_members(It first, It last) {
   members_.insert(members_.end(), first, last);
+  reindex();
 }
 
 inline const std::string& Object::key(size_t i) const {
