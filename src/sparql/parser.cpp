@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdio>
 
 #include "rdf/iri.hpp"
 #include "sparql/ast.hpp"
@@ -480,7 +481,14 @@ class Parser {
     if (std::string_view("{}()[].;,*/|^!?+-=><").find(static_cast<char>(c)) !=
         std::string_view::npos)
       return punct(1);
-    lex_error(i, std::string("unexpected character '") + static_cast<char>(c) + "'");
+    // Unprintable bytes are named by code: a query may come from a file that is
+    // not text, and a message must not carry its bytes to the terminal.
+    if (c >= 0x20 && c < 0x7F) {
+      lex_error(i, std::string("unexpected character '") + static_cast<char>(c) + "'");
+    }
+    char code[8];
+    std::snprintf(code, sizeof code, "0x%02X", static_cast<unsigned>(c));
+    lex_error(i, std::string("unexpected byte ") + code);
   }
 
   const Token& peek() {

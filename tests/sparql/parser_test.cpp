@@ -97,6 +97,10 @@ TEST(SparqlParser, SyntaxErrorsNamePositionAndExpectation) {
             "line 1, column 30: invalid regular expression \"(\": missing ): (");
   EXPECT_EQ(message("SELECT ?x { FILTER(REGEX(?x, \"a\", \"g\")) }"),
             "line 1, column 35: invalid regular expression flag 'g' (allowed: s, m, i, x, q)");
+  // A query may come from a file that is not text: its bytes are named by code,
+  // never copied to the terminal.
+  EXPECT_EQ(message("ASK { ~ }"), "line 1, column 7: unexpected character '~'");
+  EXPECT_EQ(message(std::string("ASK { \x1b }")), "line 1, column 7: unexpected byte 0x1B");
 }
 
 TEST(SparqlParser, ScopingRules) {
