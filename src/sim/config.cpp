@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <initializer_list>
 
@@ -196,6 +197,46 @@ class Reader {
     return (std::filesystem::path(file_).parent_path() / fp).lexically_normal().string();
   }
 
+  // A file or directory the world file names for loading (the robot model, a
+  // robot.map directory). World files come with downloaded model bundles, so
+  // what they name must stay inside the world file's own directory or mospec's
+  // robot descriptions and metamodels, after resolving `..` and symbolic links; otherwise a
+  // bundle could map the metamodels onto `/` and read past the loader's sandbox.
+  std::string confined_path(const json::Value& v, const std::string& what) const {
+    namespace fs = std::filesystem;
+    const std::string p = path(string(v, what));
+    std::error_code ec;
+    const fs::path target = fs::weakly_canonical(fs::absolute(p), ec);
+    const fs::path world_dir = fs::absolute(fs::path(file_)).parent_path();
+    const fs::path robots_dir = fs::path(MOSPEC_DEFAULT_ROBOT_MODEL).parent_path();
+    for (const fs::path& root : {world_dir, robots_dir, fs::path(MOSPEC_METAMODELS_DIR)}) {
+      const fs::path base = fs::weakly_canonical(root, ec);
+      if (ec) continue;
+      auto t = target.begin();
+      bool inside = true;
+      for (auto b = base.begin(); b != base.end() && inside; ++b) {
+        if (b->empty()) continue;
+        inside = t != target.end() && *t == *b;
+        if (inside) ++t;
+      }
+      if (inside) return p;
+    }
+    std::string shown;
+    for (char c : target.string()) {
+      const auto u = static_cast<unsigned char>(c);
+      if (u < 0x20 || u == 0x7f) {
+        char code[8];
+        std::snprintf(code, sizeof code, "\\x%02X", static_cast<unsigned>(u));
+        shown += code;
+      } else {
+        shown += c;
+      }
+    }
+    fail(v, what + ": '" + shown + "' lies outside the world file's directory (" +
+                world_dir.string() +
+                ") and mospec's robot descriptions and metamodels; put the file there");
+  }
+
  private:
   std::string file_;
 };
@@ -235,13 +276,13 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       c.seed = static_cast<std::uint64_t>(n);
     } else if (key == "robot") {
       const json::Object& o = r.object(v, "robot", {"model", "chain", "map"});
-      if (auto* m = o.find("model")) c.robot.model = r.path(r.string(*m, "robot.model"));
+      if (auto* m = o.find("model")) c.robot.model = r.confined_path(*m, "robot.model");
       if (auto* m = o.find("chain")) c.robot.chain_iri = r.string(*m, "robot.chain");
       if (auto* m = o.find("map")) {
         if (!m->is_object()) r.fail(*m, "robot.map: expected an object of IRI prefix: directory");
         const json::Object& mo = m->as_object();
         for (size_t k = 0; k < mo.size(); ++k) {
-          const std::string dir = r.path(r.string(mo.value(k), "robot.map"));
+          const std::string dir = r.confined_path(mo.value(k), "robot.map");
           bool replaced = false;
           for (auto& [prefix, d] : c.robot.maps) {
             if (prefix == mo.key(k)) {

@@ -1,6 +1,9 @@
 // The World as a robot: timing (command delay), faults, seeds and determinism,
 // the CSV log and the world file.
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "sim/log.hpp"
@@ -339,6 +342,41 @@ TEST(WorldFile, ErrorsAreLocated) {
                      "} } }"),
             "w.json:1:32: error: arms.left.mount: the direction cosines are not a rotation");
   EXPECT_NE(error_of("{ \"base\": "), "no error");  // malformed JSON, located by the parser
+}
+
+// A world file comes with a downloaded bundle: the robot model and robot.map
+// directories it names stay inside its own directory (or mospec's robots).
+TEST(WorldFile, RobotFilesStayInsideTheWorldFilesTree) {
+  namespace fs = std::filesystem;
+  const fs::path tree = fs::temp_directory_path() / ("mospec-world-" + std::to_string(::getpid()));
+  fs::remove_all(tree);
+  fs::create_directories(tree / "bundle" / "robots");
+  fs::create_directories(tree / "outside");
+  fs::create_directory_symlink(tree / "outside", tree / "bundle" / "link-out");
+  const std::string world = (tree / "bundle" / "w.json").string();
+  const auto error = [&](const std::string& robot) -> std::string {
+    try {
+      parse_world_config("{ \"robot\": " + robot + " }", world);
+    } catch (const Error& e) {
+      return e.diagnostic().code + ": " + e.diagnostic().message;
+    }
+    return "no error";
+  };
+  EXPECT_EQ(error(R"({ "model": "robots/arm.jsonld", "map": { "https://ex.org/": "ctx" } })"),
+            "no error");
+  for (const std::string robot : {
+           R"({ "model": "../outside/arm.jsonld" })",
+           R"({ "model": "/etc/passwd" })",
+           R"({ "model": "link-out/arm.jsonld" })",
+           R"({ "map": { "https://comp-rob2b.github.io/metamodels/": "/" } })",
+           R"({ "map": { "https://ex.org/": "robots/../../outside" } })",
+           R"({ "map": { "https://ex.org/": "link-out" } })",
+       }) {
+    const std::string e = error(robot);
+    EXPECT_EQ(e.rfind("invalid-world: robot.", 0), 0u) << robot << " -> " << e;
+    EXPECT_NE(e.find("lies outside the world file's directory"), std::string::npos) << e;
+  }
+  fs::remove_all(tree);
 }
 
 TEST(World, RejectsAChainThatIsNotAGen3) {
