@@ -10,6 +10,7 @@
 #include "jsonld/expand.hpp"
 #include "jsonld/to_rdf.hpp"
 #include "rdf/iri.hpp"
+#include "support/paths.hpp"
 
 namespace mospec::app {
 namespace fs = std::filesystem;
@@ -225,28 +226,13 @@ class Loader {
   // paths resolve against (--root, else the current directory): an untrusted
   // app must not map an IRI onto /etc or the user's home.
   void check_iri_map_dir(const std::string& dir, SourceLoc at, const std::string& prefix) const {
-    std::error_code ec;
-    const fs::path base = fs::weakly_canonical(fs::absolute(options_.root.value_or(".")), ec);
-    const fs::path target = fs::weakly_canonical(fs::absolute(dir), ec);
-    auto t = target.begin();
-    bool inside = true;
-    for (auto b = base.begin(); b != base.end() && inside; ++b) {
-      if (b->empty()) continue;
-      inside = t != target.end() && *t == *b;
-      if (inside) ++t;
-    }
+    const fs::path base = canonical_path(options_.root.value_or("."));
+    const fs::path target = canonical_path(dir);
+    bool inside = is_within(target, base);
     for (char c : dir) inside = inside && static_cast<unsigned char>(c) >= 0x20 && c != 0x7f;
     if (inside) return;
-    std::string message = "iri-map entry <" + prefix + "> names the directory '";
-    for (char c : target.string()) {
-      auto u = static_cast<unsigned char>(c);
-      if (u < 0x20 || u == 0x7f) {
-        static constexpr char kHex[] = "0123456789ABCDEF";
-        message.append("\\x").append(1, kHex[u >> 4]).append(1, kHex[u & 15]);
-      } else {
-        message += c;
-      }
-    }
+    std::string message =
+        "iri-map entry <" + prefix + "> names the directory '" + escaped_bytes(target.string());
     message += "', outside the model tree '" + base.string() + "' (" +
                (options_.root ? "--root" : "the current directory; pass --root DIR to change it") +
                "); an app may only map IRIs into its own tree (pass --root DIR naming a tree "

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "support/io.hpp"
+#include "support/paths.hpp"
 
 namespace mospec::jsonld {
 namespace fs = std::filesystem;
@@ -90,28 +91,6 @@ std::string file_url(const std::string& canonical) {
   return out;
 }
 
-// A path with every symbolic link and `..` resolved (as far as it exists; the
-// rest lexically), absolute.
-fs::path canonical_path(const std::string& path) {
-  std::error_code ec;
-  fs::path abs = fs::absolute(path, ec);
-  if (ec) return fs::path(path).lexically_normal();
-  fs::path p = fs::weakly_canonical(abs, ec);
-  return ec ? abs.lexically_normal() : p;
-}
-
-// Whether `path` is `root` or below it, component by component (so /tree2 is
-// not inside /tree). Both are canonical.
-bool is_within(const fs::path& path, const fs::path& root) {
-  auto p = path.begin();
-  for (auto r = root.begin(); r != root.end(); ++r) {
-    if (r->empty()) continue;  // a trailing '/'
-    if (p == path.end() || *p != *r) return false;
-    ++p;
-  }
-  return true;
-}
-
 // The first control character (U+0000-U+001F, U+007F) in `s`, or -1.
 int control_character(std::string_view s) {
   for (char c : s) {
@@ -119,23 +98,6 @@ int control_character(std::string_view s) {
     if (u < 0x20 || u == 0x7f) return u;
   }
   return -1;
-}
-
-// `s` with control characters and non-ASCII bytes escaped, for messages.
-std::string escaped(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u >= 0x7f) {
-      static constexpr char kHex[] = "0123456789ABCDEF";
-      out += "\\x";
-      out += kHex[u >> 4];
-      out += kHex[u & 15];
-    } else {
-      out += c;
-    }
-  }
-  return out;
 }
 
 std::string code_point(int u) {
@@ -184,7 +146,7 @@ std::string MappedDocumentLoader::sandbox_roots() const {
   std::sort(roots.begin(), roots.end());
   roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
   std::string out;
-  for (const std::string& r : roots) out.append(out.empty() ? "" : ", ").append(escaped(r));
+  for (const std::string& r : roots) out.append(out.empty() ? "" : ", ").append(escaped_bytes(r));
   return out.empty() ? "none" : out;
 }
 
@@ -195,7 +157,7 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
   const std::string& ref_file = files_.path(referenced_from.file);
   auto fail = [&](const std::string& reason) -> Error {
     return Error(std::string(code),
-                 "cannot load " + std::string(what) + " <" + escaped(iri) + ">: " + reason,
+                 "cannot load " + std::string(what) + " <" + escaped_bytes(iri) + ">: " + reason,
                  ref_file, referenced_from.line, referenced_from.column);
   };
   if (int c = control_character(iri); c >= 0) {
@@ -219,7 +181,7 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
   if (confined_) {
     const std::string canonical = canonical_path(path).string();
     if (!inside_sandbox(canonical)) {
-      throw fail("it resolves to '" + escaped(canonical) +
+      throw fail("it resolves to '" + escaped_bytes(canonical) +
                  "', outside the model tree (the directories of --map, --root, the app's "
                  "iri-map, the inputs and mospec's metamodels: " +
                  sandbox_roots() +
@@ -276,10 +238,10 @@ RemoteDocument MappedDocumentLoader::load(std::string_view iri, SourceLoc refere
   } catch (const Error& e) {
     if (e.code() != kDocumentFailed) throw;  // JSON syntax errors keep their own location
     // Re-issue at the reference, with the code the caller asked for.
-    throw Error(
-        std::string(code),
-        "cannot load " + std::string(what) + " <" + escaped(iri) + ">: " + e.diagnostic().message,
-        ref_file, referenced_from.line, referenced_from.column);
+    throw Error(std::string(code),
+                "cannot load " + std::string(what) + " <" + escaped_bytes(iri) +
+                    ">: " + e.diagnostic().message,
+                ref_file, referenced_from.line, referenced_from.column);
   }
 }
 

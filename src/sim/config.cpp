@@ -3,13 +3,13 @@
 #include <Eigen/SVD>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <initializer_list>
 
 #include "jsonld/json.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
+#include "support/paths.hpp"
 
 #ifndef MOSPEC_DEFAULT_ROBOT_MODEL
 #define MOSPEC_DEFAULT_ROBOT_MODEL "robots/kinova-gen3.jsonld"
@@ -199,42 +199,27 @@ class Reader {
 
   // A file or directory the world file names for loading (the robot model, a
   // robot.map directory). World files come with downloaded model bundles, so
-  // what they name must stay inside the world file's own directory or mospec's
-  // robot descriptions and metamodels, after resolving `..` and symbolic links; otherwise a
-  // bundle could map the metamodels onto `/` and read past the loader's sandbox.
+  // what they name must stay inside the model tree (the world file's own
+  // directory, the current directory) or mospec's robot descriptions and metamodels, after
+  // resolving `..` and symbolic links; otherwise a bundle could map the metamodels onto `/` and
+  // read past the loader's sandbox.
   std::string confined_path(const json::Value& v, const std::string& what) const {
     namespace fs = std::filesystem;
     const std::string p = path(string(v, what));
-    std::error_code ec;
-    const fs::path target = fs::weakly_canonical(fs::absolute(p), ec);
+    const fs::path target = canonical_path(p);
     const fs::path world_dir = fs::absolute(fs::path(file_)).parent_path();
     const fs::path robots_dir = fs::path(MOSPEC_DEFAULT_ROBOT_MODEL).parent_path();
-    for (const fs::path& root : {world_dir, robots_dir, fs::path(MOSPEC_METAMODELS_DIR)}) {
-      const fs::path base = fs::weakly_canonical(root, ec);
-      if (ec) continue;
-      auto t = target.begin();
-      bool inside = true;
-      for (auto b = base.begin(); b != base.end() && inside; ++b) {
-        if (b->empty()) continue;
-        inside = t != target.end() && *t == *b;
-        if (inside) ++t;
-      }
-      if (inside) return p;
+    // The current directory is the tree an app's iri-map resolves against
+    // (app::load), so a bundle run from its top may keep robots/ beside models/.
+    for (const fs::path& root :
+         {world_dir, fs::current_path(), robots_dir, fs::path(MOSPEC_METAMODELS_DIR)}) {
+      if (is_within(target, canonical_path(root.string()))) return p;
     }
-    std::string shown;
-    for (char c : target.string()) {
-      const auto u = static_cast<unsigned char>(c);
-      if (u < 0x20 || u == 0x7f) {
-        char code[8];
-        std::snprintf(code, sizeof code, "\\x%02X", static_cast<unsigned>(u));
-        shown += code;
-      } else {
-        shown += c;
-      }
-    }
-    fail(v, what + ": '" + shown + "' lies outside the world file's directory (" +
-                world_dir.string() +
-                ") and mospec's robot descriptions and metamodels; put the file there");
+    fail(v, what + ": '" + escaped_bytes(target.string()) +
+                "' lies outside the model tree (the world file's directory " +
+                escaped_bytes(world_dir.string()) +
+                ", the current directory, mospec's robot descriptions and metamodels); put the "
+                "file there or run from the bundle's top directory");
   }
 
  private:

@@ -374,7 +374,7 @@ TEST(WorldFile, RobotFilesStayInsideTheWorldFilesTree) {
        }) {
     const std::string e = error(robot);
     EXPECT_EQ(e.rfind("invalid-world: robot.", 0), 0u) << robot << " -> " << e;
-    EXPECT_NE(e.find("lies outside the world file's directory"), std::string::npos) << e;
+    EXPECT_NE(e.find("lies outside the model tree"), std::string::npos) << e;
   }
   fs::remove_all(tree);
 }
