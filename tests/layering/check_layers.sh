@@ -7,7 +7,8 @@
 #   - a folder under SRC_DIR has no line;
 #   - the declared edges form a cycle;
 #   - a file in SRC_DIR/Y/ has `#include "X/..."` (or <X/...>) for a folder X other than Y
-#     that Y's line does not list (printed as file:line, the include and the rule).
+#     that Y's line does not list (printed as file:line, the include and the rule),
+#     or a CMakeLists.txt in SRC_DIR/Y/ links a library defined in such an X.
 # Reads sources only: no build needed.
 set -u
 src=${1:?usage: check_layers.sh SRC_DIR [LAYERS_FILE]}
@@ -18,7 +19,7 @@ layers=${2:-$src/LAYERS}
 folders=$(cd "$src" && for d in */; do [ -d "$d" ] && echo "${d%/}"; done)
 
 # Every #include "X/..." or <X/...> (a path with a folder part) in the sources,
-# as "folder<TAB>path:line<TAB>X<TAB>the include line". Only X that are folders
+# as "I<TAB>folder<TAB>path:line<TAB>X<TAB>the include line". Only X that are folders
 # of SRC_DIR are checked (src/ is on the include path, so <ir/lower.hpp> works
 # too); third-party paths such as <Eigen/Dense> are skipped.
 includes=$(cd "$src" && grep -rnE --include='*.hpp' --include='*.cpp' --include='*.h' --include='*.hh' \
@@ -30,10 +31,28 @@ includes=$(cd "$src" && grep -rnE --include='*.hpp' --include='*.cpp' --include=
     folder = path; sub(/\/.*/, "", folder)
     inc = text; sub(/^[^"<]*["<]/, "", inc); sub(/\/.*/, "", inc)
     sub(/^[[:space:]]+/, "", text)
-    printf "%s\t%s:%s\t%s\t%s\n", folder, path, line, inc, text
+    printf "I\t%s\t%s:%s\t%s\t%s\n", folder, path, line, inc, text
   }')
 
-printf '%s\n' "$includes" | awk -v layers="$layers" -v src="$src" -v folders="$folders" '
+# The libraries each folder's CMakeLists.txt files define ("D<TAB>target<TAB>folder")
+# and every mospec_* name they mention outside comments, i.e. what they link
+# ("L<TAB>folder<TAB>path:line<TAB>target<TAB>the line"): a folder may link only
+# the libraries of the folders it may include.
+links=$(cd "$src" && find . -mindepth 2 -name CMakeLists.txt -exec awk '{
+    path = FILENAME; sub(/^\.\//, "", path); folder = path; sub(/\/.*/, "", folder)
+    text = $0; sub(/#.*/, "", text)
+    if (match(text, /add_library\([[:space:]]*mospec_[a-z0-9_]+/)) {
+      t = substr(text, RSTART, RLENGTH); sub(/^add_library\([[:space:]]*/, "", t)
+      printf "D\t%s\t%s\n", t, folder
+    }
+    rest = text; shown = text; sub(/^[[:space:]]+/, "", shown)
+    while (match(rest, /mospec_[a-z0-9_]+/)) {
+      printf "L\t%s\t%s:%d\t%s\t%s\n", folder, path, FNR, substr(rest, RSTART, RLENGTH), shown
+      rest = substr(rest, RSTART + RLENGTH)
+    }
+  }' {} +)
+
+printf '%s\n%s\n' "$includes" "$links" | awk -v layers="$layers" -v src="$src" -v folders="$folders" '
 BEGIN {
   bad = 0
   k = split(folders, ds, "\n")
@@ -76,9 +95,13 @@ BEGIN {
   for (i = 1; i <= n; i++) if (!(order[i] in colour)) visit(order[i], "")
 
   # The includes.
+  nl = 0
   while ((getline row) > 0) {
     if (row == "") continue
-    split(row, c, "\t"); y = c[1]; x = c[3]
+    split(row, c, "\t")
+    if (c[1] == "D") { libfolder[c[2]] = c[3]; continue }
+    if (c[1] == "L") { nl++; lrow[nl] = row; continue }
+    y = c[2]; x = c[4]; c[2] = c[3]; c[4] = c[5]
     if (!(x in isdir) || !(y in isdir)) continue  # not a src/ folder (e.g. <Eigen/Dense>)
     checked++
     if (x == y) continue
@@ -88,6 +111,18 @@ BEGIN {
       c[4], y, x, layers, (y in declared ? declared[y] : 0), y, (adj[y] != "" ? "itself," adj[y] : "itself")
     bad = 1
   }
+  # The links.
+  for (r = 1; r <= nl; r++) {
+    split(lrow[r], c, "\t"); y = c[2]; lib = c[4]
+    if (!(lib in libfolder) || !(y in isdir)) continue  # not a library of a src/ folder (mospec_warnings)
+    x = libfolder[lib]; linked++
+    if (x == y) continue
+    used[y, x] = 1
+    if ((y, x) in allow) continue
+    printf "%s/%s: error: %s: src/%s may not link %s (src/%s); the rule %s:%s lets %s include only %s\n", src, c[3],
+      c[5], y, lib, x, layers, (y in declared ? declared[y] : 0), y, (adj[y] != "" ? "itself," adj[y] : "itself")
+    bad = 1
+  }
   # Allowed but unused edges: not an error, a reminder to tighten the declaration.
   for (i = 1; i <= n; i++) {
     k = split(adj[order[i]], deps, " ")
@@ -95,7 +130,7 @@ BEGIN {
       printf "%s:%d: note: %s may include %s but does not\n", layers, depline[order[i], deps[j]], order[i], deps[j]
   }
   if (bad) { print "layering: FAILED"; exit 1 }
-  printf "layering: OK (%d folders, %d includes checked)\n", n, checked
+  printf "layering: OK (%d folders, %d includes and %d links checked)\n", n, checked, linked
   exit 0
 }
 function visit(v, path,    k, ds, j, w) {

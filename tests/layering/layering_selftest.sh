@@ -79,6 +79,12 @@ printf '#include <vector>\n#include "ir/lower.hpp"\n' > "$work/src/support/plant
 expect "project tree with support including ir" 1 \
   'support/planted\.cpp:2: error: #include "ir/lower\.hpp": src/support may not include src/ir' "$work/src"
 rm -rf "$work/src" && cp -r "$src" "$work/src"
+printf '# planted\ntarget_link_libraries(mospec_support PRIVATE mospec_warnings\n  mospec_ir)\n' \
+  >> "$work/src/support/CMakeLists.txt"
+n=$(wc -l < "$work/src/support/CMakeLists.txt")
+expect "project tree with support linking ir" 1 \
+  "support/CMakeLists\.txt:$n: error: mospec_ir\): src/support may not link mospec_ir \(src/ir\)" "$work/src"
+rm -rf "$work/src" && cp -r "$src" "$work/src"
 sed -i -E 's/^support:.*/support: cli/' "$work/src/LAYERS"
 expect "project declaration with support -> cli" 1 'error: the layering has a cycle: .*support.*cli' "$work/src"
 
