@@ -29,14 +29,15 @@ check "the warning names a right-arm joint, its ticks, first tick, request and l
 check "the summary says the command was clamped" grep -q '"command_clamped": true' "$work/sc0a.json"
 check "the summary lists the actuator with its limit" \
   grep -Eq '"actuator": "right_arm\.tau\[[0-6]\]"' "$work/sc0a.json"
-check "the summary's first clamped actuator has ticks and a limit" \
-  python3 -c '
-import json, sys
-s = json.load(open(sys.argv[1]))
-c = s["clamped_actuators"]
-assert c and all(e["ticks"] > 0 and e["limit"] in (9, 39) and e["unit"] == "N·m" and
-                 e["max_requested"] > 1e200 for e in c), c
-' "$work/sc0a.json"
+# clamped_actuators: the summary's list, one "key": value per line.
+clamped() { sed -n '/"clamped_actuators": \[/,/^  \]/p' "$1"; }
+check "every clamped actuator has ticks, a limit, a unit and the huge request" \
+  awk '
+    /"ticks":/         { n++; if ($2 + 0 <= 0) bad = 1 }
+    /"limit":/         { if ($2 + 0 != 9 && $2 + 0 != 39) bad = 1 }
+    /"unit":/          { if ($0 !~ /"N·m"/) bad = 1 }
+    /"max_requested":/ { if ($2 + 0 < 1e200) bad = 1 }
+    END { exit (n > 0 && !bad) ? 0 : 1 }' <(clamped "$work/sc0a.json")
 check "the log was still written" test -s "$work/sc0a.csv"
 
 # The generated controller's commands go through the same robot interface.
@@ -45,11 +46,8 @@ expect "sc0a with a gain of 1e300, generated controller: clamped, exit 1" 1 \
   "$mospec" run models/sc0a --sim --duration 0.5 --cache "$work/cache" \
   --summary "$work/sc0a-generated.json"
 check "generated: the same clamps as interpreted" \
-  python3 -c '
-import json, sys
-a, b = (json.load(open(f)) for f in sys.argv[1:3])
-assert a["clamped_actuators"] == b["clamped_actuators"], (a["clamped_actuators"], b["clamped_actuators"])
-' "$work/sc0a.json" "$work/sc0a-generated.json"
+  cmp -s <(clamped "$work/sc0a.json") <(clamped "$work/sc0a-generated.json")
+check "generated: the clamp list is not empty" grep -q '"actuator"' <(clamped "$work/sc0a-generated.json")
 
 # sc1 with distance gains of 1e9: a platform force far beyond traction.
 sed -i 's/"proportional-gain": "-600.0"/"proportional-gain": "-1e9"/' \
