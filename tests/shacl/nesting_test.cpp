@@ -11,6 +11,7 @@
 using namespace mospec;
 using namespace mospec::shacl;
 using mospec::shacl::test_util::kPrefixLines;
+using mospec::shacl::test_util::refused;
 using mospec::shacl::test_util::turtle;
 
 namespace {
@@ -21,19 +22,6 @@ std::string chain(const std::string& head, int n, const std::function<std::strin
   std::string body = head + "\n";
   for (int i = 0; i < n; ++i) body += link(i) + "\n";
   return body;
-}
-
-// Compiles and validates `body` as one graph; returns the error.
-Error refused(const std::string& body) {
-  auto g = turtle(body);
-  try {
-    Shapes shapes = Shapes::compile(g->data, &g->files);
-    validate(shapes, g->data);
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error";
-  return Error("none", "");
 }
 
 void expect_too_deep(const Error& e, const std::string& what) {

@@ -11,13 +11,11 @@ using namespace mospec;
 using namespace mospec::shacl;
 using mospec::shacl::test_util::check_one;
 using mospec::shacl::test_util::kPrefixLines;
+using mospec::shacl::test_util::refused;
+using mospec::shacl::test_util::text;
 using mospec::shacl::test_util::turtle;
 
 namespace {
-
-std::string text(const Report& r) {
-  return to_text(r, nullptr);
-}
 
 std::string message(const Report& r, const Result& x) {
   return x.messages.empty() ? x.default_message : std::string(r.terms[x.messages[0]].value);
@@ -185,19 +183,6 @@ ex:S a sh:NodeShape ; sh:targetNode 1, 2 ; ex:notEqualTo 2 ; sh:message "not two
   ASSERT_EQ(r.results.size(), 1u) << text(r);
   EXPECT_EQ(message(r, r.results[0]), "not two");
   EXPECT_EQ(r.terms[r.results[0].messages[0]].language, "en");
-}
-
-// Compiles `body` and returns the error.
-Error refused(const std::string& body) {
-  auto g = turtle(body);
-  try {
-    Shapes shapes = Shapes::compile(g->data, &g->files);
-    validate(shapes, g->data);
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for\n" << body;
-  return Error("none", "");
 }
 
 TEST(SparqlComponent, ComponentsMospecWouldHaveToIgnoreAreErrors) {

@@ -7,13 +7,10 @@
 using namespace mospec;
 using namespace mospec::shacl;
 using mospec::shacl::test_util::check_one;
+using mospec::shacl::test_util::text;
 using mospec::shacl::test_util::turtle;
 
 namespace {
-
-std::string text(const Report& r) {
-  return to_text(r, nullptr);
-}
 
 TEST(SparqlConstraint, PreboundThisAndResultMapping) {
   Report r = check_one(R"(

@@ -1,6 +1,8 @@
 // Helpers for the SHACL tests: Turtle snippets with the usual prefixes.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <memory>
 #include <string>
 
@@ -49,6 +51,25 @@ inline Report check_one(const std::string& both) {
   auto g = turtle(both);
   Shapes compiled = Shapes::compile(g->data, &g->files);
   return validate(compiled, g->data);
+}
+
+// Compiles and validates `body` as one graph, expecting a refusal; returns the
+// error (a test failure, and a placeholder error, when there is none).
+inline Error refused(const std::string& body) {
+  auto g = turtle(body);
+  try {
+    Shapes shapes = Shapes::compile(g->data, &g->files);
+    validate(shapes, g->data);
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error for\n" << body;
+  return Error("none", "");
+}
+
+// The report as `mospec validate` prints it, for failure messages.
+inline std::string text(const Report& r) {
+  return to_text(r, nullptr);
 }
 
 }  // namespace mospec::shacl::test_util

@@ -11,13 +11,10 @@ using namespace mospec::shacl;
 using mospec::shacl::test_util::check;
 using mospec::shacl::test_util::check_one;
 using mospec::shacl::test_util::kPrefixLines;
+using mospec::shacl::test_util::text;
 using mospec::shacl::test_util::turtle;
 
 namespace {
-
-std::string text(const Report& r) {
-  return to_text(r, nullptr);
-}
 
 TEST(Validate, ConformingDataHasNoResults) {
   Report r = check(
