@@ -11,6 +11,7 @@
 
 #include "codegen/build.hpp"
 #include "codegen/templates.hpp"
+#include "ir/operators.hpp"
 #include "support/io.hpp"
 
 namespace mospec::codegen {
@@ -714,26 +715,19 @@ class Builder {
     const ir::Step& st = p_.steps[index];
     mus::data s;
     s.set("index", std::to_string(index));
-    s.set("kind", std::string(ir::to_string(st.kind)));
+    s.set("kind", std::string(ir::kind_name(st)));
     s.set("name", comment_text(st.name));
     s.set("iri", comment_text(st.iri));
     s.set("where", where(st.where));
     // A blank line, then what the block implements and where it is written.
     std::string header = "\n  // [";
-    header.append(std::to_string(index)).append("] ").append(ir::to_string(st.kind)).append(" '");
+    header.append(std::to_string(index)).append("] ").append(ir::kind_name(st)).append(" '");
     header.append(comment_text(st.name))
         .append("': ")
         .append(comment_text(st.iri))
         .append("\n  //     ");
     header.append(where(st.where));
     s.set("header", header);
-    const auto call = [&](int arity, const char* function) {
-      s.set(std::string("is_call") + std::to_string(arity), true);
-      s.set("function", function);
-      for (int k = 0; k < arity; ++k)
-        s.set("in" + std::to_string(k), in(st, static_cast<std::size_t>(k)));
-      s.set("out0", out(st, 0));
-    };
     const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
     switch (st.kind) {
       case StepKind::ReadClock:
@@ -792,46 +786,23 @@ class Builder {
         s.set("components", components);
         break;
       }
-      case StepKind::ComposePose:
-        call(2, "compose_pose");
-        break;
-      case StepKind::PoseToLinearDistance:
-        call(1, "pose_to_linear_distance");
-        break;
-      case StepKind::PoseToDirection:
-        s.set("is_pose_to_direction", true);
-        s.set("in0", in(st, 0));
+      case StepKind::Operator: {
+        // The registry's kernel, called the way it declares: it returns the
+        // output, or writes it through its last parameter.
+        const ir::OperatorKind& k = ir::operator_kinds()[static_cast<std::size_t>(st.op)];
+        std::string args;
+        for (std::size_t i = 0; i < st.in.size(); ++i) {
+          if (i) args.append(", ");
+          args.append(in(st, i));
+        }
+        if (!k.kernel_returns) args.append(", ").append(out(st, 0));
+        s.set("is_operator", true);
+        s.set("returns", k.kernel_returns);
+        s.set("kernel", std::string(k.kernel));
+        s.set("args", args);
         s.set("out0", out(st, 0));
         break;
-      case StepKind::RotateWrenchToProximal:
-        call(2, "rotate_wrench_to_proximal");
-        break;
-      case StepKind::RotateTwistToProximal:
-        call(2, "rotate_twist_to_proximal");
-        break;
-      case StepKind::RotateDirectionToProximal:
-        call(2, "rotate_direction_to_proximal");
-        break;
-      case StepKind::TransformWrenchToProximal:
-        call(2, "transform_wrench_to_proximal");
-        break;
-      case StepKind::WrenchFromPositionDirectionAndMagnitude:
-        call(3, "wrench_from_position_direction_and_magnitude");
-        break;
-      case StepKind::AddWrench:
-        s.set("is_add_wrench", true);
-        s.set("in0", in(st, 0));
-        s.set("in1", in(st, 1));
-        s.set("out0", out(st, 0));
-        break;
-      case StepKind::PlanarAngleFromDirections:
-        s.set("is_planar_angle", true);
-        for (std::size_t k = 0; k < 3; ++k) s.set("in" + std::to_string(k), in(st, k));
-        s.set("out0", out(st, 0));
-        break;
-      case StepKind::InvertAngle:
-        call(1, "invert_angle");
-        break;
+      }
       case StepKind::Evaluate:
         s.set("is_evaluate", true);
         s.set("evaluator", step_members_[index]);

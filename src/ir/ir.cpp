@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ir/operators.hpp"
+
 namespace mospec::ir {
 
 std::string_view to_string(DataType t) {
@@ -34,28 +36,8 @@ std::string_view to_string(StepKind k) {
       return "view-read";
     case StepKind::ViewWrite:
       return "view-write";
-    case StepKind::ComposePose:
-      return "compose-pose";
-    case StepKind::PoseToLinearDistance:
-      return "pose-to-linear-distance";
-    case StepKind::PoseToDirection:
-      return "pose-to-direction";
-    case StepKind::RotateWrenchToProximal:
-      return "rotate-wrench-to-proximal";
-    case StepKind::RotateTwistToProximal:
-      return "rotate-twist-to-proximal";
-    case StepKind::RotateDirectionToProximal:
-      return "rotate-direction-to-proximal";
-    case StepKind::TransformWrenchToProximal:
-      return "transform-wrench-to-proximal";
-    case StepKind::WrenchFromPositionDirectionAndMagnitude:
-      return "wrench-from-position-direction-and-magnitude";
-    case StepKind::AddWrench:
-      return "add-wrench";
-    case StepKind::PlanarAngleFromDirections:
-      return "planar-angle-from-directions";
-    case StepKind::InvertAngle:
-      return "invert-angle";
+    case StepKind::Operator:
+      return "operator";
     case StepKind::Evaluate:
       return "evaluate";
     case StepKind::LevelMonitor:
@@ -74,6 +56,15 @@ std::string_view to_string(StepKind k) {
       return "base-velocity-composition";
   }
   return "?";
+}
+
+std::string_view kind_name(const Step& step) {
+  if (step.kind == StepKind::Operator) {
+    const auto kinds = operator_kinds();
+    if (step.op >= 0 && static_cast<size_t>(step.op) < kinds.size())
+      return kinds[static_cast<size_t>(step.op)].name;
+  }
+  return to_string(step.kind);
 }
 
 runtime::AchdModel achd_model(const ArmSolver& arm, bool physical) {
@@ -104,7 +95,7 @@ namespace {
   std::string msg = "IR step '";
   msg.append(step.name)
       .append("' (")
-      .append(to_string(step.kind))
+      .append(kind_name(step))
       .append(", from '")
       .append(step.iri)
       .append("'): ")
@@ -123,27 +114,15 @@ Signature signature(const Step& st, const Program& p) {
   switch (st.kind) {
     case StepKind::ReadClock:
       return {{}, {T::Scalar}};
-    case StepKind::ComposePose:
-      return {{T::Pose, T::Pose}, {T::Pose}};
-    case StepKind::PoseToLinearDistance:
-      return {{T::Pose}, {T::Scalar}};
-    case StepKind::PoseToDirection:
-      return {{T::Pose}, {T::Vector3}};
-    case StepKind::RotateWrenchToProximal:
-    case StepKind::TransformWrenchToProximal:
-      return {{T::Pose, T::Wrench}, {T::Wrench}};
-    case StepKind::RotateTwistToProximal:
-      return {{T::Pose, T::Twist}, {T::Twist}};
-    case StepKind::RotateDirectionToProximal:
-      return {{T::Pose, T::Vector3}, {T::Vector3}};
-    case StepKind::WrenchFromPositionDirectionAndMagnitude:
-      return {{T::Vector3, T::Vector3, T::Scalar}, {T::Wrench}};
-    case StepKind::AddWrench:
-      return {{T::Wrench, T::Wrench}, {T::Wrench}};
-    case StepKind::PlanarAngleFromDirections:
-      return {{T::Vector3, T::Vector3, T::Vector3}, {T::Scalar}};
-    case StepKind::InvertAngle:
-      return {{T::Scalar}, {T::Scalar}};
+    case StepKind::Operator: {
+      const auto kinds = operator_kinds();
+      if (st.op < 0 || static_cast<size_t>(st.op) >= kinds.size())
+        invalid(st, "names no operator kind");
+      const OperatorKind& k = kinds[static_cast<size_t>(st.op)];
+      Signature s{{}, {k.out.type}};
+      for (const OperatorPort& port : k.in) s.in.push_back(port.type);
+      return s;
+    }
     case StepKind::LevelMonitor:
       return {{T::Scalar}, {T::Flag}};
     case StepKind::EdgeMonitor:
@@ -417,7 +396,7 @@ std::string to_json(const Program& p, const SourceFiles* files) {
   Json steps = Json::array();
   for (const Step& st : p.steps) {
     Json e;
-    e["kind"] = to_string(st.kind);
+    e["kind"] = kind_name(st);
     e["name"] = st.name;
     e["iri"] = st.iri;
     e["in"] = st.in;

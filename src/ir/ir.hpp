@@ -56,21 +56,11 @@ struct Data {
 };
 
 enum class StepKind : uint8_t {
-  ReadClock,                  // out: [time]
-  ArmKinematics,              // solver; outs: the solver's outputs (arm_outputs)
-  ViewRead,                   // in: [pose|twist|wrench]; out: [scalar]; view
-  ViewWrite,                  // ins: [scalar...]; out: [twist|wrench] (others zero); views
-  ComposePose,                // ins: [X_AB, X_BC]; out: [X_AC]
-  PoseToLinearDistance,       // in: [pose]; out: [scalar]
-  PoseToDirection,            // in: [pose]; out: [vector3]
-  RotateWrenchToProximal,     // ins: [pose, wrench]; out: [wrench]
-  RotateTwistToProximal,      // ins: [pose, twist]; out: [twist]
-  RotateDirectionToProximal,  // ins: [pose, vector3]; out: [vector3]
-  TransformWrenchToProximal,  // ins: [pose, wrench]; out: [wrench]
-  WrenchFromPositionDirectionAndMagnitude,  // ins: [position, direction, magnitude]; out: [wrench]
-  AddWrench,                                // ins: [wrench, wrench]; out: [wrench]
-  PlanarAngleFromDirections,                // ins: [d1, d2, normal]; out: [scalar]
-  InvertAngle,                              // in: [scalar]; out: [scalar]
+  ReadClock,      // out: [time]
+  ArmKinematics,  // solver; outs: the solver's outputs (arm_outputs)
+  ViewRead,       // in: [pose|twist|wrench]; out: [scalar]; view
+  ViewWrite,      // ins: [scalar...]; out: [twist|wrench] (others zero); views
+  Operator,       // a pure computation: Step::op indexes operator_kinds() (operators.hpp)
   Evaluate,       // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
   LevelMonitor,   // in: [error]; out: [flag]
   EdgeMonitor,    // in: [error]; out: [event]
@@ -95,6 +85,7 @@ struct Step {
   std::vector<int> in, out;  // data indices
   SourceLoc where;
   // Per kind (unused fields stay default):
+  int op = -1;                         // Operator: index into operator_kinds()
   int solver = -1;                     // ArmKinematics, ArmSolve: arm solver index
   std::vector<int> views;              // ViewRead: 1 component; ViewWrite: one per input
   runtime::ConstraintSpec constraint;  // Evaluate
@@ -185,6 +176,11 @@ struct LogColumn {
   int data = 0;
   int component = -1;  // for a twist or wrench: which of its 6 entries (angular first)
 };
+
+struct Program;
+// A step's kind as the IR's JSON and messages name it: the operator's name
+// for an Operator step ("compose-pose"), else to_string(kind).
+std::string_view kind_name(const Step& step);
 
 struct Program {
   std::string app;  // the app model's IRI

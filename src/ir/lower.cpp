@@ -10,6 +10,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "ir/operators.hpp"
 #include "runtime/chain_rdf.hpp"
 #include "shacl/literal.hpp"
 
@@ -339,6 +340,9 @@ class Lowerer {
   void lower_clocks();
   void lower_arm(TermId solver);
   void lower_operators();
+  int axis_constant(TermId e, const OperatorKind& kind, const OperatorPort& port, TermId axis);
+  void check_frames(TermId e, const OperatorKind& kind, const Step& s);
+  std::string frame_origin(const std::string& frame) const;
   void lower_planar_angles();
   void lower_evaluators();
   void lower_monitors();
@@ -845,108 +849,133 @@ void Lowerer::lower_arm(TermId solver) {
   add_step(std::move(solve));
 }
 
+// Every operator kind of the registry (operators.hpp) that maps its class's
+// properties onto its ports: one step per instance, its inputs and output the
+// quantities the properties name, and the kind's frame rules checked.
 void Lowerer::lower_operators() {
-  const std::string op = "newtonian-rigid-body-dynamics/operators";
-  const std::string gop = "geometry/spatial-operators";
-  struct Spec {
-    std::string domain, type;
-    StepKind kind;
-    std::vector<std::pair<std::string, DataType>> in;
-    std::pair<std::string, DataType> out;
-  };
-  using T = DataType;
-  const std::vector<Spec> specs = {
-      {gop,
-       "ComposePose",
-       StepKind::ComposePose,
-       {{"in1", T::Pose}, {"in2", T::Pose}},
-       {"composite", T::Pose}},
-      {gop,
-       "PoseToLinearDistance",
-       StepKind::PoseToLinearDistance,
-       {{"pose", T::Pose}},
-       {"distance", T::Scalar}},
-      {gop,
-       "PoseToDirection",
-       StepKind::PoseToDirection,
-       {{"pose", T::Pose}},
-       {"direction", T::Vector3}},
-      {gop, "InvertAngle", StepKind::InvertAngle, {{"in", T::Scalar}}, {"out", T::Scalar}},
-      {op,
-       "RotateWrenchToProximalWithPose",
-       StepKind::RotateWrenchToProximal,
-       {{"pose", T::Pose}, {"from", T::Wrench}},
-       {"to", T::Wrench}},
-      {gop,
-       "RotateVelocityTwistToProximalWithPose",
-       StepKind::RotateTwistToProximal,
-       {{"pose", T::Pose}, {"from", T::Twist}},
-       {"to", T::Twist}},
-      {gop,
-       "RotateDirectionDistalToProximalWithPose",
-       StepKind::RotateDirectionToProximal,
-       {{"pose", T::Pose}, {"from", T::Vector3}},
-       {"to", T::Vector3}},
-      {op,
-       "TransformWrenchToProximal",
-       StepKind::TransformWrenchToProximal,
-       {{"pose", T::Pose}, {"from", T::Wrench}},
-       {"to", T::Wrench}},
-      {op,
-       "WrenchFromPositionDirectionAndMagnitude",
-       StepKind::WrenchFromPositionDirectionAndMagnitude,
-       {{"position", T::Vector3}, {"direction", T::Vector3}, {"magnitude", T::Scalar}},
-       {"wrench", T::Wrench}},
-      {op,
-       "AddWrench",
-       StepKind::AddWrench,
-       {{"in1", T::Wrench}, {"in2", T::Wrench}},
-       {"out", T::Wrench}},
-  };
-  for (const Spec& spec : specs) {
-    const std::string type_iri = vocab(spec.domain, spec.type);
-    for (TermId e : instances(type_iri)) {
+  const auto kinds = operator_kinds();
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    const OperatorKind& kind = kinds[k];
+    if (!kind.generic_lowering) continue;
+    for (TermId e : instances(kind.class_iri())) {
       pending_iri_ = str(e);
-      Step s;
-      s.kind = spec.kind;
-      s.iri = str(e);
-      s.name = local_name(s.iri);
-      s.where = where(e);
+      Step s = step_for(StepKind::Operator, e);
+      s.op = static_cast<int>(k);
       bool ok = true;
-      for (const auto& [prop, type] : spec.in) {
-        auto o = object(e, vocab(spec.domain, prop));
+      const auto port_datum = [&](const OperatorPort& port) {
+        auto o = object(e, kind.property_iri(port.property));
         if (!o) {
           error(e, "missing-property",
-                "the " + spec.type + " '" + s.iri + "' names no `" + prop + "`");
+                "the " + std::string(kind.type) + " '" + s.iri + "' names no `" +
+                    std::string(port.property) + "`");
           ok = false;
-          continue;
+          return -1;
         }
-        s.in.push_back(datum(*o, type, e, prop));
-      }
-      auto o = object(e, vocab(spec.domain, spec.out.first));
-      if (!o) {
-        error(e, "missing-property",
-              "the " + spec.type + " '" + s.iri + "' names no `" + spec.out.first + "`");
-        ok = false;
-      } else {
-        s.out.push_back(datum(*o, spec.out.second, e, spec.out.first));
-      }
+        if (port.source == PortSource::Axis) return axis_constant(e, kind, port, *o);
+        return datum(*o, port.type, e, std::string(port.property));
+      };
+      for (const OperatorPort& port : kind.in) s.in.push_back(port_datum(port));
+      const int out = port_datum(kind.out);
       if (!ok) continue;
-      // Frame rules the runtime's arithmetic relies on.
-      if (spec.kind == StepKind::AddWrench) {
-        const Data& a = prog_.data[static_cast<size_t>(s.in[0])];
-        const Data& b = prog_.data[static_cast<size_t>(s.in[1])];
-        if (a.reference_point != b.reference_point || a.as_seen_by != b.as_seen_by) {
-          error(e, "frame-mismatch",
-                "AddWrench '" + s.iri + "' adds '" + a.iri + "' (at '" + a.reference_point +
-                    "', seen by '" + a.as_seen_by + "') and '" + b.iri + "' (at '" +
-                    b.reference_point + "', seen by '" + b.as_seen_by +
-                    "'): both must have one reference point and frame");
-        }
-      }
+      s.out.push_back(out);
+      check_frames(e, kind, s);
       add_step(std::move(s));
     }
   }
+}
+
+// An axis the model names (geom-op:x, y or z): a unit-vector constant.
+int Lowerer::axis_constant(TermId e, const OperatorKind& kind, const OperatorPort& port,
+                           TermId axis) {
+  const std::string name = local_name(str(axis));
+  const int index = str(axis) == kind.property_iri("x")   ? 0
+                    : str(axis) == kind.property_iri("y") ? 1
+                    : str(axis) == kind.property_iri("z") ? 2
+                                                          : -1;
+  if (index < 0) {
+    error(where(e, kind.property_iri(port.property), axis), "invalid-axis",
+          "the " + std::string(kind.type) + " '" + str(e) + "' names `" +
+              std::string(port.property) + "` '" + str(axis) + "'; it must be one of " +
+              kind.property_iri("x") + ", y or z");
+    return synthetic(str(e) + "#" + std::string(port.property),
+                     local_name(str(e)) + "_" + std::string(port.property), DataType::Vector3,
+                     where(e), "UNITLESS");
+  }
+  const int d = synthetic(str(e) + "#" + std::string(port.property),
+                          local_name(str(e)) + "_" + std::string(port.property) + "_" + name,
+                          DataType::Vector3, where(e), "UNITLESS");
+  std::vector<double> v(3, 0.0);
+  v[static_cast<size_t>(index)] = 1.0;
+  prog_.data[static_cast<size_t>(d)].value = std::move(v);
+  return d;
+}
+
+// The frame rules of an operator kind, on the quantities a step relates: a
+// rule whose two sides are both stated must hold; a side the model leaves
+// unstated is not checked (the shapes decide what must be stated).
+void Lowerer::check_frames(TermId e, const OperatorKind& kind, const Step& s) {
+  const auto quantity = [&](int port) -> const Data& {
+    const int d = port < static_cast<int>(s.in.size()) ? s.in[static_cast<size_t>(port)] : s.out[0];
+    return prog_.data[static_cast<size_t>(d)];
+  };
+  const auto field = [](const Data& d, FrameField f) -> const std::string& {
+    switch (f) {
+      case FrameField::Of:
+        return d.of;
+      case FrameField::WithRespectTo:
+        return d.with_respect_to;
+      case FrameField::ReferencePoint:
+        return d.reference_point;
+      case FrameField::AsSeenBy:
+        break;
+    }
+    return d.as_seen_by;
+  };
+  for (const FrameRule& rule : kind.frames) {
+    const Data& lhs = quantity(rule.lhs_port);
+    const Data& rhs = quantity(rule.rhs_port);
+    const std::string& got = field(lhs, rule.lhs_field);
+    std::string expected = field(rhs, rule.rhs_field);
+    if (rule.rhs_origin && !expected.empty()) expected = frame_origin(expected);
+    if (got.empty() || expected.empty() || got == expected) continue;
+    const std::string lhs_port(kind.port_at(rule.lhs_port).property);
+    const std::string rhs_port(kind.port_at(rule.rhs_port).property);
+    std::string msg = "the ";
+    msg.append(kind.type)
+        .append(" '")
+        .append(str(e))
+        .append("' needs ")
+        .append(rule.text)
+        .append(": `")
+        .append(lhs_port)
+        .append("` '")
+        .append(lhs.iri)
+        .append("' has ")
+        .append(to_string(rule.lhs_field))
+        .append(" '")
+        .append(got)
+        .append("', expected '")
+        .append(expected)
+        .append("' (")
+        .append(rule.rhs_origin ? "the origin of " : "")
+        .append("the ")
+        .append(to_string(rule.rhs_field))
+        .append(" of `")
+        .append(rhs_port)
+        .append("` '")
+        .append(rhs.iri)
+        .append("')");
+    error(where(e, kind.property_iri(lhs_port), term(lhs.iri)), "frame-mismatch", msg);
+  }
+}
+
+// The origin point of a frame, by the model's `origin` relation ("" if it
+// states none).
+std::string Lowerer::frame_origin(const std::string& frame) const {
+  const TermId f = term(frame);
+  if (absent(f)) return {};
+  auto o = object(f, vocab("geometry/structural-entities", "origin"));
+  return o ? str(*o) : std::string();
 }
 
 // PlanarAngleFromDirections: the signed angle from the first to the second
@@ -956,7 +985,8 @@ void Lowerer::lower_planar_angles() {
   const std::string gop = "geometry/spatial-operators";
   for (TermId e : instances(vocab(gop, "PlanarAngleFromDirections"))) {
     pending_iri_ = str(e);
-    Step s = step_for(StepKind::PlanarAngleFromDirections, e);
+    Step s = step_for(StepKind::Operator, e);
+    s.op = operator_index("planar-angle-from-directions");
     auto dirs = objects(e, vocab(gop, "from-directions"));
     std::vector<TermId> ordered;
     if (dirs.size() == 1) ordered = list(dirs.front());

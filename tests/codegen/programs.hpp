@@ -25,6 +25,7 @@
 
 #include "app/app.hpp"
 #include "ir/ir.hpp"
+#include "ir/operators.hpp"
 #include "robot/interface.hpp"
 #include "runtime/chain_rdf.hpp"
 
@@ -64,6 +65,15 @@ class ProgramBuilder {
     return p.steps.back();
   }
 
+  // An operator step, by the registry's name of its kind ("compose-pose").
+  ir::Step& op(std::string_view kind, const std::string& name, std::vector<int> in,
+               std::vector<int> out) {
+    ir::Step& s = step(ir::StepKind::Operator, name, std::move(in), std::move(out));
+    s.op = ir::operator_index(kind);
+    if (s.op < 0) throw std::logic_error("no operator kind '" + std::string(kind) + "'");
+    return s;
+  }
+
   int state(ir::StateKind kind) { return p.states[static_cast<std::size_t>(kind)]++; }
 
   void log(const std::string& name, int data, const std::string& unit = "") {
@@ -97,23 +107,23 @@ inline ir::Program small_program(SourceFiles& files) {
 
   b.step(K::ReadClock, "clock", {}, {time});
   const int X_WB = b.datum("X_WB", T::Pose);
-  b.step(K::ComposePose, "compose", {X_WA, X_AB}, {X_WB});
+  b.op("compose-pose", "compose", {X_WA, X_AB}, {X_WB});
   const int height = b.datum("height", T::Scalar, {}, "M");
   b.step(K::ViewRead, "view_height", {X_WB}, {height}).views = {5};
   const int yaw = b.datum("yaw", T::Scalar, {}, "RAD");
   b.step(K::ViewRead, "view_yaw", {X_WB}, {yaw}).views = {2};
   const int distance = b.datum("distance", T::Scalar, {}, "M");
-  b.step(K::PoseToLinearDistance, "distance_op", {X_WB}, {distance});
+  b.op("pose-to-linear-distance", "distance_op", {X_WB}, {distance});
   const int d_WB = b.datum("d_WB", T::Vector3);
-  b.step(K::PoseToDirection, "direction_op", {X_WB}, {d_WB});
+  b.op("pose-to-direction", "direction_op", {X_WB}, {d_WB});
   const int angle = b.datum("angle", T::Scalar, {}, "RAD");
-  b.step(K::PlanarAngleFromDirections, "angle_op", {d_WB, x_axis, z_axis}, {angle});
+  b.op("planar-angle-from-directions", "angle_op", {d_WB, x_axis, z_axis}, {angle});
   const int angle_inv = b.datum("angle_inv", T::Scalar, {}, "RAD");
-  b.step(K::InvertAngle, "invert_op", {angle}, {angle_inv});
+  b.op("invert-angle", "invert_op", {angle}, {angle_inv});
   const int d_W = b.datum("d_W", T::Vector3);
-  b.step(K::RotateDirectionToProximal, "rotate_direction", {X_WA, d_WB}, {d_W});
+  b.op("rotate-direction-to-proximal", "rotate_direction", {X_WA, d_WB}, {d_W});
   const int V_W = b.datum("V_W", T::Twist);
-  b.step(K::RotateTwistToProximal, "rotate_twist", {X_WA, V_A}, {V_W});
+  b.op("rotate-twist-to-proximal", "rotate_twist", {X_WA, V_A}, {V_W});
   const int v_z = b.datum("v_z", T::Scalar, {}, "M-PER-SEC");
   b.step(K::ViewRead, "view_vz", {V_W}, {v_z}).views = {5};
 
@@ -159,17 +169,17 @@ inline ir::Program small_program(SourceFiles& files) {
   as.constraint = {runtime::ConstraintKind::Assignment, 20.0, 0.0, 0.0, 0.0, 0.0};
 
   const int F_force = b.datum("F_force", T::Wrench);
-  b.step(K::WrenchFromPositionDirectionAndMagnitude, "wrench_op", {p_BoC, d_W, force}, {F_force});
+  b.op("wrench-from-position-direction-and-magnitude", "wrench_op", {p_BoC, d_W, force}, {F_force});
   const int F_push = b.datum("F_push", T::Wrench);
   b.step(K::ViewWrite, "view_push", {push, force}, {F_push}).views = {5, 3};
   const int F_sum = b.datum("F_sum", T::Wrench);
-  b.step(K::AddWrench, "add_op", {F_force, F_push}, {F_sum});
+  b.op("add-wrench", "add_op", {F_force, F_push}, {F_sum});
   const int F_sum2 = b.datum("F_sum2", T::Wrench);
-  b.step(K::AddWrench, "add_bias", {F_sum, F_bias}, {F_sum2});
+  b.op("add-wrench", "add_bias", {F_sum, F_bias}, {F_sum2});
   const int F_rot = b.datum("F_rot", T::Wrench);
-  b.step(K::RotateWrenchToProximal, "rotate_wrench", {X_WA, F_sum2}, {F_rot});
+  b.op("rotate-wrench-to-proximal", "rotate_wrench", {X_WA, F_sum2}, {F_rot});
   const int F_P = b.datum("F_P", T::Wrench);
-  b.step(K::TransformWrenchToProximal, "transform_wrench", {X_WA, F_rot}, {F_P});
+  b.op("transform-wrench-to-proximal", "transform_wrench", {X_WA, F_rot}, {F_P});
   const int f_z = b.datum("f_z", T::Scalar, {}, "N");
   b.step(K::ViewRead, "view_fz", {F_P}, {f_z}).views = {5};
 
@@ -276,7 +286,7 @@ inline ir::Program arm_program(SourceFiles& files) {
   const int F_E = b.datum("F_E", T::Wrench);
   b.step(K::ViewWrite, "view_push", {push}, {F_E}).views = {3};
   const int F_E_B = b.datum("F_E_B", T::Wrench);
-  b.step(K::RotateWrenchToProximal, "rotate_push", {X_BE, F_E}, {F_E_B});
+  b.op("rotate-wrench-to-proximal", "rotate_push", {X_BE, F_E}, {F_E_B});
   const int tau_1 = b.datum("tau_1", T::Scalar, {0.25}, "N-M");
 
   // The arm is driven while a motion runs (until t >= 1 s), then holds.

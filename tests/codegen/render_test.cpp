@@ -64,7 +64,7 @@ TEST(Codegen, EveryStepIsACommentedBlockInScheduleOrder) {
   for (std::size_t i = 0; i < p.steps.size(); ++i) {
     const ir::Step& st = p.steps[i];
     std::string head = "  // [";
-    head.append(std::to_string(i)).append("] ").append(ir::to_string(st.kind)).append(" '");
+    head.append(std::to_string(i)).append("] ").append(ir::kind_name(st)).append(" '");
     head.append(st.name).append("': ").append(st.iri).append(
         "\n  //     tests/codegen/programs.hpp:");
     head.append(std::to_string(st.where.line)).append(":5\n");
