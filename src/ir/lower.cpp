@@ -342,6 +342,8 @@ class Lowerer {
   void lower_operators();
   int axis_constant(TermId e, const OperatorKind& kind, const OperatorPort& port, TermId axis);
   void check_frames(TermId e, const OperatorKind& kind, const Step& s);
+  void refuse_unknown_properties(TermId e, const OperatorKind& kind);
+  void lower_accumulated_wrenches();
   std::string frame_origin(const std::string& frame) const;
   void lower_planar_angles();
   void lower_evaluators();
@@ -876,11 +878,34 @@ void Lowerer::lower_operators() {
       };
       for (const OperatorPort& port : kind.in) s.in.push_back(port_datum(port));
       const int out = port_datum(kind.out);
+      refuse_unknown_properties(e, kind);
       if (!ok) continue;
       s.out.push_back(out);
       check_frames(e, kind, s);
       add_step(std::move(s));
     }
+  }
+}
+
+// A property of the operator's vocabulary that the kind does not read (e.g.
+// TransformWrenchToProximal's `at-index` into an array of wrenches) would be
+// ignored: refuse it instead.
+void Lowerer::refuse_unknown_properties(TermId e, const OperatorKind& kind) {
+  std::set<std::string> seen;
+  for (uint32_t i : g_.match(e, TermId::any(), TermId::any())) {
+    const std::string p = str(g_.quads()[i].predicate);
+    if (!p.starts_with(kind.vocabulary)) continue;
+    const std::string_view local = std::string_view(p).substr(kind.vocabulary.size());
+    if (kind.port(local) >= 0 || !seen.insert(p).second) continue;
+    std::string ports;
+    for (const OperatorPort& port : kind.in) ports.append(port.property).append(", ");
+    ports.append(kind.out.property);
+    error(g_.location(i).known() ? g_.location(i) : where(e), "unsupported-property",
+          "the " + std::string(kind.type) + " '" + str(e) + "' states `" + std::string(local) +
+              "`, which mospec's " + std::string(kind.name) +
+              " does not implement (it reads only " + ports +
+              "); remove it or model the "
+              "computation another way");
   }
 }
 
@@ -976,6 +1001,87 @@ std::string Lowerer::frame_origin(const std::string& frame) const {
   if (absent(f)) return {};
   auto o = object(f, vocab("geometry/structural-entities", "origin"));
   return o ? str(*o) : std::string();
+}
+
+// AccumulateWrench: every instance that names one `aggregate` adds its
+// `element` to it, so the aggregate is the sum of all their elements, added in
+// the order of the elements' IRIs (the same sum, to the bit, every time): a
+// copy of the first (assign-wrench), then one add-wrench step per other element.
+void Lowerer::lower_accumulated_wrenches() {
+  const std::string dop = "newtonian-rigid-body-dynamics/operators";
+  const std::string prefix = vocab(dop, "");
+  struct Term {
+    std::string element;
+    TermId entity, element_term;
+  };
+  std::map<std::string, std::vector<Term>> by_aggregate;
+  std::map<std::string, TermId> aggregate_term;
+  for (TermId e : instances(vocab(dop, "AccumulateWrench"))) {
+    pending_iri_ = str(e);
+    auto aggregate = object(e, vocab(dop, "aggregate"));
+    auto element = object(e, vocab(dop, "element"));
+    for (uint32_t i : g_.match(e, TermId::any(), TermId::any())) {
+      const std::string p = str(g_.quads()[i].predicate);
+      if (!p.starts_with(prefix) || p == vocab(dop, "aggregate") || p == vocab(dop, "element"))
+        continue;
+      const TermId o = g_.quads()[i].object;
+      if (p == vocab(dop, "number-of-wrenches") && number(o) == 1.0) continue;
+      error(g_.location(i).known() ? g_.location(i) : where(e), "unsupported-property",
+            "the AccumulateWrench '" + str(e) + "' states `" + p.substr(prefix.size()) +
+                "`, which mospec does not implement (it accumulates one wrench per instance: "
+                "aggregate, element, and number-of-wrenches 1 at most)");
+    }
+    if (!aggregate || !element) {
+      error(e, "missing-property",
+            "the AccumulateWrench '" + str(e) + "' names no `" +
+                (aggregate ? "element" : "aggregate") + "`");
+      continue;
+    }
+    by_aggregate[str(*aggregate)].push_back({str(*element), e, *element});
+    aggregate_term.emplace(str(*aggregate), *aggregate);
+  }
+  const int assign = operator_index("assign-wrench"), add = operator_index("add-wrench");
+  for (auto& [aggregate_iri, terms] : by_aggregate) {
+    std::sort(terms.begin(), terms.end(), [&](const Term& a, const Term& b) {
+      return a.element != b.element ? a.element < b.element : str(a.entity) < str(b.entity);
+    });
+    pending_iri_ = str(terms.front().entity);
+    const int aggregate = datum(aggregate_term.at(aggregate_iri), DataType::Wrench,
+                                terms.front().entity, "aggregate");
+    int sum = -1;
+    for (size_t k = 0; k < terms.size(); ++k) {
+      const Term& t = terms[k];
+      pending_iri_ = str(t.entity);
+      const int element = datum(t.element_term, DataType::Wrench, t.entity, "element");
+      const Data& a = prog_.data[static_cast<size_t>(aggregate)];
+      const Data& el = prog_.data[static_cast<size_t>(element)];
+      if (el.reference_point != a.reference_point || el.as_seen_by != a.as_seen_by) {
+        error(where(t.entity, vocab(dop, "element"), t.element_term), "frame-mismatch",
+              "the AccumulateWrench '" + str(t.entity) + "' adds '" + el.iri + "' (about '" +
+                  el.reference_point + "', seen by '" + el.as_seen_by + "') to '" + a.iri +
+                  "' (about '" + a.reference_point + "', seen by '" + a.as_seen_by +
+                  "'): both must be about one point and seen by one frame");
+      }
+      const std::string unit = a.unit;  // synthetic() may move prog_.data
+      const bool last = k + 1 == terms.size();
+      const int target =
+          last ? aggregate
+               : synthetic(aggregate_iri + "#partial-" + std::to_string(k + 1),
+                           local_name(aggregate_iri) + "_partial_" + std::to_string(k + 1),
+                           DataType::Wrench, where(t.entity), unit);
+      Step s = step_for(StepKind::Operator, t.entity);
+      if (k == 0) {
+        s.op = assign;
+        s.in = {element};
+      } else {
+        s.op = add;
+        s.in = {sum, element};
+      }
+      s.out = {target};
+      add_step(std::move(s));
+      sum = target;
+    }
+  }
 }
 
 // PlanarAngleFromDirections: the signed angle from the first to the second
@@ -1617,6 +1723,7 @@ Program Lowerer::run() {
   for (TermId s : instances(vocab("task/solver-specification", "SolverWithInputAndOutput")))
     lower_arm(s);
   lower_operators();
+  lower_accumulated_wrenches();
   lower_planar_angles();
   lower_base();
   lower_evaluators();

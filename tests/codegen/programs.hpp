@@ -392,6 +392,87 @@ inline ir::Program hostile_program(SourceFiles& files) {
 
 // A synthetic measurement for tick k (1 kHz): smooth joint motion, pivots
 // turning, a non-zero dt except on the first sample.
+// Every operator kind of the registry (ir::operator_kinds()), each once, on
+// constant inputs (a scalar input is the clock's time, so values change from
+// tick to tick); every output is logged: a scalar as it is, a twist or wrench
+// by component, a pose through six views, a vector as the force of a wrench.
+// A new operator kind is in this program, and so in the interpreter ==
+// generated and allocation tests, without editing it.
+inline ir::Program operators_program(SourceFiles& files) {
+  using T = ir::DataType;
+  using K = ir::StepKind;
+  ProgramBuilder b(files);
+  const int time = b.datum("time", T::Scalar, {}, "SEC");
+  b.step(K::ReadClock, "clock", {}, {time});
+  const int zero = b.datum("p_zero", T::Vector3, {0.0, 0.0, 0.0}, "M");
+  const int one = b.datum("f_one", T::Scalar, {1.0}, "N");
+  const auto kinds = ir::operator_kinds();
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    const ir::OperatorKind& kind = kinds[k];
+    const std::string prefix = "k" + std::to_string(k) + "_";
+    std::vector<int> in;
+    for (std::size_t i = 0; i < kind.in.size(); ++i) {
+      const double a = 0.1 * static_cast<double>(k + 1) + 0.37 * static_cast<double>(i);
+      const std::string name = prefix + "in" + std::to_string(i);
+      switch (kind.in[i].type) {
+        case T::Scalar:
+          in.push_back(time);
+          break;
+        case T::Vector3:
+          in.push_back(kind.in[i].source == ir::PortSource::Axis
+                           ? b.datum(name, T::Vector3, {0.0, 0.0, 1.0})
+                           : b.datum(name, T::Vector3, {std::cos(a), std::sin(a), 0.5}));
+          break;
+        case T::Pose:
+          in.push_back(b.datum(name, T::Pose, pose_value(a, 0.2, -0.1 * a, 0.3)));
+          break;
+        case T::Twist:
+        case T::Wrench:
+          in.push_back(b.datum(name, kind.in[i].type, {a, -a, 0.5, 1.0 - a, 2.0 * a, -0.25}));
+          break;
+        default:
+          throw std::logic_error("operators_program: no constant for an input of " +
+                                 std::string(kind.name));
+      }
+    }
+    const std::string out_name = prefix + "out";
+    const int out = b.datum(out_name, kind.out.type);
+    b.op(kind.name, prefix + "op", in, {out});
+    switch (kind.out.type) {
+      case T::Scalar:
+        b.log(out_name, out);
+        break;
+      case T::Twist:
+      case T::Wrench:
+        for (int c = 0; c < 6; ++c) {
+          b.p.log.push_back({out_name + "." + std::to_string(c), "", out, c});
+        }
+        break;
+      case T::Pose:
+        for (int c = 0; c < 6; ++c) {
+          const std::string view = out_name + "_view" + std::to_string(c);
+          const int v = b.datum(view, T::Scalar);
+          b.step(K::ViewRead, prefix + "read" + std::to_string(c), {out}, {v}).views = {c};
+          b.log(view, v);
+        }
+        break;
+      case T::Vector3: {
+        const int F = b.datum(out_name + "_as_force", T::Wrench);
+        b.op("wrench-from-position-direction-and-magnitude", prefix + "as_force", {zero, out, one},
+             {F});
+        for (int c = 3; c < 6; ++c) {
+          b.p.log.push_back({out_name + "." + std::to_string(c - 3), "", F, c});
+        }
+        break;
+      }
+      default:
+        throw std::logic_error("operators_program: cannot log the output of " +
+                               std::string(kind.name));
+    }
+  }
+  return b.p;
+}
+
 inline robot::MeasuredState measurement(std::uint64_t k) {
   robot::MeasuredState s;
   const double t = 0.001 * static_cast<double>(k);

@@ -178,12 +178,12 @@ bool is_safe_identifier(const std::string& id) {
 
 TEST(Mangle, IsInjectiveAndGivesSafeIdentifiers) {
   std::vector<std::string> names{
-      "",    "a",     "x",        "_",        "__",     "_x",           "x_",
-      "x5F", "_x5F",  "a_b",      "a__b",     "a_x",    "a_x5Fb",       "a-b",
-      "a.b", "a_",    "a_B",      "_Capital", "errno",  "assert",       "NULL",
-      "EOF", "stdin", "INFINITY", "unix",     "linux",  "class",        "int",
+      "",     "a",     "x",        "_",        "__",     "_x",           "x_",
+      "x5F",  "_x5F",  "a_b",      "a__b",     "a_x",    "a_x5Fb",       "a-b",
+      "a.b",  "a_",    "a_B",      "_Capital", "errno",  "assert",       "NULL",
+      "EOF",  "stdin", "INFINITY", "unix",     "linux",  "class",        "int",
       "?\?/", "r",     "r_task",   "r_X_BR",   "9lives", "\xE2\x80\xAE", "a b",
-      "x78", "xx",    "_xx",      "a\nb"};
+      "x78",  "xx",    "_xx",      "a\nb"};
   std::set<std::string> ids;
   for (const std::string& n : names) {
     const std::string id = mangle("v", n);

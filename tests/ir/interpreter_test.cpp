@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../codegen/programs.hpp"
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order): after every other header
 #include "app/app.hpp"
 #include "ir/lower.hpp"
@@ -154,6 +155,29 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
   }
   EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(limiter.any()) << "the clamp was exercised";
+#endif
+}
+
+// Every operator kind of the registry: the interpreter's call of its kernel
+// allocates nothing either.
+TEST(Interpreter, EveryOperatorKindTicksWithoutAllocating) {
+#ifdef MOSPEC_NO_ALLOC_COUNTING
+  GTEST_SKIP() << "allocation counting is off under AddressSanitizer (it owns malloc)";
+#else
+  SourceFiles files;
+  Interpreter in(codegen::testing::operators_program(files));
+  robot::Command command;
+  std::vector<double> values(in.log_columns().size());
+  long allocations = 0;
+  for (std::uint64_t k = 0; k < 1000; ++k) {
+    const robot::MeasuredState state = codegen::testing::measurement(k);
+    allocations += alloc_counter::during([&] {
+      in.tick(state, command);
+      in.log_values(values);
+    });
+  }
+  EXPECT_EQ(allocations, 0);
+  for (double v : values) EXPECT_TRUE(std::isfinite(v));
 #endif
 }
 

@@ -176,6 +176,24 @@ bad operators "$ops" 15 \
   '<https://ex.org/invert>: an angle inversion has exactly one output angle'
 done
 
+# One instance of every operator kind mospec lowers (src/ir/operators.cpp; the
+# registry test ir_operators_test checks each has a case here or above).
+kinds="geometry/spatial-relations.ttl geometry/spatial-operators.ttl newtonian-rigid-body-dynamics/operators.ttl"
+good operator-kinds "$kinds"
+bad operator-kinds "$kinds" 12 \
+  '<https://ex.org/dist-bad>: value is not an instance of .*spatial-relations#Pose' \
+  '<https://ex.org/dir-bad>: fewer than 1 value .*spatial-operators#direction' \
+  '<https://ex.org/yaw-bad>: an angle around an axis names exactly one of the axes x, y, z' \
+  "<https://ex.org/rotdir-bad>: the rotated input must be seen by the pose's distal frame" \
+  '<https://ex.org/tftw-bad>: a twist transformation has exactly one input twist' \
+  '<https://ex.org/addtw-bad>: a twist sum has exactly one second twist \(in2\)' \
+  '<https://ex.org/rotw-bad>: a wrench rotation has exactly one output wrench' \
+  '<https://ex.org/force-bad>: fewer than 1 value .*operators#direction' \
+  '<https://ex.org/addw-bad>: value is not an instance of .*structural-entities#Wrench' \
+  '<https://ex.org/inv-bad>: exactly one output wrench \(to\)' \
+  '<https://ex.org/copy-bad>: exactly one output wrench \(to\)' \
+  '<https://ex.org/acc-bad>: mospec accumulates single wrenches'
+
 # geometry/spatial-operators.ttl is exactly the family files' shapes: its text
 # after the prefixes is theirs, concatenated in the order above.
 body() { sed -e '/^#/d' -e '/^@prefix/d' -e '/^$/d' "$@"; }
