@@ -210,11 +210,31 @@ runtime::KeloConfig kelo_config(const BaseSolver& base);
 // A constant pose from Data::value (R row-major, then p).
 runtime::Pose constant_pose(const std::vector<double>& value);
 
-// Checks the invariants the back-ends rely on: every input of a step is a
-// constant or produced by an earlier step, every datum has at most one
-// producer, slots are dense, types match each step's signature. Throws
-// mospec::Error("ir-invalid") naming the step.
-void verify(const Program& program);
+// Checks the invariants the back-ends rely on: slots are dense per type and
+// used once; every step reads data that exist, of the types its kind takes,
+// and writes data of the types it gives; every datum has at most one producer
+// (a step or the model's constant value); every input is produced (and, once
+// scheduled, by an earlier step); views, guards, state slots, solvers and log
+// columns are in range. Returns every problem (code "ir-invalid"), each
+// located at the model entity of the step or datum involved (with `files`),
+// saying what was expected and what the program has.
+enum class Stage : uint8_t {
+  Unscheduled,  // during lowering: steps in declaration order, inputs perhaps not yet produced
+  Scheduled,    // the finished program: steps in a topological order
+};
+std::vector<Diagnostic> check(const Program& program, const SourceFiles* files = nullptr,
+                              Stage stage = Stage::Scheduled);
+
+class VerifyError : public Error {
+ public:
+  explicit VerifyError(std::vector<Diagnostic> diagnostics);
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+// check(); throws VerifyError with every problem when there is any.
+void verify(const Program& program, const SourceFiles* files = nullptr);
 
 // The program as deterministic JSON (fixed key order, %.17g numbers).
 std::string to_json(const Program& program, const SourceFiles* files = nullptr);

@@ -337,7 +337,10 @@ class Lowerer {
     return producer_.count(d) || !prog_.data[static_cast<size_t>(d)].value.empty();
   }
 
+ public:
+  // Lowering's passes (kPasses).
   void lower_clocks();
+  void lower_arms();
   void lower_arm(TermId solver);
   void lower_operators();
   int axis_constant(TermId e, const OperatorKind& kind, const OperatorPort& port, TermId axis);
@@ -357,6 +360,7 @@ class Lowerer {
   void schedule();
   void build_log();
 
+ private:
   const app::LoadedModel& model_;
   rdf::Dataset g_;
   const LowerOptions& options_;
@@ -1643,7 +1647,7 @@ void Lowerer::schedule() {
     for (size_t i = 0; i < n; ++i) {
       if (waiting[i] > 0) {
         error(steps_[i].where, "cycle",
-              "'" + steps_[i].iri + "' (" + std::string(to_string(steps_[i].kind)) +
+              "'" + steps_[i].iri + "' (" + std::string(kind_name(steps_[i])) +
                   ") is on a dependency cycle: each quantity on it needs another one of them in "
                   "the same tick");
       }
@@ -1712,6 +1716,31 @@ void Lowerer::build_log() {
   }
 }
 
+using Pass = void (Lowerer::*)();
+struct PassInfo {
+  std::string_view name;
+  Pass run;
+};
+
+// Lowering's passes, in order: what each lowers is in its name.
+const PassInfo kPasses[] = {
+    {"clocks", &Lowerer::lower_clocks},
+    {"arm-solvers", &Lowerer::lower_arms},
+    {"operators", &Lowerer::lower_operators},
+    {"accumulated-wrenches", &Lowerer::lower_accumulated_wrenches},
+    {"planar-angles", &Lowerer::lower_planar_angles},
+    {"base", &Lowerer::lower_base},
+    {"evaluators", &Lowerer::lower_evaluators},
+    {"monitors", &Lowerer::lower_monitors},
+    {"handlers", &Lowerer::lower_handlers},
+    {"controllers", &Lowerer::lower_controllers},
+    {"views", &Lowerer::lower_views},
+    {"motion-gates", &Lowerer::gate_arm_solves},
+    {"producers", &Lowerer::check_inputs},
+    {"schedule", &Lowerer::schedule},
+    {"log", &Lowerer::build_log},
+};
+
 Program Lowerer::run() {
   for (const app::ModelFile& f : model_.model_files()) {
     if (f.is_app) {
@@ -1719,31 +1748,53 @@ Program Lowerer::run() {
       break;
     }
   }
-  lower_clocks();
+  for (const PassInfo& pass : kPasses) {
+    (this->*pass.run)();
+    if (!errors_.empty()) {
+      // Later passes would only report what follows from these problems,
+      // except that every missing producer is worth knowing at once.
+      if (pass.name == "schedule" || pass.name == "producers" || pass.name == "log") break;
+      continue;
+    }
+    // Until "schedule" orders them, the steps so far are in steps_, in
+    // declaration order: lend them to the program for the check.
+    const bool ordered = pass.name == "schedule" || pass.name == "log";
+    if (!ordered) std::swap(prog_.steps, steps_);
+    auto problems = check(prog_, &model_.files(), ordered ? Stage::Scheduled : Stage::Unscheduled);
+    if (options_.after_pass) options_.after_pass(pass.name, prog_);
+    if (!ordered) std::swap(prog_.steps, steps_);
+    if (!problems.empty()) {
+      for (Diagnostic& d : problems)
+        d.message = "after lowering pass '" + std::string(pass.name) + "': " + d.message;
+      throw VerifyError(std::move(problems));
+    }
+  }
+  if (!errors_.empty()) throw LowerError(std::move(errors_));
+  return std::move(prog_);
+}
+
+void Lowerer::lower_arms() {
   for (TermId s : instances(vocab("task/solver-specification", "SolverWithInputAndOutput")))
     lower_arm(s);
-  lower_operators();
-  lower_accumulated_wrenches();
-  lower_planar_angles();
-  lower_base();
-  lower_evaluators();
-  lower_monitors();
-  lower_handlers();
-  lower_controllers();
-  lower_views();
-  gate_arm_solves();
-  check_inputs();
-  if (errors_.empty()) schedule();
-  if (!errors_.empty()) throw LowerError(std::move(errors_));
-  build_log();
-  verify(prog_);
-  return std::move(prog_);
 }
 
 }  // namespace
 
 Program lower(const app::LoadedModel& model, const LowerOptions& options) {
   return Lowerer(model, options).run();
+}
+
+}  // namespace mospec::ir
+
+namespace mospec::ir {
+
+std::span<const std::string_view> lowering_passes() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> out;
+    for (const PassInfo& p : kPasses) out.push_back(p.name);
+    return out;
+  }();
+  return names;
 }
 
 }  // namespace mospec::ir
