@@ -180,8 +180,8 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     options.root = source_dir.string();
     app::LoadedModel model = app::load({(case_dir / "app.json").string()}, options);
     shacl::ModelValidation v = shacl::validate_model(model, {});
-    validation_clean = v.report.count(shacl::Level::Violation) == 0 &&
-                       v.report.count(shacl::Level::Other) == 0;
+    validation_clean =
+        v.report.count(shacl::Level::Violation) == 0 && v.report.count(shacl::Level::Other) == 0;
     if (!validation_clean) validation_text = shacl::to_text(v.report, &model.files());
     try {
       ir::lower(model);
@@ -216,8 +216,9 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
       const Diagnostic& d = got[i];
       if (used[i] || d.code != e.code || d.message.find(e.text) == std::string::npos) continue;
       const bool same_place =
-          e.file.empty() ? d.file.empty()
-                         : !d.file.empty() && canonical_or_same(d.file) == e.file && d.line == e.line;
+          e.file.empty()
+              ? d.file.empty()
+              : !d.file.empty() && canonical_or_same(d.file) == e.file && d.line == e.line;
       if (!same_place) continue;
       used[i] = 1;
       found = true;
@@ -237,12 +238,12 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
 
   for (const std::string& m : matched) report << "  ok          " << m << "\n";
   for (const ExpectedDiagnostic* e : missing) {
-    report << "  MISSING     " << show_location(e->file, e->line, case_dir) << ": error["
-           << e->code << "]: ..." << e->text << "...   (expected.txt:" << e->source_line << ")\n";
+    report << "  MISSING     " << show_location(e->file, e->line, case_dir) << ": error[" << e->code
+           << "]: ..." << e->text << "...   (expected.txt:" << e->source_line << ")\n";
   }
   for (const Diagnostic* d : unexpected) {
-    report << "  UNEXPECTED  " << show_location(d->file, d->line, case_dir) << ": error["
-           << d->code << "]: " << d->message << "\n";
+    report << "  UNEXPECTED  " << show_location(d->file, d->line, case_dir) << ": error[" << d->code
+           << "]: " << d->message << "\n";
   }
   result.ok = ok;
   result.report = name + (ok ? ": ok" : ": FAILED") + " (" +
@@ -255,7 +256,8 @@ std::vector<fs::path> list_cases(const fs::path& cases_dir) {
   std::vector<fs::path> out;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(cases_dir, ec)) {
-    if (entry.is_directory() && fs::exists(entry.path() / "expected.txt")) out.push_back(entry.path());
+    if (entry.is_directory() && fs::exists(entry.path() / "expected.txt"))
+      out.push_back(entry.path());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -279,12 +281,16 @@ std::set<std::string> lowering_codes(const fs::path& dir) {
       for (; k < src.size(); ++k) {
         const char c = src[k];
         if (in_string) {
-          if (c == '\\') ++k;
-          else if (c == '"') in_string = false;
+          if (c == '\\')
+            ++k;
+          else if (c == '"')
+            in_string = false;
           continue;
         }
-        if (c == '"') in_string = true;
-        else if (c == '(') ++depth;
+        if (c == '"')
+          in_string = true;
+        else if (c == '(')
+          ++depth;
         else if (c == ')') {
           if (depth-- == 0) break;
         } else if (c == ',' && depth == 0) {
@@ -300,9 +306,8 @@ std::set<std::string> lowering_codes(const fs::path& dir) {
       const size_t end = src.find('"', k + 1);
       if (end == std::string::npos) continue;
       const std::string code = src.substr(k + 1, end - k - 1);
-      if (!code.empty() && std::all_of(code.begin(), code.end(), [](char c) {
-            return (c >= 'a' && c <= 'z') || c == '-';
-          }))
+      if (!code.empty() && std::all_of(code.begin(), code.end(),
+                                       [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; }))
         codes.insert(code);
     }
   }

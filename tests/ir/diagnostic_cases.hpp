@@ -30,9 +30,9 @@ struct ExpectedDiagnostic {
   std::filesystem::path file;  // empty: not located
   uint32_t line = 0;
   std::string code;
-  std::string text;      // a substring of the message
-  std::string spelled;   // the line as written in expected.txt
-  int source_line = 0;   // its line number in expected.txt
+  std::string text;     // a substring of the message
+  std::string spelled;  // the line as written in expected.txt
+  int source_line = 0;  // its line number in expected.txt
 };
 
 struct Expectations {

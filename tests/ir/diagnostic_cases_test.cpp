@@ -35,9 +35,9 @@ TEST(DiagnosticCases, TheSelfTestCaseMatchesAsWritten) {
 }
 
 TEST(DiagnosticCases, AWrongLineFails) {
-  const std::string r = run(
-      "validation: refused\n"
-      "model.json:{{\"@id\": \"pose-c-a\"}}: error[missing-property]: names no `in2`\n");
+  const std::string r =
+      run("validation: refused\n"
+          "model.json:{{\"@id\": \"pose-c-a\"}}: error[missing-property]: names no `in2`\n");
   EXPECT_NE(r.find("FAILED"), std::string::npos) << r;
   EXPECT_NE(r.find("MISSING     model.json:23: error[missing-property]"), std::string::npos) << r;
   EXPECT_NE(r.find("UNEXPECTED  model.json:26: error[missing-property]: the ComposePose"),
@@ -52,15 +52,15 @@ TEST(DiagnosticCases, AWrongFileFails) {
 }
 
 TEST(DiagnosticCases, AWrongCodeFails) {
-  const std::string r = run(
-      "validation: refused\nmodel.json:26: error[type-mismatch]: names no `in2`\n");
+  const std::string r =
+      run("validation: refused\nmodel.json:26: error[type-mismatch]: names no `in2`\n");
   EXPECT_NE(r.find("MISSING     model.json:26: error[type-mismatch]"), std::string::npos) << r;
   EXPECT_NE(r.find("UNEXPECTED  model.json:26: error[missing-property]"), std::string::npos) << r;
 }
 
 TEST(DiagnosticCases, AWrongMessageFails) {
-  const std::string r = run(
-      "validation: refused\nmodel.json:26: error[missing-property]: names no `in3`\n");
+  const std::string r =
+      run("validation: refused\nmodel.json:26: error[missing-property]: names no `in3`\n");
   EXPECT_NE(r.find("MISSING"), std::string::npos) << r;
   EXPECT_NE(r.find("UNEXPECTED"), std::string::npos) << r;
 }
@@ -79,13 +79,14 @@ TEST(DiagnosticCases, AMissingDiagnosticFails) {
 
 TEST(DiagnosticCases, AnUnexpectedDiagnosticFails) {
   // The same model, its expectation about another line: the real one is extra.
-  const std::string r = run(
-      "validation: refused\nmodel.json:25: error[missing-property]: names no `in2`\n");
+  const std::string r =
+      run("validation: refused\nmodel.json:25: error[missing-property]: names no `in2`\n");
   EXPECT_NE(r.find("UNEXPECTED  model.json:26"), std::string::npos) << r;
 }
 
 TEST(DiagnosticCases, TheValidationVerdictIsChecked) {
-  const std::string r = run("validation: clean\nmodel.json:26: error[missing-property]: names no `in2`\n");
+  const std::string r =
+      run("validation: clean\nmodel.json:26: error[missing-property]: names no `in2`\n");
   EXPECT_NE(r.find("validation: expected clean, got refused"), std::string::npos) << r;
   EXPECT_NE(r.find("a pose composition has exactly one second input pose"), std::string::npos) << r;
 }
@@ -138,8 +139,8 @@ TEST(DiagnosticCases, EveryLoweringCodeHasACase) {
                                   "calls; has the lowering's reporting function been renamed?";
   std::map<std::string, std::vector<std::string>> covered;
   for (const fs::path& c : mospec::test::list_cases(kCases)) {
-    const auto e = mospec::test::parse_expectations(
-        mospec::read_file((c / "expected.txt").string()), c);
+    const auto e =
+        mospec::test::parse_expectations(mospec::read_file((c / "expected.txt").string()), c);
     for (const auto& d : e.diagnostics) covered[d.code].push_back(c.filename().string());
   }
   for (const std::string& code : codes) {
