@@ -214,7 +214,10 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     bool found = false;
     for (size_t i = 0; i < got.size() && !found; ++i) {
       const Diagnostic& d = got[i];
-      if (used[i] || d.code != e.code || d.message.find(e.text) == std::string::npos) continue;
+      // "^TEXT": the message starts with TEXT; otherwise it contains it.
+      const bool anchored = e.text[0] == '^';
+      const size_t at = d.message.find(anchored ? e.text.substr(1) : e.text);
+      if (used[i] || d.code != e.code || at == std::string::npos || (anchored && at != 0)) continue;
       const bool same_place =
           e.file.empty()
               ? d.file.empty()

@@ -14,7 +14,7 @@
 // `refused` (SHACL already refuses it; the case tests lowering directly).
 // A location is a file relative to the case directory and either a line
 // number or {{TEXT}}: the one line of that file containing TEXT. The message
-// is a substring of the diagnostic's message. The comparison is exact: every
+// is a substring of the diagnostic's message (^TEXT: its beginning). The comparison is exact: every
 // expected diagnostic must be reported (at that file and line, with that code)
 // and nothing else may be. See docs/testing.md.
 #pragma once

@@ -65,6 +65,17 @@ TEST(DiagnosticCases, AWrongMessageFails) {
   EXPECT_NE(r.find("UNEXPECTED"), std::string::npos) << r;
 }
 
+TEST(DiagnosticCases, ACaretAnchorsTheMessageAtItsBeginning) {
+  EXPECT_EQ(run("validation: refused\nmodel.json:26: error[missing-property]: ^the ComposePose\n")
+                .substr(0, 3),
+            "ok\n");
+  const std::string r =
+      run("validation: refused\nmodel.json:26: error[missing-property]: ^names no `in2`\n");
+  EXPECT_NE(r.find("MISSING     model.json:26: error[missing-property]: ...^names no `in2`..."),
+            std::string::npos)
+      << r;
+}
+
 TEST(DiagnosticCases, AnUnlocatedExpectationDoesNotMatchALocatedDiagnostic) {
   const std::string r = run("validation: refused\n-: error[missing-property]: names no `in2`\n");
   EXPECT_NE(r.find("MISSING     -: error[missing-property]"), std::string::npos) << r;
