@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <functional>
 #include <sstream>
 
 #include "app/app.hpp"
@@ -205,31 +206,53 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     }
   }
 
-  // Match each expectation to one reported diagnostic: same file, line and
-  // code, message containing the text.
+  // Match expectations to reported diagnostics one to one: same file, line
+  // and code, and the message contains the text ("^TEXT": starts with it).
+  // A maximum bipartite matching (augmenting paths), so a loose expectation
+  // never takes the diagnostic a stricter one needs.
+  const auto fits = [&](const ExpectedDiagnostic& e, const Diagnostic& d) {
+    const bool anchored = e.text[0] == '^';
+    const size_t at = d.message.find(anchored ? e.text.substr(1) : e.text);
+    if (d.code != e.code || at == std::string::npos || (anchored && at != 0)) return false;
+    if (e.file.empty()) return d.file.empty();
+    return !d.file.empty() && canonical_or_same(d.file) == e.file && d.line == e.line;
+  };
+  const size_t n_expected = expected.diagnostics.size();
+  std::vector<std::vector<size_t>> candidates(n_expected);
+  for (size_t k = 0; k < n_expected; ++k) {
+    for (size_t i = 0; i < got.size(); ++i) {
+      if (fits(expected.diagnostics[k], got[i])) candidates[k].push_back(i);
+    }
+  }
+  std::vector<int> owner(got.size(), -1);  // diagnostic -> expectation
+  std::function<bool(size_t, std::vector<char>&)> augment = [&](size_t k, std::vector<char>& seen) {
+    for (size_t i : candidates[k]) {
+      if (seen[i]) continue;
+      seen[i] = 1;
+      if (owner[i] < 0 || augment(static_cast<size_t>(owner[i]), seen)) {
+        owner[i] = static_cast<int>(k);
+        return true;
+      }
+    }
+    return false;
+  };
+  std::vector<char> found(n_expected, 0);
+  for (size_t k = 0; k < n_expected; ++k) {
+    std::vector<char> seen(got.size(), 0);
+    augment(k, seen);
+  }
+  for (int k : owner) {
+    if (k >= 0) found[static_cast<size_t>(k)] = 1;
+  }
   std::vector<char> used(got.size(), 0);
+  for (size_t i = 0; i < got.size(); ++i) used[i] = owner[i] >= 0;
   std::vector<const ExpectedDiagnostic*> missing;
   std::vector<std::string> matched;
-  for (const ExpectedDiagnostic& e : expected.diagnostics) {
-    bool found = false;
-    for (size_t i = 0; i < got.size() && !found; ++i) {
-      const Diagnostic& d = got[i];
-      // "^TEXT": the message starts with TEXT; otherwise it contains it.
-      const bool anchored = e.text[0] == '^';
-      const size_t at = d.message.find(anchored ? e.text.substr(1) : e.text);
-      if (used[i] || d.code != e.code || at == std::string::npos || (anchored && at != 0)) continue;
-      const bool same_place =
-          e.file.empty()
-              ? d.file.empty()
-              : !d.file.empty() && canonical_or_same(d.file) == e.file && d.line == e.line;
-      if (!same_place) continue;
-      used[i] = 1;
-      found = true;
-    }
-    if (found) {
-      matched.push_back(e.spelled);
+  for (size_t k = 0; k < n_expected; ++k) {
+    if (found[k]) {
+      matched.push_back(expected.diagnostics[k].spelled);
     } else {
-      missing.push_back(&e);
+      missing.push_back(&expected.diagnostics[k]);
       ok = false;
     }
   }

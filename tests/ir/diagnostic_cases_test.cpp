@@ -76,6 +76,18 @@ TEST(DiagnosticCases, ACaretAnchorsTheMessageAtItsBeginning) {
       << r;
 }
 
+TEST(DiagnosticCases, ALooseExpectationDoesNotTakeAStricterOnesDiagnostic) {
+  // Two diagnostics on one line; the first expectation fits both, the second
+  // only one of them: the matching must still pair them up.
+  const fs::path c = kCases / "missing-property-solver";
+  const auto r =
+      check_case(kSource, c,
+                 "validation: refused\n"
+                 "model.json:{{\"@id\": \"solver\"}}: error[missing-property]: names no\n"
+                 "model.json:{{\"@id\": \"solver\"}}: error[missing-property]: names no gravity\n");
+  EXPECT_TRUE(r.ok) << r.report;
+}
+
 TEST(DiagnosticCases, AnUnlocatedExpectationDoesNotMatchALocatedDiagnostic) {
   const std::string r = run("validation: refused\n-: error[missing-property]: names no `in2`\n");
   EXPECT_NE(r.find("MISSING     -: error[missing-property]"), std::string::npos) << r;
