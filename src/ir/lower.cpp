@@ -572,7 +572,7 @@ void Lowerer::lower_arm(TermId solver) {
     arm.chain = runtime::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
   } catch (const Error& e) {
     error(where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
-          "the solver '" + arm.iri + "': " + e.what());
+          "the solver '" + arm.iri + "': " + e.diagnostic().message);
     return;
   }
   if (auto it = options_.ports.find(arm.chain_iri); it != options_.ports.end()) {
@@ -1189,8 +1189,11 @@ void Lowerer::lower_evaluators() {
       spec.kind = runtime::ConstraintKind::Bilateral;
       auto lo = constant("lower-threshold"), hi = constant("upper-threshold");
       if (!lo || !hi) {
-        error(*c, "missing-property",
-              "the bilateral constraint '" + str(*c) + "' needs a lower and an upper threshold");
+        // An invalid threshold has been reported by constant(); only a
+        // missing one is reported here.
+        if (!object(*c, vocab(cs, "lower-threshold")) || !object(*c, vocab(cs, "upper-threshold")))
+          error(*c, "missing-property",
+                "the bilateral constraint '" + str(*c) + "' needs a lower and an upper threshold");
         continue;
       }
       spec.lower = *lo;
@@ -1207,7 +1210,8 @@ void Lowerer::lower_evaluators() {
                       : runtime::ConstraintKind::LessThan;
       auto t = constant("threshold");
       if (!t) {
-        error(*c, "missing-property", "the constraint '" + str(*c) + "' needs a threshold");
+        if (!object(*c, vocab(cs, "threshold")))
+          error(*c, "missing-property", "the constraint '" + str(*c) + "' needs a threshold");
         continue;
       }
       spec.threshold = *t;
@@ -1228,8 +1232,9 @@ void Lowerer::lower_evaluators() {
           assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
       auto r = constant("reference-value");
       if (!r) {
-        error(*c, "missing-property",
-              "the equality constraint '" + str(*c) + "' needs a reference-value");
+        if (!object(*c, vocab(cs, "reference-value")))
+          error(*c, "missing-property",
+                "the equality constraint '" + str(*c) + "' needs a reference-value");
         continue;
       }
       spec.reference = *r;
@@ -1403,7 +1408,7 @@ void Lowerer::lower_controllers() {
     try {
       runtime::Pid check(s.pid, s.iri.c_str());
     } catch (const Error& e) {
-      error(c, "invalid-controller", e.what());
+      error(c, "invalid-controller", e.diagnostic().message);
     }
     s.in = {datum(*err, DataType::Scalar, c, "error-signal")};
     if (auto it = active_of_controller_.find(c.index); it != active_of_controller_.end())
