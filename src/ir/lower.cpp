@@ -926,9 +926,12 @@ int Lowerer::axis_constant(TermId e, const OperatorKind& kind, const OperatorPor
           "the " + std::string(kind.type) + " '" + str(e) + "' names `" +
               std::string(port.property) + "` '" + str(axis) + "'; it must be one of " +
               kind.property_iri("x") + ", y or z");
-    return synthetic(str(e) + "#" + std::string(port.property),
-                     local_name(str(e)) + "_" + std::string(port.property), DataType::Vector3,
-                     where(e), "UNITLESS");
+    // A placeholder constant, so the refusal is reported once.
+    const int d = synthetic(str(e) + "#" + std::string(port.property),
+                            local_name(str(e)) + "_" + std::string(port.property),
+                            DataType::Vector3, where(e), "UNITLESS");
+    prog_.data[static_cast<size_t>(d)].value = {0.0, 0.0, 0.0};
+    return d;
   }
   const int d = synthetic(str(e) + "#" + std::string(port.property),
                           local_name(str(e)) + "_" + std::string(port.property) + "_" + name,
