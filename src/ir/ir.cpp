@@ -235,6 +235,18 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
     }
     u[static_cast<size_t>(d.slot)] = 1;
   }
+  for (const Data& d : p.data) {
+    if (d.value.empty()) continue;
+    const size_t need = d.type == DataType::Pose                                  ? 12
+                        : d.type == DataType::Vector3                             ? 3
+                        : d.type == DataType::Twist || d.type == DataType::Wrench ? 6
+                        : d.type == DataType::Event                               ? 0
+                                                                                  : 1;
+    if (d.value.size() != need)
+      f.add(d.where, "constant '" + d.name + "' has " + std::to_string(d.value.size()) +
+                         " values; a " + std::string(to_string(d.type)) + " constant has " +
+                         std::to_string(need));
+  }
   std::vector<int> producer(p.data.size(), -1);  // step index; -2: a constant
   for (size_t i = 0; i < p.data.size(); ++i) {
     if (!p.data[i].value.empty()) producer[i] = -2;

@@ -328,16 +328,28 @@ TEST(Codegen, ANameCollisionIsAnErrorNamingBothEntities) {
   }
 }
 
-TEST(Codegen, ABadReferenceIsAnErrorNamingTheStep) {
+// Codegen trusts a verified program: render() runs ir::verify first, so a bad
+// program is refused with every problem, each naming its step and location.
+TEST(Codegen, AnUnverifiedProgramIsRefusedWithEveryProblemLocated) {
   SourceFiles files;
   ir::Program p = testing::small_program(files);
   p.steps[2].in[0] = 999;
+  p.steps[3].views = {9};
   try {
     render(p, &files);
     ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), "codegen");
-    EXPECT_NE(std::string(e.what()).find("reference to datum 999"), std::string::npos) << e.what();
+  } catch (const ir::VerifyError& e) {
+    EXPECT_EQ(e.code(), "ir-invalid");
+    ASSERT_EQ(e.diagnostics().size(), 2u) << e.what();
+    EXPECT_NE(e.diagnostics()[0].message.find("'" + p.steps[2].name + "'"), std::string::npos);
+    EXPECT_NE(e.diagnostics()[0].message.find("datum 999 (which does not exist)"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(e.diagnostics()[0].file, "tests/codegen/programs.hpp");
+    EXPECT_EQ(e.diagnostics()[0].line, p.steps[2].where.line);
+    EXPECT_NE(e.diagnostics()[1].message.find("view component 9 is out of range; expected 0..5"),
+              std::string::npos)
+        << e.what();
   }
 }
 
