@@ -111,7 +111,8 @@ std::string code_point(int u) {
 }  // namespace
 
 void MappedDocumentLoader::add_root(const std::string& dir) {
-  if (!root_paths_.contains(dir)) root_paths_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string());
+  if (!root_paths_.contains(dir))
+    root_paths_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string());
 }
 
 void MappedDocumentLoader::map(std::string prefix, std::string dir) {
