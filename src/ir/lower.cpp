@@ -2,7 +2,6 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -11,8 +10,8 @@
 #include <unordered_map>
 
 #include "ir/operators.hpp"
+#include "ir/graph.hpp"
 #include "runtime/chain_rdf.hpp"
-#include "shacl/literal.hpp"
 
 namespace mospec::ir {
 
@@ -58,75 +57,8 @@ std::string vocab(std::string_view domain, std::string_view local) {
   s.append(domain).append("#").append(local);
   return s;
 }
-const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
 const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
 
-// The value of a numeric literal by XSD 1.1's lexical rules for its datatype
-// (shacl/literal.hpp, the validator's own reading, so that lowering accepts
-// exactly what sh:datatype accepts):
-//   xsd:double / xsd:float   [+-]?(digits(.digits?)?|.digits)([eE][+-]?digits)?,
-//                            INF, +INF, -INF, NaN;
-//   xsd:decimal              [+-]?(digits(.digits?)?|.digits), and the canonical
-//                            xsd:double form JSON-LD's toRdf writes for a JSON
-//                            number under a decimal coercion ("1.0E-3");
-//   xsd:integer and the types derived from it: [+-]?digits within the type's range;
-//   xsd:string (a number written as a string without a coercion): read as
-//                            xsd:double.
-// Anything else — another datatype, a form XSD rejects — is not a number.
-// The canonical xsd:double form of a finite JSON number, as JSON-LD's
-// object-to-RDF conversion writes it: -?d.d+E-?d+ with a non-zero leading
-// digit (or 0.0E0).
-bool canonical_double_form(std::string_view s) {
-  auto digits = [](std::string_view d) {
-    return !d.empty() &&
-           std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
-  };
-  if (!s.empty() && s.front() == '-') s.remove_prefix(1);
-  const size_t e = s.find('E');
-  if (e == std::string_view::npos || e < 3 || s[1] != '.') return false;
-  std::string_view exponent = s.substr(e + 1);
-  if (!exponent.empty() && exponent.front() == '-') exponent.remove_prefix(1);
-  return digits(s.substr(0, 1)) && digits(s.substr(2, e - 2)) && digits(exponent) &&
-         (s.front() != '0' || s.substr(0, e) == "0.0");
-}
-
-std::optional<double> xsd_number(std::string_view lexical, std::string_view datatype) {
-  shacl::DatatypeInfo type = shacl::classify_datatype(datatype);
-  if (type.kind == shacl::Xsd::String) type = shacl::DatatypeInfo(shacl::Xsd::Double);
-  bool ok = false;
-  switch (type.kind) {
-    case shacl::Xsd::Decimal:
-      ok = shacl::well_formed(lexical, type) || canonical_double_form(lexical);
-      break;
-    case shacl::Xsd::Integer:
-    case shacl::Xsd::Float:
-    case shacl::Xsd::Double:
-      ok = shacl::well_formed(lexical, type);
-      break;
-    default:
-      break;
-  }
-  if (!ok) return std::nullopt;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  if (lexical == "INF" || lexical == "+INF") return kInf;
-  if (lexical == "-INF") return -kInf;
-  if (lexical == "NaN") return std::numeric_limits<double>::quiet_NaN();
-  // from_chars reads neither a leading '+' nor INF/NaN in XSD's spelling.
-  const bool negative = !lexical.empty() && lexical.front() == '-';
-  if (!lexical.empty() && (lexical.front() == '+' || negative)) lexical.remove_prefix(1);
-  double v = 0;
-  auto [p, ec] = std::from_chars(lexical.data(), lexical.data() + lexical.size(), v);
-  if (p != lexical.data() + lexical.size()) return std::nullopt;
-  if (ec == std::errc::result_out_of_range) {
-    v = std::strtod(std::string(lexical).c_str(), nullptr);  // "1e400": inf; "1e-400": 0
-  } else if (ec != std::errc()) {
-    return std::nullopt;
-  }
-  return negative ? -v : v;
-}
-const std::string kRdfFirst = "http://www.w3.org/1999/02/22-rdf-syntax-ns#first";
-const std::string kRdfRest = "http://www.w3.org/1999/02/22-rdf-syntax-ns#rest";
-const std::string kRdfNil = "http://www.w3.org/1999/02/22-rdf-syntax-ns#nil";
 const std::string kQudt = "http://qudt.org/schema/qudt/";
 
 std::string local_name(std::string_view iri) {
@@ -144,93 +76,37 @@ std::string identifier(std::string_view s) {
 class Lowerer {
  public:
   Lowerer(const app::LoadedModel& model, const LowerOptions& options)
-      : model_(model), g_(model.flattened()), options_(options) {}
+      : model_(model), g_(model.dataset()), options_(options) {}
 
   Program run();
 
  private:
-  // --- graph access -------------------------------------------------------
-  TermId term(const std::string& iri) const { return g_.terms().find_iri(iri); }
+  // --- graph access (ir/graph.hpp) ---------------------------------------
+  TermId term(const std::string& iri) const { return g_.term(iri); }
   static bool absent(TermId t) { return t.is_any(); }
-  std::string str(TermId t) const { return std::string(g_.terms()[t].value); }
+  std::string str(TermId t) const { return std::string(g_.str(t)); }
   std::vector<TermId> objects(TermId s, const std::string& p) const {
-    std::vector<TermId> out;
-    const TermId pt = term(p);
-    if (absent(s) || absent(pt)) return out;
-    for (uint32_t i : g_.match(s, pt, TermId::any())) out.push_back(g_.quads()[i].object);
-    std::sort(out.begin(), out.end(), [&](TermId a, TermId b) { return str(a) < str(b); });
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
+    return g_.objects(s, term(p));
   }
   std::optional<TermId> object(TermId s, const std::string& p) const {
-    auto o = objects(s, p);
-    if (o.empty()) return std::nullopt;
-    return o.front();
+    return g_.object(s, term(p));
   }
-  bool has_type(TermId s, const std::string& type) const {
-    const TermId t = term(type), p = term(kRdfType);
-    return !absent(t) && !absent(p) && g_.count(s, p, t) > 0;
-  }
-  std::vector<TermId> instances(const std::string& type) const {
-    std::vector<TermId> out;
-    const TermId t = term(type), p = term(kRdfType);
-    if (absent(t) || absent(p)) return out;
-    for (uint32_t i : g_.match(TermId::any(), p, t)) out.push_back(g_.quads()[i].subject);
-    std::sort(out.begin(), out.end(), [&](TermId a, TermId b) { return str(a) < str(b); });
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-  bool defined(TermId s) const {
-    return !absent(s) && g_.count(s, TermId::any(), TermId::any()) > 0;
-  }
-  SourceLoc where(TermId s) const {
-    if (absent(s)) return {};
-    for (uint32_t i : g_.match(s, TermId::any(), TermId::any())) {
-      if (g_.location(i).known()) return g_.location(i);
-    }
-    return {};
-  }
+  bool has_type(TermId s, const std::string& type) const { return g_.has_type(s, term(type)); }
+  std::vector<TermId> instances(const std::string& type) const { return g_.instances(term(type)); }
+  bool defined(TermId s) const { return g_.defined(s); }
+  SourceLoc where(TermId s) const { return g_.where(s); }
   SourceLoc where(TermId s, const std::string& p, TermId o) const {
-    const TermId pt = term(p);
-    if (!absent(pt)) {
-      for (uint32_t i : g_.match(s, pt, o)) {
-        if (g_.location(i).known()) return g_.location(i);
-      }
-    }
-    return where(s);
+    return g_.where(s, term(p), o);
   }
   // Whether `q` is the time some clock gives (mospec/time).
   bool is_clock_time(TermId q) const {
-    const TermId time = term(vocab("mospec/time", "time"));
-    if (absent(time)) return false;
-    for (uint32_t i : g_.match(TermId::any(), time, q)) {
-      if (has_type(g_.quads()[i].subject, vocab("mospec/time", "Clock"))) return true;
+    for (TermId c : g_.subjects(term(vocab("mospec/time", "time")), q)) {
+      if (has_type(c, vocab("mospec/time", "Clock"))) return true;
     }
     return false;
   }
-  std::vector<TermId> list(TermId head) const {
-    std::vector<TermId> out;
-    const TermId nil = term(kRdfNil);
-    for (int guard = 0; guard < 10000 && !absent(head) && head != nil; ++guard) {
-      auto first = objects(head, kRdfFirst);
-      if (first.empty()) break;
-      out.push_back(first.front());
-      auto rest = objects(head, kRdfRest);
-      if (rest.empty()) break;
-      head = rest.front();
-    }
-    return out;
-  }
-  // A literal's numeric value by the XSD lexical rules of its datatype
-  // (xsd_number()); nothing for a non-literal, an ill-formed lexical form or
-  // a value that is not finite (INF, NaN).
-  std::optional<double> number(TermId lit) const {
-    if (absent(lit) || !g_.terms()[lit].is_literal()) return std::nullopt;
-    const rdf::Term& t = g_.terms()[lit];
-    auto v = xsd_number(t.value, g_.terms()[t.datatype].value);
-    if (!v || !std::isfinite(*v)) return std::nullopt;
-    return v;
-  }
+  std::vector<TermId> list(TermId head) const { return g_.list(head); }
+  std::optional<double> number(TermId lit) const { return g_.number(lit); }
   // The literal as messages quote it: "+1e400"^^xsd:double.
   std::string literal_text(TermId lit) const {
     const rdf::Term& t = g_.terms()[lit];
@@ -239,29 +115,13 @@ class Lowerer {
     return "\"" + std::string(t.value) + "\"^^" + dt;
   }
   std::optional<double> number(TermId s, const std::string& p) const {
-    auto o = object(s, p);
-    return o ? number(*o) : std::nullopt;
+    return g_.number(s, term(p));
   }
 
   // The graph of the file that describes a chain: other files' poses between
   // the robot's frames (task quantities) are not part of its structure.
   rdf::Dataset chain_graph(const std::string& chain_iri) const {
-    const rdf::Dataset& all = model_.dataset();
-    rdf::Dataset out;
-    const TermId chain = all.terms().find_iri(chain_iri);
-    if (chain.is_any()) return out;
-    std::set<uint32_t> graphs;
-    for (uint32_t i : all.match(chain, TermId::any(), TermId::any()))
-      graphs.insert(all.quads()[i].graph.index);
-    for (uint32_t i = 0; i < all.size(); ++i) {
-      const rdf::Quad& q = all.quads()[i];
-      if (!graphs.count(q.graph.index)) continue;
-      rdf::Quad copy{out.terms().import(all.terms(), q.subject),
-                     out.terms().import(all.terms(), q.predicate),
-                     out.terms().import(all.terms(), q.object), TermId::default_graph()};
-      out.add(copy, all.location(i));
-    }
-    return out;
+    return g_.graphs_describing(term(chain_iri));
   }
 
   // --- diagnostics --------------------------------------------------------
@@ -362,7 +222,7 @@ class Lowerer {
 
  private:
   const app::LoadedModel& model_;
-  rdf::Dataset g_;
+  Graph g_;  // the model's flattened union, read in place
   const LowerOptions& options_;
   Program prog_;
   std::vector<Diagnostic> errors_;
@@ -896,15 +756,15 @@ void Lowerer::lower_operators() {
 // ignored: refuse it instead.
 void Lowerer::refuse_unknown_properties(TermId e, const OperatorKind& kind) {
   std::set<std::string> seen;
-  for (uint32_t i : g_.match(e, TermId::any(), TermId::any())) {
-    const std::string p = str(g_.quads()[i].predicate);
+  for (const Graph::Statement& st : g_.statements(e)) {
+    const std::string p = str(st.predicate);
     if (!p.starts_with(kind.vocabulary)) continue;
     const std::string_view local = std::string_view(p).substr(kind.vocabulary.size());
     if (kind.port(local) >= 0 || !seen.insert(p).second) continue;
     std::string ports;
     for (const OperatorPort& port : kind.in) ports.append(port.property).append(", ");
     ports.append(kind.out.property);
-    error(g_.location(i).known() ? g_.location(i) : where(e), "unsupported-property",
+    error(st.where.known() ? st.where : where(e), "unsupported-property",
           "the " + std::string(kind.type) + " '" + str(e) + "' states `" + std::string(local) +
               "`, which mospec's " + std::string(kind.name) +
               " does not implement (it reads only " + ports +
@@ -1027,13 +887,13 @@ void Lowerer::lower_accumulated_wrenches() {
     pending_iri_ = str(e);
     auto aggregate = object(e, vocab(dop, "aggregate"));
     auto element = object(e, vocab(dop, "element"));
-    for (uint32_t i : g_.match(e, TermId::any(), TermId::any())) {
-      const std::string p = str(g_.quads()[i].predicate);
+    for (const Graph::Statement& st : g_.statements(e)) {
+      const std::string p = str(st.predicate);
       if (!p.starts_with(prefix) || p == vocab(dop, "aggregate") || p == vocab(dop, "element"))
         continue;
-      const TermId o = g_.quads()[i].object;
+      const TermId o = st.object;
       if (p == vocab(dop, "number-of-wrenches") && number(o) == 1.0) continue;
-      error(g_.location(i).known() ? g_.location(i) : where(e), "unsupported-property",
+      error(st.where.known() ? st.where : where(e), "unsupported-property",
             "the AccumulateWrench '" + str(e) + "' states `" + p.substr(prefix.size()) +
                 "`, which mospec does not implement (it accumulates one wrench per instance: "
                 "aggregate, element, and number-of-wrenches 1 at most)");
