@@ -12,12 +12,14 @@
 
 #include "runtime/chain_rdf.hpp"
 #include "shacl/literal.hpp"
+#include "vocab/metamodels.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::ir {
 
 std::map<std::string, int> LowerOptions::default_ports() {
-  return {{"https://mospec.example/robots/kinova-gen3/chain", 0},
-          {"https://mospec.example/robots/kinova-gen3-left/chain", 1}};
+  return {{std::string(vocab::robots::kinova_gen3_chain), 0},
+          {std::string(vocab::robots::kinova_gen3_left_chain), 1}};
 }
 
 namespace {
@@ -51,14 +53,11 @@ namespace {
 
 using rdf::TermId;
 
-const std::string kMM = "https://comp-rob2b.github.io/metamodels/";
 std::string vocab(std::string_view domain, std::string_view local) {
-  std::string s = kMM;
-  s.append(domain).append("#").append(local);
-  return s;
+  return mospec::vocab::metamodel_term(domain, local);
 }
-const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
-const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
+const std::string kRdfType(mospec::vocab::rdf::type);
+const std::string kXsd(mospec::vocab::xsd::ns);
 
 // The value of a numeric literal by XSD 1.1's lexical rules for its datatype
 // (shacl/literal.hpp, the validator's own reading, so that lowering accepts
@@ -123,10 +122,10 @@ std::optional<double> xsd_number(std::string_view lexical, std::string_view data
   }
   return negative ? -v : v;
 }
-const std::string kRdfFirst = "http://www.w3.org/1999/02/22-rdf-syntax-ns#first";
-const std::string kRdfRest = "http://www.w3.org/1999/02/22-rdf-syntax-ns#rest";
-const std::string kRdfNil = "http://www.w3.org/1999/02/22-rdf-syntax-ns#nil";
-const std::string kQudt = "http://qudt.org/schema/qudt/";
+const std::string kRdfFirst(mospec::vocab::rdf::first);
+const std::string kRdfRest(mospec::vocab::rdf::rest);
+const std::string kRdfNil(mospec::vocab::rdf::nil);
+const std::string kQudt(mospec::vocab::qudt::ns);
 
 std::string local_name(std::string_view iri) {
   const size_t k = iri.find_last_of("#/");

@@ -6,14 +6,15 @@
 #include <string>
 
 #include "runtime/chain.hpp"
+#include "vocab/metamodels.hpp"
 
 namespace mospec::runtime {
 
 struct ChainJsonldOptions {
   // Base IRI of the document; every entity id is relative to it.
-  std::string base = "https://mospec.example/robots/robot/";
+  std::string base = std::string(vocab::robots::imported_base);
   // Where the published metamodel contexts live (IRI prefix).
-  std::string metamodels = "https://comp-rob2b.github.io/metamodels/";
+  std::string metamodels = std::string(vocab::kMetamodels);
 };
 
 // The document, deterministic to the byte (numbers in shortest round-trip

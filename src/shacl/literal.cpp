@@ -6,11 +6,13 @@
 #include <optional>
 #include <string>
 
+#include "vocab/w3c.hpp"
+
 namespace mospec::shacl {
 
 namespace {
 
-constexpr std::string_view kXsdNs = "http://www.w3.org/2001/XMLSchema#";
+constexpr std::string_view kXsdNs = vocab::xsd::ns;
 
 bool is_digit(char c) {
   return c >= '0' && c <= '9';
@@ -253,7 +255,7 @@ Order compare_instants(const Instant& a, const Instant& b) {
 }  // namespace
 
 DatatypeInfo classify_datatype(std::string_view iri) {
-  if (iri == "http://www.w3.org/1999/02/22-rdf-syntax-ns#langString") return {Xsd::LangString};
+  if (iri == vocab::rdf::langString) return {Xsd::LangString};
   if (iri.substr(0, kXsdNs.size()) != kXsdNs) return {};
   std::string_view n = iri.substr(kXsdNs.size());
   if (n == "string") return {Xsd::String};

@@ -9,7 +9,7 @@
 #include <unordered_set>
 
 #include "shacl/literal.hpp"
-#include "shacl/vocab.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::shacl {
 
@@ -73,8 +73,8 @@ class Validator {
       TermId id = dt_.find_iri(iri);
       return id.is_any() ? kAbsent : id;
     };
-    type_ = find(vocab::rdf_type);
-    subclass_ = find(vocab::rdfs_subclass_of);
+    type_ = find(vocab::rdf::type);
+    subclass_ = find(vocab::rdfs::subClassOf);
     if (!same_) {
       to_data_.assign(st_.size(), kAbsent);
       for (TermId s : shapes.referenced_terms()) {

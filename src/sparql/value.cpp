@@ -471,16 +471,16 @@ std::string canonical_lexical(const Value& v) {
 }
 
 std::string_view datatype_of(const Value& v) {
-  if (v.kind == Value::Kind::Bool) return "http://www.w3.org/2001/XMLSchema#boolean";
+  if (v.kind == Value::Kind::Bool) return vocab::xsd::boolean;
   switch (v.num) {
     case Num::Integer:
-      return "http://www.w3.org/2001/XMLSchema#integer";
+      return vocab::xsd::integer;
     case Num::Decimal:
-      return "http://www.w3.org/2001/XMLSchema#decimal";
+      return vocab::xsd::decimal;
     case Num::Float:
-      return "http://www.w3.org/2001/XMLSchema#float";
+      return vocab::xsd::float_;
     case Num::Double:
-      return "http://www.w3.org/2001/XMLSchema#double";
+      return vocab::xsd::double_;
   }
   return {};
 }

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "rdf/term.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::sparql::detail {
 
@@ -99,6 +100,6 @@ Value arithmetic(char op, const Value& a, const Value& b);
 std::string canonical_lexical(const Value& v);
 std::string_view datatype_of(const Value& v);
 
-inline constexpr std::string_view kXsdNs = "http://www.w3.org/2001/XMLSchema#";
+inline constexpr std::string_view kXsdNs = vocab::xsd::ns;
 
 }  // namespace mospec::sparql::detail
