@@ -10,8 +10,8 @@
 #include <set>
 #include <unordered_map>
 
+#include "rdf/xsd.hpp"
 #include "runtime/chain_rdf.hpp"
-#include "shacl/literal.hpp"
 #include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
@@ -59,69 +59,6 @@ std::string vocab(std::string_view domain, std::string_view local) {
 const std::string kRdfType(mospec::vocab::rdf::type);
 const std::string kXsd(mospec::vocab::xsd::ns);
 
-// The value of a numeric literal by XSD 1.1's lexical rules for its datatype
-// (shacl/literal.hpp, the validator's own reading, so that lowering accepts
-// exactly what sh:datatype accepts):
-//   xsd:double / xsd:float   [+-]?(digits(.digits?)?|.digits)([eE][+-]?digits)?,
-//                            INF, +INF, -INF, NaN;
-//   xsd:decimal              [+-]?(digits(.digits?)?|.digits), and the canonical
-//                            xsd:double form JSON-LD's toRdf writes for a JSON
-//                            number under a decimal coercion ("1.0E-3");
-//   xsd:integer and the types derived from it: [+-]?digits within the type's range;
-//   xsd:string (a number written as a string without a coercion): read as
-//                            xsd:double.
-// Anything else — another datatype, a form XSD rejects — is not a number.
-// The canonical xsd:double form of a finite JSON number, as JSON-LD's
-// object-to-RDF conversion writes it: -?d.d+E-?d+ with a non-zero leading
-// digit (or 0.0E0).
-bool canonical_double_form(std::string_view s) {
-  auto digits = [](std::string_view d) {
-    return !d.empty() &&
-           std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
-  };
-  if (!s.empty() && s.front() == '-') s.remove_prefix(1);
-  const size_t e = s.find('E');
-  if (e == std::string_view::npos || e < 3 || s[1] != '.') return false;
-  std::string_view exponent = s.substr(e + 1);
-  if (!exponent.empty() && exponent.front() == '-') exponent.remove_prefix(1);
-  return digits(s.substr(0, 1)) && digits(s.substr(2, e - 2)) && digits(exponent) &&
-         (s.front() != '0' || s.substr(0, e) == "0.0");
-}
-
-std::optional<double> xsd_number(std::string_view lexical, std::string_view datatype) {
-  shacl::DatatypeInfo type = shacl::classify_datatype(datatype);
-  if (type.kind == shacl::Xsd::String) type = shacl::DatatypeInfo(shacl::Xsd::Double);
-  bool ok = false;
-  switch (type.kind) {
-    case shacl::Xsd::Decimal:
-      ok = shacl::well_formed(lexical, type) || canonical_double_form(lexical);
-      break;
-    case shacl::Xsd::Integer:
-    case shacl::Xsd::Float:
-    case shacl::Xsd::Double:
-      ok = shacl::well_formed(lexical, type);
-      break;
-    default:
-      break;
-  }
-  if (!ok) return std::nullopt;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  if (lexical == "INF" || lexical == "+INF") return kInf;
-  if (lexical == "-INF") return -kInf;
-  if (lexical == "NaN") return std::numeric_limits<double>::quiet_NaN();
-  // from_chars reads neither a leading '+' nor INF/NaN in XSD's spelling.
-  const bool negative = !lexical.empty() && lexical.front() == '-';
-  if (!lexical.empty() && (lexical.front() == '+' || negative)) lexical.remove_prefix(1);
-  double v = 0;
-  auto [p, ec] = std::from_chars(lexical.data(), lexical.data() + lexical.size(), v);
-  if (p != lexical.data() + lexical.size()) return std::nullopt;
-  if (ec == std::errc::result_out_of_range) {
-    v = std::strtod(std::string(lexical).c_str(), nullptr);  // "1e400": inf; "1e-400": 0
-  } else if (ec != std::errc()) {
-    return std::nullopt;
-  }
-  return negative ? -v : v;
-}
 const std::string kRdfFirst(mospec::vocab::rdf::first);
 const std::string kRdfRest(mospec::vocab::rdf::rest);
 const std::string kRdfNil(mospec::vocab::rdf::nil);
@@ -220,12 +157,12 @@ class Lowerer {
     return out;
   }
   // A literal's numeric value by the XSD lexical rules of its datatype
-  // (xsd_number()); nothing for a non-literal, an ill-formed lexical form or
+  // (rdf::xsd::number()); nothing for a non-literal, an ill-formed lexical form or
   // a value that is not finite (INF, NaN).
   std::optional<double> number(TermId lit) const {
     if (absent(lit) || !g_.terms()[lit].is_literal()) return std::nullopt;
     const rdf::Term& t = g_.terms()[lit];
-    auto v = xsd_number(t.value, g_.terms()[t.datatype].value);
+    auto v = rdf::xsd::number(t.value, g_.terms()[t.datatype].value);
     if (!v || !std::isfinite(*v)) return std::nullopt;
     return v;
   }

@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "rdf/xsd.hpp"
 #include "shacl/literal.hpp"
 #include "vocab/w3c.hpp"
 
@@ -425,8 +426,8 @@ class ShapesCompiler {
   int64_t count_param(uint32_t shape, const Value& v, std::string_view param) {
     const rdf::Term& term = t_[v.object];
     if (term.is_literal()) {
-      DatatypeInfo type = classify_datatype(t_[term.datatype].value);
-      if (type.kind == Xsd::Integer && well_formed(term.value, type)) {
+      rdf::xsd::Datatype type = rdf::xsd::classify(t_[term.datatype].value);
+      if (type.kind == rdf::xsd::Kind::Integer && rdf::xsd::well_formed(term.value, type)) {
         std::string_view digits = term.value;
         if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
         if (!digits.empty() && digits[0] != '-' && digits.size() <= 18) {
@@ -445,7 +446,7 @@ class ShapesCompiler {
   std::optional<bool> bool_param(uint32_t shape, const Value& v, std::string_view param) {
     const rdf::Term& term = t_[v.object];
     if (!term.is_literal() || t_[term.datatype].value != vocab::xsd::boolean ||
-        !well_formed(term.value, {Xsd::Boolean}))
+        !rdf::xsd::well_formed(term.value, {rdf::xsd::Kind::Boolean}))
       fail(shape, v.where, std::string(param) + " must be an xsd:boolean, got " + show(v.object));
     if (term.value == "true") return true;
     if (term.value == "false") return false;

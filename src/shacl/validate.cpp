@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "rdf/xsd.hpp"
 #include "shacl/literal.hpp"
 #include "vocab/w3c.hpp"
 
@@ -302,9 +303,9 @@ class Validator {
 
   bool check_well_formed(TermId v) const {
     const rdf::Term& t = term(v);
-    DatatypeInfo info = classify_datatype(datatype_iri(v));
-    if (info.kind == Xsd::LangString) return !t.language.empty();
-    return well_formed(t.value, info);
+    rdf::xsd::Datatype info = rdf::xsd::classify(datatype_iri(v));
+    if (info.kind == rdf::xsd::Kind::LangString) return !t.language.empty();
+    return rdf::xsd::well_formed(t.value, info);
   }
 
   std::string_view str(TermId v) const { return term(v).value; }

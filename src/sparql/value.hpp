@@ -7,7 +7,6 @@
 #include <string_view>
 
 #include "rdf/term.hpp"
-#include "vocab/w3c.hpp"
 
 namespace mospec::sparql::detail {
 
@@ -99,7 +98,5 @@ Value arithmetic(char op, const Value& a, const Value& b);
 // Canonical lexical form and datatype IRI of a Numeric or Bool value.
 std::string canonical_lexical(const Value& v);
 std::string_view datatype_of(const Value& v);
-
-inline constexpr std::string_view kXsdNs = vocab::xsd::ns;
 
 }  // namespace mospec::sparql::detail
