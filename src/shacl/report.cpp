@@ -5,7 +5,7 @@
 #include <numeric>
 #include <tuple>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "vocab/w3c.hpp"
 
 namespace mospec::shacl {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <initializer_list>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
 #include "support/paths.hpp"
