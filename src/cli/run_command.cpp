@@ -5,17 +5,17 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "cli/faults.hpp"
 #include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
+#include "description/robot_model.hpp"
 #include "ir/interpreter.hpp"
 #include "sim/config.hpp"
-#include "sim/robot_model.hpp"
 #include "sim/run.hpp"
 #include "sim/world.hpp"
 #include "support/io.hpp"
@@ -183,7 +183,8 @@ Action add_run_command(CLI::App& app) {
     // Refuse a run too long to simulate before building anything.
     (void)sim::tick_count(flags->duration, config.control_period,
                           static_cast<std::uint64_t>(flags->log_every));
-    const runtime::Chain arm = sim::load_arm_chain(config.robot);
+    const runtime::Chain arm =
+        description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
     sim::RunOptions options;
     options.duration = flags->duration;
     options.log_every = flags->log_every;

@@ -10,8 +10,8 @@
 #include <set>
 #include <unordered_map>
 
+#include "description/chain_rdf.hpp"
 #include "rdf/xsd.hpp"
-#include "runtime/chain_rdf.hpp"
 #include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
@@ -495,7 +495,7 @@ void Lowerer::lower_arm(TermId solver) {
   }
   arm.chain_iri = str(*chain_t);
   try {
-    arm.chain = runtime::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
+    arm.chain = description::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
   } catch (const Error& e) {
     error(where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
           "the solver '" + arm.iri + "': " + e.what());

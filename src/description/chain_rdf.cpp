@@ -1,4 +1,4 @@
-#include "runtime/chain_rdf.hpp"
+#include "description/chain_rdf.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -11,7 +11,9 @@
 #include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using namespace mospec::runtime;
 
 namespace {
 
@@ -268,4 +270,4 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
   return chain;
 }
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description

@@ -8,7 +8,9 @@
 #include "runtime/chain.hpp"
 #include "vocab/metamodels.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using runtime::Chain;
 
 struct ChainJsonldOptions {
   // Base IRI of the document; every entity id is relative to it.
@@ -40,4 +42,4 @@ struct ChainJsonldOptions {
 // term for one.
 std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& options = {});
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description

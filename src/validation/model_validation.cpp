@@ -1,4 +1,4 @@
-#include "shacl/model_validation.hpp"
+#include "validation/model_validation.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -16,7 +16,9 @@
 #include "support/io.hpp"
 #include "vocab/w3c.hpp"
 
-namespace mospec::shacl {
+namespace mospec::validation {
+
+using namespace mospec::shacl;
 
 namespace fs = std::filesystem;
 using rdf::TermId;
@@ -320,4 +322,4 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
   return out;
 }
 
-}  // namespace mospec::shacl
+}  // namespace mospec::validation
