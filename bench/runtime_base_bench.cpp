@@ -11,9 +11,9 @@
 #include <string>
 
 #include "base_cycle.hpp"
+#include "description/urdf_import.hpp"
 #include "runtime/controllers.hpp"
 #include "runtime/kelo.hpp"
-#include "runtime/urdf_import.hpp"
 #include "two_arm_base_cycle.hpp"
 
 namespace {
@@ -80,7 +80,7 @@ void BM_TwoArmBaseTick(benchmark::State& state) {
     state.SkipWithError("needs the Kinova Gen3 URDF in ../shared/upstream/kinova");
     return;
   }
-  const auto arm = mospec::runtime::chain_from_urdf_file(urdf, "base_link", "EndEffector_Link");
+  const auto arm = mospec::description::chain_from_urdf_file(urdf, "base_link", "EndEffector_Link");
   mospec::runtime::testing::TwoArmBaseCycle cycle(arm);
   double t = 0.0;
   for (auto _ : state) {

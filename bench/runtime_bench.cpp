@@ -8,17 +8,18 @@
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <random>
 
+#include "description/urdf_import.hpp"
 #include "kdl_reference.hpp"
 #include "runtime/achd.hpp"
 #include "runtime/crba.hpp"
 #include "runtime/kinematics.hpp"
 #include "runtime/rne.hpp"
-#include "runtime/urdf_import.hpp"
 #include "test_robots.hpp"
 
 namespace {
 
 using namespace mospec::runtime;
+using mospec::description::chain_from_urdf_file;
 namespace tst = mospec::runtime::testing;
 
 struct Problem {

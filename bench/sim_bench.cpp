@@ -8,8 +8,8 @@
 
 #include <filesystem>
 
+#include "description/robot_model.hpp"
 #include "sim/controllers.hpp"
-#include "sim/robot_model.hpp"
 #include "sim/world.hpp"
 
 namespace {
@@ -25,7 +25,8 @@ void BM_SimStep(benchmark::State& st, sim::BaseFidelity base) {
     }
   }
   c.base = base;
-  const runtime::Chain arm = sim::load_arm_chain(c.robot);
+  const runtime::Chain arm =
+      description::load_chain(c.robot.model, c.robot.chain_iri, c.robot.maps);
   sim::World world(c, arm);
   sim::GravityCompensation arms(arm, {c.arms[0].X_PB, c.arms[1].X_PB});
   arms.f_E_P = {runtime::Vec3(10, 0, 0), runtime::Vec3(10, 0, 0)};

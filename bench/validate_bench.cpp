@@ -19,10 +19,10 @@
 
 #include "app/app.hpp"
 #include "rdf/turtle.hpp"
-#include "shacl/model_validation.hpp"
 #include "shacl/shapes.hpp"
 #include "shacl/validate.hpp"
 #include "support/io.hpp"
+#include "validation/model_validation.hpp"
 
 extern char** environ;
 
@@ -45,7 +45,7 @@ void BM_Validate(benchmark::State& state, const char* app_file) {
   size_t results = 0, quads = 0;
   for (auto _ : state) {
     app::LoadedModel model = app::load({input}, options);
-    shacl::ModelValidation v = shacl::validate_model(model, {});
+    validation::ModelValidation v = validation::validate_model(model, {});
     results = v.report.results.size();
     quads = model.dataset().size();
     benchmark::DoNotOptimize(results);
@@ -65,10 +65,11 @@ void BM_ValidateStages(benchmark::State& state, int stage) {
   app::LoadOptions options;
   options.root = kUpstream.string();
   app::LoadedModel model = app::load({(kUpstream / "models" / "sc1.json").string()}, options);
-  std::vector<shacl::ShapeFile> files = shacl::shape_files(model, {});
+  std::vector<validation::ShapeFile> files = validation::shape_files(model, {});
   auto read_shapes = [&] {
     auto graph = std::make_unique<rdf::Dataset>();
-    for (const shacl::ShapeFile& f : files) shacl::read_shape_file(f, model.loader(), *graph);
+    for (const validation::ShapeFile& f : files)
+      validation::read_shape_file(f, model.loader(), *graph);
     return graph;
   };
   if (stage == 0) {

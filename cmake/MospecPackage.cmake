@@ -32,14 +32,11 @@ set_target_properties(mospec_warnings PROPERTIES EXPORT_NAME build_warnings)
 install(TARGETS ${_mospec_package_libs} mospec_package_runtime mospec_warnings EXPORT mospecTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${MOSPEC_INSTALL_INCLUDEDIR})
-# Headers: the three libraries' (the runtime directory also holds mospec_robot's
-# setup-time importers, which need the RDF stack: left out).
+# Headers: the three libraries'.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/runtime ${PROJECT_SOURCE_DIR}/src/robot
                   ${PROJECT_SOURCE_DIR}/src/support
         DESTINATION ${MOSPEC_INSTALL_INCLUDEDIR}
-        FILES_MATCHING PATTERN "*.hpp"
-        PATTERN "chain_rdf.hpp" EXCLUDE PATTERN "chain_jsonld.hpp" EXCLUDE
-        PATTERN "urdf_import.hpp" EXCLUDE)
+        FILES_MATCHING PATTERN "*.hpp")
 
 set(MOSPEC_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/mospec)
 install(TARGETS mospec mospec-full RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "jsonld/loader.hpp"
 #include "jsonld/to_rdf.hpp"
 #include "rdf/dataset.hpp"

@@ -11,6 +11,7 @@
 #include "jsonld/to_rdf.hpp"
 #include "rdf/iri.hpp"
 #include "support/paths.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::app {
 namespace fs = std::filesystem;
@@ -247,7 +248,7 @@ class Loader {
     const rdf::TermTable& t = dataset_.terms();
     std::unordered_set<uint32_t> described;
     for (const rdf::Quad& q : dataset_.quads()) described.insert(q.subject.index);
-    const rdf::TermId type = t.find_iri("http://www.w3.org/1999/02/22-rdf-syntax-ns#type");
+    const rdf::TermId type = t.find_iri(vocab::rdf::type);
     std::unordered_set<uint32_t> app_files;  // their import lists are not references
     for (const ModelFile& f : files_)
       if (f.is_app) app_files.insert(f.file_id);

@@ -15,10 +15,11 @@
 #include "jsonld/loader.hpp"
 #include "rdf/dataset.hpp"
 #include "support/diagnostics.hpp"
+#include "vocab/metamodels.hpp"
 
 namespace mospec::app {
 
-inline constexpr std::string_view kAppNs = "https://comp-rob2b.github.io/metamodels/application/";
+inline constexpr std::string_view kAppNs = vocab::app::ns;
 
 struct LoadOptions {
   // Extra IRI-prefix -> directory mappings (the CLI's --map IRI=DIR), applied
@@ -27,7 +28,7 @@ struct LoadOptions {
   // Directory that the iri-map's relative paths resolve against. Unset: the
   // current directory (what the authors' tool does).
   std::optional<std::string> root;
-  // Resolve https://comp-rob2b.github.io/metamodels/ to mospec's own metamodels
+  // Resolve the metamodel base (vocab::kMetamodels) to mospec's own metamodels
   // (builtin_metamodels_dir()) wherever no --map or iri-map entry covers it.
   bool builtin_metamodels = true;
 };
@@ -77,7 +78,7 @@ class LoadedModel {
   DiagnosticSink diagnostics_;
 };
 
-inline constexpr std::string_view kMetamodelsIri = "https://comp-rob2b.github.io/metamodels/";
+inline constexpr std::string_view kMetamodelsIri = vocab::kMetamodels;
 
 // Where mospec's own metamodels are: $MOSPEC_METAMODELS_DIR if set, else the
 // metamodels/ folder of the source tree mospec was built from.

@@ -1,8 +1,8 @@
 // `mospec import-urdf`: a URDF serial chain as a kinematic-chain JSON-LD model in
 // the published vocabulary, so robot descriptions compose with task models.
 #include "cli/commands.hpp"
-#include "runtime/chain_jsonld.hpp"
-#include "runtime/urdf_import.hpp"
+#include "description/chain_jsonld.hpp"
+#include "description/urdf_import.hpp"
 #include "support/io.hpp"
 
 namespace mospec::cli {
@@ -12,7 +12,7 @@ Action add_import_urdf_command(CLI::App& app) {
     std::string input;
     std::string output = "-";
     std::string root, tip;
-    runtime::ChainJsonldOptions jsonld;
+    description::ChainJsonldOptions jsonld;
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand("import-urdf", kImportUrdfSummary);
@@ -29,8 +29,8 @@ Action add_import_urdf_command(CLI::App& app) {
 
   return [flags]() {
     const runtime::Chain chain =
-        runtime::chain_from_urdf_file(flags->input, flags->root, flags->tip);
-    write_output(flags->output, runtime::chain_to_jsonld(chain, flags->jsonld));
+        description::chain_from_urdf_file(flags->input, flags->root, flags->tip);
+    write_output(flags->output, description::chain_to_jsonld(chain, flags->jsonld));
     return kExitOk;
   };
 }

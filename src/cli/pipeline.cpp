@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "shacl/model_validation.hpp"
 #include "shacl/report.hpp"
+#include "validation/model_validation.hpp"
 
 namespace mospec::cli {
 
@@ -46,9 +46,9 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
   for (const std::string& i : flags.inputs) inputs.push_back(resolve_app(i));
   app::LoadedModel model = app::load(inputs, flags.load.to_options());
   const size_t warnings = print_diagnostics(model.diagnostics());
-  shacl::ModelValidationOptions vopt;
+  validation::ModelValidationOptions vopt;
   vopt.strict = flags.load.strict;
-  shacl::ModelValidation v = shacl::validate_model(model, vopt);
+  validation::ModelValidation v = validation::validate_model(model, vopt);
   print_diagnostics(v.shape_diagnostics);
   const size_t violations =
       v.report.count(shacl::Level::Violation) + v.report.count(shacl::Level::Other);

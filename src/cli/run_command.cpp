@@ -13,9 +13,9 @@
 #include "cli/pipeline.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
+#include "description/robot_model.hpp"
 #include "ir/interpreter.hpp"
 #include "sim/config.hpp"
-#include "sim/robot_model.hpp"
 #include "sim/run.hpp"
 #include "sim/world.hpp"
 #include "support/io.hpp"
@@ -178,7 +178,8 @@ Action add_run_command(CLI::App& app) {
     // Refuse a run too long to simulate before building anything.
     (void)sim::tick_count(flags->duration, config.control_period,
                           static_cast<std::uint64_t>(flags->log_every));
-    const runtime::Chain arm = sim::load_arm_chain(config.robot);
+    const runtime::Chain arm =
+        description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
     sim::RunOptions options;
     options.duration = flags->duration;
     options.log_every = flags->log_every;

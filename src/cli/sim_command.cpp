@@ -9,10 +9,10 @@
 #include "cli/commands.hpp"
 #include "cli/faults.hpp"
 #include "cli/numbers.hpp"
+#include "description/robot_model.hpp"
 #include "sim/config.hpp"
 #include "sim/controllers.hpp"
 #include "sim/log.hpp"
-#include "sim/robot_model.hpp"
 #include "sim/run.hpp"
 #include "sim/world.hpp"
 #include "support/diagnostics.hpp"
@@ -60,7 +60,8 @@ Action add_sim_command(CLI::App& app) {
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
     if (flags->seed) config.seed = *flags->seed;
     if (flags->mount) config.mount.active = true;
-    const runtime::Chain arm = sim::load_arm_chain(config.robot);
+    const runtime::Chain arm =
+        description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
     sim::World world(config, arm);
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
     sim::GravityCompensation gravity(arm, {config.arms[0].X_PB, config.arms[1].X_PB});

@@ -24,7 +24,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "support/io.hpp"
 
 namespace mospec::cli {

@@ -3,9 +3,9 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "shacl/model_validation.hpp"
 #include "shacl/report.hpp"
 #include "support/io.hpp"
+#include "validation/model_validation.hpp"
 
 namespace mospec::cli {
 
@@ -42,10 +42,10 @@ Action add_validate_command(CLI::App& app) {
     app::LoadedModel model = app::load(flags->inputs, flags->load.to_options());
     size_t warnings = print_diagnostics(model.diagnostics());
 
-    shacl::ModelValidationOptions options;
+    validation::ModelValidationOptions options;
     options.extra_shapes = flags->shapes;
     options.strict = flags->load.strict;
-    shacl::ModelValidation v = shacl::validate_model(model, options);
+    validation::ModelValidation v = validation::validate_model(model, options);
     warnings += print_diagnostics(v.shape_diagnostics);
     for (const Diagnostic& d : v.strict_findings) std::cerr << format(d) << '\n';
 

@@ -7,72 +7,17 @@
 #include <limits>
 #include <unordered_map>
 
-#include "shacl/literal.hpp"
+#include "rdf/xsd.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::ir {
 
-namespace {
-
-// The canonical xsd:double form of a finite JSON number, as JSON-LD's
-// object-to-RDF conversion writes it: -?d.d+E-?d+ with a non-zero leading
-// digit (or 0.0E0).
-bool canonical_double_form(std::string_view s) {
-  auto digits = [](std::string_view d) {
-    return !d.empty() &&
-           std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
-  };
-  if (!s.empty() && s.front() == '-') s.remove_prefix(1);
-  const size_t e = s.find('E');
-  if (e == std::string_view::npos || e < 3 || s[1] != '.') return false;
-  std::string_view exponent = s.substr(e + 1);
-  if (!exponent.empty() && exponent.front() == '-') exponent.remove_prefix(1);
-  return digits(s.substr(0, 1)) && digits(s.substr(2, e - 2)) && digits(exponent) &&
-         (s.front() != '0' || s.substr(0, e) == "0.0");
-}
-
-}  // namespace
-
-std::optional<double> xsd_number(std::string_view lexical, std::string_view datatype) {
-  shacl::DatatypeInfo type = shacl::classify_datatype(datatype);
-  if (type.kind == shacl::Xsd::String) type = shacl::DatatypeInfo(shacl::Xsd::Double);
-  bool ok = false;
-  switch (type.kind) {
-    case shacl::Xsd::Decimal:
-      ok = shacl::well_formed(lexical, type) || canonical_double_form(lexical);
-      break;
-    case shacl::Xsd::Integer:
-    case shacl::Xsd::Float:
-    case shacl::Xsd::Double:
-      ok = shacl::well_formed(lexical, type);
-      break;
-    default:
-      break;
-  }
-  if (!ok) return std::nullopt;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  if (lexical == "INF" || lexical == "+INF") return kInf;
-  if (lexical == "-INF") return -kInf;
-  if (lexical == "NaN") return std::numeric_limits<double>::quiet_NaN();
-  // from_chars reads neither a leading '+' nor INF/NaN in XSD's spelling.
-  const bool negative = !lexical.empty() && lexical.front() == '-';
-  if (!lexical.empty() && (lexical.front() == '+' || negative)) lexical.remove_prefix(1);
-  double v = 0;
-  auto [p, ec] = std::from_chars(lexical.data(), lexical.data() + lexical.size(), v);
-  if (p != lexical.data() + lexical.size()) return std::nullopt;
-  if (ec == std::errc::result_out_of_range) {
-    v = std::strtod(std::string(lexical).c_str(), nullptr);  // "1e400": inf; "1e-400": 0
-  } else if (ec != std::errc()) {
-    return std::nullopt;
-  }
-  return negative ? -v : v;
-}
-
 Graph::Graph(const rdf::Dataset& dataset)
     : dataset_(dataset),
-      rdf_type_(term("http://www.w3.org/1999/02/22-rdf-syntax-ns#type")),
-      rdf_first_(term("http://www.w3.org/1999/02/22-rdf-syntax-ns#first")),
-      rdf_rest_(term("http://www.w3.org/1999/02/22-rdf-syntax-ns#rest")),
-      rdf_nil_(term("http://www.w3.org/1999/02/22-rdf-syntax-ns#nil")) {}
+      rdf_type_(term(vocab::rdf::type)),
+      rdf_first_(term(vocab::rdf::first)),
+      rdf_rest_(term(vocab::rdf::rest)),
+      rdf_nil_(term(vocab::rdf::nil)) {}
 
 std::vector<Graph::Statement> Graph::statements(TermId s) const {
   std::vector<Statement> out;
@@ -184,7 +129,7 @@ std::vector<Graph::TermId> Graph::list(TermId head) const {
 std::optional<double> Graph::number(TermId lit) const {
   if (lit.is_any() || !terms()[lit].is_literal()) return std::nullopt;
   const rdf::Term& t = terms()[lit];
-  auto v = xsd_number(t.value, terms()[t.datatype].value);
+  auto v = rdf::xsd::number(t.value, terms()[t.datatype].value);
   if (!v || !std::isfinite(*v)) return std::nullopt;
   return v;
 }

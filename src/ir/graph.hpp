@@ -25,20 +25,6 @@
 
 namespace mospec::ir {
 
-// The value of a numeric literal by XSD 1.1's lexical rules for its datatype
-// (shacl/literal.hpp, the validator's own reading, so that lowering accepts
-// exactly what sh:datatype accepts):
-//   xsd:double / xsd:float   [+-]?(digits(.digits?)?|.digits)([eE][+-]?digits)?,
-//                            INF, +INF, -INF, NaN;
-//   xsd:decimal              [+-]?(digits(.digits?)?|.digits), and the canonical
-//                            xsd:double form JSON-LD's toRdf writes for a JSON
-//                            number under a decimal coercion ("1.0E-3");
-//   xsd:integer and the types derived from it: [+-]?digits within the type's range;
-//   xsd:string (a number written as a string without a coercion): read as
-//                            xsd:double.
-// Anything else (another datatype, a form XSD rejects) is not a number.
-std::optional<double> xsd_number(std::string_view lexical, std::string_view datatype);
-
 class Graph {
  public:
   using TermId = rdf::TermId;
@@ -84,7 +70,7 @@ class Graph {
   std::vector<TermId> list(TermId head) const;
 
   // A literal's numeric value by the XSD lexical rules of its datatype
-  // (xsd_number()); nothing for a non-literal, an ill-formed lexical form or
+  // (rdf::xsd::number()); nothing for a non-literal, an ill-formed lexical form or
   // a value that is not finite (INF, NaN).
   std::optional<double> number(TermId lit) const;
   // number() of object(s, p).

@@ -9,15 +9,17 @@
 #include <set>
 #include <unordered_map>
 
-#include "ir/operators.hpp"
+#include "description/chain_rdf.hpp"
 #include "ir/graph.hpp"
-#include "runtime/chain_rdf.hpp"
+#include "ir/operators.hpp"
+#include "vocab/metamodels.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::ir {
 
 std::map<std::string, int> LowerOptions::default_ports() {
-  return {{"https://mospec.example/robots/kinova-gen3/chain", 0},
-          {"https://mospec.example/robots/kinova-gen3-left/chain", 1}};
+  return {{std::string(vocab::robots::kinova_gen3_chain), 0},
+          {std::string(vocab::robots::kinova_gen3_left_chain), 1}};
 }
 
 namespace {
@@ -51,15 +53,11 @@ namespace {
 
 using rdf::TermId;
 
-const std::string kMM = "https://comp-rob2b.github.io/metamodels/";
 std::string vocab(std::string_view domain, std::string_view local) {
-  std::string s = kMM;
-  s.append(domain).append("#").append(local);
-  return s;
+  return mospec::vocab::metamodel_term(domain, local);
 }
-const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
-
-const std::string kQudt = "http://qudt.org/schema/qudt/";
+const std::string kXsd(mospec::vocab::xsd::ns);
+const std::string kQudt(mospec::vocab::qudt::ns);
 
 std::string local_name(std::string_view iri) {
   const size_t k = iri.find_last_of("#/");
@@ -429,7 +427,7 @@ void Lowerer::lower_arm(TermId solver) {
   }
   arm.chain_iri = str(*chain_t);
   try {
-    arm.chain = runtime::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
+    arm.chain = description::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
   } catch (const Error& e) {
     error(where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
           "the solver '" + arm.iri + "': " + e.diagnostic().message);

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "runtime/operators.hpp"
+#include "vocab/metamodels.hpp"
 
 namespace mospec::ir {
 
@@ -159,10 +160,8 @@ OperatorKind declare(const Declaration& d, std::string_view kernel, Kernel) {
         -> decltype(::mospec::runtime::fn(std::forward <decltype(a)>( \
             a)...)) { return ::mospec::runtime::fn(std::forward<decltype(a)>(a)...); }
 
-constexpr std::string_view kGeomOp =
-    "https://comp-rob2b.github.io/metamodels/geometry/spatial-operators#";
-constexpr std::string_view kDynOp =
-    "https://comp-rob2b.github.io/metamodels/newtonian-rigid-body-dynamics/operators#";
+constexpr std::string_view kGeomOp = vocab::geom_op::ns;
+constexpr std::string_view kDynOp = vocab::dyn_op::ns;
 
 std::vector<OperatorKind> declare_all() {
   std::vector<OperatorKind> k;

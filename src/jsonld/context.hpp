@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "jsonld/options.hpp"
 
 namespace mospec::jsonld {

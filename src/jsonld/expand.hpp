@@ -2,7 +2,7 @@
 // including context processing (section 4.1) and IRI expansion (section 4.2).
 #pragma once
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "jsonld/options.hpp"
 
 namespace mospec::jsonld {

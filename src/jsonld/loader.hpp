@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::jsonld {

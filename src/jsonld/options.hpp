@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::jsonld {

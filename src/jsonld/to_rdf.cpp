@@ -18,17 +18,18 @@
 #include "jsonld/loader.hpp"
 #include "rdf/iri.hpp"
 #include "rdf/term.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::jsonld {
 
 namespace {
 
-constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
-constexpr std::string_view kI18n = "https://www.w3.org/ns/i18n#";
-constexpr std::string_view kRdfJson = "http://www.w3.org/1999/02/22-rdf-syntax-ns#JSON";
-constexpr std::string_view kXsdBoolean = "http://www.w3.org/2001/XMLSchema#boolean";
-constexpr std::string_view kXsdDouble = "http://www.w3.org/2001/XMLSchema#double";
-constexpr std::string_view kXsdInteger = "http://www.w3.org/2001/XMLSchema#integer";
+constexpr std::string_view kRdf = vocab::rdf::ns;
+constexpr std::string_view kI18n = vocab::i18n::ns;
+constexpr std::string_view kRdfJson = vocab::rdf::JSON;
+constexpr std::string_view kXsdBoolean = vocab::xsd::boolean;
+constexpr std::string_view kXsdDouble = vocab::xsd::double_;
+constexpr std::string_view kXsdInteger = vocab::xsd::integer;
 
 struct StringHash {
   using is_transparent = void;

@@ -2,7 +2,7 @@
 // 7.2 and Object to RDF Conversion 8.1.2 / List to RDF 8.1.3).
 #pragma once
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "jsonld/options.hpp"
 #include "rdf/dataset.hpp"
 

@@ -15,14 +15,13 @@
 #include <vector>
 
 #include "rdf/id_hash_set.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::rdf {
 
-inline constexpr std::string_view kXsdString = "http://www.w3.org/2001/XMLSchema#string";
-inline constexpr std::string_view kRdfLangString =
-    "http://www.w3.org/1999/02/22-rdf-syntax-ns#langString";
-inline constexpr std::string_view kRdfDirLangString =
-    "http://www.w3.org/1999/02/22-rdf-syntax-ns#dirLangString";
+inline constexpr std::string_view kXsdString = vocab::xsd::string;
+inline constexpr std::string_view kRdfLangString = vocab::rdf::langString;
+inline constexpr std::string_view kRdfDirLangString = vocab::rdf::dirLangString;
 
 enum class TermKind : uint8_t {
   DefaultGraph,  // only valid in the graph position of a quad

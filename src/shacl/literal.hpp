@@ -1,44 +1,12 @@
-// XSD lexical checks and SPARQL operator semantics for literals, as SHACL's
-// sh:datatype, sh:minInclusive & co. and sh:lessThan need them.
+// SPARQL operator semantics for literals, as SHACL's sh:minInclusive & co. and
+// sh:lessThan need them. The XSD lexical forms themselves (sh:datatype) are
+// read by rdf/xsd.hpp.
 #pragma once
 
 #include <cstdint>
 #include <string_view>
 
 namespace mospec::shacl {
-
-// The datatypes whose lexical space the validator knows. Everything else is
-// Other: any lexical form is accepted and only RDF term equality applies.
-enum class Xsd : uint8_t {
-  Other,
-  String,
-  LangString,
-  Boolean,
-  Decimal,
-  Integer,  // xsd:integer and every type derived from it (ranges checked separately)
-  Float,
-  Double,
-  DateTime,
-  DateTimeStamp,
-  Date,
-  Time,
-};
-
-struct DatatypeInfo {
-  constexpr DatatypeInfo(Xsd k = Xsd::Other, std::string_view lo = {}, std::string_view hi = {})
-      : kind(k), min(lo), max(hi) {}
-  Xsd kind = Xsd::Other;
-  // For integer-derived types: inclusive bounds as decimal digit strings
-  // ("" = unbounded on that side).
-  std::string_view min, max;
-};
-
-DatatypeInfo classify_datatype(std::string_view datatype_iri);
-
-// Whether `lexical` is in the lexical space of the datatype (always true for
-// Xsd::Other, and for xsd:string). rdf:langString is checked by the caller
-// (it needs the language tag, not the lexical form).
-bool well_formed(std::string_view lexical, const DatatypeInfo& type);
 
 // The result of SPARQL's "<" family on two literals.
 enum class Order : uint8_t { Less, Equal, Greater, Incomparable };

@@ -5,8 +5,8 @@
 #include <numeric>
 #include <tuple>
 
-#include "jsonld/json.hpp"
-#include "shacl/vocab.hpp"
+#include "json/json.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::shacl {
 
@@ -17,11 +17,11 @@ using rdf::TermId;
 std::string_view severity_iri(Level level) {
   switch (level) {
     case Level::Info:
-      return vocab::Info;
+      return vocab::sh::Info;
     case Level::Warning:
-      return vocab::Warning;
+      return vocab::sh::Warning;
     default:
-      return vocab::Violation;
+      return vocab::sh::Violation;
   }
 }
 
@@ -38,7 +38,7 @@ std::string turtle_term(const rdf::TermTable& t, TermId id) {
   const rdf::Term& term = t[id];
   if (term.is_iri()) {
     for (auto [ns, prefix] :
-         {std::pair{vocab::kSh, "sh:"}, {vocab::kRdf, "rdf:"}, {vocab::kXsd, "xsd:"}}) {
+         {std::pair{vocab::sh::ns, "sh:"}, {vocab::rdf::ns, "rdf:"}, {vocab::xsd::ns, "xsd:"}}) {
       if (term.value.substr(0, ns.size()) != ns) continue;
       std::string_view local = term.value.substr(ns.size());
       bool simple = !local.empty() && std::all_of(local.begin(), local.end(), [](char c) {
@@ -182,9 +182,9 @@ void Report::sort() {
 std::string to_turtle(const Report& report) {
   const rdf::TermTable& t = report.terms;
   std::string out;
-  out += "@prefix rdf: <http://www.w3.org/1999/02/22-rdf-syntax-ns#> .\n";
-  out += "@prefix sh: <http://www.w3.org/ns/shacl#> .\n";
-  out += "@prefix xsd: <http://www.w3.org/2001/XMLSchema#> .\n\n";
+  out += "@prefix rdf: <" MOSPEC_VOCAB_RDF "> .\n";
+  out += "@prefix sh: <" MOSPEC_VOCAB_SH "> .\n";
+  out += "@prefix xsd: <" MOSPEC_VOCAB_XSD "> .\n\n";
   out += "[] a sh:ValidationReport ;\n";
   out += report.conforms() ? "  sh:conforms true" : "  sh:conforms false";
   for (size_t i = 0; i < report.results.size(); ++i) {
@@ -205,7 +205,7 @@ std::string to_turtle(const Report& report) {
     out += "    sh:resultSeverity " +
            (r.level == Level::Other
                 ? turtle_term(t, r.severity)
-                : "sh:" + std::string(severity_iri(r.level).substr(vocab::kSh.size()))) +
+                : "sh:" + std::string(severity_iri(r.level).substr(vocab::sh::ns.size()))) +
            " ;\n";
     out += "    sh:sourceConstraintComponent " +
            (r.component == Component::SparqlComponent ? turtle_term(t, r.component_node)
@@ -276,8 +276,8 @@ rdf::Dataset to_dataset(const Report& report) {
   const std::string prefix = t.fresh_blank_prefix();
   size_t next = 0;
   auto fresh = [&] { return t.blank(prefix + std::to_string(next++)); };
-  const TermId type = iri(vocab::rdf_type), first = iri(vocab::rdf_first),
-               rest = iri(vocab::rdf_rest), nil = iri(vocab::rdf_nil);
+  const TermId type = iri(vocab::rdf::type), first = iri(vocab::rdf::first),
+               rest = iri(vocab::rdf::rest), nil = iri(vocab::rdf::nil);
   auto add = [&](TermId s, TermId p, TermId o) { ds.add(rdf::Quad{s, p, o}); };
   std::function<TermId(const sparql::Path&)> path = [&](const sparql::Path& p) -> TermId {
     using K = sparql::Path::Kind;
@@ -302,40 +302,41 @@ rdf::Dataset to_dataset(const Report& report) {
       case K::Sequence:
         return make_list(p.items);
       case K::Alternative:
-        return wrapped(vocab::alternativePath, make_list(p.items));
+        return wrapped(vocab::sh::alternativePath, make_list(p.items));
       case K::Inverse:
-        return wrapped(vocab::inversePath, path(*p.items[0]));
+        return wrapped(vocab::sh::inversePath, path(*p.items[0]));
       case K::ZeroOrMore:
-        return wrapped(vocab::zeroOrMorePath, path(*p.items[0]));
+        return wrapped(vocab::sh::zeroOrMorePath, path(*p.items[0]));
       case K::OneOrMore:
-        return wrapped(vocab::oneOrMorePath, path(*p.items[0]));
+        return wrapped(vocab::sh::oneOrMorePath, path(*p.items[0]));
       case K::ZeroOrOne:
-        return wrapped(vocab::zeroOrOnePath, path(*p.items[0]));
+        return wrapped(vocab::sh::zeroOrOnePath, path(*p.items[0]));
       case K::NegatedSet:
         return fresh();
     }
     return fresh();
   };
   TermId root = fresh();
-  add(root, type, iri(vocab::ValidationReport));
-  add(root, iri(vocab::conforms),
-      t.literal(report.conforms() ? "true" : "false", vocab::xsd_boolean));
+  add(root, type, iri(vocab::sh::ValidationReport));
+  add(root, iri(vocab::sh::conforms),
+      t.literal(report.conforms() ? "true" : "false", vocab::xsd::boolean));
   for (size_t i = 0; i < report.results.size(); ++i) {
     const Result& r = report.results[i];
     const std::vector<TermId>& ids = imported[i];
     TermId node = fresh();
-    add(root, iri(vocab::result), node);
-    add(node, type, iri(vocab::ValidationResult));
-    add(node, iri(vocab::focusNode), ids[0]);
-    add(node, iri(vocab::sourceShape), ids[1]);
-    if (!ids[2].is_any()) add(node, iri(vocab::value), ids[2]);
-    add(node, iri(vocab::resultSeverity), ids[3].is_any() ? iri(severity_iri(r.level)) : ids[3]);
-    if (!ids[4].is_any()) add(node, iri(vocab::sourceConstraint), ids[4]);
-    add(node, iri(vocab::sourceConstraintComponent), iri(result_component_iri(report, r)));
-    for (size_t m = 5; m < ids.size(); ++m) add(node, iri(vocab::resultMessage), ids[m]);
+    add(root, iri(vocab::sh::result), node);
+    add(node, type, iri(vocab::sh::ValidationResult));
+    add(node, iri(vocab::sh::focusNode), ids[0]);
+    add(node, iri(vocab::sh::sourceShape), ids[1]);
+    if (!ids[2].is_any()) add(node, iri(vocab::sh::value), ids[2]);
+    add(node, iri(vocab::sh::resultSeverity),
+        ids[3].is_any() ? iri(severity_iri(r.level)) : ids[3]);
+    if (!ids[4].is_any()) add(node, iri(vocab::sh::sourceConstraint), ids[4]);
+    add(node, iri(vocab::sh::sourceConstraintComponent), iri(result_component_iri(report, r)));
+    for (size_t m = 5; m < ids.size(); ++m) add(node, iri(vocab::sh::resultMessage), ids[m]);
     if (r.messages.empty() && !r.default_message.empty())
-      add(node, iri(vocab::resultMessage), t.literal(r.default_message));
-    if (r.path) add(node, iri(vocab::resultPath), path(*r.path));
+      add(node, iri(vocab::sh::resultMessage), t.literal(r.default_message));
+    if (r.path) add(node, iri(vocab::sh::resultPath), path(*r.path));
   }
   return ds;
 }
@@ -356,7 +357,7 @@ json::Value jsonld_term(const rdf::TermTable& t, TermId id) {
     if (!term.language.empty()) {
       o.set("@language", json::Value(std::string(term.language)));
       if (!term.direction.empty()) o.set("@direction", json::Value(std::string(term.direction)));
-    } else if (t[term.datatype].value != "http://www.w3.org/2001/XMLSchema#string") {
+    } else if (t[term.datatype].value != vocab::xsd::string) {
       o.set("@type", json::Value(std::string(t[term.datatype].value)));
     }
   }
@@ -366,7 +367,7 @@ json::Value jsonld_term(const rdf::TermTable& t, TermId id) {
 json::Value sh_id(std::string_view iri) {
   json::Object o;
   std::string compact = "sh:";
-  compact.append(iri.substr(vocab::kSh.size()));
+  compact.append(iri.substr(vocab::sh::ns.size()));
   o.set("@id", json::Value(std::move(compact)));
   return json::Value(std::move(o));
 }
@@ -383,7 +384,7 @@ json::Value jsonld_path(const rdf::TermTable& t, const sparql::Path& p) {
   auto wrapped = [&](std::string_view predicate, json::Value inner) {
     json::Object o;
     std::string key = "sh:";
-    key.append(predicate.substr(vocab::kSh.size()));
+    key.append(predicate.substr(vocab::sh::ns.size()));
     o.set(std::move(key), std::move(inner));
     return json::Value(std::move(o));
   };
@@ -393,15 +394,15 @@ json::Value jsonld_path(const rdf::TermTable& t, const sparql::Path& p) {
     case K::Sequence:
       return list(p.items);
     case K::Alternative:
-      return wrapped(vocab::alternativePath, list(p.items));
+      return wrapped(vocab::sh::alternativePath, list(p.items));
     case K::Inverse:
-      return wrapped(vocab::inversePath, jsonld_path(t, *p.items[0]));
+      return wrapped(vocab::sh::inversePath, jsonld_path(t, *p.items[0]));
     case K::ZeroOrMore:
-      return wrapped(vocab::zeroOrMorePath, jsonld_path(t, *p.items[0]));
+      return wrapped(vocab::sh::zeroOrMorePath, jsonld_path(t, *p.items[0]));
     case K::OneOrMore:
-      return wrapped(vocab::oneOrMorePath, jsonld_path(t, *p.items[0]));
+      return wrapped(vocab::sh::oneOrMorePath, jsonld_path(t, *p.items[0]));
     case K::ZeroOrOne:
-      return wrapped(vocab::zeroOrOnePath, jsonld_path(t, *p.items[0]));
+      return wrapped(vocab::sh::zeroOrOnePath, jsonld_path(t, *p.items[0]));
     case K::NegatedSet:
       break;
   }
@@ -413,8 +414,8 @@ json::Value jsonld_path(const rdf::TermTable& t, const sparql::Path& p) {
 std::string to_jsonld(const Report& report) {
   const rdf::TermTable& t = report.terms;
   json::Object context;
-  context.set("sh", json::Value(std::string(vocab::kSh)));
-  context.set("xsd", json::Value(std::string(vocab::kXsd)));
+  context.set("sh", json::Value(std::string(vocab::sh::ns)));
+  context.set("xsd", json::Value(std::string(vocab::xsd::ns)));
   json::Object root;
   root.set("@context", json::Value(std::move(context)));
   root.set("@type", json::Value("sh:ValidationReport"));

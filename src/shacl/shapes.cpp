@@ -9,8 +9,9 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "rdf/xsd.hpp"
 #include "shacl/literal.hpp"
-#include "shacl/vocab.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::shacl {
 
@@ -28,45 +29,39 @@ struct ComponentInfo {
 };
 
 constexpr std::array<ComponentInfo, 30> kComponents{{
-    {"http://www.w3.org/ns/shacl#ClassConstraintComponent", "sh:ClassConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#DatatypeConstraintComponent", "sh:DatatypeConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#NodeKindConstraintComponent", "sh:NodeKindConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MinCountConstraintComponent", "sh:MinCountConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MaxCountConstraintComponent", "sh:MaxCountConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MinExclusiveConstraintComponent",
-     "sh:MinExclusiveConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MinInclusiveConstraintComponent",
-     "sh:MinInclusiveConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MaxExclusiveConstraintComponent",
-     "sh:MaxExclusiveConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MaxInclusiveConstraintComponent",
-     "sh:MaxInclusiveConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MinLengthConstraintComponent", "sh:MinLengthConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#MaxLengthConstraintComponent", "sh:MaxLengthConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#PatternConstraintComponent", "sh:PatternConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#LanguageInConstraintComponent",
-     "sh:LanguageInConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#UniqueLangConstraintComponent",
-     "sh:UniqueLangConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#EqualsConstraintComponent", "sh:EqualsConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#DisjointConstraintComponent", "sh:DisjointConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#LessThanConstraintComponent", "sh:LessThanConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#LessThanOrEqualsConstraintComponent",
+    {MOSPEC_VOCAB_SH "ClassConstraintComponent", "sh:ClassConstraintComponent"},
+    {MOSPEC_VOCAB_SH "DatatypeConstraintComponent", "sh:DatatypeConstraintComponent"},
+    {MOSPEC_VOCAB_SH "NodeKindConstraintComponent", "sh:NodeKindConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MinCountConstraintComponent", "sh:MinCountConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MaxCountConstraintComponent", "sh:MaxCountConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MinExclusiveConstraintComponent", "sh:MinExclusiveConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MinInclusiveConstraintComponent", "sh:MinInclusiveConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MaxExclusiveConstraintComponent", "sh:MaxExclusiveConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MaxInclusiveConstraintComponent", "sh:MaxInclusiveConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MinLengthConstraintComponent", "sh:MinLengthConstraintComponent"},
+    {MOSPEC_VOCAB_SH "MaxLengthConstraintComponent", "sh:MaxLengthConstraintComponent"},
+    {MOSPEC_VOCAB_SH "PatternConstraintComponent", "sh:PatternConstraintComponent"},
+    {MOSPEC_VOCAB_SH "LanguageInConstraintComponent", "sh:LanguageInConstraintComponent"},
+    {MOSPEC_VOCAB_SH "UniqueLangConstraintComponent", "sh:UniqueLangConstraintComponent"},
+    {MOSPEC_VOCAB_SH "EqualsConstraintComponent", "sh:EqualsConstraintComponent"},
+    {MOSPEC_VOCAB_SH "DisjointConstraintComponent", "sh:DisjointConstraintComponent"},
+    {MOSPEC_VOCAB_SH "LessThanConstraintComponent", "sh:LessThanConstraintComponent"},
+    {MOSPEC_VOCAB_SH "LessThanOrEqualsConstraintComponent",
      "sh:LessThanOrEqualsConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#NotConstraintComponent", "sh:NotConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#AndConstraintComponent", "sh:AndConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#OrConstraintComponent", "sh:OrConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#XoneConstraintComponent", "sh:XoneConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#NodeConstraintComponent", "sh:NodeConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#PropertyConstraintComponent", "sh:PropertyConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#QualifiedMinCountConstraintComponent",
+    {MOSPEC_VOCAB_SH "NotConstraintComponent", "sh:NotConstraintComponent"},
+    {MOSPEC_VOCAB_SH "AndConstraintComponent", "sh:AndConstraintComponent"},
+    {MOSPEC_VOCAB_SH "OrConstraintComponent", "sh:OrConstraintComponent"},
+    {MOSPEC_VOCAB_SH "XoneConstraintComponent", "sh:XoneConstraintComponent"},
+    {MOSPEC_VOCAB_SH "NodeConstraintComponent", "sh:NodeConstraintComponent"},
+    {MOSPEC_VOCAB_SH "PropertyConstraintComponent", "sh:PropertyConstraintComponent"},
+    {MOSPEC_VOCAB_SH "QualifiedMinCountConstraintComponent",
      "sh:QualifiedMinCountConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#QualifiedMaxCountConstraintComponent",
+    {MOSPEC_VOCAB_SH "QualifiedMaxCountConstraintComponent",
      "sh:QualifiedMaxCountConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#ClosedConstraintComponent", "sh:ClosedConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#HasValueConstraintComponent", "sh:HasValueConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#InConstraintComponent", "sh:InConstraintComponent"},
-    {"http://www.w3.org/ns/shacl#SPARQLConstraintComponent", "sh:SPARQLConstraintComponent"},
+    {MOSPEC_VOCAB_SH "ClosedConstraintComponent", "sh:ClosedConstraintComponent"},
+    {MOSPEC_VOCAB_SH "HasValueConstraintComponent", "sh:HasValueConstraintComponent"},
+    {MOSPEC_VOCAB_SH "InConstraintComponent", "sh:InConstraintComponent"},
+    {MOSPEC_VOCAB_SH "SPARQLConstraintComponent", "sh:SPARQLConstraintComponent"},
 }};
 
 std::string term_text(const rdf::TermTable& t, TermId id) {
@@ -149,89 +144,89 @@ class ShapesCompiler {
       TermId id = t_.find_iri(iri);
       return id.is_any() ? kAbsent : id;
     };
-    type_ = sh(vocab::rdf_type);
-    first_ = sh(vocab::rdf_first);
-    rest_ = sh(vocab::rdf_rest);
-    nil_ = sh(vocab::rdf_nil);
-    subclass_ = sh(vocab::rdfs_subclass_of);
-    rdfs_class_ = sh(vocab::rdfs_class);
-    node_shape_ = sh(vocab::NodeShape);
-    property_shape_ = sh(vocab::PropertyShape);
-    violation_ = sh(vocab::Violation);
-    warning_ = sh(vocab::Warning);
-    info_ = sh(vocab::Info);
+    type_ = sh(vocab::rdf::type);
+    first_ = sh(vocab::rdf::first);
+    rest_ = sh(vocab::rdf::rest);
+    nil_ = sh(vocab::rdf::nil);
+    subclass_ = sh(vocab::rdfs::subClassOf);
+    rdfs_class_ = sh(vocab::rdfs::Class);
+    node_shape_ = sh(vocab::sh::NodeShape);
+    property_shape_ = sh(vocab::sh::PropertyShape);
+    violation_ = sh(vocab::sh::Violation);
+    warning_ = sh(vocab::sh::Warning);
+    info_ = sh(vocab::sh::Info);
     for (auto [iri, slot] : std::initializer_list<std::pair<std::string_view, TermId*>>{
-             {vocab::path, &path_},
-             {vocab::targetNode, &target_node_},
-             {vocab::targetClass, &target_class_},
-             {vocab::targetSubjectsOf, &target_subjects_},
-             {vocab::targetObjectsOf, &target_objects_},
-             {vocab::deactivated, &deactivated_},
-             {vocab::severity, &severity_},
-             {vocab::message, &message_},
-             {vocab::alternativePath, &alternative_},
-             {vocab::inversePath, &inverse_},
-             {vocab::zeroOrMorePath, &zero_or_more_},
-             {vocab::oneOrMorePath, &one_or_more_},
-             {vocab::zeroOrOnePath, &zero_or_one_},
-             {vocab::flags, &flags_},
-             {vocab::qualifiedValueShape, &qvs_},
-             {vocab::qualifiedMinCount, &qmin_},
-             {vocab::qualifiedMaxCount, &qmax_},
-             {vocab::qualifiedValueShapesDisjoint, &qdisjoint_},
-             {vocab::ignoredProperties, &ignored_},
-             {vocab::property, &property_},
-             {vocab::select, &select_},
-             {vocab::prefixes, &prefixes_},
-             {vocab::declare, &declare_},
-             {vocab::prefix, &prefix_},
-             {vocab::sh_namespace, &namespace_},
-             {vocab::owl_imports, &owl_imports_},
-             {vocab::ConstraintComponent, &constraint_component_},
-             {vocab::parameter, &parameter_},
-             {vocab::optional, &optional_},
-             {vocab::validator, &validator_},
-             {vocab::nodeValidator, &node_validator_},
-             {vocab::propertyValidator, &property_validator_},
-             {vocab::ask, &ask_},
-             {vocab::labelTemplate, &label_template_},
-             {vocab::BlankNode, &nk_blank_},
-             {vocab::IRI, &nk_iri_},
-             {vocab::Literal, &nk_literal_},
-             {vocab::BlankNodeOrIRI, &nk_blank_iri_},
-             {vocab::BlankNodeOrLiteral, &nk_blank_literal_},
-             {vocab::IRIOrLiteral, &nk_iri_literal_},
+             {vocab::sh::path, &path_},
+             {vocab::sh::targetNode, &target_node_},
+             {vocab::sh::targetClass, &target_class_},
+             {vocab::sh::targetSubjectsOf, &target_subjects_},
+             {vocab::sh::targetObjectsOf, &target_objects_},
+             {vocab::sh::deactivated, &deactivated_},
+             {vocab::sh::severity, &severity_},
+             {vocab::sh::message, &message_},
+             {vocab::sh::alternativePath, &alternative_},
+             {vocab::sh::inversePath, &inverse_},
+             {vocab::sh::zeroOrMorePath, &zero_or_more_},
+             {vocab::sh::oneOrMorePath, &one_or_more_},
+             {vocab::sh::zeroOrOnePath, &zero_or_one_},
+             {vocab::sh::flags, &flags_},
+             {vocab::sh::qualifiedValueShape, &qvs_},
+             {vocab::sh::qualifiedMinCount, &qmin_},
+             {vocab::sh::qualifiedMaxCount, &qmax_},
+             {vocab::sh::qualifiedValueShapesDisjoint, &qdisjoint_},
+             {vocab::sh::ignoredProperties, &ignored_},
+             {vocab::sh::property, &property_},
+             {vocab::sh::select, &select_},
+             {vocab::sh::prefixes, &prefixes_},
+             {vocab::sh::declare, &declare_},
+             {vocab::sh::prefix, &prefix_},
+             {vocab::sh::namespace_, &namespace_},
+             {vocab::owl::imports, &owl_imports_},
+             {vocab::sh::ConstraintComponent, &constraint_component_},
+             {vocab::sh::parameter, &parameter_},
+             {vocab::sh::optional, &optional_},
+             {vocab::sh::validator, &validator_},
+             {vocab::sh::nodeValidator, &node_validator_},
+             {vocab::sh::propertyValidator, &property_validator_},
+             {vocab::sh::ask, &ask_},
+             {vocab::sh::labelTemplate, &label_template_},
+             {vocab::sh::BlankNode, &nk_blank_},
+             {vocab::sh::IRI, &nk_iri_},
+             {vocab::sh::Literal, &nk_literal_},
+             {vocab::sh::BlankNodeOrIRI, &nk_blank_iri_},
+             {vocab::sh::BlankNodeOrLiteral, &nk_blank_literal_},
+             {vocab::sh::IRIOrLiteral, &nk_iri_literal_},
          })
       *slot = sh(iri);
     for (auto [iri, c] : std::initializer_list<std::pair<std::string_view, Component>>{
-             {vocab::sh_class, Component::Class},
-             {vocab::datatype, Component::Datatype},
-             {vocab::nodeKind, Component::NodeKind},
-             {vocab::minCount, Component::MinCount},
-             {vocab::maxCount, Component::MaxCount},
-             {vocab::minExclusive, Component::MinExclusive},
-             {vocab::minInclusive, Component::MinInclusive},
-             {vocab::maxExclusive, Component::MaxExclusive},
-             {vocab::maxInclusive, Component::MaxInclusive},
-             {vocab::minLength, Component::MinLength},
-             {vocab::maxLength, Component::MaxLength},
-             {vocab::pattern, Component::Pattern},
-             {vocab::languageIn, Component::LanguageIn},
-             {vocab::uniqueLang, Component::UniqueLang},
-             {vocab::equals, Component::Equals},
-             {vocab::disjoint, Component::Disjoint},
-             {vocab::lessThan, Component::LessThan},
-             {vocab::lessThanOrEquals, Component::LessThanOrEquals},
-             {vocab::sh_not, Component::Not},
-             {vocab::sh_and, Component::And},
-             {vocab::sh_or, Component::Or},
-             {vocab::xone, Component::Xone},
-             {vocab::node, Component::Node},
-             {vocab::property, Component::Property},
-             {vocab::closed, Component::Closed},
-             {vocab::hasValue, Component::HasValue},
-             {vocab::sh_in, Component::In},
-             {vocab::sparql, Component::Sparql},
+             {vocab::sh::class_, Component::Class},
+             {vocab::sh::datatype, Component::Datatype},
+             {vocab::sh::nodeKind, Component::NodeKind},
+             {vocab::sh::minCount, Component::MinCount},
+             {vocab::sh::maxCount, Component::MaxCount},
+             {vocab::sh::minExclusive, Component::MinExclusive},
+             {vocab::sh::minInclusive, Component::MinInclusive},
+             {vocab::sh::maxExclusive, Component::MaxExclusive},
+             {vocab::sh::maxInclusive, Component::MaxInclusive},
+             {vocab::sh::minLength, Component::MinLength},
+             {vocab::sh::maxLength, Component::MaxLength},
+             {vocab::sh::pattern, Component::Pattern},
+             {vocab::sh::languageIn, Component::LanguageIn},
+             {vocab::sh::uniqueLang, Component::UniqueLang},
+             {vocab::sh::equals, Component::Equals},
+             {vocab::sh::disjoint, Component::Disjoint},
+             {vocab::sh::lessThan, Component::LessThan},
+             {vocab::sh::lessThanOrEquals, Component::LessThanOrEquals},
+             {vocab::sh::not_, Component::Not},
+             {vocab::sh::and_, Component::And},
+             {vocab::sh::or_, Component::Or},
+             {vocab::sh::xone, Component::Xone},
+             {vocab::sh::node, Component::Node},
+             {vocab::sh::property, Component::Property},
+             {vocab::sh::closed, Component::Closed},
+             {vocab::sh::hasValue, Component::HasValue},
+             {vocab::sh::in_, Component::In},
+             {vocab::sh::sparql, Component::Sparql},
          }) {
       TermId id = sh(iri);
       if (id != kAbsent) params_.emplace(id.index, c);
@@ -242,24 +237,28 @@ class ShapesCompiler {
     // the core components: anything else is refused (check_shape_properties).
     for (auto [p, c] : params_) shape_properties_.insert(p);
     for (std::string_view iri :
-         {vocab::targetNode, vocab::targetClass, vocab::targetSubjectsOf, vocab::targetObjectsOf,
-          vocab::path, vocab::deactivated, vocab::severity, vocab::message, vocab::flags,
-          vocab::qualifiedMinCount, vocab::qualifiedMaxCount, vocab::qualifiedValueShapesDisjoint,
-          vocab::ignoredProperties, vocab::declare, vocab::name, vocab::description, vocab::order,
-          vocab::group, vocab::defaultValue})
+         {vocab::sh::targetNode, vocab::sh::targetClass, vocab::sh::targetSubjectsOf,
+          vocab::sh::targetObjectsOf, vocab::sh::path, vocab::sh::deactivated, vocab::sh::severity,
+          vocab::sh::message, vocab::sh::flags, vocab::sh::qualifiedMinCount,
+          vocab::sh::qualifiedMaxCount, vocab::sh::qualifiedValueShapesDisjoint,
+          vocab::sh::ignoredProperties, vocab::sh::declare, vocab::sh::name, vocab::sh::description,
+          vocab::sh::order, vocab::sh::group, vocab::sh::defaultValue})
       if (TermId id = sh(iri); id != kAbsent) shape_properties_.insert(id.index);
     auto allow = [&](std::unordered_set<uint32_t>& set,
                      std::initializer_list<std::string_view> iris) {
       for (std::string_view iri : iris)
         if (TermId id = sh(iri); id != kAbsent) set.insert(id.index);
     };
-    allow(sparql_properties_, {vocab::select, vocab::message, vocab::prefixes, vocab::deactivated,
-                               vocab::name, vocab::description, vocab::declare});
+    allow(sparql_properties_,
+          {vocab::sh::select, vocab::sh::message, vocab::sh::prefixes, vocab::sh::deactivated,
+           vocab::sh::name, vocab::sh::description, vocab::sh::declare});
     allow(component_properties_,
-          {vocab::parameter, vocab::validator, vocab::nodeValidator, vocab::propertyValidator,
-           vocab::message, vocab::labelTemplate, vocab::name, vocab::description, vocab::declare});
-    allow(validator_properties_, {vocab::select, vocab::ask, vocab::message, vocab::prefixes,
-                                  vocab::name, vocab::description, vocab::declare});
+          {vocab::sh::parameter, vocab::sh::validator, vocab::sh::nodeValidator,
+           vocab::sh::propertyValidator, vocab::sh::message, vocab::sh::labelTemplate,
+           vocab::sh::name, vocab::sh::description, vocab::sh::declare});
+    allow(validator_properties_,
+          {vocab::sh::select, vocab::sh::ask, vocab::sh::message, vocab::sh::prefixes,
+           vocab::sh::name, vocab::sh::description, vocab::sh::declare});
   }
 
   Shapes run() {
@@ -427,8 +426,8 @@ class ShapesCompiler {
   int64_t count_param(uint32_t shape, const Value& v, std::string_view param) {
     const rdf::Term& term = t_[v.object];
     if (term.is_literal()) {
-      DatatypeInfo type = classify_datatype(t_[term.datatype].value);
-      if (type.kind == Xsd::Integer && well_formed(term.value, type)) {
+      rdf::xsd::Datatype type = rdf::xsd::classify(t_[term.datatype].value);
+      if (type.kind == rdf::xsd::Kind::Integer && rdf::xsd::well_formed(term.value, type)) {
         std::string_view digits = term.value;
         if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
         if (!digits.empty() && digits[0] != '-' && digits.size() <= 18) {
@@ -446,8 +445,8 @@ class ShapesCompiler {
   // leave the parameter inactive, as the W3C tests expect.
   std::optional<bool> bool_param(uint32_t shape, const Value& v, std::string_view param) {
     const rdf::Term& term = t_[v.object];
-    if (!term.is_literal() || t_[term.datatype].value != vocab::xsd_boolean ||
-        !well_formed(term.value, {Xsd::Boolean}))
+    if (!term.is_literal() || t_[term.datatype].value != vocab::xsd::boolean ||
+        !rdf::xsd::well_formed(term.value, {rdf::xsd::Kind::Boolean}))
       fail(shape, v.where, std::string(param) + " must be an xsd:boolean, got " + show(v.object));
     if (term.value == "true") return true;
     if (term.value == "false") return false;
@@ -615,7 +614,7 @@ class ShapesCompiler {
   }
 
   void add_constraints(uint32_t self, Shape& s, Component c, TermId predicate) {
-    const std::string param = "sh:" + std::string(t_[predicate].value.substr(vocab::kSh.size()));
+    const std::string param = "sh:" + std::string(t_[predicate].value.substr(vocab::sh::ns.size()));
     auto vs = values(s.node, predicate);
     auto make = [&](const Value& v) {
       Constraint k;
@@ -1029,7 +1028,7 @@ class ShapesCompiler {
             });
     for (const Value& d : declared) {
       const rdf::Term& term = t_[d.object];
-      if (term.is_iri() && term.value.substr(0, vocab::kSh.size()) == vocab::kSh) continue;
+      if (term.is_iri() && term.value.substr(0, vocab::sh::ns.size()) == vocab::sh::ns) continue;
       const std::string who = "constraint component " + show(d.object);
       if (!term.is_iri()) fail_at(d.where, who + " must be an IRI (SHACL 6.2)");
       check_properties(d.object, component_properties_, "a constraint component");
@@ -1054,7 +1053,7 @@ class ShapesCompiler {
                   who + ": more than one sh:optional for parameter " + show(param.path));
         if (!optional.empty()) {
           const rdf::Term& o = t_[optional[0].object];
-          if (!o.is_literal() || t_[o.datatype].value != vocab::xsd_boolean ||
+          if (!o.is_literal() || t_[o.datatype].value != vocab::xsd::boolean ||
               (o.value != "true" && o.value != "false"))
             fail_at(optional[0].where,
                     who + ": sh:optional must be true or false, got " + show(optional[0].object));
@@ -1220,11 +1219,11 @@ class ShapesCompiler {
 
   bool in_sh(TermId id) const {
     const rdf::Term& term = t_[id];
-    return term.is_iri() && term.value.substr(0, vocab::kSh.size()) == vocab::kSh;
+    return term.is_iri() && term.value.substr(0, vocab::sh::ns.size()) == vocab::sh::ns;
   }
 
   std::string sh_name(TermId id) const {
-    return "sh:" + std::string(t_[id].value.substr(vocab::kSh.size()));
+    return "sh:" + std::string(t_[id].value.substr(vocab::sh::ns.size()));
   }
 
   // Why a SHACL term is not implemented, for the ones with a known reason.
@@ -1290,7 +1289,7 @@ class ShapesCompiler {
               const bool is_class = q.predicate == type_ && in_sh(q.object);
               const TermId term = is_class ? q.object : q.predicate;
               if (!in_sh(term)) return true;
-              const std::string_view local = t_[term].value.substr(vocab::kSh.size());
+              const std::string_view local = t_[term].value.substr(vocab::sh::ns.size());
               std::string_view reason = unsupported_reason(local);
               if (reason.empty() && is_class && !known_class(local))
                 fail_at(g_.location(i),

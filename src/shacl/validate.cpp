@@ -8,8 +8,9 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "rdf/xsd.hpp"
 #include "shacl/literal.hpp"
-#include "shacl/vocab.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::shacl {
 
@@ -73,8 +74,8 @@ class Validator {
       TermId id = dt_.find_iri(iri);
       return id.is_any() ? kAbsent : id;
     };
-    type_ = find(vocab::rdf_type);
-    subclass_ = find(vocab::rdfs_subclass_of);
+    type_ = find(vocab::rdf::type);
+    subclass_ = find(vocab::rdfs::subClassOf);
     if (!same_) {
       to_data_.assign(st_.size(), kAbsent);
       for (TermId s : shapes.referenced_terms()) {
@@ -302,9 +303,9 @@ class Validator {
 
   bool check_well_formed(TermId v) const {
     const rdf::Term& t = term(v);
-    DatatypeInfo info = classify_datatype(datatype_iri(v));
-    if (info.kind == Xsd::LangString) return !t.language.empty();
-    return well_formed(t.value, info);
+    rdf::xsd::Datatype info = rdf::xsd::classify(datatype_iri(v));
+    if (info.kind == rdf::xsd::Kind::LangString) return !t.language.empty();
+    return rdf::xsd::well_formed(t.value, info);
   }
 
   std::string_view str(TermId v) const { return term(v).value; }

@@ -6,10 +6,11 @@
 #include <filesystem>
 #include <initializer_list>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
 #include "support/paths.hpp"
+#include "vocab/metamodels.hpp"
 
 #ifndef MOSPEC_DEFAULT_ROBOT_MODEL
 #define MOSPEC_DEFAULT_ROBOT_MODEL "robots/kinova-gen3.jsonld"
@@ -56,8 +57,8 @@ runtime::Pose pose_from_cosines(const runtime::Vec3& x, const runtime::Vec3& y,
 WorldConfig default_world() {
   WorldConfig c;
   c.robot.model = MOSPEC_DEFAULT_ROBOT_MODEL;
-  c.robot.chain_iri = "https://mospec.example/robots/kinova-gen3/chain";
-  // The description's contexts (https://comp-rob2b.github.io/metamodels/...)
+  c.robot.chain_iri = vocab::robots::kinova_gen3_chain;
+  // The description's contexts (under vocab::kMetamodels)
   // resolve to mospec's own metamodels unless the world file maps them.
 
   // Mount poses of the arms' base frames in the platform frame. Source: the

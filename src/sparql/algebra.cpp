@@ -3,14 +3,16 @@
 
 #include <unordered_map>
 
+#include "vocab/w3c.hpp"
+
 namespace mospec::sparql::detail {
 
 namespace {
 
 constexpr std::string_view kSyntax = "sparql-syntax";
 constexpr std::string_view kUnsupported = "unsupported-sparql";
-constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
-constexpr std::string_view kXsd = "http://www.w3.org/2001/XMLSchema#";
+constexpr std::string_view kRdf = vocab::rdf::ns;
+constexpr std::string_view kXsd = vocab::xsd::ns;
 
 struct Builtin {
   const char* name;

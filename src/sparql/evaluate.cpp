@@ -28,6 +28,7 @@
 #include "sparql/algebra.hpp"
 #include "sparql/query.hpp"
 #include "sparql/value.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::sparql {
 
@@ -48,8 +49,8 @@ constexpr size_t kRegexCacheLimit = 1024;
 // Join ordering only needs to tell selective patterns from unselective ones,
 // so match counts stop here (keeps preparing a query cheap on large data).
 constexpr size_t kCountCap = 4096;
-constexpr std::string_view kRdfLangString = "http://www.w3.org/1999/02/22-rdf-syntax-ns#langString";
-constexpr std::string_view kXsdStringIri = "http://www.w3.org/2001/XMLSchema#string";
+constexpr std::string_view kRdfLangString = vocab::rdf::langString;
+constexpr std::string_view kXsdStringIri = vocab::xsd::string;
 
 // A non-owning reference to a continuation (no allocation, unlike std::function).
 class Cont {
@@ -996,15 +997,15 @@ class Engine {
     if (v.kind == Value::Kind::String) {
       switch (op) {
         case ExprOp::CastInteger:
-          return from_string("http://www.w3.org/2001/XMLSchema#integer");
+          return from_string(vocab::xsd::integer);
         case ExprOp::CastDecimal:
-          return from_string("http://www.w3.org/2001/XMLSchema#decimal");
+          return from_string(vocab::xsd::decimal);
         case ExprOp::CastFloat:
-          return from_string("http://www.w3.org/2001/XMLSchema#float");
+          return from_string(vocab::xsd::float_);
         case ExprOp::CastDouble:
-          return from_string("http://www.w3.org/2001/XMLSchema#double");
+          return from_string(vocab::xsd::double_);
         default:
-          return from_string("http://www.w3.org/2001/XMLSchema#boolean");
+          return from_string(vocab::xsd::boolean);
       }
     }
     if (v.kind == Value::Kind::Bool) {

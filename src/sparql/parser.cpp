@@ -12,6 +12,7 @@
 #include "rdf/iri.hpp"
 #include "sparql/ast.hpp"
 #include "support/utf8.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::sparql {
 
@@ -35,8 +36,8 @@ namespace {
 
 constexpr std::string_view kSyntax = "sparql-syntax";
 constexpr std::string_view kUnsupported = "unsupported-sparql";
-constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
-constexpr std::string_view kXsd = "http://www.w3.org/2001/XMLSchema#";
+constexpr std::string_view kRdf = vocab::rdf::ns;
+constexpr std::string_view kXsd = vocab::xsd::ns;
 
 enum class Tok : uint8_t {
   End,

@@ -5,173 +5,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "rdf/xsd.hpp"
+#include "vocab/w3c.hpp"
+
 namespace mospec::sparql::detail {
 
 namespace {
-
-enum class Xsd : uint8_t { Other, Integer, Decimal, Float, Double, Boolean, String, DateTime };
-
-Xsd classify(std::string_view dt) {
-  if (!dt.starts_with(kXsdNs)) return Xsd::Other;
-  const std::string_view local = dt.substr(kXsdNs.size());
-  static constexpr std::string_view kIntegers[] = {"integer",
-                                                   "long",
-                                                   "int",
-                                                   "short",
-                                                   "byte",
-                                                   "nonNegativeInteger",
-                                                   "positiveInteger",
-                                                   "nonPositiveInteger",
-                                                   "negativeInteger",
-                                                   "unsignedLong",
-                                                   "unsignedInt",
-                                                   "unsignedShort",
-                                                   "unsignedByte"};
-  for (std::string_view n : kIntegers)
-    if (local == n) return Xsd::Integer;
-  if (local == "decimal") return Xsd::Decimal;
-  if (local == "float") return Xsd::Float;
-  if (local == "double") return Xsd::Double;
-  if (local == "boolean") return Xsd::Boolean;
-  if (local == "string") return Xsd::String;
-  if (local == "dateTime") return Xsd::DateTime;
-  return Xsd::Other;
-}
-
-bool digits(std::string_view s) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (c < '0' || c > '9') return false;
-  return true;
-}
-
-std::string_view strip_sign(std::string_view s, bool& negative) {
-  negative = false;
-  if (!s.empty() && (s[0] == '+' || s[0] == '-')) {
-    negative = s[0] == '-';
-    s.remove_prefix(1);
-  }
-  return s;
-}
-
-// [+-]? digits? ('.' digits?)? with at least one digit.
-bool decimal_syntax(std::string_view s) {
-  bool neg;
-  s = strip_sign(s, neg);
-  const size_t dot = s.find('.');
-  if (dot == std::string_view::npos) return digits(s);
-  const std::string_view a = s.substr(0, dot), b = s.substr(dot + 1);
-  return (a.empty() || digits(a)) && (b.empty() || digits(b)) && !(a.empty() && b.empty());
-}
-
-bool parse_long_double(std::string_view s, long double& out) {
-  bool neg;
-  std::string_view body = strip_sign(s, neg);
-  if (body.empty()) return false;
-  auto [p, ec] = std::from_chars(body.data(), body.data() + body.size(), out);
-  if (ec != std::errc() || p != body.data() + body.size()) return false;
-  if (neg) out = -out;
-  return true;
-}
-
-bool parse_double_lexical(std::string_view s, long double& out) {
-  if (s == "INF" || s == "+INF") {
-    out = HUGE_VALL;
-    return true;
-  }
-  if (s == "-INF") {
-    out = -HUGE_VALL;
-    return true;
-  }
-  if (s == "NaN") {
-    out = NAN;
-    return true;
-  }
-  const size_t e = s.find_first_of("eE");
-  std::string_view mantissa = s.substr(0, e);
-  if (!decimal_syntax(mantissa)) return false;
-  if (e != std::string_view::npos) {
-    std::string_view exp = s.substr(e + 1);
-    bool neg;
-    if (!digits(strip_sign(exp, neg))) return false;
-  }
-  return parse_long_double(s, out);
-}
-
-int64_t days_from_civil(int64_t y, unsigned m, unsigned d) {
-  y -= m <= 2;
-  const int64_t era = (y >= 0 ? y : y - 399) / 400;
-  const auto yoe = static_cast<unsigned>(y - era * 400);
-  const unsigned doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-  const unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-  return era * 146097 + static_cast<int64_t>(doe) - 719468;
-}
-
-// xsd:dateTime: -?YYYY-MM-DDThh:mm:ss(.s+)?(Z|[+-]hh:mm)?
-bool parse_datetime(std::string_view s, long double& seconds, bool& has_tz) {
-  size_t i = 0;
-  bool neg = false;
-  if (i < s.size() && s[i] == '-') {
-    neg = true;
-    ++i;
-  }
-  auto num = [&](size_t n, int64_t& out) {
-    if (i + n > s.size()) return false;
-    out = 0;
-    for (size_t k = 0; k < n; ++k) {
-      const char c = s[i + k];
-      if (c < '0' || c > '9') return false;
-      out = out * 10 + (c - '0');
-    }
-    i += n;
-    return true;
-  };
-  auto lit = [&](char c) {
-    if (i < s.size() && s[i] == c) {
-      ++i;
-      return true;
-    }
-    return false;
-  };
-  size_t year_digits = 0;
-  while (i + year_digits < s.size() && s[i + year_digits] >= '0' && s[i + year_digits] <= '9')
-    ++year_digits;
-  int64_t y, mo, d, h, mi, sec;
-  if (year_digits < 4 || year_digits > 9 || !num(year_digits, y)) return false;
-  if (!lit('-') || !num(2, mo) || !lit('-') || !num(2, d) || !lit('T') || !num(2, h) || !lit(':') ||
-      !num(2, mi) || !lit(':') || !num(2, sec))
-    return false;
-  if (mo < 1 || mo > 12 || d < 1 || d > 31 || h > 24 || mi > 59 || sec > 60) return false;
-  long double frac = 0;
-  if (lit('.')) {
-    const size_t start = i;
-    long double scale = 0.1L;
-    while (i < s.size() && s[i] >= '0' && s[i] <= '9') {
-      frac += (s[i] - '0') * scale;
-      scale /= 10;
-      ++i;
-    }
-    if (i == start) return false;
-  }
-  int64_t tz_minutes = 0;
-  has_tz = false;
-  if (lit('Z')) {
-    has_tz = true;
-  } else if (i < s.size() && (s[i] == '+' || s[i] == '-')) {
-    const bool tz_neg = s[i] == '-';
-    ++i;
-    int64_t th, tm;
-    if (!num(2, th) || !lit(':') || !num(2, tm) || th > 14 || tm > 59) return false;
-    tz_minutes = (th * 60 + tm) * (tz_neg ? -1 : 1);
-    has_tz = true;
-  }
-  if (i != s.size()) return false;
-  if (neg) y = -y;
-  const int64_t days = days_from_civil(y, static_cast<unsigned>(mo), static_cast<unsigned>(d));
-  seconds =
-      static_cast<long double>(days * 86400 + h * 3600 + mi * 60 + sec - tz_minutes * 60) + frac;
-  return true;
-}
 
 int sign(long double a, long double b) {
   if (std::isnan(a) || std::isnan(b)) return 2;
@@ -224,14 +63,18 @@ Value decode_literal(std::string_view lexical, std::string_view datatype_iri,
     v.lang = language;
     return v;
   }
-  switch (classify(datatype_iri)) {
-    case Xsd::String:
+  using rdf::xsd::Kind;
+  const Kind kind = rdf::xsd::classify(datatype_iri).kind;
+  switch (kind) {
+    case Kind::String:
       v.kind = Value::Kind::String;
       return v;
-    case Xsd::Integer: {
-      bool neg;
-      std::string_view body = strip_sign(lexical, neg);
-      if (!digits(body)) break;
+    case Kind::Integer: {
+      // Every integer-derived type reads as an integer; its range is not checked.
+      if (!rdf::xsd::parse_decimal(lexical, false)) break;
+      const bool neg = lexical.front() == '-';
+      std::string_view body = lexical;
+      if (neg || body.front() == '+') body.remove_prefix(1);
       v.kind = Value::Kind::Numeric;
       int64_t x = 0;
       auto [p, ec] = std::from_chars(body.data(), body.data() + body.size(), x);
@@ -241,22 +84,26 @@ Value decode_literal(std::string_view lexical, std::string_view datatype_iri,
       } else {
         // Beyond 64 bits: kept as a decimal value (see query.hpp).
         v.num = Num::Decimal;
-        parse_long_double(lexical, v.d);
+        v.d = *rdf::xsd::to_long_double(lexical);
       }
       return v;
     }
-    case Xsd::Decimal:
-      if (!decimal_syntax(lexical) || !parse_long_double(lexical, v.d)) break;
+    case Kind::Decimal:
+      if (!rdf::xsd::parse_decimal(lexical, true)) break;
       v.kind = Value::Kind::Numeric;
       v.num = Num::Decimal;
+      v.d = *rdf::xsd::to_long_double(lexical);
       return v;
-    case Xsd::Float:
-    case Xsd::Double:
-      if (!parse_double_lexical(lexical, v.d)) break;
+    case Kind::Float:
+    case Kind::Double: {
+      const auto d = rdf::xsd::to_long_double(lexical);
+      if (!d) break;
       v.kind = Value::Kind::Numeric;
-      v.num = classify(datatype_iri) == Xsd::Float ? Num::Float : Num::Double;
+      v.num = kind == Kind::Float ? Num::Float : Num::Double;
+      v.d = *d;
       return v;
-    case Xsd::Boolean:
+    }
+    case Kind::Boolean:
       if (lexical == "true" || lexical == "1") {
         v.kind = Value::Kind::Bool;
         v.b = true;
@@ -268,11 +115,15 @@ Value decode_literal(std::string_view lexical, std::string_view datatype_iri,
         return v;
       }
       break;
-    case Xsd::DateTime:
-      if (!parse_datetime(lexical, v.d, v.has_tz)) break;
+    case Kind::DateTime: {
+      const auto t = rdf::xsd::parse_instant(lexical, Kind::DateTime);
+      if (!t) break;
       v.kind = Value::Kind::DateTime;
+      v.d = t->seconds;
+      v.has_tz = t->has_zone;
       return v;
-    case Xsd::Other:
+    }
+    default:  // xsd:dateTimeStamp, date, time and other datatypes: plain literals
       v.kind = Value::Kind::Literal;
       return v;
   }
@@ -471,16 +322,16 @@ std::string canonical_lexical(const Value& v) {
 }
 
 std::string_view datatype_of(const Value& v) {
-  if (v.kind == Value::Kind::Bool) return "http://www.w3.org/2001/XMLSchema#boolean";
+  if (v.kind == Value::Kind::Bool) return vocab::xsd::boolean;
   switch (v.num) {
     case Num::Integer:
-      return "http://www.w3.org/2001/XMLSchema#integer";
+      return vocab::xsd::integer;
     case Num::Decimal:
-      return "http://www.w3.org/2001/XMLSchema#decimal";
+      return vocab::xsd::decimal;
     case Num::Float:
-      return "http://www.w3.org/2001/XMLSchema#float";
+      return vocab::xsd::float_;
     case Num::Double:
-      return "http://www.w3.org/2001/XMLSchema#double";
+      return vocab::xsd::double_;
   }
   return {};
 }

@@ -99,6 +99,4 @@ Value arithmetic(char op, const Value& a, const Value& b);
 std::string canonical_lexical(const Value& v);
 std::string_view datatype_of(const Value& v);
 
-inline constexpr std::string_view kXsdNs = "http://www.w3.org/2001/XMLSchema#";
-
 }  // namespace mospec::sparql::detail

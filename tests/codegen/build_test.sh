@@ -89,7 +89,7 @@ fi
 "$cmake" --install "$binary_dir" --prefix "$scratch/prefix" >"$scratch/install.log"
 test -f "$scratch/prefix/include/mospec/runtime/steps.hpp"
 test -f "$scratch/prefix/include/mospec/robot/controller.hpp"
-test ! -e "$scratch/prefix/include/mospec/runtime/chain_rdf.hpp"
+test ! -e "$scratch/prefix/include/mospec/description/chain_rdf.hpp"
 "$write_fixture" small "$scratch/installed"
 lib=$("$scratch/prefix/bin/mospec" build "$scratch/installed")
 grep -q "mospec_DIR:.*=$scratch/prefix/lib/cmake/mospec" "$scratch/installed/build/CMakeCache.txt"

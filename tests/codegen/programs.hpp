@@ -24,10 +24,10 @@
 #include <string>
 
 #include "app/app.hpp"
+#include "description/chain_rdf.hpp"
 #include "ir/ir.hpp"
 #include "ir/operators.hpp"
 #include "robot/interface.hpp"
-#include "runtime/chain_rdf.hpp"
 
 namespace mospec::codegen::testing {
 
@@ -225,8 +225,8 @@ inline runtime::Chain gen3_chain() {
                             std::string(MOSPEC_SOURCE_DIR) + "/metamodels");
   const app::LoadedModel model =
       app::load({std::string(MOSPEC_SOURCE_DIR) + "/robots/kinova-gen3.jsonld"}, options);
-  return runtime::chain_from_rdf(model.flattened(),
-                                 "https://mospec.example/robots/kinova-gen3/chain");
+  return description::chain_from_rdf(model.flattened(),
+                                     "https://mospec.example/robots/kinova-gen3/chain");
 }
 
 inline ir::Program arm_program(SourceFiles& files) {

@@ -16,8 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include "json/json.hpp"
 #include "jsonld/expand.hpp"
-#include "jsonld/json.hpp"
 #include "jsonld/loader.hpp"
 #include "jsonld/to_rdf.hpp"
 #include "rdf/dataset.hpp"

@@ -28,12 +28,12 @@
 #include "shacl/report.hpp"
 #include "shacl/shapes.hpp"
 #include "shacl/validate.hpp"
-#include "shacl/vocab.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
+#include "vocab/w3c.hpp"
 
 namespace fs = std::filesystem;
-namespace vocab = mospec::shacl::vocab;
+namespace vocab = mospec::vocab;
 using mospec::rdf::Dataset;
 using mospec::rdf::Quad;
 using mospec::rdf::TermId;
@@ -90,8 +90,8 @@ std::vector<TermId> objects(const Dataset& d, TermId s, TermId p) {
 
 std::vector<TermId> list_members(const Dataset& d, TermId head) {
   std::vector<TermId> out;
-  TermId first = iri(d, vocab::rdf_first), rest = iri(d, vocab::rdf_rest),
-         nil = iri(d, vocab::rdf_nil);
+  TermId first = iri(d, vocab::rdf::first), rest = iri(d, vocab::rdf::rest),
+         nil = iri(d, vocab::rdf::nil);
   std::set<uint32_t> seen;
   while (!head.is_any() && head != nil && seen.insert(head.index).second) {
     auto f = objects(d, head, first);
@@ -125,23 +125,27 @@ void copy_closure(const Dataset& from, Dataset& to, TermId node, std::set<uint32
 // is in the set (the expected report's messages); without, all are kept.
 Dataset normalise(const Dataset& from, TermId root, const std::set<std::string>* messages) {
   Dataset out;
-  const std::set<std::string> kept{
-      std::string(vocab::rdf_type),         std::string(vocab::result),
-      std::string(vocab::conforms),         std::string(vocab::focusNode),
-      std::string(vocab::resultPath),       std::string(vocab::resultSeverity),
-      std::string(vocab::sourceConstraint), std::string(vocab::sourceConstraintComponent),
-      std::string(vocab::sourceShape),      std::string(vocab::value),
-      std::string(vocab::resultMessage)};
+  const std::set<std::string> kept{std::string(vocab::rdf::type),
+                                   std::string(vocab::sh::result),
+                                   std::string(vocab::sh::conforms),
+                                   std::string(vocab::sh::focusNode),
+                                   std::string(vocab::sh::resultPath),
+                                   std::string(vocab::sh::resultSeverity),
+                                   std::string(vocab::sh::sourceConstraint),
+                                   std::string(vocab::sh::sourceConstraintComponent),
+                                   std::string(vocab::sh::sourceShape),
+                                   std::string(vocab::sh::value),
+                                   std::string(vocab::sh::resultMessage)};
   const mospec::rdf::TermTable& t = from.terms();
   auto keep = [&](const Quad& q) {
     std::string p(t[q.predicate].value);
     if (kept.count(p) == 0) return false;
-    if (p == vocab::resultMessage && messages != nullptr)
+    if (p == vocab::sh::resultMessage && messages != nullptr)
       return messages->count(mospec::rdf::to_ntriples(t, q.object)) != 0;
     return true;
   };
   std::set<uint32_t> seen;
-  TermId result = iri(from, vocab::result), path = iri(from, vocab::resultPath);
+  TermId result = iri(from, vocab::sh::result), path = iri(from, vocab::sh::resultPath);
   from.for_each(root, TermId::any(), TermId::any(), TermId::any(), [&](const Quad& q, uint32_t) {
     if (keep(q)) copy(from, out, q);
     return true;
@@ -158,7 +162,7 @@ Dataset normalise(const Dataset& from, TermId root, const std::set<std::string>*
 
 std::set<std::string> result_messages(const Dataset& d) {
   std::set<std::string> out;
-  TermId p = iri(d, vocab::resultMessage);
+  TermId p = iri(d, vocab::sh::resultMessage);
   if (p.is_any()) return out;
   d.for_each(TermId::any(), p, TermId::any(), TermId::any(), [&](const Quad& q, uint32_t) {
     out.insert(mospec::rdf::to_ntriples(d.terms(), q.object));
@@ -210,7 +214,7 @@ class Runner {
     const Dataset& m = manifest.data;
     std::string name = name_of(manifest_path, m, entry);
     if (!args_.only.empty() && name.find(args_.only) == std::string::npos) return;
-    auto types = objects(m, entry, iri(m, vocab::rdf_type));
+    auto types = objects(m, entry, iri(m, vocab::rdf::type));
     bool validate = false;
     for (TermId t : types)
       validate = validate || m.terms()[t].value == std::string(kSht) + "Validate";
@@ -257,9 +261,9 @@ class Runner {
 
       Dataset expected = normalise(m, results[0], nullptr);
       std::set<std::string> messages = result_messages(expected);
-      TermId report_type = iri(actual_full, vocab::ValidationReport);
+      TermId report_type = iri(actual_full, vocab::sh::ValidationReport);
       std::vector<TermId> roots;
-      actual_full.for_each(TermId::any(), iri(actual_full, vocab::rdf_type), report_type,
+      actual_full.for_each(TermId::any(), iri(actual_full, vocab::rdf::type), report_type,
                            TermId::any(), [&](const Quad& q, uint32_t) {
                              roots.push_back(q.subject);
                              return true;

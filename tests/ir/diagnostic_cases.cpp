@@ -7,7 +7,7 @@
 
 #include "app/app.hpp"
 #include "ir/lower.hpp"
-#include "shacl/model_validation.hpp"
+#include "validation/model_validation.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
 
@@ -180,7 +180,7 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     app::LoadOptions options;
     options.root = source_dir.string();
     app::LoadedModel model = app::load({(case_dir / "app.json").string()}, options);
-    shacl::ModelValidation v = shacl::validate_model(model, {});
+    validation::ModelValidation v = validation::validate_model(model, {});
     validation_clean =
         v.report.count(shacl::Level::Violation) == 0 && v.report.count(shacl::Level::Other) == 0;
     if (!validation_clean) validation_text = shacl::to_text(v.report, &model.files());

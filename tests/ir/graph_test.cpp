@@ -3,6 +3,7 @@
 // copy (what lowering read before the reader existed), on a generated model
 // whose files restate each other's triples with and without locations.
 #include "ir/graph.hpp"
+#include "rdf/xsd.hpp"
 
 #include <gtest/gtest.h>
 
@@ -131,8 +132,8 @@ TEST(IrGraph, ListsAndNumbers) {
   EXPECT_EQ(g.number(items[0]), 1.5);
   EXPECT_EQ(g.number(items[1]), std::nullopt);  // "x" is no number
   EXPECT_EQ(g.number(items[2]), std::nullopt);  // an IRI
-  EXPECT_EQ(xsd_number("1.0E-3", "http://www.w3.org/2001/XMLSchema#decimal"), 1.0e-3);
-  EXPECT_EQ(xsd_number("1e", kDouble), std::nullopt);
+  EXPECT_EQ(rdf::xsd::number("1.0E-3", "http://www.w3.org/2001/XMLSchema#decimal"), 1.0e-3);
+  EXPECT_EQ(rdf::xsd::number("1e", kDouble), std::nullopt);
 }
 
 TEST(IrGraph, GraphsDescribingCopiesOnlyTheSubjectsFiles) {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 #include "jsonld/loader.hpp"
 #include "rdf/nquads.hpp"
 

@@ -7,12 +7,14 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "runtime/chain_jsonld.hpp"
-#include "runtime/urdf_import.hpp"
+#include "description/chain_jsonld.hpp"
+#include "description/urdf_import.hpp"
 #include "support/io.hpp"
 
 namespace mospec::runtime {
 namespace {
+
+using namespace mospec::description;  // the chain importers under test
 
 const std::string kModel = std::string(MOSPEC_SOURCE_DIR) + "/models/left-arm/robot.jsonld";
 const std::string kUrdf = std::string(MOSPEC_SHARED_DIR) + "/upstream/kinova/GEN3_URDF_V12.urdf";

@@ -155,6 +155,7 @@ bad wrench-transform newtonian-rigid-body-dynamics/operators.ttl 4 \
 # geometry/spatial-operators.ttl (for apps naming the published file): same findings.
 families="geometry/spatial-operators/distance.ttl geometry/spatial-operators/direction.ttl"
 families="$families geometry/spatial-operators/angle.ttl geometry/spatial-operators/pose.ttl"
+families="$families geometry/spatial-operators/axis-angle.ttl geometry/spatial-operators/twist.ttl"
 for geom_ops in geometry/spatial-operators.ttl "$families"; do
 ops="geometry/spatial-relations.ttl $geom_ops newtonian-rigid-body-dynamics/operators.ttl task/map.ttl"
 good operators "$ops"
@@ -206,9 +207,10 @@ for f in $families; do
 done
 
 # newtonian-rigid-body-dynamics/operators.ttl is exactly its per-operator files'
-# shapes (wrench, add, rotate, transform): sc1 lists wrench, add and transform,
+# shapes (wrench, add, rotate, transform, and the operators no scenario uses:
+# rotate-distal, assign, accumulate): sc1 lists wrench, add and transform,
 # sc2 wrench and rotate, so that --strict finds no unused shape in either.
-dyn_families="wrench add rotate transform"
+dyn_families="wrench add rotate transform rotate-distal assign accumulate"
 if diff <(body "$mm/newtonian-rigid-body-dynamics/operators.ttl") \
         <(for f in $dyn_families; do body "$mm/newtonian-rigid-body-dynamics/operators/$f.ttl"; done) > "$out"; then
   echo "ok   newtonian-rigid-body-dynamics/operators.ttl = its per-operator files"

@@ -11,16 +11,18 @@
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <memory>
 
+#include "description/urdf_import.hpp"
 #include "kdl_reference.hpp"
 #include "runtime/crba.hpp"
 #include "runtime/kinematics.hpp"
 #include "runtime/rne.hpp"
-#include "runtime/urdf_import.hpp"
 #include "support/diagnostics.hpp"
 #include "test_robots.hpp"
 
 namespace mospec::runtime {
 namespace {
+
+using namespace mospec::description;  // the chain importers under test
 
 using testing::near;
 constexpr double kTol = 1e-9;

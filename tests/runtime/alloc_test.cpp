@@ -12,18 +12,20 @@
 #include <kdl/chainhdsolver_vereshchagin.hpp>
 #include <vector>
 
+#include "description/urdf_import.hpp"
 #include "kdl_reference.hpp"
 #include "runtime/achd.hpp"
 #include "runtime/crba.hpp"
 #include "runtime/kinematics.hpp"
 #include "runtime/rne.hpp"
-#include "runtime/urdf_import.hpp"
 #include "test_robots.hpp"
 // Defines the replacement allocator: this translation unit only, and last.
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order)
 
 namespace mospec::runtime {
 namespace {
+
+using namespace mospec::description;  // the chain importers under test
 
 class NoAllocation : public ::testing::Test {
  protected:

@@ -7,15 +7,17 @@
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainjnttojacsolver.hpp>
 
+#include "description/urdf_import.hpp"
 #include "kdl_reference.hpp"
 #include "runtime/crba.hpp"
 #include "runtime/kinematics.hpp"
-#include "runtime/urdf_import.hpp"
 #include "support/diagnostics.hpp"
 #include "test_robots.hpp"
 
 namespace mospec::runtime {
 namespace {
+
+using namespace mospec::description;  // the chain importers under test
 
 using testing::near;
 

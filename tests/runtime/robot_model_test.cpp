@@ -10,18 +10,20 @@
 #include <filesystem>
 
 #include "app/app.hpp"
-#include "runtime/chain_jsonld.hpp"
-#include "runtime/chain_rdf.hpp"
+#include "description/chain_jsonld.hpp"
+#include "description/chain_rdf.hpp"
+#include "description/urdf_import.hpp"
 #include "runtime/crba.hpp"
 #include "runtime/kinematics.hpp"
 #include "runtime/rne.hpp"
-#include "runtime/urdf_import.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
 #include "test_robots.hpp"
 
 namespace mospec::runtime {
 namespace {
+
+using namespace mospec::description;  // the chain importers under test
 
 using testing::near;
 

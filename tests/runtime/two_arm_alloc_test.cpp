@@ -8,13 +8,15 @@
 #include <filesystem>
 #include <string>
 
-#include "runtime/urdf_import.hpp"
+#include "description/urdf_import.hpp"
 #include "two_arm_base_cycle.hpp"
 // Defines the replacement allocator: this translation unit only, and last.
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order)
 
 namespace mospec::runtime {
 namespace {
+
+using namespace mospec::description;  // the chain importers under test
 
 const std::string kGen3Urdf =
     std::string(MOSPEC_SHARED_DIR) + "/upstream/kinova/GEN3_URDF_V12.urdf";

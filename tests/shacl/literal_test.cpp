@@ -1,58 +1,19 @@
+// SPARQL operator semantics on literals (the lexical forms: tests/rdf/xsd_test.cpp).
 #include "shacl/literal.hpp"
 
 #include <gtest/gtest.h>
+
+#include "vocab/w3c.hpp"
 
 using namespace mospec::shacl;
 
 namespace {
 
-const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
-
-bool ok(std::string_view lexical, const std::string& type) {
-  return well_formed(lexical, classify_datatype(kXsd + type));
-}
+const std::string kXsd(mospec::vocab::xsd::ns);
 
 Order cmp(std::string_view a, const std::string& ta, std::string_view b, const std::string& tb) {
   std::string da = kXsd + ta, db = kXsd + tb;
   return compare_literals({a, da, {}}, {b, db, {}});
-}
-
-TEST(Literal, IntegerFamilyLexicalSpaceAndRanges) {
-  EXPECT_TRUE(ok("42", "integer"));
-  EXPECT_TRUE(ok("-0", "integer"));
-  EXPECT_TRUE(ok("+7", "integer"));
-  EXPECT_FALSE(ok("4.0", "integer"));
-  EXPECT_FALSE(ok("", "integer"));
-  EXPECT_FALSE(ok(" 1", "integer"));
-  EXPECT_TRUE(ok("127", "byte"));
-  EXPECT_FALSE(ok("300", "byte"));
-  EXPECT_FALSE(ok("c", "byte"));
-  EXPECT_FALSE(ok("-1", "nonNegativeInteger"));
-  EXPECT_FALSE(ok("0", "positiveInteger"));
-  EXPECT_TRUE(ok("18446744073709551615", "unsignedLong"));
-  EXPECT_FALSE(ok("18446744073709551616", "unsignedLong"));
-}
-
-TEST(Literal, OtherDatatypes) {
-  EXPECT_TRUE(ok("1.5", "decimal"));
-  EXPECT_TRUE(ok(".5", "decimal"));
-  EXPECT_FALSE(ok("1e3", "decimal"));
-  EXPECT_TRUE(ok("1e3", "double"));
-  EXPECT_TRUE(ok("-INF", "float"));
-  EXPECT_TRUE(ok("NaN", "double"));
-  EXPECT_FALSE(ok("nan", "double"));
-  EXPECT_TRUE(ok("true", "boolean"));
-  EXPECT_TRUE(ok("0", "boolean"));
-  EXPECT_FALSE(ok("yes", "boolean"));
-  EXPECT_TRUE(ok("2002-10-10T12:00:00-05:00", "dateTime"));
-  EXPECT_TRUE(ok("2002-10-10T12:00:00.5Z", "dateTime"));
-  EXPECT_FALSE(ok("2002-02-30T12:00:00", "dateTime"));
-  EXPECT_FALSE(ok("2002-10-10", "dateTime"));
-  EXPECT_TRUE(ok("2000-02-29", "date"));
-  EXPECT_FALSE(ok("2001-02-29", "date"));
-  EXPECT_TRUE(ok("23:59:59", "time"));
-  EXPECT_TRUE(ok("anything at all", "string"));
-  EXPECT_TRUE(ok("anything", "unknownType"));
 }
 
 TEST(Literal, NumericComparisonIsByValueAcrossTypes) {

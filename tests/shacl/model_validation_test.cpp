@@ -2,7 +2,7 @@
 // the authors' scenario verdicts through the library, shape files in the
 // model's SourceFiles, JSON-LD shape files, errors, strict checks, and the
 // JSON-LD report writer.
-#include "shacl/model_validation.hpp"
+#include "validation/model_validation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -72,7 +72,7 @@ TEST(ModelValidation, UpstreamScenarioVerdicts) {
     options.root = kUpstream.string();
     app::LoadedModel model =
         app::load({(kUpstream / "models" / (std::string(name) + ".json")).string()}, options);
-    shacl::ModelValidation v = shacl::validate_model(model, {});
+    validation::ModelValidation v = validation::validate_model(model, {});
     EXPECT_EQ(v.files.size(), 9u);
     const std::string text = shacl::to_text(v.report, &model.files(), &model.files());
     ASSERT_EQ(v.report.results.size(), expected) << text;
@@ -104,9 +104,9 @@ TEST(ModelValidation, ShapeFilesFromTurtleAndJsonLdShareTheFileTable) {
   "sh:property": { "sh:path": { "@id": "ex:name" },
     "sh:maxCount": { "@value": "0", "@type": "http://www.w3.org/2001/XMLSchema#integer" } } })");
   app::LoadedModel model = app::load({model_path});
-  shacl::ModelValidationOptions options;
+  validation::ModelValidationOptions options;
   options.extra_shapes = {ttl, jsonld};
-  shacl::ModelValidation v = shacl::validate_model(model, options);
+  validation::ModelValidation v = validation::validate_model(model, options);
   ASSERT_EQ(v.report.results.size(), 2u) << shacl::to_text(v.report, &model.files());
   // bob: minCount (Turtle shape); alice: maxCount 0 (JSON-LD shape).
   const std::string text = shacl::to_text(v.report, &model.files(), &model.files());
@@ -123,10 +123,10 @@ TEST(ModelValidation, BadShapeFilesAreHardErrors) {
   Scratch dir;
   app::LoadedModel model = app::load({dir.write("model.json", kModel)});
   auto error_of = [&](const std::string& shapes_path) -> std::string {
-    shacl::ModelValidationOptions options;
+    validation::ModelValidationOptions options;
     options.extra_shapes = {shapes_path};
     try {
-      shacl::validate_model(model, options);
+      validation::validate_model(model, options);
     } catch (const Error& e) {
       return format(e.diagnostic());
     }
@@ -159,7 +159,7 @@ TEST(ModelValidation, BadShapeFilesAreHardErrors) {
   EXPECT_EQ(error_of(ill).rfind(ill + ":3:", 0), 0u) << error_of(ill);
   // No shapes at all.
   try {
-    shacl::validate_model(model, {});
+    validation::validate_model(model, {});
     ADD_FAILURE() << "no error without shapes";
   } catch (const Error& err) {
     EXPECT_EQ(err.code(), "usage");
@@ -175,10 +175,10 @@ TEST(ModelValidation, StrictChecks) {
     { "@id": "ex:bot", "@type": "ex:Robot", "name": "R2" }
   ] })");
   app::LoadedModel model = app::load({model_path});
-  shacl::ModelValidationOptions options;
+  validation::ModelValidationOptions options;
   options.extra_shapes = {dir.write("shapes.ttl", kShapes)};
   options.strict = true;
-  shacl::ModelValidation v = shacl::validate_model(model, options);
+  validation::ModelValidation v = validation::validate_model(model, options);
   EXPECT_TRUE(v.report.conforms());
   ASSERT_EQ(v.strict_findings.size(), 2u);
   std::vector<std::string> lines;
@@ -201,7 +201,7 @@ TEST(ModelValidation, StrictChecks) {
   for (size_t n : counts) with_focus += n;
   EXPECT_EQ(with_focus, 1u);  // PersonShape -> alice
 
-  std::vector<std::string> iris = shacl::context_term_iris(model);
+  std::vector<std::string> iris = validation::context_term_iris(model);
   EXPECT_TRUE(std::binary_search(iris.begin(), iris.end(), "http://example.org/Person"));
   EXPECT_TRUE(std::binary_search(iris.begin(), iris.end(), "http://example.org/name"));
   EXPECT_FALSE(std::binary_search(iris.begin(), iris.end(), "http://example.org/Robot"));
@@ -210,9 +210,9 @@ TEST(ModelValidation, StrictChecks) {
 TEST(ModelValidation, JsonLdReportReadsBackAsTheReportGraph) {
   Scratch dir;
   app::LoadedModel model = app::load({dir.write("model.json", kModel)});
-  shacl::ModelValidationOptions options;
+  validation::ModelValidationOptions options;
   options.extra_shapes = {dir.write("shapes.ttl", kShapes)};
-  shacl::ModelValidation v = shacl::validate_model(model, options);
+  validation::ModelValidation v = validation::validate_model(model, options);
   const std::string jsonld = shacl::to_jsonld(v.report);
   EXPECT_EQ(jsonld, shacl::to_jsonld(v.report));  // deterministic
   // mospec's own JSON-LD loader turns it into the same graph as to_dataset.

@@ -8,9 +8,9 @@
 #include <functional>
 #include <memory>
 
+#include "description/robot_model.hpp"
 #include "sim/config.hpp"
 #include "sim/controllers.hpp"
-#include "sim/robot_model.hpp"
 #include "sim/world.hpp"
 
 namespace mospec::sim::testing {
@@ -23,7 +23,8 @@ inline const runtime::Chain* gen3() {
     for (const auto& [prefix, dir] : c.robot.maps) {
       if (!std::filesystem::exists(dir)) return nullptr;
     }
-    return std::make_unique<runtime::Chain>(load_arm_chain(c.robot));
+    return std::make_unique<runtime::Chain>(
+        description::load_chain(c.robot.model, c.robot.chain_iri, c.robot.maps));
   }();
   return chain.get();
 }

@@ -1,4 +1,4 @@
-#include "runtime/chain_rdf.hpp"
+#include "description/chain_rdf.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,32 +8,35 @@
 #include <vector>
 
 #include "support/diagnostics.hpp"
+#include "vocab/metamodels.hpp"
+#include "vocab/w3c.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using namespace mospec::runtime;
 
 namespace {
 
-constexpr std::string_view kMm = "https://comp-rob2b.github.io/metamodels/";
-constexpr std::string_view kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
-constexpr std::string_view kUnit = "http://qudt.org/vocab/unit/";
+constexpr std::string_view kRdf = vocab::rdf::ns;
+constexpr std::string_view kUnit = vocab::qudt_unit::ns;
 
 std::string iri(std::string_view ns, std::string_view local) {
-  return std::string(ns) + std::string(local);
+  return vocab::term(ns, local);
 }
 std::string kc(std::string_view l) {
-  return iri(std::string(kMm) + "kinematic-chain/structural-entities#", l);
+  return iri(vocab::kc_ent::ns, l);
 }
 std::string geom_rel(std::string_view l) {
-  return iri(std::string(kMm) + "geometry/spatial-relations#", l);
+  return iri(vocab::geom_rel::ns, l);
 }
 std::string geom_coord(std::string_view l) {
-  return iri(std::string(kMm) + "geometry/coordinates#", l);
+  return iri(vocab::geom_coord::ns, l);
 }
 std::string dyn_ent(std::string_view l) {
-  return iri(std::string(kMm) + "newtonian-rigid-body-dynamics/structural-entities#", l);
+  return iri(vocab::dyn_ent::ns, l);
 }
 std::string dyn_coord(std::string_view l) {
-  return iri(std::string(kMm) + "newtonian-rigid-body-dynamics/coordinates#", l);
+  return iri(vocab::dyn_coord::ns, l);
 }
 
 class Reader {
@@ -95,7 +98,7 @@ class Reader {
   // The QUDT units of `s` must be exactly `want` (a set).
   void require_units(rdf::TermId s, std::vector<std::string_view> want) const {
     std::vector<std::string> got;
-    for (rdf::TermId u : objects(s, "http://qudt.org/schema/qudt/unit")) got.push_back(name(u));
+    for (rdf::TermId u : objects(s, std::string(vocab::qudt::unit))) got.push_back(name(u));
     std::sort(got.begin(), got.end());
     std::vector<std::string> expected;
     for (auto w : want) expected.push_back(iri(kUnit, w));
@@ -267,4 +270,4 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
   return chain;
 }
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description

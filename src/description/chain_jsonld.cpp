@@ -1,4 +1,4 @@
-#include "runtime/chain_jsonld.hpp"
+#include "description/chain_jsonld.hpp"
 
 #include <charconv>
 #include <string_view>
@@ -6,7 +6,9 @@
 
 #include "support/diagnostics.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using namespace mospec::runtime;
 
 namespace {
 
@@ -209,4 +211,4 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
   return out;
 }
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description

@@ -6,14 +6,17 @@
 #include <string>
 
 #include "runtime/chain.hpp"
+#include "vocab/metamodels.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using runtime::Chain;
 
 struct ChainJsonldOptions {
   // Base IRI of the document; every entity id is relative to it.
-  std::string base = "https://mospec.example/robots/robot/";
+  std::string base = std::string(vocab::robots::imported_base);
   // Where the published metamodel contexts live (IRI prefix).
-  std::string metamodels = "https://comp-rob2b.github.io/metamodels/";
+  std::string metamodels = std::string(vocab::kMetamodels);
 };
 
 // The document, deterministic to the byte (numbers in shortest round-trip
@@ -39,4 +42,4 @@ struct ChainJsonldOptions {
 // term for one.
 std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& options = {});
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description

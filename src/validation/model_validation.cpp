@@ -1,4 +1,4 @@
-#include "shacl/model_validation.hpp"
+#include "validation/model_validation.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,10 +13,12 @@
 #include "rdf/nquads.hpp"
 #include "rdf/turtle.hpp"
 #include "shacl/validate.hpp"
-#include "shacl/vocab.hpp"
 #include "support/io.hpp"
+#include "vocab/w3c.hpp"
 
-namespace mospec::shacl {
+namespace mospec::validation {
+
+using namespace mospec::shacl;
 
 namespace fs = std::filesystem;
 using rdf::TermId;
@@ -257,7 +259,7 @@ std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& sha
   const rdf::TermTable& st = sg.terms();
   for (const rdf::Quad& q : sg.quads())
     if (st[q.subject].is_iri()) defined.insert(std::string(st[q.subject].value));
-  for (std::string_view p : {vocab::targetClass, vocab::sh_class}) {
+  for (std::string_view p : {vocab::sh::targetClass, vocab::sh::class_}) {
     TermId pid = st.find_iri(p);
     if (pid.is_any()) continue;
     sg.scan(TermId::any(), pid, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
@@ -266,7 +268,7 @@ std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& sha
     });
   }
   const rdf::TermTable& dt = data.terms();
-  TermId type = dt.find_iri(vocab::rdf_type);
+  TermId type = dt.find_iri(vocab::rdf::type);
   if (!type.is_any()) {
     struct Use {
       SourceLoc first;
@@ -320,4 +322,4 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
   return out;
 }
 
-}  // namespace mospec::shacl
+}  // namespace mospec::validation

@@ -17,7 +17,7 @@
 #include "shacl/shapes.hpp"
 #include "support/diagnostics.hpp"
 
-namespace mospec::shacl {
+namespace mospec::validation {
 
 // One shape file to read.
 struct ShapeFile {
@@ -56,8 +56,8 @@ struct ModelValidationOptions {
 struct ModelValidation {
   std::vector<ShapeFile> files;                // the shape files read, in order
   std::unique_ptr<rdf::Dataset> shapes_graph;  // owned: `shapes` points into it
-  std::unique_ptr<Shapes> shapes;
-  Report report;
+  std::unique_ptr<shacl::Shapes> shapes;
+  shacl::Report report;
   // Under `strict`: shapes whose targets select no node ("shape-unused"),
   // rdf:type values that nothing defines ("undefined-type"), as warnings.
   std::vector<Diagnostic> strict_findings;
@@ -80,9 +80,9 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
 //    contexts those load, and the scoped contexts inside their term
 //    definitions) maps to exactly that IRI; or the shapes graph mentions it
 //    as a subject or as the object of sh:targetClass or sh:class.
-std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& shapes);
+std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const shacl::Shapes& shapes);
 
 // Every IRI that a term of the model files' JSON-LD contexts maps to.
 std::vector<std::string> context_term_iris(app::LoadedModel& model);
 
-}  // namespace mospec::shacl
+}  // namespace mospec::validation

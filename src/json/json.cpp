@@ -1,4 +1,4 @@
-#include "jsonld/json.hpp"
+#include "json/json.hpp"
 
 #include <algorithm>
 #include <charconv>

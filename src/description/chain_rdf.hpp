@@ -7,7 +7,9 @@
 #include "rdf/dataset.hpp"
 #include "runtime/chain.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using runtime::Chain;
 
 // Builds the Chain whose KinematicChain node is `chain_iri` in `graph` (one
 // flattened graph: every quad is read regardless of its graph name).
@@ -23,4 +25,4 @@ namespace mospec::runtime {
 // Throws mospec::Error naming the entity and what is missing or wrong.
 Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri);
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description

@@ -1,4 +1,4 @@
-#include "runtime/urdf_import.hpp"
+#include "description/urdf_import.hpp"
 
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
@@ -10,7 +10,9 @@
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using namespace mospec::runtime;
 
 namespace {
 
@@ -166,4 +168,4 @@ Chain chain_from_urdf_file(const std::string& path, const std::string& root,
   return chain_from_urdf(read_file(path), root, tip, path);
 }
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description

@@ -1,4 +1,4 @@
-// URDF -> Chain, on urdfdom. Lives in the mospec_robot library (setup time
+// URDF -> Chain, on urdfdom. Lives in the mospec_description library (setup time
 // only) so the real-time mospec_runtime library does not link an XML parser.
 #pragma once
 
@@ -6,7 +6,9 @@
 
 #include "runtime/chain.hpp"
 
-namespace mospec::runtime {
+namespace mospec::description {
+
+using runtime::Chain;
 
 // Extracts the serial chain from link `root` to link `tip`: one Segment per
 // moving joint on the path (URDF revolute and continuous -> Revolute,
@@ -26,4 +28,4 @@ Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root, cons
 Chain chain_from_urdf_file(const std::string& path, const std::string& root,
                            const std::string& tip);
 
-}  // namespace mospec::runtime
+}  // namespace mospec::description
