@@ -81,8 +81,11 @@ Node pose_node(const std::string& id, const std::string& of, const std::string& 
 void add_link(std::vector<Node>& graph, const std::string& link, const RigidInertia* inertia) {
   const std::string frame = "frame-" + link, origin = "point-" + link + "-origin";
   Node l;
+  // The link's frame and origin are its simplices: how a reader finds the
+  // link of a frame (and a frame of a link) without spelling IRIs.
   l.add("@id", quoted("link-" + link))
-      .add("@type", list(types({"SimplicialComplex", "RigidBody"})));
+      .add("@type", list(types({"SimplicialComplex", "RigidBody"})))
+      .add("simplices", list({quoted(frame), quoted(origin)}));
   graph.push_back(l);
   Node f;
   f.add("@id", quoted(frame)).add("@type", quoted("Frame")).add("origin", quoted(origin));

@@ -38,6 +38,9 @@ std::string dyn_ent(std::string_view l) {
 std::string dyn_coord(std::string_view l) {
   return iri(vocab::dyn_coord::ns, l);
 }
+std::string geom_ent(std::string_view l) {
+  return iri(vocab::geom_ent::ns, l);
+}
 
 class Reader {
  public:
@@ -188,6 +191,10 @@ class Reader {
 }  // namespace
 
 Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
+  return describe_chain(graph, chain_iri).chain;
+}
+
+ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chain_iri) {
   const Reader r(graph);
   const rdf::TermId chain_id = r.id(chain_iri);
   if (chain_id.is_any() || !r.has_type(chain_id, kc("KinematicChain"))) {
@@ -232,7 +239,31 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
                                            std::to_string(roots.size()) +
                                            " chains; expected one serial chain");
   }
-  Chain chain(Reader::local_name(r.name(roots.front()), "frame-"));
+  ChainDescription out{Chain(Reader::local_name(r.name(roots.front()), "frame-")), {}};
+  Chain& chain = out.chain;
+  // A frame's origin point and the body it is attached to, by the model's
+  // relations: the frame's `origin`; the simplicial complex (link) whose
+  // `simplices` hold the frame, else the body whose inertia the frame sees.
+  const auto unique = [](std::vector<rdf::TermId> v) {
+    std::sort(v.begin(), v.end(), [](rdf::TermId a, rdf::TermId b) { return a.index < b.index; });
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+  };
+  const auto origin_of = [&](rdf::TermId f) {
+    const auto o = unique(r.objects(f, geom_ent("origin")));
+    return o.size() == 1 ? r.name(o.front()) : std::string();
+  };
+  const auto body_of = [&](rdf::TermId f) {
+    const auto complexes = unique(r.subjects(geom_ent("simplices"), f));
+    if (complexes.size() == 1) return r.name(complexes.front());
+    for (rdf::TermId i : r.subjects(dyn_coord("as-seen-by"), f)) {
+      if (!r.has_type(i, dyn_ent("RotationalInertia"))) continue;
+      const auto bodies = unique(r.objects(i, dyn_ent("of-body")));
+      if (bodies.size() == 1) return r.name(bodies.front());
+    }
+    return std::string();
+  };
+  out.frames.root = {r.name(roots.front()), origin_of(roots.front()), body_of(roots.front())};
   rdf::TermId frame = roots.front();
   for (auto it = by_parent_frame.find(frame); it != by_parent_frame.end();
        it = by_parent_frame.find(frame)) {
@@ -247,6 +278,7 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
                     r.number(axis, geom_coord("z")));
     s.inertia = r.inertia(info.child);
     chain.add_segment(std::move(s));
+    out.frames.segments.push_back({r.name(info.child), origin_of(info.child), body_of(info.child)});
     frame = info.child;
     by_parent_frame.erase(it);
   }
@@ -267,7 +299,7 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
     const rdf::TermId tip = r.one(tips.front(), geom_rel("of"));
     chain.add_fixed(Reader::local_name(r.name(tip), "frame-"), r.pose(tips.front()), {});
   }
-  return chain;
+  return out;
 }
 
 }  // namespace mospec::description

@@ -2,7 +2,9 @@
 // that chain_to_jsonld() emits (after JSON-LD loading, e.g. by app::load).
 #pragma once
 
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "rdf/dataset.hpp"
 #include "runtime/chain.hpp"
@@ -24,5 +26,24 @@ using runtime::Chain;
 // the vocabulary and stay unbounded.
 // Throws mospec::Error naming the entity and what is missing or wrong.
 Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri);
+
+// The model entities of one frame of a chain, found through the graph's
+// relations (never by how their IRIs are spelled): the frame, its `origin`
+// point, and the body (link) it is attached to — the simplicial complex whose
+// `simplices` hold the frame, else the body whose rotational inertia the frame
+// sees. An entity the model does not relate is "".
+struct FrameEntities {
+  std::string frame, origin, body;
+};
+struct ChainFrames {
+  FrameEntities root;                   // the chain's root frame (the base link's)
+  std::vector<FrameEntities> segments;  // segment i's frame S_i (the moving link's)
+};
+struct ChainDescription {
+  Chain chain;
+  ChainFrames frames;
+};
+// chain_from_rdf() and the entities of the chain's frames.
+ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chain_iri);
 
 }  // namespace mospec::description

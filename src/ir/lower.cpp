@@ -426,8 +426,12 @@ void Lowerer::lower_arm(TermId solver) {
     return;
   }
   arm.chain_iri = str(*chain_t);
+  description::ChainFrames frames;
   try {
-    arm.chain = description::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
+    description::ChainDescription described =
+        description::describe_chain(chain_graph(arm.chain_iri), arm.chain_iri);
+    arm.chain = std::move(described.chain);
+    frames = std::move(described.frames);
   } catch (const Error& e) {
     error(where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
           "the solver '" + arm.iri + "': " + e.diagnostic().message);
@@ -441,23 +445,24 @@ void Lowerer::lower_arm(TermId solver) {
         "no robot arm is bound to the chain '" + arm.chain_iri +
             "' (mospec's robot has a right and a left Gen3; bind it with --bind CHAIN=right|left)");
   }
-  std::string prefix = arm.chain_iri;
-  if (prefix.size() >= 5 && prefix.compare(prefix.size() - 5, 5, "chain") == 0)
-    prefix.resize(prefix.size() - 5);
-  const auto frame_of = [&](const std::string& link) { return prefix + "frame-" + link; };
-  const auto link_of = [&](const std::string& link) { return prefix + "link-" + link; };
-  const auto origin_of = [&](const std::string& link) {
-    return prefix + "point-" + link + "-origin";
-  };
-  const auto segment_by = [&](const std::string& iri,
-                              const std::function<std::string(const std::string&)>& f) {
-    for (int i = 0; i < arm.chain.size(); ++i) {
-      if (f(arm.chain.segment(i).link) == iri) return i;
+  // The chain's frames, their origins and links, as the robot model relates
+  // them (description::describe_chain): segment i by its frame, its origin
+  // point or its link.
+  using Entity = std::string description::FrameEntities::*;
+  const auto segment_by = [&](const std::string& iri, Entity what) {
+    if (iri.empty()) return -1;
+    for (size_t i = 0; i < frames.segments.size(); ++i) {
+      if (frames.segments[i].*what == iri) return static_cast<int>(i);
     }
     return -1;
   };
-  const std::string chain_root_name = arm.chain.root();
-  const std::string chain_root_frame = frame_of(chain_root_name);
+  const Entity frame_of = &description::FrameEntities::frame;
+  const Entity link_of = &description::FrameEntities::body;
+  const auto origin_of = [&](int segment) {
+    return frames.segments[static_cast<size_t>(segment)].origin;
+  };
+  const std::string chain_root_frame = frames.root.frame;
+  const std::string chain_root_link = frames.root.body;
   if (auto root = object(solver, vocab(slv, "root"))) {
     arm.root_frame = str(*root);
   } else {
@@ -564,11 +569,11 @@ void Lowerer::lower_arm(TermId solver) {
       const Data& dd = prog_.data[static_cast<size_t>(d)];
       int seg = segment_by(dd.of, link_of);
       if (seg < 0) seg = segment_by(dd.of, frame_of);
-      const bool wrt_root = dd.with_respect_to == link_of(chain_root_name) ||
+      const bool wrt_root = (!chain_root_link.empty() && dd.with_respect_to == chain_root_link) ||
                             dd.with_respect_to == chain_root_frame ||
                             dd.with_respect_to == arm.root_frame;
-      if (seg < 0 || !wrt_root || dd.as_seen_by != arm.root_frame ||
-          dd.reference_point != origin_of(arm.chain.segment(seg).link)) {
+      if (seg < 0 || !wrt_root || dd.as_seen_by != arm.root_frame || dd.reference_point.empty() ||
+          dd.reference_point != origin_of(seg)) {
         error(o, "unsupported-output",
               "the solver '" + arm.iri +
                   "' outputs twists of a segment w.r.t. the root, at the segment's origin, seen by "
@@ -591,8 +596,8 @@ void Lowerer::lower_arm(TermId solver) {
   solve.name = arm.name + "_solve";
   solve.where = arm.where;
   solve.solver = arm_index;
-  const std::string last_link =
-      arm.chain.size() ? arm.chain.segment(arm.chain.size() - 1).link : "";
+  // The link of the last segment, as the robot model relates it to its frame.
+  const std::string last_link = frames.segments.empty() ? "" : frames.segments.back().body;
   if (!drivers) {
     error(solver, "missing-property", "the solver '" + arm.iri + "' names no motion-drivers");
   } else {
@@ -630,11 +635,10 @@ void Lowerer::lower_arm(TermId solver) {
                   str(spec) + "' is in level " + std::to_string(lv + 1));
       }
       auto link = object(spec, vocab(slv, "attached-to"));
-      if (!link || str(*link) != link_of(last_link)) {
+      if (!link || str(*link) != last_link) {
         error(spec, "unsupported-attachment",
-              "ACHD constrains the chain's last segment '" + link_of(last_link) + "'; '" +
-                  str(spec) + "' is attached to '" + (link ? str(*link) : std::string("nothing")) +
-                  "'");
+              "ACHD constrains the chain's last segment '" + last_link + "'; '" + str(spec) +
+                  "' is attached to '" + (link ? str(*link) : std::string("nothing")) + "'");
       }
       for (TermId c : objects(spec, vocab(slv, "constraints"))) {
         AccelerationConstraint ac;
@@ -689,7 +693,7 @@ void Lowerer::lower_arm(TermId solver) {
       }
       cf.wrench = datum(*force, DataType::Wrench, spec, "force");
       const Data& w = prog_.data[static_cast<size_t>(cf.wrench)];
-      const std::string origin = origin_of(arm.chain.segment(cf.segment).link);
+      const std::string origin = origin_of(cf.segment);
       if (w.reference_point != origin || w.as_seen_by != arm.root_frame) {
         error(*force, "frame-mismatch",
               "the wrench '" + w.iri + "' drives '" + str(*link) + "' through '" + cf.iri +
