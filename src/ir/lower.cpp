@@ -635,7 +635,16 @@ void Lowerer::lower_arm(TermId solver) {
                   str(spec) + "' is in level " + std::to_string(lv + 1));
       }
       auto link = object(spec, vocab(slv, "attached-to"));
-      if (!link || str(*link) != last_link) {
+      if (last_link.empty() && !frames.segments.empty()) {
+        error(spec, "unsupported-attachment",
+              "ACHD constrains the chain's last segment, but no link of the robot model holds its "
+              "frame '" +
+                  frames.segments.back().frame +
+                  "' (state the link's `simplices`: its frame and origin point, as "
+                  "robots/kinova-gen3.jsonld does); '" +
+                  str(spec) + "' is attached to '" + (link ? str(*link) : std::string("nothing")) +
+                  "'");
+      } else if (!link || str(*link) != last_link) {
         error(spec, "unsupported-attachment",
               "ACHD constrains the chain's last segment '" + last_link + "'; '" + str(spec) +
                   "' is attached to '" + (link ? str(*link) : std::string("nothing")) + "'");
