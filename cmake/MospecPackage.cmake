@@ -39,7 +39,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/runtime ${PROJECT_SOURCE_DIR}/src/ro
         FILES_MATCHING PATTERN "*.hpp")
 
 set(MOSPEC_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/mospec)
-install(TARGETS mospec RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS mospec mospec-full RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(EXPORT mospecTargets NAMESPACE mospec:: DESTINATION ${MOSPEC_INSTALL_CMAKEDIR})
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/mospecConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/install-package/mospecConfig.cmake

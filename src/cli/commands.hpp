@@ -31,6 +31,29 @@ struct LoadFlags {
 // Prints the loader's warnings to stderr; returns how many there were.
 size_t print_diagnostics(const DiagnosticSink& sink);
 
+// The commands that run in mospec-full, the build of this CLI that links the
+// simulator (MuJoCo), the URDF reader and libcrypto: the `mospec` users call
+// lists them under these summaries and execs mospec-full, installed beside
+// it, for them (main.cpp), so the model-side commands never load those
+// libraries.
+inline constexpr const char* kSimSummary =
+    "Run the simulated robot (two Gen3 arms on a KELO base, in front of a table) headless with "
+    "a zero-torque or gravity-compensation controller, and write a CSV log. The world is "
+    "generated from the robot description; WORLD is a JSON file of initial conditions (see "
+    "docs/simulation.md), the default world if omitted.";
+inline constexpr const char* kRunSummary =
+    "Validate an app model, lower it and run its controller against the simulated robot; "
+    "write a CSV log (every constraint's value, error and satisfaction, every monitor, motion "
+    "and controller output, and the world's ground truth) and a JSON summary. The world is "
+    "--world, else APP's sibling <name>.world.json, else the default world.";
+inline constexpr const char* kImportUrdfSummary =
+    "Convert the serial chain of a URDF (root link to tip link; fixed joints folded into "
+    "the previous segment) into a kinematic-chain JSON-LD model with units";
+inline constexpr const char* kBuildSummary =
+    "Configure and build a project `mospec generate` wrote (in DIR/build, Release, with "
+    "-Werror) against mospec's runtime package, and print the path of the built controller "
+    "library. Exit 2 with the compiler's output when it fails.";
+
 Action add_rdf_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);
 Action add_stats_command(CLI::App& app);

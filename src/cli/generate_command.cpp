@@ -1,10 +1,6 @@
 // `mospec generate`: a validated, lowered app model -> the C++ project of its
-// controller (src/codegen); `mospec build`: configure and build such a project
-// against mospec's runtime package.
-#include <iostream>
-
+// controller (src/codegen).
 #include "cli/pipeline.hpp"
-#include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
 
 namespace mospec::cli {
@@ -33,40 +29,6 @@ Action add_generate_command(CLI::App& app) {
     if (!program) return code;
     ir::verify(*program);
     codegen::generate(*program, flags->output, &files);
-    return kExitOk;
-  };
-}
-
-Action add_build_command(CLI::App& app) {
-  struct Flags {
-    std::string dir;
-    int jobs = 2;
-    std::string package;
-  };
-  auto flags = std::make_shared<Flags>();
-  CLI::App* cmd = app.add_subcommand(
-      "build",
-      "Configure and build a project `mospec generate` wrote (in DIR/build, Release, with "
-      "-Werror) against mospec's runtime package, and print the path of the built controller "
-      "library. Exit 2 with the compiler's output when it fails.");
-  cmd->add_option("dir", flags->dir, "The generated project")->required()->type_name("DIR");
-  cmd->add_option("-j,--jobs", flags->jobs, "Parallel compile jobs")
-      ->check(CLI::Range(1, 256))
-      ->capture_default_str();
-  cmd->add_option("--mospec-dir", flags->package,
-                  "mospec's CMake package directory (default: the installed one next to this "
-                  "executable, else the build tree it was built in)")
-      ->type_name("DIR");
-  return [flags]() {
-    const codegen::BuildResult r = codegen::build_project(flags->dir, flags->jobs, flags->package);
-    if (!r.ok) {
-      std::cerr << r.output;
-      std::string msg = "mospec: building '";
-      msg.append(flags->dir).append("' failed");
-      std::cerr << msg << '\n';
-      return kExitBadInput;
-    }
-    std::cout << r.library << '\n';
     return kExitOk;
   };
 }

@@ -15,10 +15,7 @@ Action add_import_urdf_command(CLI::App& app) {
     description::ChainJsonldOptions jsonld;
   };
   auto flags = std::make_shared<Flags>();
-  CLI::App* cmd = app.add_subcommand(
-      "import-urdf",
-      "Convert the serial chain of a URDF (root link to tip link; fixed joints folded into "
-      "the previous segment) into a kinematic-chain JSON-LD model with units");
+  CLI::App* cmd = app.add_subcommand("import-urdf", kImportUrdfSummary);
   cmd->add_option("urdf", flags->input, "URDF file")->required()->type_name("FILE.urdf");
   cmd->add_option("-o,--output", flags->output, "Output file ('-' = standard output)")
       ->type_name("OUT.jsonld");

@@ -1,6 +1,20 @@
 // mospec: composable JSON-LD task models -> verified controllers.
+//
+// Built twice (src/cli/CMakeLists.txt). mospec-full registers every command.
+// mospec, the executable users call (MOSPEC_FRONT_DOOR), runs the model-side
+// commands itself and execs mospec-full, installed beside it, for the ones that
+// need the simulator, the URDF reader or the build cache's hashing (sim, run,
+// import-urdf, build) and for --help-all: validating a model then never pays
+// for mapping and relocating MuJoCo and the libraries it pulls in.
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
+#include <string_view>
 
 #include "cli/commands.hpp"
 #include "support/diagnostics.hpp"
@@ -37,10 +51,50 @@ size_t print_diagnostics(const DiagnosticSink& sink) {
   return sink.diagnostics().size();
 }
 
+#if MOSPEC_FRONT_DOOR
+namespace {
+
+constexpr std::array<std::string_view, 4> kForwarded{"sim", "run", "import-urdf", "build"};
+
+// Whether mospec-full must run this command line: its subcommand (the first
+// argument that is not an option) is one of kForwarded, or there is none and
+// --help-all asks for every command's options.
+bool forwarded(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--help-all") return true;
+    if (arg.starts_with("-")) continue;
+    for (std::string_view name : kForwarded)
+      if (arg == name) return true;
+    return false;
+  }
+  return false;
+}
+
+// Replaces this process by mospec-full with the same arguments; returns only
+// when that fails.
+int exec_full(char** argv) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::string full = (self.parent_path() / "mospec-full").string();
+  if (!ec) ::execv(full.c_str(), argv);
+  std::cerr << "mospec: cannot run " << (ec ? std::string("mospec-full") : full) << ": "
+            << std::strerror(ec ? ec.value() : errno)
+            << " (the simulator commands and `build` run in mospec-full, which is built and "
+               "installed beside mospec)\n";
+  return kExitBadInput;
+}
+
+}  // namespace
+#endif
+
 }  // namespace mospec::cli
 
 int main(int argc, char** argv) {
   using namespace mospec::cli;
+#if MOSPEC_FRONT_DOOR
+  if (forwarded(argc, argv)) return exec_full(argv);
+#endif
   CLI::App app{
       "mospec: composable JSON-LD models of contact-rich robot tasks -> verified, "
       "generated controllers"};
@@ -54,18 +108,31 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("validate"), validate);
   Action stats = add_stats_command(app);
   commands.emplace_back(app.get_subcommand("stats"), stats);
+#if MOSPEC_FRONT_DOOR
+  app.add_subcommand("sim", kSimSummary);  // listed in --help; runs in mospec-full
+  app.add_subcommand("import-urdf", kImportUrdfSummary);
+#else
   Action sim = add_sim_command(app);
   commands.emplace_back(app.get_subcommand("sim"), sim);
   Action import_urdf = add_import_urdf_command(app);
   commands.emplace_back(app.get_subcommand("import-urdf"), import_urdf);
+#endif
   Action generate = add_generate_command(app);
   commands.emplace_back(app.get_subcommand("generate"), generate);
+#if MOSPEC_FRONT_DOOR
+  app.add_subcommand("build", kBuildSummary);  // listed in --help; runs in mospec-full
+#else
   Action build = add_build_command(app);
   commands.emplace_back(app.get_subcommand("build"), build);
+#endif
   Action ir = add_ir_command(app);
   commands.emplace_back(app.get_subcommand("ir"), ir);
+#if MOSPEC_FRONT_DOOR
+  app.add_subcommand("run", kRunSummary);  // listed in --help; runs in mospec-full
+#else
   Action run = add_run_command(app);
   commands.emplace_back(app.get_subcommand("run"), run);
+#endif
   Action plot = add_plot_command(app);
   commands.emplace_back(app.get_subcommand("plot"), plot);
   Action trials = add_trials_command(app);

@@ -32,7 +32,7 @@ std::string resolve_app(const std::string& path) {
 }
 
 std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& exit_code,
-                                               SourceFiles* files) {
+                                               SourceFiles* files, const AfterPass& after_pass) {
   ir::LowerOptions options;
   for (const std::string& b : flags.binds) {
     const auto eq = b.find('=');
@@ -61,6 +61,11 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
     exit_code = kExitFindings;
     return std::nullopt;
   }
+  if (after_pass) {
+    options.after_pass = [&](std::string_view pass, const ir::Program& p) {
+      after_pass(pass, p, model.files());
+    };
+  }
   try {
     ir::Program program = ir::lower(model, options);
     if (files) *files = model.files();
@@ -71,6 +76,12 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
     std::cerr << "mospec: the model cannot be lowered (" << e.diagnostics().size()
               << " error(s)); nothing was generated\n";
     exit_code = kExitFindings;
+    return std::nullopt;
+  } catch (const ir::VerifyError& e) {
+    std::cerr << e.what() << '\n';
+    std::cerr << "mospec: internal error: lowering made a program that does not verify (a bug in "
+                 "mospec, not in the model; please report it with the model)\n";
+    exit_code = kExitBadInput;
     return std::nullopt;
   }
 }

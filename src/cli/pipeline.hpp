@@ -2,8 +2,10 @@
 // it (the verdict gates everything after it), lower it to the IR.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -27,7 +29,12 @@ std::string resolve_app(const std::string& path);
 // stderr and returns the exit code in `exit_code`: 1 when the model does not
 // validate or lower, 2 on bad input. `files` receives the source files (for
 // locations in the IR's JSON) when non-null.
+// `after_pass`, when given, is called after each lowering pass with the
+// program so far and the model's files (mospec ir --dump-after).
+using AfterPass =
+    std::function<void(std::string_view pass, const ir::Program&, const SourceFiles&)>;
 std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& exit_code,
-                                               SourceFiles* files = nullptr);
+                                               SourceFiles* files = nullptr,
+                                               const AfterPass& after_pass = {});
 
 }  // namespace mospec::cli

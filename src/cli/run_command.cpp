@@ -138,12 +138,7 @@ Action add_run_command(CLI::App& app) {
     std::vector<std::string> faults;
   };
   auto flags = std::make_shared<Flags>();
-  CLI::App* cmd = app.add_subcommand(
-      "run",
-      "Validate an app model, lower it and run its controller against the simulated robot; "
-      "write a CSV log (every constraint's value, error and satisfaction, every monitor, motion "
-      "and controller output, and the world's ground truth) and a JSON summary. The world is "
-      "--world, else APP's sibling <name>.world.json, else the default world.");
+  CLI::App* cmd = app.add_subcommand("run", kRunSummary);
   flags->pipeline.add_to(*cmd);
   cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the only target so far)")
       ->required();

@@ -32,12 +32,7 @@ Action add_sim_command(CLI::App& app) {
     std::vector<std::string> faults;
   };
   auto flags = std::make_shared<Flags>();
-  CLI::App* cmd = app.add_subcommand(
-      "sim",
-      "Run the simulated robot (two Gen3 arms on a KELO base, in front of a table) headless with "
-      "a zero-torque or gravity-compensation controller, and write a CSV log. The world is "
-      "generated from the robot description; WORLD is a JSON file of initial conditions (see "
-      "docs/simulation.md), the default world if omitted.");
+  CLI::App* cmd = app.add_subcommand("sim", kSimSummary);
   cmd->add_option("world", flags->world, "World file (JSON)")->type_name("WORLD");
   cmd->add_option("--duration", flags->duration,
                   "Simulated time [s], in (0, 86400] and at most 10^7 control ticks")

@@ -303,26 +303,6 @@ BuildResult build_project(const std::string& dir_arg, int jobs, const std::strin
   return r;
 }
 
-void check_cmake_path(const std::string& path, const std::string& what) {
-  for (const char c : path) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u != 0x7f && c != '"' && c != '\\' && c != '$' && c != ';') continue;
-    std::array<char, 8> code{};
-    std::snprintf(code.data(), code.size(), "0x%02X", static_cast<unsigned>(u));
-    std::string msg = what;
-    msg.append(" '").append(comment_text(path)).append("' holds ");
-    if (u < 0x20 || u == 0x7f) {
-      msg.append("the control character ").append(code.data());
-    } else {
-      msg.append("'").append(1, c).append("'");
-    }
-    msg.append(
-        ", which CMake cannot quote safely in the build files it generates; use a path "
-        "without line breaks, control characters, '\"', '\\', '$' or ';'");
-    throw Error("unsafe-path", msg);
-  }
-}
-
 std::string sha256_hex(std::string_view bytes) {
   Sha256 h;
   h.add(bytes);

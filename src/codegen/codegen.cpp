@@ -11,6 +11,7 @@
 
 #include "codegen/build.hpp"
 #include "codegen/templates.hpp"
+#include "ir/operators.hpp"
 #include "support/io.hpp"
 
 namespace mospec::codegen {
@@ -313,10 +314,6 @@ class Builder {
         pids(*this, "PID steps"), monitors(*this, "monitor steps");
     for (std::size_t i = 0; i < p.data.size(); ++i) {
       const ir::Data& d = p.data[i];
-      if (d.slot < 0 || d.slot >= p.count(d.type)) {
-        fail("datum '" + d.name + "' has slot " + std::to_string(d.slot) + ", outside its type's " +
-             std::to_string(p.count(d.type)) + " slot(s)");
-      }
       data_names_.push_back(slots.take("v", d.name, d.iri, d.where));
     }
     for (const ir::ArmSolver& a : p.arms) {
@@ -353,13 +350,9 @@ class Builder {
   }
 
  private:
-  const ir::Data& datum(int index) const {
-    if (index < 0 || static_cast<std::size_t>(index) >= p_.data.size()) {
-      fail("reference to datum " + std::to_string(index) + ", but the program has " +
-           std::to_string(p_.data.size()));
-    }
-    return p_.data[static_cast<std::size_t>(index)];
-  }
+  // The program is verified (render() runs ir::verify): indices are in range,
+  // types match each step's kind, guards, gates and state slots fit.
+  const ir::Data& datum(int index) const { return p_.data[static_cast<std::size_t>(index)]; }
   // The expression that names a datum's slot, e.g. "d.scalar[slot::time]".
   std::string ref(int index, std::string_view object = "d.") const {
     const ir::Data& d = datum(index);
@@ -370,14 +363,8 @@ class Builder {
         .append("]");
     return s;
   }
-  std::string in(const ir::Step& st, std::size_t k) const {
-    if (k >= st.in.size()) fail("step '" + st.name + "' has no input " + std::to_string(k));
-    return ref(st.in[k]);
-  }
-  std::string out(const ir::Step& st, std::size_t k) const {
-    if (k >= st.out.size()) fail("step '" + st.name + "' has no output " + std::to_string(k));
-    return ref(st.out[k]);
-  }
+  std::string in(const ir::Step& st, std::size_t k) const { return ref(st.in[k]); }
+  std::string out(const ir::Step& st, std::size_t k) const { return ref(st.out[k]); }
   // The path of a location's file ("" when unknown).
   std::string file_of(const SourceLoc& loc) const {
     if (files_ != nullptr && loc.file != 0 && loc.file < files_->size())
@@ -406,18 +393,9 @@ class Builder {
     return comment_text(s);
   }
   const ir::ArmSolver& arm(const ir::Step& st) const {
-    if (st.solver < 0 || static_cast<std::size_t>(st.solver) >= p_.arms.size()) {
-      fail("step '" + st.name + "' refers to arm solver " + std::to_string(st.solver) +
-           ", but the program has " + std::to_string(p_.arms.size()));
-    }
     return p_.arms[static_cast<std::size_t>(st.solver)];
   }
-  int state_slot(const ir::Step& st, ir::StateKind kind) const {
-    if (st.state < 0 || st.state >= p_.states[static_cast<std::size_t>(kind)]) {
-      fail("step '" + st.name + "' has state slot " + std::to_string(st.state) + " out of range");
-    }
-    return st.state;
-  }
+  int state_slot(const ir::Step& st, ir::StateKind) const { return st.state; }
 
   void add_slots(mus::data& root) const {
     mus::data types = list();
@@ -652,38 +630,27 @@ class Builder {
       const ir::Data& d = p_.data[i];
       if (d.value.empty() || d.type == DataType::Event) continue;  // events clear every tick
       const std::string member = mangle("value", d.name);
-      const auto need = [&](std::size_t n) {
-        if (d.value.size() != n) {
-          fail("constant '" + d.name + "' has " + std::to_string(d.value.size()) +
-               " value(s); its type needs " + std::to_string(n));
-        }
-      };
       std::string type, assign;
       switch (d.type) {
         case DataType::Scalar:
-          need(1);
           type = "double";
           assign = member + " = " + cpp_double(d.value[0]) + ";";
           break;
         case DataType::Vector3:
-          need(3);
           type = "rt::Vec3";
           assign = member + " = rt::Vec3(" + join_doubles(d.value.data(), 3) + ");";
           break;
         case DataType::Pose:
-          need(12);
           type = "rt::Pose";
           assign = member + ".R << " + join_doubles(d.value.data(), 9) + ";\n  " + member +
                    ".p = rt::Vec3(" + join_doubles(d.value.data() + 9, 3) + ");";
           break;
         case DataType::Twist:
         case DataType::Wrench:
-          need(6);
           type = "rt::Vec6";
           assign = member + " << " + join_doubles(d.value.data(), 6) + ";";
           break;
         case DataType::Flag:
-          need(1);
           type = "bool";
           assign = member + " = " + (d.value[0] != 0.0 ? "true" : "false") + ";";
           break;
@@ -714,26 +681,19 @@ class Builder {
     const ir::Step& st = p_.steps[index];
     mus::data s;
     s.set("index", std::to_string(index));
-    s.set("kind", std::string(ir::to_string(st.kind)));
+    s.set("kind", std::string(ir::kind_name(st)));
     s.set("name", comment_text(st.name));
     s.set("iri", comment_text(st.iri));
     s.set("where", where(st.where));
     // A blank line, then what the block implements and where it is written.
     std::string header = "\n  // [";
-    header.append(std::to_string(index)).append("] ").append(ir::to_string(st.kind)).append(" '");
+    header.append(std::to_string(index)).append("] ").append(ir::kind_name(st)).append(" '");
     header.append(comment_text(st.name))
         .append("': ")
         .append(comment_text(st.iri))
         .append("\n  //     ");
     header.append(where(st.where));
     s.set("header", header);
-    const auto call = [&](int arity, const char* function) {
-      s.set(std::string("is_call") + std::to_string(arity), true);
-      s.set("function", function);
-      for (int k = 0; k < arity; ++k)
-        s.set("in" + std::to_string(k), in(st, static_cast<std::size_t>(k)));
-      s.set("out0", out(st, 0));
-    };
     const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
     switch (st.kind) {
       case StepKind::ReadClock:
@@ -769,7 +729,6 @@ class Builder {
         break;
       }
       case StepKind::ViewRead:
-        if (st.views.size() != 1) fail("view step '" + st.name + "' needs one component");
         s.set("is_view_read", true);
         s.set("function", datum(st.in.at(0)).type == DataType::Pose ? "view_pose" : "view_vec6");
         s.set("in0", in(st, 0));
@@ -777,8 +736,6 @@ class Builder {
         s.set("out0", out(st, 0));
         break;
       case StepKind::ViewWrite: {
-        if (st.views.size() != st.in.size())
-          fail("view step '" + st.name + "' needs one component per input");
         s.set("is_view_write", true);
         s.set("out0", out(st, 0));
         mus::data components = list();
@@ -792,46 +749,23 @@ class Builder {
         s.set("components", components);
         break;
       }
-      case StepKind::ComposePose:
-        call(2, "compose_pose");
-        break;
-      case StepKind::PoseToLinearDistance:
-        call(1, "pose_to_linear_distance");
-        break;
-      case StepKind::PoseToDirection:
-        s.set("is_pose_to_direction", true);
-        s.set("in0", in(st, 0));
+      case StepKind::Operator: {
+        // The registry's kernel, called the way it declares: it returns the
+        // output, or writes it through its last parameter.
+        const ir::OperatorKind& k = ir::operator_kinds()[static_cast<std::size_t>(st.op)];
+        std::string args;
+        for (std::size_t i = 0; i < st.in.size(); ++i) {
+          if (i) args.append(", ");
+          args.append(in(st, i));
+        }
+        if (!k.kernel_returns) args.append(", ").append(out(st, 0));
+        s.set("is_operator", true);
+        s.set("returns", k.kernel_returns);
+        s.set("kernel", std::string(k.kernel));
+        s.set("args", args);
         s.set("out0", out(st, 0));
         break;
-      case StepKind::RotateWrenchToProximal:
-        call(2, "rotate_wrench_to_proximal");
-        break;
-      case StepKind::RotateTwistToProximal:
-        call(2, "rotate_twist_to_proximal");
-        break;
-      case StepKind::RotateDirectionToProximal:
-        call(2, "rotate_direction_to_proximal");
-        break;
-      case StepKind::TransformWrenchToProximal:
-        call(2, "transform_wrench_to_proximal");
-        break;
-      case StepKind::WrenchFromPositionDirectionAndMagnitude:
-        call(3, "wrench_from_position_direction_and_magnitude");
-        break;
-      case StepKind::AddWrench:
-        s.set("is_add_wrench", true);
-        s.set("in0", in(st, 0));
-        s.set("in1", in(st, 1));
-        s.set("out0", out(st, 0));
-        break;
-      case StepKind::PlanarAngleFromDirections:
-        s.set("is_planar_angle", true);
-        for (std::size_t k = 0; k < 3; ++k) s.set("in" + std::to_string(k), in(st, k));
-        s.set("out0", out(st, 0));
-        break;
-      case StepKind::InvertAngle:
-        call(1, "invert_angle");
-        break;
+      }
       case StepKind::Evaluate:
         s.set("is_evaluate", true);
         s.set("evaluator", step_members_[index]);
@@ -849,10 +783,6 @@ class Builder {
         s.set("out0", out(st, 0));
         break;
       case StepKind::GuardedMotion: {
-        if (st.n_when < 0 || static_cast<std::size_t>(st.n_when) > st.in.size()) {
-          fail("guarded motion '" + st.name + "' has " + std::to_string(st.n_when) +
-               " when-guards of " + std::to_string(st.in.size()) + " inputs");
-        }
         const auto n_when = static_cast<std::size_t>(st.n_when);
         std::string when, until;
         for (std::size_t k = 0; k < st.in.size(); ++k) {
@@ -888,12 +818,8 @@ class Builder {
         // in[0, drivers) are the drivers' data; the rest gate the solve: the
         // running flags of the motions that drive this arm (none running: hold).
         const std::size_t drivers = st.drivers();
-        if (drivers > st.in.size())
-          fail("arm solve '" + st.name + "' has more drivers than inputs");
         std::string gates;
         for (std::size_t g = drivers; g < st.in.size(); ++g) {
-          if (datum(st.in[g]).type != DataType::Flag)
-            fail("arm solve '" + st.name + "': a motion gate must be a flag");
           if (!gates.empty()) gates.append(" || ");
           gates.append(in(st, g));
         }
@@ -931,16 +857,12 @@ class Builder {
         break;
       }
       case StepKind::BaseForceDistribution: {
-        if (!p_.base)
-          fail("step '" + st.name + "' distributes a wrench, but the program has no base");
         s.set("is_base_force_distribution", true);
         s.set("in0", in(st, 0));
         // in[0] is the platform wrench; the rest are the running flags of the
         // motions that drive the base (none running: it brakes and holds).
         std::string gates;
         for (std::size_t g = st.drivers(); g < st.in.size(); ++g) {
-          if (datum(st.in[g]).type != DataType::Flag)
-            fail("base step '" + st.name + "': a motion gate must be a flag");
           if (!gates.empty()) gates.append(" || ");
           gates.append(in(st, g));
         }
@@ -950,7 +872,6 @@ class Builder {
         break;
       }
       case StepKind::BaseVelocityComposition:
-        if (!p_.base) fail("step '" + st.name + "' measures the base, but the program has no base");
         s.set("is_base_velocity_composition", true);
         s.set("out0", out(st, 0));
         break;
@@ -964,8 +885,6 @@ class Builder {
       const ir::LogColumn& c = p_.log[i];
       const ir::Data& d = datum(c.data);
       std::string value;
-      if (c.component > 5)
-        fail("log column '" + c.name + "' has component " + std::to_string(c.component));
       switch (d.type) {
         case DataType::Twist:
         case DataType::Wrench:
@@ -1081,6 +1000,9 @@ std::string tidy_blank_lines(const std::string& text) {
 }  // namespace
 
 std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles* files) {
+  // The back-end trusts a verified program; one that is not is refused here,
+  // every problem located.
+  ir::verify(program, files);
   const mus::data data = Builder(program, files).build();
   std::vector<GeneratedFile> out;
   for (const Template& t : kTemplates) {

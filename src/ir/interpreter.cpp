@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "ir/operators.hpp"
 #include "runtime/model.hpp"
 
 namespace mospec::ir {
@@ -37,35 +38,35 @@ struct Interpreter::Base {
 
 Interpreter::Interpreter(Program program) : program_(std::move(program)) {
   verify(program_);
-  scalars_.assign(static_cast<size_t>(program_.count(DataType::Scalar)), 0.0);
-  vec3s_.assign(static_cast<size_t>(program_.count(DataType::Vector3)), Vec3::Zero());
-  poses_.assign(static_cast<size_t>(program_.count(DataType::Pose)), Pose{});
-  twists_.assign(static_cast<size_t>(program_.count(DataType::Twist)), Vec6::Zero());
-  wrenches_.assign(static_cast<size_t>(program_.count(DataType::Wrench)), Vec6::Zero());
-  flags_.assign(static_cast<size_t>(program_.count(DataType::Flag)), 0);
-  events_.assign(static_cast<size_t>(program_.count(DataType::Event)), 0);
+  s_.scalars.assign(static_cast<size_t>(program_.count(DataType::Scalar)), 0.0);
+  s_.vec3s.assign(static_cast<size_t>(program_.count(DataType::Vector3)), Vec3::Zero());
+  s_.poses.assign(static_cast<size_t>(program_.count(DataType::Pose)), Pose{});
+  s_.twists.assign(static_cast<size_t>(program_.count(DataType::Twist)), Vec6::Zero());
+  s_.wrenches.assign(static_cast<size_t>(program_.count(DataType::Wrench)), Vec6::Zero());
+  s_.flags.assign(static_cast<size_t>(program_.count(DataType::Flag)), 0);
+  s_.events.assign(static_cast<size_t>(program_.count(DataType::Event)), 0);
   for (const Data& d : program_.data) {
     if (d.value.empty()) continue;
     const auto s = static_cast<size_t>(d.slot);
     switch (d.type) {
       case DataType::Scalar:
-        scalars_[s] = d.value[0];
+        s_.scalars[s] = d.value[0];
         break;
       case DataType::Vector3:
-        vec3s_[s] = Vec3(d.value[0], d.value[1], d.value[2]);
+        s_.vec3s[s] = Vec3(d.value[0], d.value[1], d.value[2]);
         break;
       case DataType::Pose:
-        poses_[s] = constant_pose(d.value);
+        s_.poses[s] = constant_pose(d.value);
         break;
       case DataType::Twist:
       case DataType::Wrench: {
         Vec6 v;
         for (int i = 0; i < 6; ++i) v[i] = d.value[static_cast<size_t>(i)];
-        (d.type == DataType::Twist ? twists_ : wrenches_)[s] = v;
+        (d.type == DataType::Twist ? s_.twists : s_.wrenches)[s] = v;
         break;
       }
       case DataType::Flag:
-        flags_[s] = d.value[0] != 0.0;
+        s_.flags[s] = d.value[0] != 0.0;
         break;
       case DataType::Event:
         break;
@@ -76,6 +77,13 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
       static_cast<size_t>(program_.states[static_cast<int>(StateKind::Monitor)]));
   motion_states_.assign(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Motion)]),
                         runtime::steps::MotionState::Idle);
+  operator_slot_offset_.assign(program_.steps.size(), 0);
+  for (size_t i = 0; i < program_.steps.size(); ++i) {
+    const Step& st = program_.steps[i];
+    if (st.kind != StepKind::Operator) continue;
+    operator_slot_offset_[i] = operator_slots_.size();
+    for (int d : st.in) operator_slots_.push_back(static_cast<int>(slot(d)));
+  }
   evaluators_.resize(program_.steps.size());
   for (size_t i = 0; i < program_.steps.size(); ++i) {
     const Step& st = program_.steps[i];
@@ -104,7 +112,7 @@ Interpreter::~Interpreter() = default;
 void Interpreter::tick(const robot::MeasuredState& state, robot::Command& command) noexcept {
   command = robot::Command{};
   command.tick = state.clock.tick;
-  std::fill(events_.begin(), events_.end(), 0);
+  std::fill(s_.events.begin(), s_.events.end(), 0);
   for (size_t i = 0; i < program_.steps.size(); ++i) execute(program_.steps[i], i, state, command);
 }
 
@@ -116,7 +124,7 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
   const auto out = [&](size_t k) { return slot(st.out[k]); };
   switch (st.kind) {
     case StepKind::ReadClock:
-      scalars_[out(0)] = state.clock.t;
+      s_.scalars[out(0)] = state.clock.t;
       break;
     case StepKind::ArmKinematics: {
       const ArmSolver& solver = program_.arms[static_cast<size_t>(st.solver)];
@@ -125,11 +133,11 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       steps::arm_kinematics(arm.model, arm.data, arm.ws, m.q, m.qd);
       for (const ArmOutput& o : solver.outputs) {
         if (o.what == ArmOutput::What::SegmentPose) {
-          poses_[slot(o.data)] = steps::segment_pose(arm.data, o.segment);
+          s_.poses[slot(o.data)] = steps::segment_pose(arm.data, o.segment);
         } else if (o.what == ArmOutput::What::ChainRootPose) {
-          poses_[slot(o.data)] = steps::segment_pose_in_chain_root(arm.data, arm.X_BR, o.segment);
+          s_.poses[slot(o.data)] = steps::segment_pose_in_chain_root(arm.data, arm.X_BR, o.segment);
         } else {
-          twists_[slot(o.data)] = steps::segment_twist(arm.data, o.segment);
+          s_.twists[slot(o.data)] = steps::segment_twist(arm.data, o.segment);
         }
       }
       break;
@@ -138,93 +146,65 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       const Data& super = program_.data[static_cast<size_t>(st.in[0])];
       const int v = st.views[0];
       if (super.type == DataType::Pose) {
-        scalars_[out(0)] = steps::view_pose(poses_[in(0)], v);
+        s_.scalars[out(0)] = steps::view_pose(s_.poses[in(0)], v);
       } else {
-        scalars_[out(0)] =
-            steps::view_vec6(super.type == DataType::Twist ? twists_[in(0)] : wrenches_[in(0)], v);
+        s_.scalars[out(0)] = steps::view_vec6(
+            super.type == DataType::Twist ? s_.twists[in(0)] : s_.wrenches[in(0)], v);
       }
       break;
     }
     case StepKind::ViewWrite: {
       Vec6& target = program_.data[static_cast<size_t>(st.out[0])].type == DataType::Twist
-                         ? twists_[out(0)]
-                         : wrenches_[out(0)];
+                         ? s_.twists[out(0)]
+                         : s_.wrenches[out(0)];
       target.setZero();
-      for (size_t k = 0; k < st.in.size(); ++k) target[st.views[k]] = scalars_[in(k)];
+      for (size_t k = 0; k < st.in.size(); ++k) target[st.views[k]] = s_.scalars[in(k)];
       break;
     }
-    case StepKind::ComposePose:
-      poses_[out(0)] = rt::compose_pose(poses_[in(0)], poses_[in(1)]);
+    case StepKind::Operator: {
+      const OperatorKind& k = operator_kinds()[static_cast<size_t>(st.op)];
+      k.interpret(s_, operator_slots_.data() + operator_slot_offset_[index],
+                  static_cast<int>(out(0)));
       break;
-    case StepKind::PoseToLinearDistance:
-      scalars_[out(0)] = rt::pose_to_linear_distance(poses_[in(0)]);
-      break;
-    case StepKind::PoseToDirection:
-      rt::pose_to_direction(poses_[in(0)], vec3s_[out(0)]);
-      break;
-    case StepKind::RotateWrenchToProximal:
-      wrenches_[out(0)] = rt::rotate_wrench_to_proximal(poses_[in(0)], wrenches_[in(1)]);
-      break;
-    case StepKind::RotateTwistToProximal:
-      twists_[out(0)] = rt::rotate_twist_to_proximal(poses_[in(0)], twists_[in(1)]);
-      break;
-    case StepKind::RotateDirectionToProximal:
-      vec3s_[out(0)] = rt::rotate_direction_to_proximal(poses_[in(0)], vec3s_[in(1)]);
-      break;
-    case StepKind::TransformWrenchToProximal:
-      wrenches_[out(0)] = rt::transform_wrench_to_proximal(poses_[in(0)], wrenches_[in(1)]);
-      break;
-    case StepKind::WrenchFromPositionDirectionAndMagnitude:
-      wrenches_[out(0)] = rt::wrench_from_position_direction_and_magnitude(
-          vec3s_[in(0)], vec3s_[in(1)], scalars_[in(2)]);
-      break;
-    case StepKind::AddWrench:
-      wrenches_[out(0)] = wrenches_[in(0)] + wrenches_[in(1)];
-      break;
-    case StepKind::PlanarAngleFromDirections:
-      rt::planar_angle_from_directions(vec3s_[in(0)], vec3s_[in(1)], vec3s_[in(2)],
-                                       scalars_[out(0)]);
-      break;
-    case StepKind::InvertAngle:
-      scalars_[out(0)] = rt::invert_angle(scalars_[in(0)]);
-      break;
+    }
     case StepKind::Evaluate: {
       bool satisfied = false;
-      const bool active = st.in.size() < 2 || flags_[in(1)] != 0;
-      steps::evaluate(*evaluators_[index], scalars_[in(0)], active, satisfied, scalars_[out(1)]);
-      flags_[out(0)] = satisfied;
+      const bool active = st.in.size() < 2 || s_.flags[in(1)] != 0;
+      steps::evaluate(*evaluators_[index], s_.scalars[in(0)], active, satisfied,
+                      s_.scalars[out(1)]);
+      s_.flags[out(0)] = satisfied;
       break;
     }
     case StepKind::LevelMonitor:
-      flags_[out(0)] = steps::level_monitor(monitor_states_[static_cast<size_t>(st.state)],
-                                            scalars_[in(0)], st.constraint.tolerance);
+      s_.flags[out(0)] = steps::level_monitor(monitor_states_[static_cast<size_t>(st.state)],
+                                              s_.scalars[in(0)], st.constraint.tolerance);
       break;
     case StepKind::EdgeMonitor:
-      events_[out(0)] = steps::edge_monitor(monitor_states_[static_cast<size_t>(st.state)],
-                                            scalars_[in(0)], st.constraint.tolerance);
+      s_.events[out(0)] = steps::edge_monitor(monitor_states_[static_cast<size_t>(st.state)],
+                                              s_.scalars[in(0)], st.constraint.tolerance);
       break;
     case StepKind::GuardedMotion: {
       std::array<bool, kMaxGuards> when{}, until{};
       const auto n_when = static_cast<size_t>(st.n_when);
-      for (size_t k = 0; k < n_when; ++k) when[k] = flags_[in(k)] != 0;
-      for (size_t k = n_when; k < st.in.size(); ++k) until[k - n_when] = flags_[in(k)] != 0;
-      flags_[out(0)] = steps::guarded_motion(
+      for (size_t k = 0; k < n_when; ++k) when[k] = s_.flags[in(k)] != 0;
+      for (size_t k = n_when; k < st.in.size(); ++k) until[k - n_when] = s_.flags[in(k)] != 0;
+      s_.flags[out(0)] = steps::guarded_motion(
           motion_states_[static_cast<size_t>(st.state)], std::span<const bool>(when.data(), n_when),
           std::span<const bool>(until.data(), st.in.size() - n_when));
       break;
     }
     case StepKind::Pid: {
-      const bool active = st.in.size() < 2 || flags_[in(1)] != 0;
-      scalars_[out(0)] = steps::pid(pids_[static_cast<size_t>(st.state)],
-                                    pid_states_[static_cast<size_t>(st.state)], scalars_[in(0)],
-                                    state.clock.dt, active);
+      const bool active = st.in.size() < 2 || s_.flags[in(1)] != 0;
+      s_.scalars[out(0)] = steps::pid(pids_[static_cast<size_t>(st.state)],
+                                      pid_states_[static_cast<size_t>(st.state)], s_.scalars[in(0)],
+                                      state.clock.dt, active);
       break;
     }
     case StepKind::ArmSolve: {
       const ArmSolver& solver = program_.arms[static_cast<size_t>(st.solver)];
       Arm& arm = *arms_[static_cast<size_t>(st.solver)];
       bool driven = st.in.size() == st.drivers();  // no gates: always
-      for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || flags_[in(k)] != 0;
+      for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || s_.flags[in(k)] != 0;
       if (!driven) {
         steps::arm_hold(arm.model, arm.data, arm.ws,
                         command.arm_tau[static_cast<size_t>(solver.port)]);
@@ -232,14 +212,14 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       }
       arm.ws.F_ext.fill(Vec6::Zero());
       for (const CartesianForce& f : solver.cartesian_forces) {
-        arm.ws.F_ext[static_cast<size_t>(f.segment)] += wrenches_[slot(f.wrench)];
+        arm.ws.F_ext[static_cast<size_t>(f.segment)] += s_.wrenches[slot(f.wrench)];
       }
       arm.ws.tau_ff.setZero();
       for (const JointForce& f : solver.joint_forces)
-        arm.ws.tau_ff[f.joint] += scalars_[slot(f.force)];
+        arm.ws.tau_ff[f.joint] += s_.scalars[slot(f.force)];
       for (size_t k = 0; k < solver.acceleration_constraints.size(); ++k) {
         arm.ws.beta[static_cast<Eigen::Index>(k)] =
-            scalars_[slot(solver.acceleration_constraints[k].energy)];
+            s_.scalars[slot(solver.acceleration_constraints[k].energy)];
       }
       steps::arm_solve(arm.task_model, arm.model, arm.data, arm.ws,
                        command.arm_tau[static_cast<size_t>(solver.port)]);
@@ -247,19 +227,19 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
     }
     case StepKind::BaseForceDistribution: {
       bool driven = st.in.size() == st.drivers();  // no gates: always
-      for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || flags_[in(k)] != 0;
+      for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || s_.flags[in(k)] != 0;
       if (!driven) {
         steps::base_hold(base_->model, base_->data, state.pivot_q, state.wheel_qd,
                          command.wheel_tau);
       } else {
-        steps::base_force_distribution(base_->model, base_->data, state.pivot_q, wrenches_[in(0)],
+        steps::base_force_distribution(base_->model, base_->data, state.pivot_q, s_.wrenches[in(0)],
                                        command.wheel_tau);
       }
       break;
     }
     case StepKind::BaseVelocityComposition:
       steps::base_velocity(base_->model, base_->data, state.pivot_q, state.wheel_qd,
-                           twists_[out(0)]);
+                           s_.twists[out(0)]);
       break;
   }
 }
@@ -269,11 +249,11 @@ double Interpreter::value(int data) const noexcept {
   const auto s = static_cast<size_t>(d.slot);
   switch (d.type) {
     case DataType::Scalar:
-      return scalars_[s];
+      return s_.scalars[s];
     case DataType::Flag:
-      return flags_[s] ? 1.0 : 0.0;
+      return s_.flags[s] ? 1.0 : 0.0;
     case DataType::Event:
-      return events_[s] ? 1.0 : 0.0;
+      return s_.events[s] ? 1.0 : 0.0;
     default:
       return std::nan("");
   }
@@ -284,8 +264,8 @@ void Interpreter::log_values(std::span<double> out) const noexcept {
     const LogColumn& c = program_.log[i];
     const Data& d = program_.data[static_cast<size_t>(c.data)];
     if (c.component >= 0 && (d.type == DataType::Twist || d.type == DataType::Wrench)) {
-      out[i] = (d.type == DataType::Twist ? twists_
-                                          : wrenches_)[static_cast<size_t>(d.slot)][c.component];
+      out[i] = (d.type == DataType::Twist ? s_.twists
+                                          : s_.wrenches)[static_cast<size_t>(d.slot)][c.component];
     } else {
       out[i] = value(c.data);
     }

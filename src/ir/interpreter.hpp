@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ir/ir.hpp"
+#include "ir/operators.hpp"
 #include "robot/controller.hpp"
 #include "runtime/monitors.hpp"
 #include "runtime/steps.hpp"
@@ -44,11 +45,10 @@ class Interpreter final : public robot::Controller {
   }
 
   Program program_;
-  std::vector<double> scalars_;
-  std::vector<runtime::Vec3> vec3s_;
-  std::vector<runtime::Pose> poses_;
-  std::vector<runtime::Vec6> twists_, wrenches_;
-  std::vector<char> flags_, events_;
+  Slots s_;
+  // Operator steps' input slots, flattened; a step's start by step index.
+  std::vector<int> operator_slots_;
+  std::vector<size_t> operator_slot_offset_;
   std::vector<runtime::Pid> pids_;  // by Step::state
   std::vector<runtime::PidState> pid_states_;
   std::vector<runtime::MonitorState> monitor_states_;

@@ -1,6 +1,9 @@
 #include "ir/ir.hpp"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+
+#include "ir/operators.hpp"
 
 namespace mospec::ir {
 
@@ -34,28 +37,8 @@ std::string_view to_string(StepKind k) {
       return "view-read";
     case StepKind::ViewWrite:
       return "view-write";
-    case StepKind::ComposePose:
-      return "compose-pose";
-    case StepKind::PoseToLinearDistance:
-      return "pose-to-linear-distance";
-    case StepKind::PoseToDirection:
-      return "pose-to-direction";
-    case StepKind::RotateWrenchToProximal:
-      return "rotate-wrench-to-proximal";
-    case StepKind::RotateTwistToProximal:
-      return "rotate-twist-to-proximal";
-    case StepKind::RotateDirectionToProximal:
-      return "rotate-direction-to-proximal";
-    case StepKind::TransformWrenchToProximal:
-      return "transform-wrench-to-proximal";
-    case StepKind::WrenchFromPositionDirectionAndMagnitude:
-      return "wrench-from-position-direction-and-magnitude";
-    case StepKind::AddWrench:
-      return "add-wrench";
-    case StepKind::PlanarAngleFromDirections:
-      return "planar-angle-from-directions";
-    case StepKind::InvertAngle:
-      return "invert-angle";
+    case StepKind::Operator:
+      return "operator";
     case StepKind::Evaluate:
       return "evaluate";
     case StepKind::LevelMonitor:
@@ -74,6 +57,15 @@ std::string_view to_string(StepKind k) {
       return "base-velocity-composition";
   }
   return "?";
+}
+
+std::string_view kind_name(const Step& step) {
+  if (step.kind == StepKind::Operator) {
+    const auto kinds = operator_kinds();
+    if (step.op >= 0 && static_cast<size_t>(step.op) < kinds.size())
+      return kinds[static_cast<size_t>(step.op)].name;
+  }
+  return to_string(step.kind);
 }
 
 runtime::AchdModel achd_model(const ArmSolver& arm, bool physical) {
@@ -100,22 +92,15 @@ runtime::Pose constant_pose(const std::vector<double>& v) {
 
 namespace {
 
-[[noreturn]] void invalid(const Step& step, const std::string& what) {
-  std::string msg = "IR step '";
-  msg.append(step.name)
-      .append("' (")
-      .append(to_string(step.kind))
-      .append(", from '")
-      .append(step.iri)
-      .append("'): ")
-      .append(what);
-  throw Error("ir-invalid", msg);
-}
-
-// The data types each step kind takes and gives; empty = checked elsewhere.
+// The data types each step kind takes and gives (expected), or why the step
+// has none (`problem`). Variadic kinds check their inputs themselves.
 struct Signature {
+  Signature(std::vector<DataType> i, std::vector<DataType> o, bool variadic = false,
+            std::string why = {})
+      : in(std::move(i)), out(std::move(o)), variadic_in(variadic), problem(std::move(why)) {}
   std::vector<DataType> in, out;
   bool variadic_in = false;
+  std::string problem;
 };
 
 Signature signature(const Step& st, const Program& p) {
@@ -123,27 +108,18 @@ Signature signature(const Step& st, const Program& p) {
   switch (st.kind) {
     case StepKind::ReadClock:
       return {{}, {T::Scalar}};
-    case StepKind::ComposePose:
-      return {{T::Pose, T::Pose}, {T::Pose}};
-    case StepKind::PoseToLinearDistance:
-      return {{T::Pose}, {T::Scalar}};
-    case StepKind::PoseToDirection:
-      return {{T::Pose}, {T::Vector3}};
-    case StepKind::RotateWrenchToProximal:
-    case StepKind::TransformWrenchToProximal:
-      return {{T::Pose, T::Wrench}, {T::Wrench}};
-    case StepKind::RotateTwistToProximal:
-      return {{T::Pose, T::Twist}, {T::Twist}};
-    case StepKind::RotateDirectionToProximal:
-      return {{T::Pose, T::Vector3}, {T::Vector3}};
-    case StepKind::WrenchFromPositionDirectionAndMagnitude:
-      return {{T::Vector3, T::Vector3, T::Scalar}, {T::Wrench}};
-    case StepKind::AddWrench:
-      return {{T::Wrench, T::Wrench}, {T::Wrench}};
-    case StepKind::PlanarAngleFromDirections:
-      return {{T::Vector3, T::Vector3, T::Vector3}, {T::Scalar}};
-    case StepKind::InvertAngle:
-      return {{T::Scalar}, {T::Scalar}};
+    case StepKind::Operator: {
+      const auto kinds = operator_kinds();
+      if (st.op < 0 || static_cast<size_t>(st.op) >= kinds.size())
+        return {{},
+                {},
+                true,
+                "names operator kind " + std::to_string(st.op) + ", which does not exist"};
+      const OperatorKind& k = kinds[static_cast<size_t>(st.op)];
+      Signature s{{}, {k.out.type}};
+      for (const OperatorPort& port : k.in) s.in.push_back(port.type);
+      return s;
+    }
     case StepKind::LevelMonitor:
       return {{T::Scalar}, {T::Flag}};
     case StepKind::EdgeMonitor:
@@ -154,19 +130,30 @@ Signature signature(const Step& st, const Program& p) {
     case StepKind::Pid:
       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Scalar}};
       return {{T::Scalar}, {T::Scalar}};
-    case StepKind::GuardedMotion: {
-      Signature s{std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
-      return s;
-    }
+    case StepKind::GuardedMotion:
+      return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
     case StepKind::ViewRead: {
-      const T super = st.in.empty() ? T::Pose : p.data[static_cast<size_t>(st.in[0])].type;
+      const bool known =
+          !st.in.empty() && st.in[0] >= 0 && static_cast<size_t>(st.in[0]) < p.data.size();
+      const T super = known ? p.data[static_cast<size_t>(st.in[0])].type : T::Pose;
       if (super != T::Pose && super != T::Twist && super != T::Wrench)
-        invalid(st, "a view reads a pose, twist or wrench");
+        return {{},
+                {},
+                true,
+                "reads a view of a " + std::string(to_string(super)) +
+                    "; a view reads a pose, twist or wrench"};
       return {{super}, {T::Scalar}};
     }
     case StepKind::ViewWrite: {
-      const T super = st.out.empty() ? T::Wrench : p.data[static_cast<size_t>(st.out[0])].type;
-      if (super != T::Twist && super != T::Wrench) invalid(st, "a view writes a twist or wrench");
+      const bool known =
+          !st.out.empty() && st.out[0] >= 0 && static_cast<size_t>(st.out[0]) < p.data.size();
+      const T super = known ? p.data[static_cast<size_t>(st.out[0])].type : T::Wrench;
+      if (super != T::Twist && super != T::Wrench)
+        return {{},
+                {},
+                true,
+                "writes a view of a " + std::string(to_string(super)) +
+                    "; a view writes a twist or wrench"};
       return {std::vector<T>(st.in.size(), T::Scalar), {super}};
     }
     case StepKind::ArmKinematics:
@@ -180,110 +167,247 @@ Signature signature(const Step& st, const Program& p) {
     case StepKind::BaseVelocityComposition:
       return {{}, {T::Twist}};
   }
-  return {};
+  return {{}, {}, true, "has an unknown kind"};
 }
+
+// Collects the verifier's findings, each located at the model entity involved.
+class Findings {
+ public:
+  Findings(const Program& p, const SourceFiles* files) : p_(p), files_(files) {}
+
+  void step(const Step& st, const std::string& what) {
+    std::string msg = "IR step '";
+    msg.append(st.name)
+        .append("' (")
+        .append(kind_name(st))
+        .append(", from '")
+        .append(st.iri)
+        .append("'): ")
+        .append(what);
+    add(st.where, std::move(msg));
+  }
+  void add(const SourceLoc& where, std::string message) {
+    Diagnostic d;
+    d.code = "ir-invalid";
+    d.message = std::move(message);
+    if (files_ && where.known()) {
+      d.file = files_->path(where.file);
+      d.line = where.line;
+      d.column = where.column;
+    }
+    out_.push_back(std::move(d));
+  }
+  bool valid_datum(int d) const { return d >= 0 && static_cast<size_t>(d) < p_.data.size(); }
+  std::string describe(int d) const {
+    if (!valid_datum(d)) return "datum " + std::to_string(d) + " (which does not exist)";
+    const Data& dd = p_.data[static_cast<size_t>(d)];
+    return "'" + dd.name + "' (a " + std::string(to_string(dd.type)) + ")";
+  }
+  std::vector<Diagnostic> take() { return std::move(out_); }
+
+ private:
+  const Program& p_;
+  const SourceFiles* files_;
+  std::vector<Diagnostic> out_;
+};
 
 }  // namespace
 
-void verify(const Program& p) {
+std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage stage) {
+  Findings f(p, files);
   // Slots: dense per type, each used once.
   std::array<std::vector<char>, kDataTypes> used;
   for (int t = 0; t < kDataTypes; ++t)
-    used[static_cast<size_t>(t)].assign(static_cast<size_t>(p.slots[static_cast<size_t>(t)]), 0);
+    used[static_cast<size_t>(t)].assign(
+        static_cast<size_t>(std::max(0, p.slots[static_cast<size_t>(t)])), 0);
   for (const Data& d : p.data) {
     auto& u = used[static_cast<size_t>(d.type)];
-    if (d.slot < 0 || static_cast<size_t>(d.slot) >= u.size() || u[static_cast<size_t>(d.slot)]) {
-      std::string msg = "datum '";
-      msg.append(d.name)
-          .append("' has slot ")
-          .append(std::to_string(d.slot))
-          .append(", which is out of range or shared");
-      throw Error("ir-invalid", msg);
+    if (d.slot < 0 || static_cast<size_t>(d.slot) >= u.size()) {
+      f.add(d.where, "datum '" + d.name + "' has slot " + std::to_string(d.slot) +
+                         "; expected 0.." + std::to_string(static_cast<long>(u.size()) - 1) +
+                         " (the program has " + std::to_string(u.size()) + " " +
+                         std::string(to_string(d.type)) + " slots)");
+      continue;
+    }
+    if (u[static_cast<size_t>(d.slot)]) {
+      f.add(d.where, "datum '" + d.name + "' has slot " + std::to_string(d.slot) + " of type " +
+                         std::string(to_string(d.type)) + ", which another datum also has");
     }
     u[static_cast<size_t>(d.slot)] = 1;
   }
-  std::vector<char> available(p.data.size(), 0);
-  for (size_t i = 0; i < p.data.size(); ++i) available[i] = !p.data[i].value.empty();
-  const auto check_index = [&](const Step& st, int d) {
-    if (d < 0 || static_cast<size_t>(d) >= p.data.size()) invalid(st, "refers to no datum");
-  };
-  const auto consume = [&](const Step& st, int d) {
-    check_index(st, d);
-    if (!available[static_cast<size_t>(d)]) {
-      std::string msg = "reads '";
-      msg.append(p.data[static_cast<size_t>(d)].name).append("' before any step produces it");
-      invalid(st, msg);
+  for (const Data& d : p.data) {
+    if (d.value.empty()) continue;
+    const size_t need = d.type == DataType::Pose                                  ? 12
+                        : d.type == DataType::Vector3                             ? 3
+                        : d.type == DataType::Twist || d.type == DataType::Wrench ? 6
+                        : d.type == DataType::Event                               ? 0
+                                                                                  : 1;
+    if (d.value.size() != need)
+      f.add(d.where, "constant '" + d.name + "' has " + std::to_string(d.value.size()) +
+                         " values; a " + std::string(to_string(d.type)) + " constant has " +
+                         std::to_string(need));
+  }
+  std::vector<int> producer(p.data.size(), -1);  // step index; -2: a constant
+  for (size_t i = 0; i < p.data.size(); ++i) {
+    if (!p.data[i].value.empty()) producer[i] = -2;
+  }
+  // Producers first, so an unscheduled program's reads can be checked for a
+  // producer regardless of order.
+  for (size_t i = 0; i < p.steps.size(); ++i) {
+    const Step& st = p.steps[i];
+    for (int d : st.out) {
+      if (!f.valid_datum(d)) continue;
+      int& who = producer[static_cast<size_t>(d)];
+      if (who == -1) {
+        who = static_cast<int>(i);
+      } else {
+        f.step(st, "writes '" + p.data[static_cast<size_t>(d)].name + "', which " +
+                       (who == -2 ? std::string("is a model constant")
+                                  : "step '" + p.steps[static_cast<size_t>(who)].name +
+                                        "' already writes"));
+      }
     }
-  };
-  const auto produce = [&](const Step& st, int d) {
-    check_index(st, d);
-    if (available[static_cast<size_t>(d)]) {
-      std::string msg = "writes '";
-      msg.append(p.data[static_cast<size_t>(d)].name).append("', which is already produced");
-      invalid(st, msg);
-    }
-    available[static_cast<size_t>(d)] = 1;
-  };
-  for (const Step& st : p.steps) {
+  }
+  for (size_t i = 0; i < p.steps.size(); ++i) {
+    const Step& st = p.steps[i];
     const Signature sig = signature(st, p);
-    if (!sig.variadic_in) {
-      if (sig.in.size() != st.in.size() || sig.out.size() != st.out.size())
-        invalid(st, "wrong number of inputs or outputs");
-      for (size_t k = 0; k < st.in.size(); ++k) {
-        check_index(st, st.in[k]);
-        if (p.data[static_cast<size_t>(st.in[k])].type != sig.in[k])
-          invalid(st, "input of the wrong type");
-      }
-      for (size_t k = 0; k < st.out.size(); ++k) {
-        check_index(st, st.out[k]);
-        if (p.data[static_cast<size_t>(st.out[k])].type != sig.out[k])
-          invalid(st, "output of the wrong type");
+    if (!sig.problem.empty()) f.step(st, sig.problem);
+    for (int d : st.in) {
+      if (!f.valid_datum(d)) f.step(st, "reads " + f.describe(d));
+    }
+    for (int d : st.out) {
+      if (!f.valid_datum(d)) f.step(st, "writes " + f.describe(d));
+    }
+    if (!sig.variadic_in && sig.problem.empty()) {
+      if (sig.in.size() != st.in.size() || sig.out.size() != st.out.size()) {
+        f.step(st, "has " + std::to_string(st.in.size()) + " inputs and " +
+                       std::to_string(st.out.size()) + " outputs; expected " +
+                       std::to_string(sig.in.size()) + " and " + std::to_string(sig.out.size()));
+      } else {
+        for (size_t k = 0; k < st.in.size(); ++k) {
+          if (f.valid_datum(st.in[k]) && p.data[static_cast<size_t>(st.in[k])].type != sig.in[k])
+            f.step(st, "input " + std::to_string(k) + " must be a " +
+                           std::string(to_string(sig.in[k])) + "; it is " + f.describe(st.in[k]));
+        }
+        for (size_t k = 0; k < st.out.size(); ++k) {
+          if (f.valid_datum(st.out[k]) && p.data[static_cast<size_t>(st.out[k])].type != sig.out[k])
+            f.step(st, "output " + std::to_string(k) + " must be a " +
+                           std::string(to_string(sig.out[k])) + "; it is " + f.describe(st.out[k]));
+        }
       }
     }
-    if ((st.kind == StepKind::ViewRead && st.views.size() != 1) ||
-        (st.kind == StepKind::ViewWrite && st.views.size() != st.in.size()))
-      invalid(st, "one view component per scalar");
+    if (st.kind == StepKind::ViewRead && st.views.size() != 1)
+      f.step(st, "has " + std::to_string(st.views.size()) + " view components; expected 1");
+    if (st.kind == StepKind::ViewWrite && st.views.size() != st.in.size())
+      f.step(st, "has " + std::to_string(st.views.size()) + " view components for " +
+                     std::to_string(st.in.size()) + " inputs; expected one per input");
     for (int v : st.views) {
-      if (v < 0 || v > 5) invalid(st, "view component out of range");
+      if (v < 0 || v > 5)
+        f.step(st, "view component " + std::to_string(v) + " is out of range; expected 0..5");
     }
-    if (st.kind == StepKind::GuardedMotion &&
-        (st.n_when > kMaxGuards || static_cast<int>(st.in.size()) - st.n_when > kMaxGuards))
-      invalid(st, "too many guards");
+    if (st.kind == StepKind::GuardedMotion) {
+      const int n_until = static_cast<int>(st.in.size()) - st.n_when;
+      if (st.n_when < 0 || n_until < 0)
+        f.step(st, std::to_string(st.n_when) + " when-guards of " + std::to_string(st.in.size()) +
+                       " inputs");
+      if (st.n_when > kMaxGuards || n_until > kMaxGuards)
+        f.step(st, "has " + std::to_string(st.n_when) + " when- and " + std::to_string(n_until) +
+                       " until-guards; at most " + std::to_string(kMaxGuards) + " each");
+    }
+    if (st.kind == StepKind::Pid || st.kind == StepKind::LevelMonitor ||
+        st.kind == StepKind::EdgeMonitor || st.kind == StepKind::GuardedMotion) {
+      const StateKind sk = st.kind == StepKind::Pid             ? StateKind::Pid
+                           : st.kind == StepKind::GuardedMotion ? StateKind::Motion
+                                                                : StateKind::Monitor;
+      const int n = p.states[static_cast<size_t>(sk)];
+      if (st.state < 0 || st.state >= n)
+        f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
+                       std::to_string(n - 1));
+    }
     if (st.kind == StepKind::ArmKinematics || st.kind == StepKind::ArmSolve) {
       if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size())
-        invalid(st, "no such arm solver");
+        f.step(st, "names arm solver " + std::to_string(st.solver) + "; the program has " +
+                       std::to_string(p.arms.size()));
     }
     if ((st.kind == StepKind::BaseForceDistribution ||
          st.kind == StepKind::BaseVelocityComposition) &&
         !p.base)
-      invalid(st, "no base solver");
-    if (st.kind == StepKind::ArmSolve) {
-      if (st.drivers() > st.in.size()) invalid(st, "bad driver count");
-      for (size_t k = st.drivers(); k < st.in.size(); ++k) {
-        check_index(st, st.in[k]);
-        if (p.data[static_cast<size_t>(st.in[k])].type != DataType::Flag)
-          invalid(st, "a motion gate must be a flag");
+      f.step(st, "uses the base solver, but the program has none");
+    if (st.kind == StepKind::ArmSolve || st.kind == StepKind::BaseForceDistribution) {
+      if (st.drivers() > st.in.size()) {
+        f.step(st, "has " + std::to_string(st.drivers()) + " drivers but " +
+                       std::to_string(st.in.size()) + " inputs");
+      } else {
+        for (size_t k = st.drivers(); k < st.in.size(); ++k) {
+          if (f.valid_datum(st.in[k]) &&
+              p.data[static_cast<size_t>(st.in[k])].type != DataType::Flag)
+            f.step(st, "motion gate " + std::to_string(k - st.drivers()) +
+                           " must be a flag; it is " + f.describe(st.in[k]));
+        }
       }
     }
-    for (int d : st.in) consume(st, d);
-    for (int d : st.out) produce(st, d);
+    for (int d : st.in) {
+      if (!f.valid_datum(d)) continue;
+      const int who = producer[static_cast<size_t>(d)];
+      if (stage == Stage::Unscheduled) continue;  // later passes may produce it
+      if (who == -1) {
+        f.step(st, "reads '" + p.data[static_cast<size_t>(d)].name +
+                       "', which no step produces and the model does not give");
+      } else if (stage == Stage::Scheduled && who >= static_cast<int>(i)) {
+        f.step(st, "reads '" + p.data[static_cast<size_t>(d)].name + "' before step '" +
+                       p.steps[static_cast<size_t>(who)].name + "' (at " + std::to_string(who) +
+                       " in the schedule) produces it");
+      }
+    }
   }
   for (const ArmSolver& a : p.arms) {
     for (const AccelerationConstraint& c : a.acceleration_constraints) {
       if (c.component < 0 || c.component > 5)
-        throw Error("ir-invalid", "acceleration constraint component out of range");
+        f.add(a.where, "arm solver '" + a.name + "': acceleration constraint '" + c.iri +
+                           "' has component " + std::to_string(c.component) + "; expected 0..5");
     }
     if (a.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints))
-      throw Error("ir-invalid", "more acceleration constraints than ACHD supports");
+      f.add(a.where, "arm solver '" + a.name + "' has " +
+                         std::to_string(a.acceleration_constraints.size()) +
+                         " acceleration constraints; ACHD supports " +
+                         std::to_string(runtime::kMaxConstraints));
+    for (const ArmOutput& o : a.outputs) {
+      if (o.segment < 0 || o.segment >= a.chain.size())
+        f.add(a.where, "arm solver '" + a.name + "': an output names segment " +
+                           std::to_string(o.segment) + " of " + std::to_string(a.chain.size()));
+      if (!f.valid_datum(o.data))
+        f.add(a.where, "arm solver '" + a.name + "' outputs " + f.describe(o.data));
+    }
   }
   for (const LogColumn& c : p.log) {
-    if (c.data < 0 || static_cast<size_t>(c.data) >= p.data.size())
-      throw Error("ir-invalid", "log column '" + c.name + "' refers to no datum");
+    if (!f.valid_datum(c.data)) {
+      f.add({}, "log column '" + c.name + "' refers to " + f.describe(c.data));
+      continue;
+    }
     const DataType t = p.data[static_cast<size_t>(c.data)].type;
     if (c.component >= 0 && (c.component > 5 || (t != DataType::Twist && t != DataType::Wrench)))
-      throw Error("ir-invalid",
-                  "log column '" + c.name + "': a component of a twist or wrench only");
+      f.add(p.data[static_cast<size_t>(c.data)].where,
+            "log column '" + c.name + "' reads component " + std::to_string(c.component) + " of " +
+                f.describe(c.data) + "; components are of a twist or wrench, 0..5");
   }
+  return f.take();
+}
+
+VerifyError::VerifyError(std::vector<Diagnostic> diagnostics)
+    : Error("ir-invalid",
+            [&] {
+              std::string out;
+              for (size_t i = 0; i < diagnostics.size(); ++i) {
+                if (i) out.push_back('\n');
+                out.append(format(diagnostics[i]));
+              }
+              return out;
+            }()),
+      diagnostics_(std::move(diagnostics)) {}
+
+void verify(const Program& p, const SourceFiles* files) {
+  auto problems = check(p, files, Stage::Scheduled);
+  if (!problems.empty()) throw VerifyError(std::move(problems));
 }
 
 namespace {
@@ -417,7 +541,7 @@ std::string to_json(const Program& p, const SourceFiles* files) {
   Json steps = Json::array();
   for (const Step& st : p.steps) {
     Json e;
-    e["kind"] = to_string(st.kind);
+    e["kind"] = kind_name(st);
     e["name"] = st.name;
     e["iri"] = st.iri;
     e["in"] = st.in;

@@ -56,21 +56,11 @@ struct Data {
 };
 
 enum class StepKind : uint8_t {
-  ReadClock,                  // out: [time]
-  ArmKinematics,              // solver; outs: the solver's outputs (arm_outputs)
-  ViewRead,                   // in: [pose|twist|wrench]; out: [scalar]; view
-  ViewWrite,                  // ins: [scalar...]; out: [twist|wrench] (others zero); views
-  ComposePose,                // ins: [X_AB, X_BC]; out: [X_AC]
-  PoseToLinearDistance,       // in: [pose]; out: [scalar]
-  PoseToDirection,            // in: [pose]; out: [vector3]
-  RotateWrenchToProximal,     // ins: [pose, wrench]; out: [wrench]
-  RotateTwistToProximal,      // ins: [pose, twist]; out: [twist]
-  RotateDirectionToProximal,  // ins: [pose, vector3]; out: [vector3]
-  TransformWrenchToProximal,  // ins: [pose, wrench]; out: [wrench]
-  WrenchFromPositionDirectionAndMagnitude,  // ins: [position, direction, magnitude]; out: [wrench]
-  AddWrench,                                // ins: [wrench, wrench]; out: [wrench]
-  PlanarAngleFromDirections,                // ins: [d1, d2, normal]; out: [scalar]
-  InvertAngle,                              // in: [scalar]; out: [scalar]
+  ReadClock,      // out: [time]
+  ArmKinematics,  // solver; outs: the solver's outputs (arm_outputs)
+  ViewRead,       // in: [pose|twist|wrench]; out: [scalar]; view
+  ViewWrite,      // ins: [scalar...]; out: [twist|wrench] (others zero); views
+  Operator,       // a pure computation: Step::op indexes operator_kinds() (operators.hpp)
   Evaluate,       // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
   LevelMonitor,   // in: [error]; out: [flag]
   EdgeMonitor,    // in: [error]; out: [event]
@@ -95,6 +85,7 @@ struct Step {
   std::vector<int> in, out;  // data indices
   SourceLoc where;
   // Per kind (unused fields stay default):
+  int op = -1;                         // Operator: index into operator_kinds()
   int solver = -1;                     // ArmKinematics, ArmSolve: arm solver index
   std::vector<int> views;              // ViewRead: 1 component; ViewWrite: one per input
   runtime::ConstraintSpec constraint;  // Evaluate
@@ -186,6 +177,11 @@ struct LogColumn {
   int component = -1;  // for a twist or wrench: which of its 6 entries (angular first)
 };
 
+struct Program;
+// A step's kind as the IR's JSON and messages name it: the operator's name
+// for an Operator step ("compose-pose"), else to_string(kind).
+std::string_view kind_name(const Step& step);
+
 struct Program {
   std::string app;  // the app model's IRI
   std::vector<Data> data;
@@ -214,11 +210,31 @@ runtime::KeloConfig kelo_config(const BaseSolver& base);
 // A constant pose from Data::value (R row-major, then p).
 runtime::Pose constant_pose(const std::vector<double>& value);
 
-// Checks the invariants the back-ends rely on: every input of a step is a
-// constant or produced by an earlier step, every datum has at most one
-// producer, slots are dense, types match each step's signature. Throws
-// mospec::Error("ir-invalid") naming the step.
-void verify(const Program& program);
+// Checks the invariants the back-ends rely on: slots are dense per type and
+// used once; every step reads data that exist, of the types its kind takes,
+// and writes data of the types it gives; every datum has at most one producer
+// (a step or the model's constant value); every input is produced (and, once
+// scheduled, by an earlier step); views, guards, state slots, solvers and log
+// columns are in range. Returns every problem (code "ir-invalid"), each
+// located at the model entity of the step or datum involved (with `files`),
+// saying what was expected and what the program has.
+enum class Stage : uint8_t {
+  Unscheduled,  // during lowering: steps in declaration order, inputs perhaps not yet produced
+  Scheduled,    // the finished program: steps in a topological order
+};
+std::vector<Diagnostic> check(const Program& program, const SourceFiles* files = nullptr,
+                              Stage stage = Stage::Scheduled);
+
+class VerifyError : public Error {
+ public:
+  explicit VerifyError(std::vector<Diagnostic> diagnostics);
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+// check(); throws VerifyError with every problem when there is any.
+void verify(const Program& program, const SourceFiles* files = nullptr);
 
 // The program as deterministic JSON (fixed key order, %.17g numbers).
 std::string to_json(const Program& program, const SourceFiles* files = nullptr);

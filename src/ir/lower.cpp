@@ -2,7 +2,6 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -11,7 +10,8 @@
 #include <unordered_map>
 
 #include "description/chain_rdf.hpp"
-#include "rdf/xsd.hpp"
+#include "ir/graph.hpp"
+#include "ir/operators.hpp"
 #include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
@@ -56,12 +56,7 @@ using rdf::TermId;
 std::string vocab(std::string_view domain, std::string_view local) {
   return mospec::vocab::metamodel_term(domain, local);
 }
-const std::string kRdfType(mospec::vocab::rdf::type);
 const std::string kXsd(mospec::vocab::xsd::ns);
-
-const std::string kRdfFirst(mospec::vocab::rdf::first);
-const std::string kRdfRest(mospec::vocab::rdf::rest);
-const std::string kRdfNil(mospec::vocab::rdf::nil);
 const std::string kQudt(mospec::vocab::qudt::ns);
 
 std::string local_name(std::string_view iri) {
@@ -79,93 +74,37 @@ std::string identifier(std::string_view s) {
 class Lowerer {
  public:
   Lowerer(const app::LoadedModel& model, const LowerOptions& options)
-      : model_(model), g_(model.flattened()), options_(options) {}
+      : model_(model), g_(model.dataset()), options_(options) {}
 
   Program run();
 
  private:
-  // --- graph access -------------------------------------------------------
-  TermId term(const std::string& iri) const { return g_.terms().find_iri(iri); }
+  // --- graph access (ir/graph.hpp) ---------------------------------------
+  TermId term(const std::string& iri) const { return g_.term(iri); }
   static bool absent(TermId t) { return t.is_any(); }
-  std::string str(TermId t) const { return std::string(g_.terms()[t].value); }
+  std::string str(TermId t) const { return std::string(g_.str(t)); }
   std::vector<TermId> objects(TermId s, const std::string& p) const {
-    std::vector<TermId> out;
-    const TermId pt = term(p);
-    if (absent(s) || absent(pt)) return out;
-    for (uint32_t i : g_.match(s, pt, TermId::any())) out.push_back(g_.quads()[i].object);
-    std::sort(out.begin(), out.end(), [&](TermId a, TermId b) { return str(a) < str(b); });
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
+    return g_.objects(s, term(p));
   }
   std::optional<TermId> object(TermId s, const std::string& p) const {
-    auto o = objects(s, p);
-    if (o.empty()) return std::nullopt;
-    return o.front();
+    return g_.object(s, term(p));
   }
-  bool has_type(TermId s, const std::string& type) const {
-    const TermId t = term(type), p = term(kRdfType);
-    return !absent(t) && !absent(p) && g_.count(s, p, t) > 0;
-  }
-  std::vector<TermId> instances(const std::string& type) const {
-    std::vector<TermId> out;
-    const TermId t = term(type), p = term(kRdfType);
-    if (absent(t) || absent(p)) return out;
-    for (uint32_t i : g_.match(TermId::any(), p, t)) out.push_back(g_.quads()[i].subject);
-    std::sort(out.begin(), out.end(), [&](TermId a, TermId b) { return str(a) < str(b); });
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-  bool defined(TermId s) const {
-    return !absent(s) && g_.count(s, TermId::any(), TermId::any()) > 0;
-  }
-  SourceLoc where(TermId s) const {
-    if (absent(s)) return {};
-    for (uint32_t i : g_.match(s, TermId::any(), TermId::any())) {
-      if (g_.location(i).known()) return g_.location(i);
-    }
-    return {};
-  }
+  bool has_type(TermId s, const std::string& type) const { return g_.has_type(s, term(type)); }
+  std::vector<TermId> instances(const std::string& type) const { return g_.instances(term(type)); }
+  bool defined(TermId s) const { return g_.defined(s); }
+  SourceLoc where(TermId s) const { return g_.where(s); }
   SourceLoc where(TermId s, const std::string& p, TermId o) const {
-    const TermId pt = term(p);
-    if (!absent(pt)) {
-      for (uint32_t i : g_.match(s, pt, o)) {
-        if (g_.location(i).known()) return g_.location(i);
-      }
-    }
-    return where(s);
+    return g_.where(s, term(p), o);
   }
   // Whether `q` is the time some clock gives (mospec/time).
   bool is_clock_time(TermId q) const {
-    const TermId time = term(vocab("mospec/time", "time"));
-    if (absent(time)) return false;
-    for (uint32_t i : g_.match(TermId::any(), time, q)) {
-      if (has_type(g_.quads()[i].subject, vocab("mospec/time", "Clock"))) return true;
+    for (TermId c : g_.subjects(term(vocab("mospec/time", "time")), q)) {
+      if (has_type(c, vocab("mospec/time", "Clock"))) return true;
     }
     return false;
   }
-  std::vector<TermId> list(TermId head) const {
-    std::vector<TermId> out;
-    const TermId nil = term(kRdfNil);
-    for (int guard = 0; guard < 10000 && !absent(head) && head != nil; ++guard) {
-      auto first = objects(head, kRdfFirst);
-      if (first.empty()) break;
-      out.push_back(first.front());
-      auto rest = objects(head, kRdfRest);
-      if (rest.empty()) break;
-      head = rest.front();
-    }
-    return out;
-  }
-  // A literal's numeric value by the XSD lexical rules of its datatype
-  // (rdf::xsd::number()); nothing for a non-literal, an ill-formed lexical form or
-  // a value that is not finite (INF, NaN).
-  std::optional<double> number(TermId lit) const {
-    if (absent(lit) || !g_.terms()[lit].is_literal()) return std::nullopt;
-    const rdf::Term& t = g_.terms()[lit];
-    auto v = rdf::xsd::number(t.value, g_.terms()[t.datatype].value);
-    if (!v || !std::isfinite(*v)) return std::nullopt;
-    return v;
-  }
+  std::vector<TermId> list(TermId head) const { return g_.list(head); }
+  std::optional<double> number(TermId lit) const { return g_.number(lit); }
   // The literal as messages quote it: "+1e400"^^xsd:double.
   std::string literal_text(TermId lit) const {
     const rdf::Term& t = g_.terms()[lit];
@@ -174,29 +113,13 @@ class Lowerer {
     return "\"" + std::string(t.value) + "\"^^" + dt;
   }
   std::optional<double> number(TermId s, const std::string& p) const {
-    auto o = object(s, p);
-    return o ? number(*o) : std::nullopt;
+    return g_.number(s, term(p));
   }
 
   // The graph of the file that describes a chain: other files' poses between
   // the robot's frames (task quantities) are not part of its structure.
   rdf::Dataset chain_graph(const std::string& chain_iri) const {
-    const rdf::Dataset& all = model_.dataset();
-    rdf::Dataset out;
-    const TermId chain = all.terms().find_iri(chain_iri);
-    if (chain.is_any()) return out;
-    std::set<uint32_t> graphs;
-    for (uint32_t i : all.match(chain, TermId::any(), TermId::any()))
-      graphs.insert(all.quads()[i].graph.index);
-    for (uint32_t i = 0; i < all.size(); ++i) {
-      const rdf::Quad& q = all.quads()[i];
-      if (!graphs.count(q.graph.index)) continue;
-      rdf::Quad copy{out.terms().import(all.terms(), q.subject),
-                     out.terms().import(all.terms(), q.predicate),
-                     out.terms().import(all.terms(), q.object), TermId::default_graph()};
-      out.add(copy, all.location(i));
-    }
-    return out;
+    return g_.graphs_describing(term(chain_iri));
   }
 
   // --- diagnostics --------------------------------------------------------
@@ -272,9 +195,17 @@ class Lowerer {
     return producer_.count(d) || !prog_.data[static_cast<size_t>(d)].value.empty();
   }
 
+ public:
+  // Lowering's passes (kPasses).
   void lower_clocks();
+  void lower_arms();
   void lower_arm(TermId solver);
   void lower_operators();
+  int axis_constant(TermId e, const OperatorKind& kind, const OperatorPort& port, TermId axis);
+  void check_frames(TermId e, const OperatorKind& kind, const Step& s);
+  void refuse_unknown_properties(TermId e, const OperatorKind& kind);
+  void lower_accumulated_wrenches();
+  std::string frame_origin(const std::string& frame) const;
   void lower_planar_angles();
   void lower_evaluators();
   void lower_monitors();
@@ -287,8 +218,9 @@ class Lowerer {
   void schedule();
   void build_log();
 
+ private:
   const app::LoadedModel& model_;
-  rdf::Dataset g_;
+  Graph g_;  // the model's flattened union, read in place
   const LowerOptions& options_;
   Program prog_;
   std::vector<Diagnostic> errors_;
@@ -498,7 +430,7 @@ void Lowerer::lower_arm(TermId solver) {
     arm.chain = description::chain_from_rdf(chain_graph(arm.chain_iri), arm.chain_iri);
   } catch (const Error& e) {
     error(where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
-          "the solver '" + arm.iri + "': " + e.what());
+          "the solver '" + arm.iri + "': " + e.diagnostic().message);
     return;
   }
   if (auto it = options_.ports.find(arm.chain_iri); it != options_.ports.end()) {
@@ -781,106 +713,238 @@ void Lowerer::lower_arm(TermId solver) {
   add_step(std::move(solve));
 }
 
+// Every operator kind of the registry (operators.hpp) that maps its class's
+// properties onto its ports: one step per instance, its inputs and output the
+// quantities the properties name, and the kind's frame rules checked.
 void Lowerer::lower_operators() {
-  const std::string op = "newtonian-rigid-body-dynamics/operators";
-  const std::string gop = "geometry/spatial-operators";
-  struct Spec {
-    std::string domain, type;
-    StepKind kind;
-    std::vector<std::pair<std::string, DataType>> in;
-    std::pair<std::string, DataType> out;
-  };
-  using T = DataType;
-  const std::vector<Spec> specs = {
-      {gop,
-       "ComposePose",
-       StepKind::ComposePose,
-       {{"in1", T::Pose}, {"in2", T::Pose}},
-       {"composite", T::Pose}},
-      {gop,
-       "PoseToLinearDistance",
-       StepKind::PoseToLinearDistance,
-       {{"pose", T::Pose}},
-       {"distance", T::Scalar}},
-      {gop,
-       "PoseToDirection",
-       StepKind::PoseToDirection,
-       {{"pose", T::Pose}},
-       {"direction", T::Vector3}},
-      {gop, "InvertAngle", StepKind::InvertAngle, {{"in", T::Scalar}}, {"out", T::Scalar}},
-      {op,
-       "RotateWrenchToProximalWithPose",
-       StepKind::RotateWrenchToProximal,
-       {{"pose", T::Pose}, {"from", T::Wrench}},
-       {"to", T::Wrench}},
-      {gop,
-       "RotateVelocityTwistToProximalWithPose",
-       StepKind::RotateTwistToProximal,
-       {{"pose", T::Pose}, {"from", T::Twist}},
-       {"to", T::Twist}},
-      {gop,
-       "RotateDirectionDistalToProximalWithPose",
-       StepKind::RotateDirectionToProximal,
-       {{"pose", T::Pose}, {"from", T::Vector3}},
-       {"to", T::Vector3}},
-      {op,
-       "TransformWrenchToProximal",
-       StepKind::TransformWrenchToProximal,
-       {{"pose", T::Pose}, {"from", T::Wrench}},
-       {"to", T::Wrench}},
-      {op,
-       "WrenchFromPositionDirectionAndMagnitude",
-       StepKind::WrenchFromPositionDirectionAndMagnitude,
-       {{"position", T::Vector3}, {"direction", T::Vector3}, {"magnitude", T::Scalar}},
-       {"wrench", T::Wrench}},
-      {op,
-       "AddWrench",
-       StepKind::AddWrench,
-       {{"in1", T::Wrench}, {"in2", T::Wrench}},
-       {"out", T::Wrench}},
-  };
-  for (const Spec& spec : specs) {
-    const std::string type_iri = vocab(spec.domain, spec.type);
-    for (TermId e : instances(type_iri)) {
+  const auto kinds = operator_kinds();
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    const OperatorKind& kind = kinds[k];
+    if (!kind.generic_lowering) continue;
+    for (TermId e : instances(kind.class_iri())) {
       pending_iri_ = str(e);
-      Step s;
-      s.kind = spec.kind;
-      s.iri = str(e);
-      s.name = local_name(s.iri);
-      s.where = where(e);
+      Step s = step_for(StepKind::Operator, e);
+      s.op = static_cast<int>(k);
       bool ok = true;
-      for (const auto& [prop, type] : spec.in) {
-        auto o = object(e, vocab(spec.domain, prop));
+      const auto port_datum = [&](const OperatorPort& port) {
+        auto o = object(e, kind.property_iri(port.property));
         if (!o) {
           error(e, "missing-property",
-                "the " + spec.type + " '" + s.iri + "' names no `" + prop + "`");
+                "the " + std::string(kind.type) + " '" + s.iri + "' names no `" +
+                    std::string(port.property) + "`");
           ok = false;
-          continue;
+          return -1;
         }
-        s.in.push_back(datum(*o, type, e, prop));
-      }
-      auto o = object(e, vocab(spec.domain, spec.out.first));
-      if (!o) {
-        error(e, "missing-property",
-              "the " + spec.type + " '" + s.iri + "' names no `" + spec.out.first + "`");
-        ok = false;
-      } else {
-        s.out.push_back(datum(*o, spec.out.second, e, spec.out.first));
-      }
+        if (port.source == PortSource::Axis) return axis_constant(e, kind, port, *o);
+        return datum(*o, port.type, e, std::string(port.property));
+      };
+      for (const OperatorPort& port : kind.in) s.in.push_back(port_datum(port));
+      const int out = port_datum(kind.out);
+      refuse_unknown_properties(e, kind);
       if (!ok) continue;
-      // Frame rules the runtime's arithmetic relies on.
-      if (spec.kind == StepKind::AddWrench) {
-        const Data& a = prog_.data[static_cast<size_t>(s.in[0])];
-        const Data& b = prog_.data[static_cast<size_t>(s.in[1])];
-        if (a.reference_point != b.reference_point || a.as_seen_by != b.as_seen_by) {
-          error(e, "frame-mismatch",
-                "AddWrench '" + s.iri + "' adds '" + a.iri + "' (at '" + a.reference_point +
-                    "', seen by '" + a.as_seen_by + "') and '" + b.iri + "' (at '" +
-                    b.reference_point + "', seen by '" + b.as_seen_by +
-                    "'): both must have one reference point and frame");
-        }
-      }
+      s.out.push_back(out);
+      check_frames(e, kind, s);
       add_step(std::move(s));
+    }
+  }
+}
+
+// A property of the operator's vocabulary that the kind does not read (e.g.
+// TransformWrenchToProximal's `at-index` into an array of wrenches) would be
+// ignored: refuse it instead.
+void Lowerer::refuse_unknown_properties(TermId e, const OperatorKind& kind) {
+  std::set<std::string> seen;
+  for (const Graph::Statement& st : g_.statements(e)) {
+    const std::string p = str(st.predicate);
+    if (!p.starts_with(kind.vocabulary)) continue;
+    const std::string_view local = std::string_view(p).substr(kind.vocabulary.size());
+    if (kind.port(local) >= 0 || !seen.insert(p).second) continue;
+    std::string ports;
+    for (const OperatorPort& port : kind.in) ports.append(port.property).append(", ");
+    ports.append(kind.out.property);
+    error(st.where.known() ? st.where : where(e), "unsupported-property",
+          "the " + std::string(kind.type) + " '" + str(e) + "' states `" + std::string(local) +
+              "`, which mospec's " + std::string(kind.name) +
+              " does not implement (it reads only " + ports +
+              "); remove it or model the "
+              "computation another way");
+  }
+}
+
+// An axis the model names (geom-op:x, y or z): a unit-vector constant.
+int Lowerer::axis_constant(TermId e, const OperatorKind& kind, const OperatorPort& port,
+                           TermId axis) {
+  const std::string name = local_name(str(axis));
+  const int index = str(axis) == kind.property_iri("x")   ? 0
+                    : str(axis) == kind.property_iri("y") ? 1
+                    : str(axis) == kind.property_iri("z") ? 2
+                                                          : -1;
+  if (index < 0) {
+    error(where(e, kind.property_iri(port.property), axis), "invalid-axis",
+          "the " + std::string(kind.type) + " '" + str(e) + "' names `" +
+              std::string(port.property) + "` '" + str(axis) + "'; it must be one of " +
+              kind.property_iri("x") + ", y or z");
+    // A placeholder constant, so the refusal is reported once.
+    const int d = synthetic(str(e) + "#" + std::string(port.property),
+                            local_name(str(e)) + "_" + std::string(port.property),
+                            DataType::Vector3, where(e), "UNITLESS");
+    prog_.data[static_cast<size_t>(d)].value = {0.0, 0.0, 0.0};
+    return d;
+  }
+  const int d = synthetic(str(e) + "#" + std::string(port.property),
+                          local_name(str(e)) + "_" + std::string(port.property) + "_" + name,
+                          DataType::Vector3, where(e), "UNITLESS");
+  std::vector<double> v(3, 0.0);
+  v[static_cast<size_t>(index)] = 1.0;
+  prog_.data[static_cast<size_t>(d)].value = std::move(v);
+  return d;
+}
+
+// The frame rules of an operator kind, on the quantities a step relates: a
+// rule whose two sides are both stated must hold; a side the model leaves
+// unstated is not checked (the shapes decide what must be stated).
+void Lowerer::check_frames(TermId e, const OperatorKind& kind, const Step& s) {
+  const auto quantity = [&](int port) -> const Data& {
+    const int d = port < static_cast<int>(s.in.size()) ? s.in[static_cast<size_t>(port)] : s.out[0];
+    return prog_.data[static_cast<size_t>(d)];
+  };
+  const auto field = [](const Data& d, FrameField f) -> const std::string& {
+    switch (f) {
+      case FrameField::Of:
+        return d.of;
+      case FrameField::WithRespectTo:
+        return d.with_respect_to;
+      case FrameField::ReferencePoint:
+        return d.reference_point;
+      case FrameField::AsSeenBy:
+        break;
+    }
+    return d.as_seen_by;
+  };
+  for (const FrameRule& rule : kind.frames) {
+    const Data& lhs = quantity(rule.lhs_port);
+    const Data& rhs = quantity(rule.rhs_port);
+    const std::string& got = field(lhs, rule.lhs_field);
+    std::string expected = field(rhs, rule.rhs_field);
+    if (rule.rhs_origin && !expected.empty()) expected = frame_origin(expected);
+    if (got.empty() || expected.empty() || got == expected) continue;
+    const std::string lhs_port(kind.port_at(rule.lhs_port).property);
+    const std::string rhs_port(kind.port_at(rule.rhs_port).property);
+    std::string msg = "the ";
+    msg.append(kind.type)
+        .append(" '")
+        .append(str(e))
+        .append("' needs ")
+        .append(rule.text)
+        .append(": `")
+        .append(lhs_port)
+        .append("` '")
+        .append(lhs.iri)
+        .append("' has ")
+        .append(to_string(rule.lhs_field))
+        .append(" '")
+        .append(got)
+        .append("', expected '")
+        .append(expected)
+        .append("' (")
+        .append(rule.rhs_origin ? "the origin of " : "")
+        .append("the ")
+        .append(to_string(rule.rhs_field))
+        .append(" of `")
+        .append(rhs_port)
+        .append("` '")
+        .append(rhs.iri)
+        .append("')");
+    error(where(e, kind.property_iri(lhs_port), term(lhs.iri)), "frame-mismatch", msg);
+  }
+}
+
+// The origin point of a frame, by the model's `origin` relation ("" if it
+// states none).
+std::string Lowerer::frame_origin(const std::string& frame) const {
+  const TermId f = term(frame);
+  if (absent(f)) return {};
+  auto o = object(f, vocab("geometry/structural-entities", "origin"));
+  return o ? str(*o) : std::string();
+}
+
+// AccumulateWrench: every instance that names one `aggregate` adds its
+// `element` to it, so the aggregate is the sum of all their elements, added in
+// the order of the elements' IRIs (the same sum, to the bit, every time): a
+// copy of the first (assign-wrench), then one add-wrench step per other element.
+void Lowerer::lower_accumulated_wrenches() {
+  const std::string dop = "newtonian-rigid-body-dynamics/operators";
+  const std::string prefix = vocab(dop, "");
+  struct Term {
+    std::string element;
+    TermId entity, element_term;
+  };
+  std::map<std::string, std::vector<Term>> by_aggregate;
+  std::map<std::string, TermId> aggregate_term;
+  for (TermId e : instances(vocab(dop, "AccumulateWrench"))) {
+    pending_iri_ = str(e);
+    auto aggregate = object(e, vocab(dop, "aggregate"));
+    auto element = object(e, vocab(dop, "element"));
+    for (const Graph::Statement& st : g_.statements(e)) {
+      const std::string p = str(st.predicate);
+      if (!p.starts_with(prefix) || p == vocab(dop, "aggregate") || p == vocab(dop, "element"))
+        continue;
+      const TermId o = st.object;
+      if (p == vocab(dop, "number-of-wrenches") && number(o) == 1.0) continue;
+      error(st.where.known() ? st.where : where(e), "unsupported-property",
+            "the AccumulateWrench '" + str(e) + "' states `" + p.substr(prefix.size()) +
+                "`, which mospec does not implement (it accumulates one wrench per instance: "
+                "aggregate, element, and number-of-wrenches 1 at most)");
+    }
+    if (!aggregate || !element) {
+      error(e, "missing-property",
+            "the AccumulateWrench '" + str(e) + "' names no `" +
+                (aggregate ? "element" : "aggregate") + "`");
+      continue;
+    }
+    by_aggregate[str(*aggregate)].push_back({str(*element), e, *element});
+    aggregate_term.emplace(str(*aggregate), *aggregate);
+  }
+  const int assign = operator_index("assign-wrench"), add = operator_index("add-wrench");
+  for (auto& [aggregate_iri, terms] : by_aggregate) {
+    std::sort(terms.begin(), terms.end(), [&](const Term& a, const Term& b) {
+      return a.element != b.element ? a.element < b.element : str(a.entity) < str(b.entity);
+    });
+    pending_iri_ = str(terms.front().entity);
+    const int aggregate = datum(aggregate_term.at(aggregate_iri), DataType::Wrench,
+                                terms.front().entity, "aggregate");
+    int sum = -1;
+    for (size_t k = 0; k < terms.size(); ++k) {
+      const Term& t = terms[k];
+      pending_iri_ = str(t.entity);
+      const int element = datum(t.element_term, DataType::Wrench, t.entity, "element");
+      const Data& a = prog_.data[static_cast<size_t>(aggregate)];
+      const Data& el = prog_.data[static_cast<size_t>(element)];
+      if (el.reference_point != a.reference_point || el.as_seen_by != a.as_seen_by) {
+        error(where(t.entity, vocab(dop, "element"), t.element_term), "frame-mismatch",
+              "the AccumulateWrench '" + str(t.entity) + "' adds '" + el.iri + "' (about '" +
+                  el.reference_point + "', seen by '" + el.as_seen_by + "') to '" + a.iri +
+                  "' (about '" + a.reference_point + "', seen by '" + a.as_seen_by +
+                  "'): both must be about one point and seen by one frame");
+      }
+      const std::string unit = a.unit;  // synthetic() may move prog_.data
+      const bool last = k + 1 == terms.size();
+      const int target =
+          last ? aggregate
+               : synthetic(aggregate_iri + "#partial-" + std::to_string(k + 1),
+                           local_name(aggregate_iri) + "_partial_" + std::to_string(k + 1),
+                           DataType::Wrench, where(t.entity), unit);
+      Step s = step_for(StepKind::Operator, t.entity);
+      if (k == 0) {
+        s.op = assign;
+        s.in = {element};
+      } else {
+        s.op = add;
+        s.in = {sum, element};
+      }
+      s.out = {target};
+      add_step(std::move(s));
+      sum = target;
     }
   }
 }
@@ -892,7 +956,8 @@ void Lowerer::lower_planar_angles() {
   const std::string gop = "geometry/spatial-operators";
   for (TermId e : instances(vocab(gop, "PlanarAngleFromDirections"))) {
     pending_iri_ = str(e);
-    Step s = step_for(StepKind::PlanarAngleFromDirections, e);
+    Step s = step_for(StepKind::Operator, e);
+    s.op = operator_index("planar-angle-from-directions");
     auto dirs = objects(e, vocab(gop, "from-directions"));
     std::vector<TermId> ordered;
     if (dirs.size() == 1) ordered = list(dirs.front());
@@ -985,8 +1050,11 @@ void Lowerer::lower_evaluators() {
       spec.kind = runtime::ConstraintKind::Bilateral;
       auto lo = constant("lower-threshold"), hi = constant("upper-threshold");
       if (!lo || !hi) {
-        error(*c, "missing-property",
-              "the bilateral constraint '" + str(*c) + "' needs a lower and an upper threshold");
+        // An invalid threshold has been reported by constant(); only a
+        // missing one is reported here.
+        if (!object(*c, vocab(cs, "lower-threshold")) || !object(*c, vocab(cs, "upper-threshold")))
+          error(*c, "missing-property",
+                "the bilateral constraint '" + str(*c) + "' needs a lower and an upper threshold");
         continue;
       }
       spec.lower = *lo;
@@ -1003,7 +1071,8 @@ void Lowerer::lower_evaluators() {
                       : runtime::ConstraintKind::LessThan;
       auto t = constant("threshold");
       if (!t) {
-        error(*c, "missing-property", "the constraint '" + str(*c) + "' needs a threshold");
+        if (!object(*c, vocab(cs, "threshold")))
+          error(*c, "missing-property", "the constraint '" + str(*c) + "' needs a threshold");
         continue;
       }
       spec.threshold = *t;
@@ -1024,8 +1093,9 @@ void Lowerer::lower_evaluators() {
           assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
       auto r = constant("reference-value");
       if (!r) {
-        error(*c, "missing-property",
-              "the equality constraint '" + str(*c) + "' needs a reference-value");
+        if (!object(*c, vocab(cs, "reference-value")))
+          error(*c, "missing-property",
+                "the equality constraint '" + str(*c) + "' needs a reference-value");
         continue;
       }
       spec.reference = *r;
@@ -1199,7 +1269,7 @@ void Lowerer::lower_controllers() {
     try {
       runtime::Pid check(s.pid, s.iri.c_str());
     } catch (const Error& e) {
-      error(c, "invalid-controller", e.what());
+      error(c, "invalid-controller", e.diagnostic().message);
     }
     s.in = {datum(*err, DataType::Scalar, c, "error-signal")};
     if (auto it = active_of_controller_.find(c.index); it != active_of_controller_.end())
@@ -1443,7 +1513,7 @@ void Lowerer::schedule() {
     for (size_t i = 0; i < n; ++i) {
       if (waiting[i] > 0) {
         error(steps_[i].where, "cycle",
-              "'" + steps_[i].iri + "' (" + std::string(to_string(steps_[i].kind)) +
+              "'" + steps_[i].iri + "' (" + std::string(kind_name(steps_[i])) +
                   ") is on a dependency cycle: each quantity on it needs another one of them in "
                   "the same tick");
       }
@@ -1512,6 +1582,31 @@ void Lowerer::build_log() {
   }
 }
 
+using Pass = void (Lowerer::*)();
+struct PassInfo {
+  std::string_view name;
+  Pass run;
+};
+
+// Lowering's passes, in order: what each lowers is in its name.
+const PassInfo kPasses[] = {
+    {"clocks", &Lowerer::lower_clocks},
+    {"arm-solvers", &Lowerer::lower_arms},
+    {"operators", &Lowerer::lower_operators},
+    {"accumulated-wrenches", &Lowerer::lower_accumulated_wrenches},
+    {"planar-angles", &Lowerer::lower_planar_angles},
+    {"base", &Lowerer::lower_base},
+    {"evaluators", &Lowerer::lower_evaluators},
+    {"monitors", &Lowerer::lower_monitors},
+    {"handlers", &Lowerer::lower_handlers},
+    {"controllers", &Lowerer::lower_controllers},
+    {"views", &Lowerer::lower_views},
+    {"motion-gates", &Lowerer::gate_arm_solves},
+    {"producers", &Lowerer::check_inputs},
+    {"schedule", &Lowerer::schedule},
+    {"log", &Lowerer::build_log},
+};
+
 Program Lowerer::run() {
   for (const app::ModelFile& f : model_.model_files()) {
     if (f.is_app) {
@@ -1519,30 +1614,53 @@ Program Lowerer::run() {
       break;
     }
   }
-  lower_clocks();
+  for (const PassInfo& pass : kPasses) {
+    (this->*pass.run)();
+    if (!errors_.empty()) {
+      // Later passes would only report what follows from these problems,
+      // except that every missing producer is worth knowing at once.
+      if (pass.name == "schedule" || pass.name == "producers" || pass.name == "log") break;
+      continue;
+    }
+    // Until "schedule" orders them, the steps so far are in steps_, in
+    // declaration order: lend them to the program for the check.
+    const bool ordered = pass.name == "schedule" || pass.name == "log";
+    if (!ordered) std::swap(prog_.steps, steps_);
+    auto problems = check(prog_, &model_.files(), ordered ? Stage::Scheduled : Stage::Unscheduled);
+    if (options_.after_pass) options_.after_pass(pass.name, prog_);
+    if (!ordered) std::swap(prog_.steps, steps_);
+    if (!problems.empty()) {
+      for (Diagnostic& d : problems)
+        d.message = "after lowering pass '" + std::string(pass.name) + "': " + d.message;
+      throw VerifyError(std::move(problems));
+    }
+  }
+  if (!errors_.empty()) throw LowerError(std::move(errors_));
+  return std::move(prog_);
+}
+
+void Lowerer::lower_arms() {
   for (TermId s : instances(vocab("task/solver-specification", "SolverWithInputAndOutput")))
     lower_arm(s);
-  lower_operators();
-  lower_planar_angles();
-  lower_base();
-  lower_evaluators();
-  lower_monitors();
-  lower_handlers();
-  lower_controllers();
-  lower_views();
-  gate_arm_solves();
-  check_inputs();
-  if (errors_.empty()) schedule();
-  if (!errors_.empty()) throw LowerError(std::move(errors_));
-  build_log();
-  verify(prog_);
-  return std::move(prog_);
 }
 
 }  // namespace
 
 Program lower(const app::LoadedModel& model, const LowerOptions& options) {
   return Lowerer(model, options).run();
+}
+
+}  // namespace mospec::ir
+
+namespace mospec::ir {
+
+std::span<const std::string_view> lowering_passes() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> out;
+    for (const PassInfo& p : kPasses) out.push_back(p.name);
+    return out;
+  }();
+  return names;
 }
 
 }  // namespace mospec::ir

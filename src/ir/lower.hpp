@@ -14,8 +14,11 @@
 // runtime cannot honour, each located at the entity's file:line.
 #pragma once
 
+#include <functional>
 #include <map>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/app.hpp"
@@ -30,7 +33,15 @@ struct LowerOptions {
   // (robots/kinova-gen3.jsonld -> right, its left twin -> left).
   std::map<std::string, int> ports = default_ports();
   static std::map<std::string, int> default_ports();
+  // Called after each pass (lowering_passes()) with the program so far: its
+  // steps in declaration order until the "schedule" pass orders them.
+  std::function<void(std::string_view pass, const Program&)> after_pass;
 };
+
+// The names of lowering's passes, in the order they run. Each reads the model
+// graph and adds data and steps to the program; ir::check(Stage::Unscheduled)
+// runs after each one, and the full ir::verify after the last.
+std::span<const std::string_view> lowering_passes();
 
 // Thrown by lower(): all the problems found, each a located Diagnostic;
 // what() is them formatted one per line.

@@ -110,17 +110,25 @@ std::string code_point(int u) {
 
 }  // namespace
 
+void MappedDocumentLoader::add_root(const std::string& dir) {
+  if (!root_paths_.contains(dir))
+    root_paths_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string());
+}
+
 void MappedDocumentLoader::map(std::string prefix, std::string dir) {
   while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  add_root(dir);
   prefixes_[std::move(prefix)] = std::move(dir);
 }
 
 void MappedDocumentLoader::map_fallback(std::string prefix, std::string dir) {
   while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  add_root(dir);
   fallbacks_[std::move(prefix)] = std::move(dir);
 }
 
 void MappedDocumentLoader::allow(std::string dir) {
+  add_root(dir);
   allowed_.push_back(std::move(dir));
 }
 
@@ -128,11 +136,11 @@ bool MappedDocumentLoader::inside_sandbox(const std::string& canonical) const {
   const fs::path p(canonical);
   for (const auto* table : {&prefixes_, &fallbacks_}) {
     for (const auto& entry : *table) {
-      if (is_within(p, canonical_path(entry.second.empty() ? "." : entry.second))) return true;
+      if (is_within(p, fs::path(root_paths_.at(entry.second)))) return true;
     }
   }
   for (const std::string& dir : allowed_) {
-    if (is_within(p, canonical_path(dir.empty() ? "." : dir))) return true;
+    if (is_within(p, fs::path(root_paths_.at(dir)))) return true;
   }
   return false;
 }
@@ -234,7 +242,7 @@ RemoteDocument MappedDocumentLoader::load(std::string_view iri, SourceLoc refere
   // mapped path the user recognises.
   const std::string read_path = resolve_for_loading(iri, referenced_from, code, what);
   try {
-    return load_path(resolve(iri), read_path, std::string(iri));
+    return load_path(resolve(iri), read_path, std::string(iri), confined_);
   } catch (const Error& e) {
     if (e.code() != kDocumentFailed) throw;  // JSON syntax errors keep their own location
     // Re-issue at the reference, with the code the caller asked for.
@@ -251,8 +259,9 @@ RemoteDocument MappedDocumentLoader::load_file(const std::string& path, std::str
 
 RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
                                                const std::string& read_path,
-                                               std::string document_url) {
-  std::string key = canonical_key(read_path);
+                                               std::string document_url,
+                                               bool read_path_is_canonical) {
+  std::string key = read_path_is_canonical ? read_path : canonical_key(read_path);
   auto it = cache_.find(key);
   if (it == cache_.end()) {
     std::string text;

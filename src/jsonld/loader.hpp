@@ -78,15 +78,23 @@ class MappedDocumentLoader : public DocumentLoader {
   size_t documents_read() const { return reads_; }
 
  private:
+  // `read_path_is_canonical`: read_path is already canonical_path()'s answer
+  // (the sandbox check computed it), so it keys the cache as it is.
   RemoteDocument load_path(const std::string& path, const std::string& read_path,
-                           std::string document_url);
+                           std::string document_url, bool read_path_is_canonical = false);
   bool inside_sandbox(const std::string& canonical) const;
   std::string sandbox_roots() const;
+  // Records the canonical form of a sandbox root when it is added, so each
+  // check costs one canonicalisation (of the document) rather than one per root.
+  void add_root(const std::string& dir);
 
   std::map<std::string, std::string, std::greater<>> prefixes_;  // longest first
   std::vector<std::string> allowed_;                             // allow()'s directories
   bool confined_ = false;
   std::map<std::string, std::string, std::greater<>> fallbacks_;
+  // Every directory of prefixes_, fallbacks_ and allowed_, by its spelling
+  // there, and its canonical_path() at the time it was added.
+  std::unordered_map<std::string, std::string> root_paths_;
   std::unordered_map<std::string, RemoteDocument> cache_;  // by path
   size_t reads_ = 0;
 };

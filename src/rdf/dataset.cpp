@@ -6,7 +6,7 @@
 namespace mospec::rdf {
 
 namespace {
-// Below this many recent quads the hash-map tail is cheap enough; above it the
+// Below this many recent quads the chained tail is cheap enough; above it the
 // tail is folded into the compact arrays once it reaches half the frozen part,
 // which keeps the total folding work linear in the number of quads added.
 constexpr size_t kMinTail = 512;
@@ -44,7 +44,24 @@ bool Dataset::add(const Quad& q, SourceLoc where) {
   quads_.push_back(q);
   locations_.push_back(where);
   position_.insert(h, id);
-  for (int pos = 0; pos < 4; ++pos) index_[pos].tail[at(q, pos).index].push_back(id);
+  for (int pos = 0; pos < 4; ++pos) {
+    PostingIndex& index = index_[pos];
+    const uint32_t t = at(q, pos).index;
+    if (t >= index.first.size()) {
+      const size_t n = std::max<size_t>(terms_.size(), t + 1);
+      index.first.resize(n, PostingIndex::kNone);
+      index.last.resize(n, PostingIndex::kNone);
+      index.count.resize(n, 0);
+    }
+    index.next.push_back(PostingIndex::kNone);
+    if (index.last[t] == PostingIndex::kNone) {
+      index.first[t] = id;
+    } else {
+      index.next[index.last[t] - frozen_] = id;
+    }
+    index.last[t] = id;
+    ++index.count[t];
+  }
   const size_t tail = quads_.size() - frozen_;
   if (tail > kMinTail && tail * 2 > frozen_) rebuild_indexes();
   return true;
@@ -68,7 +85,10 @@ void Dataset::rebuild_indexes() {
     for (uint32_t i = 0; i < quads_.size(); ++i) entries[fill[at(quads_[i], pos).index]++] = i;
     index.offsets = std::move(offsets);
     index.entries = std::move(entries);
-    index.tail = {};
+    index.first.assign(n_terms, PostingIndex::kNone);
+    index.last.assign(n_terms, PostingIndex::kNone);
+    index.count.assign(n_terms, 0);
+    index.next.clear();
   }
   frozen_ = static_cast<uint32_t>(quads_.size());
 }
@@ -128,8 +148,9 @@ size_t Dataset::memory_bytes() const {
                  locations_.capacity() * sizeof(SourceLoc) + position_.memory_bytes();
   for (const PostingIndex& index : index_) {
     bytes += (index.offsets.capacity() + index.entries.capacity()) * sizeof(uint32_t);
-    for (const auto& [term, list] : index.tail)
-      bytes += list.capacity() * sizeof(uint32_t) + sizeof(list) + 4 * sizeof(void*);
+    bytes += (index.first.capacity() + index.last.capacity() + index.count.capacity() +
+              index.next.capacity()) *
+             sizeof(uint32_t);
   }
   return bytes;
 }

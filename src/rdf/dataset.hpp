@@ -9,17 +9,17 @@
 // bound subject, or a bound (predicate, object) pair, cost the size of the
 // smaller list rather than of the dataset. Posting lists are kept compact (one
 // offsets array and one entry array per position, 4 bytes per quad and per
-// term) for all but the most recently added quads, which sit in small hash maps
-// until they are folded in; folding happens inside add() when that tail grows
-// past a fraction of the dataset, so adding stays amortised O(1) and every
-// const member is a pure read (safe to call from several threads at once).
+// term) for all but the most recently added quads, which are chained per term
+// (first/last quad per term, next quad per quad: no allocation per term) until
+// they are folded in; folding happens inside add() when that tail grows past a
+// fraction of the dataset, so adding stays amortised O(1) and every const
+// member is a pure read (safe to call from several threads at once).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "rdf/id_hash_set.hpp"
@@ -90,20 +90,23 @@ class Dataset {
   enum Position : uint8_t { kS, kP, kO, kG };
 
   // Posting lists for one position. Quads [0, frozen_) are in the compact
-  // arrays, later quads in `tail`.
+  // arrays; each later quad is chained, in insertion order, after the
+  // previous later quad with the same term there.
   struct PostingIndex {
+    static constexpr uint32_t kNone = UINT32_MAX;
     std::vector<uint32_t> offsets;  // entries of term t: [offsets[t], offsets[t+1])
     std::vector<uint32_t> entries;
-    std::unordered_map<uint32_t, std::vector<uint32_t>> tail;
+    // By term id (sized lazily): the first and last chained quad, and how many.
+    std::vector<uint32_t> first, last, count;
+    std::vector<uint32_t> next;  // by quad - frozen_: the next chained quad, or kNone
 
     std::span<const uint32_t> frozen(TermId t) const {
       if (t.index + 1 >= offsets.size()) return {};
       return {entries.data() + offsets[t.index], entries.data() + offsets[t.index + 1]};
     }
-    std::span<const uint32_t> recent(TermId t) const {
-      auto it = tail.find(t.index);
-      if (it == tail.end()) return {};
-      return it->second;
+    size_t recent_count(TermId t) const { return t.index < count.size() ? count[t.index] : 0; }
+    uint32_t recent_first(TermId t) const {
+      return t.index < first.size() ? first[t.index] : kNone;
     }
   };
 
@@ -151,7 +154,7 @@ void Dataset::scan(TermId s, TermId p, TermId o, TermId g, Visit&& visit) const 
   for (int pos = 0; pos < 4; ++pos) {
     if (pattern[pos].is_any()) continue;
     if (pattern[pos].index >= terms_.size()) return;  // not a term of this dataset
-    size_t n = index_[pos].frozen(pattern[pos]).size() + index_[pos].recent(pattern[pos]).size();
+    size_t n = index_[pos].frozen(pattern[pos]).size() + index_[pos].recent_count(pattern[pos]);
     if (n < best_size) {
       best = pos;
       best_size = n;
@@ -164,11 +167,14 @@ void Dataset::scan(TermId s, TermId p, TermId o, TermId g, Visit&& visit) const 
     return true;
   };
   const PostingIndex& index = index_[best];
-  for (auto list : {index.frozen(pattern[best]), index.recent(pattern[best])}) {
-    for (uint32_t i : list) {
-      const Quad& q = quads_[i];
-      if (matches(q) && !visit(q, i)) return;
-    }
+  for (uint32_t i : index.frozen(pattern[best])) {
+    const Quad& q = quads_[i];
+    if (matches(q) && !visit(q, i)) return;
+  }
+  for (uint32_t i = index.recent_first(pattern[best]); i != PostingIndex::kNone;
+       i = index.next[i - frozen_]) {
+    const Quad& q = quads_[i];
+    if (matches(q) && !visit(q, i)) return;
   }
 }
 

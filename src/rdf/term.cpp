@@ -44,7 +44,7 @@ std::string_view TermTable::store(std::string_view text) {
   if (text.empty()) return {};
   if (text.size() > kBlockSize / 4) {
     // Large strings get their own block so they do not waste a shared one.
-    auto block = std::make_unique<char[]>(text.size());
+    auto block = std::make_unique_for_overwrite<char[]>(text.size());
     std::memcpy(block.get(), text.data(), text.size());
     std::string_view view(block.get(), text.size());
     // Keep the current shared block last so later small strings keep using it.
@@ -53,7 +53,7 @@ std::string_view TermTable::store(std::string_view text) {
     return view;
   }
   if (blocks_.empty() || block_used_ + text.size() > block_size_) {
-    blocks_.push_back(std::make_unique<char[]>(kBlockSize));
+    blocks_.push_back(std::make_unique_for_overwrite<char[]>(kBlockSize));
     block_used_ = 0;
     block_size_ = kBlockSize;
     text_bytes_ += kBlockSize;

@@ -1,5 +1,6 @@
 #include "runtime/operators.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 
 #include "support/diagnostics.hpp"
@@ -26,6 +27,14 @@ bool planar_angle_from_directions(const Vec3& d1, const Vec3& d2, const Vec3& n,
   }
   angle = std::atan2(u.dot(a.cross(b)), a.dot(b));
   return true;
+}
+
+double pose_to_angle_around_axis(const Pose& X_AB, const Vec3& a) noexcept {
+  const double n = a.norm();
+  if (!(n > 0.0)) return 0.0;
+  const Eigen::Quaterniond q(X_AB.R);
+  const double angle = 2.0 * std::atan2(q.vec().dot(a) / n, q.w());
+  return wrap_angle(angle);
 }
 
 AddWrench::AddWrench(const WrenchFrames& in1, const WrenchFrames& in2) : out_(in1) {

@@ -201,6 +201,35 @@ inline double invert_angle(double angle) noexcept {
   return -angle;
 }
 
+// PoseToAngleAroundAxis: the angle (-pi, pi] by which the pose X_AB turns
+// about the unit axis a (seen by A, and by B: the twist part of the swing-twist
+// decomposition of R_AB about a). For a rotation about a it is that rotation's
+// angle; a rotation about an axis orthogonal to a gives 0. From the quaternion
+// (w, v) of R_AB: angle = 2 atan2(v . a, w), wrapped.
+double pose_to_angle_around_axis(const Pose& X_AB, const Vec3& a) noexcept;
+
+// ---------------------------------------------------------------------------
+// Wrench and twist algebra (same reference point, same frame: the registry's
+// frame rules, checked when the model is lowered).
+
+// AddWrench: F1 + F2.
+inline Vec6 add_wrench(const Vec6& F1, const Vec6& F2) noexcept {
+  return F1 + F2;
+}
+// InvertWrench: -F (the reaction: what the body exerts on its environment).
+inline Vec6 invert_wrench(const Vec6& F) noexcept {
+  return -F;
+}
+// AssignWrench: a copy of F, e.g. to name a model's wrench as a solver input.
+inline Vec6 assign_wrench(const Vec6& F) noexcept {
+  return F;
+}
+// AddVelocityTwist: V_CA = V_BA + V_CB (twists composed along B), all three at
+// one reference point and seen by one frame.
+inline Vec6 add_velocity_twist(const Vec6& V_BA, const Vec6& V_CB) noexcept {
+  return V_BA + V_CB;
+}
+
 // ---------------------------------------------------------------------------
 // AddWrench: F1 + F2. Both wrenches must have the same reference point and be
 // seen by the same frame; that is checked once, when the operator is built from

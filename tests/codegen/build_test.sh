@@ -16,7 +16,7 @@ binary_dir=$7 cmake=$8
 rm -rf "$scratch"
 mkdir -p "$scratch"
 
-for program in small arm empty hostile; do
+for program in small arm empty hostile operators; do
   "$write_fixture" "$program" "$scratch/$program"
   # Twice: the second generation of the same program changes no byte.
   cp -r "$scratch/$program" "$scratch/$program.first"
@@ -77,7 +77,7 @@ grep -q "holds no generated project" "$scratch/nowhere.err"
 
 # Clang (the sanitizer builds' compiler) compiles the generated code warning-free too.
 if command -v clang++ >/dev/null; then
-  for program in small arm hostile; do
+  for program in small arm hostile operators; do
     "$cmake" -S "$scratch/$program.first" -B "$scratch/$program.clang" -DCMAKE_CXX_COMPILER=clang++ \
       "-Dmospec_DIR=$binary_dir/package" >"$scratch/$program.clang.log" 2>&1 &&
       "$cmake" --build "$scratch/$program.clang" >>"$scratch/$program.clang.log" 2>&1 ||

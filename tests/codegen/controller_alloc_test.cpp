@@ -60,6 +60,10 @@ TEST(GeneratedControllerAllocation, SmallProgramTicksWithoutAllocating) {
   expect_no_allocation("MOSPEC_SMALL_CONTROLLER");
 }
 
+TEST(GeneratedControllerAllocation, EveryOperatorKindTicksWithoutAllocating) {
+  expect_no_allocation("MOSPEC_OPERATORS_CONTROLLER");
+}
+
 TEST(GeneratedControllerAllocation, ArmProgramTicksWithoutAllocating) {
   expect_no_allocation("MOSPEC_ARM_CONTROLLER");
 }

@@ -107,6 +107,18 @@ TEST(GeneratedController, EmptyProgramMatchesTheInterpreter) {
 
 // Names and IRIs hostile to C++ (a trigraph, U+202E, C macros, keywords, two
 // solvers that once collided): the project built with -Werror, and behaves.
+// Every operator kind of the registry, each on its own inputs and logged whole:
+// the generated call of each kernel computes what the interpreter's does.
+TEST(GeneratedController, EveryOperatorKindMatchesTheInterpreterBitForBit) {
+  expect_like_the_interpreter(
+      "MOSPEC_OPERATORS_CONTROLLER",
+      [] {
+        SourceFiles files;
+        return testing::operators_program(files);
+      },
+      200);
+}
+
 TEST(GeneratedController, HostileNamesProgramMatchesTheInterpreterBitForBit) {
   expect_like_the_interpreter(
       "MOSPEC_HOSTILE_CONTROLLER",

@@ -26,6 +26,7 @@
 #include "app/app.hpp"
 #include "description/chain_rdf.hpp"
 #include "ir/ir.hpp"
+#include "ir/operators.hpp"
 #include "robot/interface.hpp"
 
 namespace mospec::codegen::testing {
@@ -64,6 +65,15 @@ class ProgramBuilder {
     return p.steps.back();
   }
 
+  // An operator step, by the registry's name of its kind ("compose-pose").
+  ir::Step& op(std::string_view kind, const std::string& name, std::vector<int> in,
+               std::vector<int> out) {
+    ir::Step& s = step(ir::StepKind::Operator, name, std::move(in), std::move(out));
+    s.op = ir::operator_index(kind);
+    if (s.op < 0) throw std::logic_error("no operator kind '" + std::string(kind) + "'");
+    return s;
+  }
+
   int state(ir::StateKind kind) { return p.states[static_cast<std::size_t>(kind)]++; }
 
   void log(const std::string& name, int data, const std::string& unit = "") {
@@ -97,23 +107,23 @@ inline ir::Program small_program(SourceFiles& files) {
 
   b.step(K::ReadClock, "clock", {}, {time});
   const int X_WB = b.datum("X_WB", T::Pose);
-  b.step(K::ComposePose, "compose", {X_WA, X_AB}, {X_WB});
+  b.op("compose-pose", "compose", {X_WA, X_AB}, {X_WB});
   const int height = b.datum("height", T::Scalar, {}, "M");
   b.step(K::ViewRead, "view_height", {X_WB}, {height}).views = {5};
   const int yaw = b.datum("yaw", T::Scalar, {}, "RAD");
   b.step(K::ViewRead, "view_yaw", {X_WB}, {yaw}).views = {2};
   const int distance = b.datum("distance", T::Scalar, {}, "M");
-  b.step(K::PoseToLinearDistance, "distance_op", {X_WB}, {distance});
+  b.op("pose-to-linear-distance", "distance_op", {X_WB}, {distance});
   const int d_WB = b.datum("d_WB", T::Vector3);
-  b.step(K::PoseToDirection, "direction_op", {X_WB}, {d_WB});
+  b.op("pose-to-direction", "direction_op", {X_WB}, {d_WB});
   const int angle = b.datum("angle", T::Scalar, {}, "RAD");
-  b.step(K::PlanarAngleFromDirections, "angle_op", {d_WB, x_axis, z_axis}, {angle});
+  b.op("planar-angle-from-directions", "angle_op", {d_WB, x_axis, z_axis}, {angle});
   const int angle_inv = b.datum("angle_inv", T::Scalar, {}, "RAD");
-  b.step(K::InvertAngle, "invert_op", {angle}, {angle_inv});
+  b.op("invert-angle", "invert_op", {angle}, {angle_inv});
   const int d_W = b.datum("d_W", T::Vector3);
-  b.step(K::RotateDirectionToProximal, "rotate_direction", {X_WA, d_WB}, {d_W});
+  b.op("rotate-direction-to-proximal", "rotate_direction", {X_WA, d_WB}, {d_W});
   const int V_W = b.datum("V_W", T::Twist);
-  b.step(K::RotateTwistToProximal, "rotate_twist", {X_WA, V_A}, {V_W});
+  b.op("rotate-twist-to-proximal", "rotate_twist", {X_WA, V_A}, {V_W});
   const int v_z = b.datum("v_z", T::Scalar, {}, "M-PER-SEC");
   b.step(K::ViewRead, "view_vz", {V_W}, {v_z}).views = {5};
 
@@ -159,17 +169,17 @@ inline ir::Program small_program(SourceFiles& files) {
   as.constraint = {runtime::ConstraintKind::Assignment, 20.0, 0.0, 0.0, 0.0, 0.0};
 
   const int F_force = b.datum("F_force", T::Wrench);
-  b.step(K::WrenchFromPositionDirectionAndMagnitude, "wrench_op", {p_BoC, d_W, force}, {F_force});
+  b.op("wrench-from-position-direction-and-magnitude", "wrench_op", {p_BoC, d_W, force}, {F_force});
   const int F_push = b.datum("F_push", T::Wrench);
   b.step(K::ViewWrite, "view_push", {push, force}, {F_push}).views = {5, 3};
   const int F_sum = b.datum("F_sum", T::Wrench);
-  b.step(K::AddWrench, "add_op", {F_force, F_push}, {F_sum});
+  b.op("add-wrench", "add_op", {F_force, F_push}, {F_sum});
   const int F_sum2 = b.datum("F_sum2", T::Wrench);
-  b.step(K::AddWrench, "add_bias", {F_sum, F_bias}, {F_sum2});
+  b.op("add-wrench", "add_bias", {F_sum, F_bias}, {F_sum2});
   const int F_rot = b.datum("F_rot", T::Wrench);
-  b.step(K::RotateWrenchToProximal, "rotate_wrench", {X_WA, F_sum2}, {F_rot});
+  b.op("rotate-wrench-to-proximal", "rotate_wrench", {X_WA, F_sum2}, {F_rot});
   const int F_P = b.datum("F_P", T::Wrench);
-  b.step(K::TransformWrenchToProximal, "transform_wrench", {X_WA, F_rot}, {F_P});
+  b.op("transform-wrench-to-proximal", "transform_wrench", {X_WA, F_rot}, {F_P});
   const int f_z = b.datum("f_z", T::Scalar, {}, "N");
   b.step(K::ViewRead, "view_fz", {F_P}, {f_z}).views = {5};
 
@@ -276,7 +286,7 @@ inline ir::Program arm_program(SourceFiles& files) {
   const int F_E = b.datum("F_E", T::Wrench);
   b.step(K::ViewWrite, "view_push", {push}, {F_E}).views = {3};
   const int F_E_B = b.datum("F_E_B", T::Wrench);
-  b.step(K::RotateWrenchToProximal, "rotate_push", {X_BE, F_E}, {F_E_B});
+  b.op("rotate-wrench-to-proximal", "rotate_push", {X_BE, F_E}, {F_E_B});
   const int tau_1 = b.datum("tau_1", T::Scalar, {0.25}, "N-M");
 
   // The arm is driven while a motion runs (until t >= 1 s), then holds.
@@ -382,6 +392,87 @@ inline ir::Program hostile_program(SourceFiles& files) {
 
 // A synthetic measurement for tick k (1 kHz): smooth joint motion, pivots
 // turning, a non-zero dt except on the first sample.
+// Every operator kind of the registry (ir::operator_kinds()), each once, on
+// constant inputs (a scalar input is the clock's time, so values change from
+// tick to tick); every output is logged: a scalar as it is, a twist or wrench
+// by component, a pose through six views, a vector as the force of a wrench.
+// A new operator kind is in this program, and so in the interpreter ==
+// generated and allocation tests, without editing it.
+inline ir::Program operators_program(SourceFiles& files) {
+  using T = ir::DataType;
+  using K = ir::StepKind;
+  ProgramBuilder b(files);
+  const int time = b.datum("time", T::Scalar, {}, "SEC");
+  b.step(K::ReadClock, "clock", {}, {time});
+  const int zero = b.datum("p_zero", T::Vector3, {0.0, 0.0, 0.0}, "M");
+  const int one = b.datum("f_one", T::Scalar, {1.0}, "N");
+  const auto kinds = ir::operator_kinds();
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    const ir::OperatorKind& kind = kinds[k];
+    const std::string prefix = "k" + std::to_string(k) + "_";
+    std::vector<int> in;
+    for (std::size_t i = 0; i < kind.in.size(); ++i) {
+      const double a = 0.1 * static_cast<double>(k + 1) + 0.37 * static_cast<double>(i);
+      const std::string name = prefix + "in" + std::to_string(i);
+      switch (kind.in[i].type) {
+        case T::Scalar:
+          in.push_back(time);
+          break;
+        case T::Vector3:
+          in.push_back(kind.in[i].source == ir::PortSource::Axis
+                           ? b.datum(name, T::Vector3, {0.0, 0.0, 1.0})
+                           : b.datum(name, T::Vector3, {std::cos(a), std::sin(a), 0.5}));
+          break;
+        case T::Pose:
+          in.push_back(b.datum(name, T::Pose, pose_value(a, 0.2, -0.1 * a, 0.3)));
+          break;
+        case T::Twist:
+        case T::Wrench:
+          in.push_back(b.datum(name, kind.in[i].type, {a, -a, 0.5, 1.0 - a, 2.0 * a, -0.25}));
+          break;
+        default:
+          throw std::logic_error("operators_program: no constant for an input of " +
+                                 std::string(kind.name));
+      }
+    }
+    const std::string out_name = prefix + "out";
+    const int out = b.datum(out_name, kind.out.type);
+    b.op(kind.name, prefix + "op", in, {out});
+    switch (kind.out.type) {
+      case T::Scalar:
+        b.log(out_name, out);
+        break;
+      case T::Twist:
+      case T::Wrench:
+        for (int c = 0; c < 6; ++c) {
+          b.p.log.push_back({out_name + "." + std::to_string(c), "", out, c});
+        }
+        break;
+      case T::Pose:
+        for (int c = 0; c < 6; ++c) {
+          const std::string view = out_name + "_view" + std::to_string(c);
+          const int v = b.datum(view, T::Scalar);
+          b.step(K::ViewRead, prefix + "read" + std::to_string(c), {out}, {v}).views = {c};
+          b.log(view, v);
+        }
+        break;
+      case T::Vector3: {
+        const int F = b.datum(out_name + "_as_force", T::Wrench);
+        b.op("wrench-from-position-direction-and-magnitude", prefix + "as_force", {zero, out, one},
+             {F});
+        for (int c = 3; c < 6; ++c) {
+          b.p.log.push_back({out_name + "." + std::to_string(c - 3), "", F, c});
+        }
+        break;
+      }
+      default:
+        throw std::logic_error("operators_program: cannot log the output of " +
+                               std::string(kind.name));
+    }
+  }
+  return b.p;
+}
+
 inline robot::MeasuredState measurement(std::uint64_t k) {
   robot::MeasuredState s;
   const double t = 0.001 * static_cast<double>(k);

@@ -64,7 +64,7 @@ TEST(Codegen, EveryStepIsACommentedBlockInScheduleOrder) {
   for (std::size_t i = 0; i < p.steps.size(); ++i) {
     const ir::Step& st = p.steps[i];
     std::string head = "  // [";
-    head.append(std::to_string(i)).append("] ").append(ir::to_string(st.kind)).append(" '");
+    head.append(std::to_string(i)).append("] ").append(ir::kind_name(st)).append(" '");
     head.append(st.name).append("': ").append(st.iri).append(
         "\n  //     tests/codegen/programs.hpp:");
     head.append(std::to_string(st.where.line)).append(":5\n");
@@ -178,12 +178,12 @@ bool is_safe_identifier(const std::string& id) {
 
 TEST(Mangle, IsInjectiveAndGivesSafeIdentifiers) {
   std::vector<std::string> names{
-      "",    "a",     "x",        "_",        "__",     "_x",           "x_",
-      "x5F", "_x5F",  "a_b",      "a__b",     "a_x",    "a_x5Fb",       "a-b",
-      "a.b", "a_",    "a_B",      "_Capital", "errno",  "assert",       "NULL",
-      "EOF", "stdin", "INFINITY", "unix",     "linux",  "class",        "int",
+      "",     "a",     "x",        "_",        "__",     "_x",           "x_",
+      "x5F",  "_x5F",  "a_b",      "a__b",     "a_x",    "a_x5Fb",       "a-b",
+      "a.b",  "a_",    "a_B",      "_Capital", "errno",  "assert",       "NULL",
+      "EOF",  "stdin", "INFINITY", "unix",     "linux",  "class",        "int",
       "?\?/", "r",     "r_task",   "r_X_BR",   "9lives", "\xE2\x80\xAE", "a b",
-      "x78", "xx",    "_xx",      "a\nb"};
+      "x78",  "xx",    "_xx",      "a\nb"};
   std::set<std::string> ids;
   for (const std::string& n : names) {
     const std::string id = mangle("v", n);
@@ -328,16 +328,28 @@ TEST(Codegen, ANameCollisionIsAnErrorNamingBothEntities) {
   }
 }
 
-TEST(Codegen, ABadReferenceIsAnErrorNamingTheStep) {
+// Codegen trusts a verified program: render() runs ir::verify first, so a bad
+// program is refused with every problem, each naming its step and location.
+TEST(Codegen, AnUnverifiedProgramIsRefusedWithEveryProblemLocated) {
   SourceFiles files;
   ir::Program p = testing::small_program(files);
   p.steps[2].in[0] = 999;
+  p.steps[3].views = {9};
   try {
     render(p, &files);
     ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), "codegen");
-    EXPECT_NE(std::string(e.what()).find("reference to datum 999"), std::string::npos) << e.what();
+  } catch (const ir::VerifyError& e) {
+    EXPECT_EQ(e.code(), "ir-invalid");
+    ASSERT_EQ(e.diagnostics().size(), 2u) << e.what();
+    EXPECT_NE(e.diagnostics()[0].message.find("'" + p.steps[2].name + "'"), std::string::npos);
+    EXPECT_NE(e.diagnostics()[0].message.find("datum 999 (which does not exist)"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(e.diagnostics()[0].file, "tests/codegen/programs.hpp");
+    EXPECT_EQ(e.diagnostics()[0].line, p.steps[2].where.line);
+    EXPECT_NE(e.diagnostics()[1].message.find("view component 9 is out of range; expected 0..5"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../codegen/programs.hpp"
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order): after every other header
 #include "app/app.hpp"
 #include "ir/lower.hpp"
@@ -101,6 +102,33 @@ Program sc0a() {
   return lower_app(std::string(MOSPEC_SOURCE_DIR) + "/models/sc0a.json", MOSPEC_SOURCE_DIR);
 }
 
+// Lowering runs its passes in the declared order, hands each intermediate
+// program to after_pass, and every one of them passes ir::check.
+TEST(Lowering, RunsEveryPassInOrderEachProgramChecked) {
+  app::LoadOptions options;
+  options.root = MOSPEC_SOURCE_DIR;
+  app::LoadedModel model =
+      app::load({std::string(MOSPEC_SOURCE_DIR) + "/models/sc0a.json"}, options);
+  LowerOptions lower_options;
+  std::vector<std::string> seen;
+  size_t steps_before_schedule = 0;
+  lower_options.after_pass = [&](std::string_view pass, const Program& p) {
+    seen.emplace_back(pass);
+    const bool ordered = pass == "schedule" || pass == "log";
+    EXPECT_TRUE(check(p, &model.files(), ordered ? Stage::Scheduled : Stage::Unscheduled).empty())
+        << pass;
+    if (pass == "producers") steps_before_schedule = p.steps.size();
+    if (pass == "schedule") {
+      EXPECT_EQ(p.steps.size(), steps_before_schedule);
+    }
+  };
+  const Program p = lower(model, lower_options);
+  const auto passes = lowering_passes();
+  EXPECT_EQ(seen, std::vector<std::string>(passes.begin(), passes.end()));
+  EXPECT_GT(steps_before_schedule, 0u);
+  EXPECT_FALSE(p.log.empty());
+}
+
 TEST(Interpreter, Sc0aTickIsDeterministic) {
   const Program program = sc0a();
   Interpreter a(program), b(program);
@@ -154,6 +182,29 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
   }
   EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(limiter.any()) << "the clamp was exercised";
+#endif
+}
+
+// Every operator kind of the registry: the interpreter's call of its kernel
+// allocates nothing either.
+TEST(Interpreter, EveryOperatorKindTicksWithoutAllocating) {
+#ifdef MOSPEC_NO_ALLOC_COUNTING
+  GTEST_SKIP() << "allocation counting is off under AddressSanitizer (it owns malloc)";
+#else
+  SourceFiles files;
+  Interpreter in(codegen::testing::operators_program(files));
+  robot::Command command;
+  std::vector<double> values(in.log_columns().size());
+  long allocations = 0;
+  for (std::uint64_t k = 0; k < 1000; ++k) {
+    const robot::MeasuredState state = codegen::testing::measurement(k);
+    allocations += alloc_counter::during([&] {
+      in.tick(state, command);
+      in.log_values(values);
+    });
+  }
+  EXPECT_EQ(allocations, 0);
+  for (double v : values) EXPECT_TRUE(std::isfinite(v));
 #endif
 }
 

@@ -103,4 +103,18 @@ for t in -0.5 0 0.0 NaN; do
   check "no IR written for a timeout of $t (lowering)" test ! -e "$work/timeout$t.json"
 done
 
+# --dump-after PASS: the program after one lowering pass (each pass is
+# verified); after the last it is the finished program; an unknown pass is a
+# usage error that lists the passes.
+expect "--dump-after operators" 0 "" -- \
+  "$mospec" ir --root "$D" "$D/tiny.json" --dump-after operators -o "$work/after-operators.json"
+check "... is JSON of the IR with its slots" grep -q '"mospec-ir": 1' "$work/after-operators.json"
+check "... has no log yet (the log pass comes last)" grep -q '"log": \[\]' "$work/after-operators.json"
+expect "--dump-after log" 0 "" -- \
+  "$mospec" ir --root "$D" "$D/tiny.json" --dump-after log -o "$work/after-log.json"
+check "... is the finished program" cmp -s "$work/after-log.json" "$work/tiny.json"
+expect "an unknown pass is refused, naming the passes" 2 \
+  "--dump-after: no lowering pass 'lowering'; the passes are clocks, arm-solvers, operators, .*, schedule, log" -- \
+  "$mospec" ir --root "$D" "$D/tiny.json" --dump-after lowering
+
 finish ir-cli

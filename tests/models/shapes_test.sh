@@ -155,6 +155,7 @@ bad wrench-transform newtonian-rigid-body-dynamics/operators.ttl 4 \
 # geometry/spatial-operators.ttl (for apps naming the published file): same findings.
 families="geometry/spatial-operators/distance.ttl geometry/spatial-operators/direction.ttl"
 families="$families geometry/spatial-operators/angle.ttl geometry/spatial-operators/pose.ttl"
+families="$families geometry/spatial-operators/axis-angle.ttl geometry/spatial-operators/twist.ttl"
 for geom_ops in geometry/spatial-operators.ttl "$families"; do
 ops="geometry/spatial-relations.ttl $geom_ops newtonian-rigid-body-dynamics/operators.ttl task/map.ttl"
 good operators "$ops"
@@ -176,6 +177,24 @@ bad operators "$ops" 15 \
   '<https://ex.org/invert>: an angle inversion has exactly one output angle'
 done
 
+# One instance of every operator kind mospec lowers (src/ir/operators.cpp; the
+# registry test ir_operators_test checks each has a case here or above).
+kinds="geometry/spatial-relations.ttl geometry/spatial-operators.ttl newtonian-rigid-body-dynamics/operators.ttl"
+good operator-kinds "$kinds"
+bad operator-kinds "$kinds" 12 \
+  '<https://ex.org/dist-bad>: value is not an instance of .*spatial-relations#Pose' \
+  '<https://ex.org/dir-bad>: fewer than 1 value .*spatial-operators#direction' \
+  '<https://ex.org/yaw-bad>: an angle around an axis names exactly one of the axes x, y, z' \
+  "<https://ex.org/rotdir-bad>: the rotated input must be seen by the pose's distal frame" \
+  '<https://ex.org/tftw-bad>: a twist transformation has exactly one input twist' \
+  '<https://ex.org/addtw-bad>: a twist sum has exactly one second twist \(in2\)' \
+  '<https://ex.org/rotw-bad>: a wrench rotation has exactly one output wrench' \
+  '<https://ex.org/force-bad>: fewer than 1 value .*operators#direction' \
+  '<https://ex.org/addw-bad>: value is not an instance of .*structural-entities#Wrench' \
+  '<https://ex.org/inv-bad>: exactly one output wrench \(to\)' \
+  '<https://ex.org/copy-bad>: exactly one output wrench \(to\)' \
+  '<https://ex.org/acc-bad>: mospec accumulates single wrenches'
+
 # geometry/spatial-operators.ttl is exactly the family files' shapes: its text
 # after the prefixes is theirs, concatenated in the order above.
 body() { sed -e '/^#/d' -e '/^@prefix/d' -e '/^$/d' "$@"; }
@@ -188,9 +207,10 @@ for f in $families; do
 done
 
 # newtonian-rigid-body-dynamics/operators.ttl is exactly its per-operator files'
-# shapes (wrench, add, rotate, transform): sc1 lists wrench, add and transform,
+# shapes (wrench, add, rotate, transform, and the operators no scenario uses:
+# rotate-distal, assign, accumulate): sc1 lists wrench, add and transform,
 # sc2 wrench and rotate, so that --strict finds no unused shape in either.
-dyn_families="wrench add rotate transform"
+dyn_families="wrench add rotate transform rotate-distal assign accumulate"
 if diff <(body "$mm/newtonian-rigid-body-dynamics/operators.ttl") \
         <(for f in $dyn_families; do body "$mm/newtonian-rigid-body-dynamics/operators/$f.ttl"; done) > "$out"; then
   echo "ok   newtonian-rigid-body-dynamics/operators.ttl = its per-operator files"

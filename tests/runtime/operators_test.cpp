@@ -189,6 +189,36 @@ TEST(WrenchFromPositionDirectionAndMagnitude, IsEquationOne) {
   }
 }
 
+TEST(PoseToAngleAroundAxis, IsTheRotationAngleAboutThatAxis) {
+  const Vec3 z = Vec3::UnitZ();
+  for (double a : {0.0, 0.7, -2.5, kPi}) {
+    EXPECT_NEAR(pose_to_angle_around_axis({rot_z(a), Vec3(1, 2, 3)}, z), a, 1e-12) << a;
+  }
+  // Beyond pi it wraps to (-pi, pi]; the axis' length does not matter.
+  EXPECT_NEAR(pose_to_angle_around_axis({rot_z(3.5), Vec3::Zero()}, 2.0 * z), 3.5 - 2 * kPi, 1e-12);
+  // About the opposite axis the angle changes sign.
+  EXPECT_NEAR(pose_to_angle_around_axis({rot_z(0.4), Vec3::Zero()}, -z), -0.4, 1e-12);
+  // A rotation about an orthogonal axis does not turn about z.
+  const Mat3 R_x = Eigen::AngleAxisd(0.9, Vec3::UnitX()).toRotationMatrix();
+  EXPECT_NEAR(pose_to_angle_around_axis({R_x, Vec3::Zero()}, z), 0.0, 1e-12);
+  // The twist part: Rz(a) Rx(b) turns by a about z, whatever b.
+  EXPECT_NEAR(pose_to_angle_around_axis({rot_z(0.6) * R_x, Vec3::Zero()}, z), 0.6, 1e-12);
+  // A zero axis has no angle (0, not NaN).
+  EXPECT_EQ(pose_to_angle_around_axis({rot_z(0.6), Vec3::Zero()}, Vec3::Zero()), 0.0);
+}
+
+TEST(WrenchAndTwistAlgebra, AddInvertAssign) {
+  Random r(7);
+  const Vec6 F1 = r.vec6(), F2 = r.vec6();
+  EXPECT_EQ(add_wrench(F1, F2), F1 + F2);
+  EXPECT_EQ(invert_wrench(F1), -F1);
+  EXPECT_EQ(assign_wrench(F1), F1);
+  EXPECT_EQ(add_velocity_twist(F1, F2), F1 + F2);
+  // Power balance: the reaction does the opposite power on any twist.
+  const Vec6 V = r.vec6();
+  EXPECT_DOUBLE_EQ(power(V, invert_wrench(F1)), -power(V, F1));
+}
+
 TEST(PlanarAngle, IsSignedAboutTheNormal) {
   double a = 0;
   ASSERT_TRUE(planar_angle_from_directions(Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), a));

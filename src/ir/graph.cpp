@@ -1,0 +1,176 @@
+#include "ir/graph.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <unordered_map>
+
+#include "rdf/xsd.hpp"
+#include "vocab/w3c.hpp"
+
+namespace mospec::ir {
+
+Graph::Graph(const rdf::Dataset& dataset)
+    : dataset_(dataset),
+      rdf_type_(term(vocab::rdf::type)),
+      rdf_first_(term(vocab::rdf::first)),
+      rdf_rest_(term(vocab::rdf::rest)),
+      rdf_nil_(term(vocab::rdf::nil)) {}
+
+std::vector<Graph::Statement> Graph::statements(TermId s) const {
+  std::vector<Statement> out;
+  if (s.is_any()) return out;
+  for (uint32_t i : dataset_.match(s, TermId::any(), TermId::any())) {
+    const rdf::Quad& q = dataset_.quads()[i];
+    out.push_back({q.predicate, q.object, dataset_.location(i)});
+  }
+  return out;
+}
+
+std::vector<Graph::TermId> Graph::sorted_unique(std::vector<TermId> terms) const {
+  // By lexical form; distinct terms with one form (an IRI and a string, say)
+  // by id, so that copies of one term end up side by side.
+  std::sort(terms.begin(), terms.end(), [&](TermId a, TermId b) {
+    const int c = str(a).compare(str(b));
+    return c != 0 ? c < 0 : a.index < b.index;
+  });
+  // The same term twice is a triple stated in several files.
+  terms.erase(std::unique(terms.begin(), terms.end()), terms.end());
+  return terms;
+}
+
+std::vector<Graph::TermId> Graph::objects(TermId s, TermId p) const {
+  std::vector<TermId> out;
+  if (s.is_any() || p.is_any()) return out;
+  dataset_.scan(s, p, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+    out.push_back(q.object);
+    return true;
+  });
+  return sorted_unique(std::move(out));
+}
+
+std::vector<Graph::TermId> Graph::subjects(TermId p, TermId o) const {
+  std::vector<TermId> out;
+  if (p.is_any() || o.is_any()) return out;
+  dataset_.scan(TermId::any(), p, o, TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+    out.push_back(q.subject);
+    return true;
+  });
+  return sorted_unique(std::move(out));
+}
+
+std::vector<Graph::TermId> Graph::instances(TermId type) const {
+  return subjects(rdf_type_, type);
+}
+
+std::optional<Graph::TermId> Graph::object(TermId s, TermId p) const {
+  auto o = objects(s, p);
+  if (o.empty()) return std::nullopt;
+  return o.front();
+}
+
+bool Graph::has_type(TermId s, TermId type) const {
+  return !type.is_any() && !rdf_type_.is_any() &&
+         dataset_.count(s, rdf_type_, type, TermId::any(), 1) > 0;
+}
+
+bool Graph::defined(TermId s) const {
+  return !s.is_any() && dataset_.count(s, TermId::any(), TermId::any(), TermId::any(), 1) > 0;
+}
+
+bool Graph::first_statement(uint32_t i) const {
+  const rdf::Quad& q = dataset_.quads()[i];
+  uint32_t first = i;
+  dataset_.scan(q.subject, q.predicate, q.object, TermId::any(), [&](const rdf::Quad&, uint32_t j) {
+    first = j;  // matches come in load order: the first one is the first statement
+    return false;
+  });
+  return first == i;
+}
+
+SourceLoc Graph::where(TermId s) const {
+  SourceLoc loc;
+  if (s.is_any()) return loc;
+  dataset_.scan(s, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad&, uint32_t i) {
+    if (!dataset_.location(i).known() || !first_statement(i)) return true;
+    loc = dataset_.location(i);
+    return false;
+  });
+  return loc;
+}
+
+SourceLoc Graph::where(TermId s, TermId p, TermId o) const {
+  SourceLoc loc;
+  if (!s.is_any() && !p.is_any()) {
+    dataset_.scan(s, p, o, TermId::any(), [&](const rdf::Quad&, uint32_t i) {
+      if (!dataset_.location(i).known() || !first_statement(i)) return true;
+      loc = dataset_.location(i);
+      return false;
+    });
+  }
+  return loc.known() ? loc : where(s);
+}
+
+std::vector<Graph::TermId> Graph::list(TermId head) const {
+  std::vector<TermId> out;
+  for (int guard = 0; guard < 10000 && !head.is_any() && head != rdf_nil_; ++guard) {
+    auto first = object(head, rdf_first_);
+    if (!first) break;
+    out.push_back(*first);
+    auto rest = object(head, rdf_rest_);
+    if (!rest) break;
+    head = *rest;
+  }
+  return out;
+}
+
+std::optional<double> Graph::number(TermId lit) const {
+  if (lit.is_any() || !terms()[lit].is_literal()) return std::nullopt;
+  const rdf::Term& t = terms()[lit];
+  auto v = rdf::xsd::number(t.value, terms()[t.datatype].value);
+  if (!v || !std::isfinite(*v)) return std::nullopt;
+  return v;
+}
+
+std::optional<double> Graph::number(TermId s, TermId p) const {
+  auto o = object(s, p);
+  return o ? number(*o) : std::nullopt;
+}
+
+rdf::Dataset Graph::graphs_describing(TermId subject) const {
+  rdf::Dataset out;
+  if (subject.is_any()) return out;
+  std::vector<TermId> graphs;
+  dataset_.scan(subject, TermId::any(), TermId::any(), TermId::any(),
+                [&](const rdf::Quad& q, uint32_t) {
+                  if (std::find(graphs.begin(), graphs.end(), q.graph) == graphs.end())
+                    graphs.push_back(q.graph);
+                  return true;
+                });
+  // In load order across the graphs, as a filter over all quads would give.
+  std::vector<uint32_t> picked;
+  for (TermId g : graphs) {
+    dataset_.scan(TermId::any(), TermId::any(), TermId::any(), g,
+                  [&](const rdf::Quad&, uint32_t i) {
+                    picked.push_back(i);
+                    return true;
+                  });
+  }
+  if (graphs.size() > 1) std::sort(picked.begin(), picked.end());
+  std::unordered_map<uint32_t, TermId> mapped;
+  auto map = [&](TermId t) {
+    auto [it, fresh] = mapped.try_emplace(t.index);
+    if (fresh) it->second = out.terms().import(terms(), t);
+    return it->second;
+  };
+  for (uint32_t i : picked) {
+    const rdf::Quad& q = dataset_.quads()[i];
+    out.add({map(q.subject), map(q.predicate), map(q.object), TermId::default_graph()},
+            dataset_.location(i));
+  }
+  return out;
+}
+
+}  // namespace mospec::ir
