@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "description/robot_model.hpp"
-#include "sim/controllers.hpp"
+#include "sim/drivers.hpp"
 #include "sim/world.hpp"
 
 namespace {
@@ -30,7 +30,7 @@ void BM_SimStep(benchmark::State& st, sim::BaseFidelity base) {
   sim::World world(c, arm);
   sim::GravityCompensation arms(arm, {c.arms[0].X_PB, c.arms[1].X_PB});
   arms.f_E_P = {runtime::Vec3(10, 0, 0), runtime::Vec3(10, 0, 0)};
-  sim::PlatformWrenchController drives(c.drives);
+  sim::PlatformWrenchDriver drives(c.drives);
   drives.F_p = runtime::Vec3(20, 0, 0);
   robot::MeasuredState s;
   robot::Command cmd;

@@ -11,7 +11,7 @@
 #include "cli/numbers.hpp"
 #include "description/robot_model.hpp"
 #include "sim/config.hpp"
-#include "sim/controllers.hpp"
+#include "sim/drivers.hpp"
 #include "sim/log.hpp"
 #include "sim/run.hpp"
 #include "sim/world.hpp"

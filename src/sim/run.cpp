@@ -7,7 +7,7 @@
 #include <memory>
 #include <ostream>
 
-#include "sim/controllers.hpp"
+#include "sim/drivers.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::sim {

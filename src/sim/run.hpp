@@ -1,6 +1,6 @@
 // One loop for every controller: the simulated robot read -> controller tick
 // -> write -> step, logging the controller's columns (its constraints,
-// monitors, motions and controller outputs) next to the world's ground truth.
+// monitors, motions and PID outputs) next to the world's ground truth.
 // The interpreter and generated controllers run through the same loop, so
 // their logs compare byte for byte.
 #pragma once

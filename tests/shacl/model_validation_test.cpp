@@ -1,4 +1,4 @@
-// The validation pipeline that `mospec validate` runs (shacl/model_validation):
+// The validation pipeline that `mospec validate` runs (validation/model_validation):
 // the authors' scenario verdicts through the library, shape files in the
 // model's SourceFiles, JSON-LD shape files, errors, strict checks, and the
 // JSON-LD report writer.

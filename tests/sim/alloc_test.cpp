@@ -29,7 +29,7 @@ TEST(Allocation, TheControlTickAllocatesNothing) {
     w.faults().drop_commands(300, 5);
     GravityCompensation arms(arm_chain, testing::mounts(c));
     arms.f_E_P = {runtime::Vec3(10, 0, 0), runtime::Vec3(10, 0, 0)};
-    PlatformWrenchController drives(c.drives);
+    PlatformWrenchDriver drives(c.drives);
     drives.F_p = runtime::Vec3(20, 0, 0.5);
     robot::MeasuredState s;
     robot::Command cmd;

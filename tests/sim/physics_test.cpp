@@ -135,7 +135,7 @@ TEST_P(PlatformWrench, ReachesTheBase) {
     c.initial.pivot_q = {0.7, -1.2, 2.0, 0.3};  // misaligned at the start
     World w(c, arm_chain);
     GravityCompensation arms(arm_chain, mounts(c));
-    PlatformWrenchController drives(c.drives);
+    PlatformWrenchDriver drives(c.drives);
     drives.F_p = F_p;
     auto control = [&](const robot::MeasuredState& s, robot::Command& cmd) {
       arms.compute(s, cmd);

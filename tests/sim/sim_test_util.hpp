@@ -10,7 +10,7 @@
 
 #include "description/robot_model.hpp"
 #include "sim/config.hpp"
-#include "sim/controllers.hpp"
+#include "sim/drivers.hpp"
 #include "sim/world.hpp"
 
 namespace mospec::sim::testing {

@@ -116,7 +116,7 @@ TEST(World, APlatformForceBeyondTractionIsClampedAndReported) {
   c.table.present = false;
   World w(c, arm_chain);
   GravityCompensation arms(arm_chain, mounts(c));
-  PlatformWrenchController drives(c.drives);
+  PlatformWrenchDriver drives(c.drives);
   drives.F_p = runtime::Vec3(4e10, 0, 0);
   run(w, 50, [&](const robot::MeasuredState& s, robot::Command& cmd) {
     arms.compute(s, cmd);
@@ -225,7 +225,7 @@ WorldConfig perturbed(std::uint64_t seed) {
 std::string run_logged(const runtime::Chain& chain, const WorldConfig& c, int ticks) {
   World w(c, chain);
   GravityCompensation arms(chain, mounts(c));
-  PlatformWrenchController drives(c.drives);
+  PlatformWrenchDriver drives(c.drives);
   drives.F_p = runtime::Vec3(10, 0, 1);
   arms.f_E_P = {runtime::Vec3(5, 0, 0), runtime::Vec3(5, 0, 0)};
   CsvLog log;

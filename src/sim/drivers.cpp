@@ -1,4 +1,4 @@
-#include "sim/controllers.hpp"
+#include "sim/drivers.hpp"
 
 #include <cmath>
 #include <string>
@@ -66,11 +66,11 @@ void GravityCompensation::compute(const robot::MeasuredState& state,
   }
 }
 
-PlatformWrenchController::PlatformWrenchController(const runtime::KeloGeometry& geometry)
+PlatformWrenchDriver::PlatformWrenchDriver(const runtime::KeloGeometry& geometry)
     : model_(kelo_config(geometry)), data_(model_) {}
 
-void PlatformWrenchController::compute(const robot::MeasuredState& state,
-                                       robot::Command& command) noexcept {
+void PlatformWrenchDriver::compute(const robot::MeasuredState& state,
+                                   robot::Command& command) noexcept {
   command.tick = state.clock.tick;
   const Eigen::Vector4d q(state.pivot_q[0], state.pivot_q[1], state.pivot_q[2], state.pivot_q[3]);
   if (!q.allFinite() || !F_p.allFinite()) {

@@ -1,6 +1,8 @@
-// Simple controllers for running the simulated robot headless and for the
-// physics tests. They see only the robot interface (MeasuredState in, Command
-// out) and use the runtime's solvers; compute() is noexcept and allocation-free.
+// Drivers: fixed command laws for running the simulated robot headless (`mospec
+// sim`) and for the physics tests, not generated from a model. Each fills part
+// of a Command from the robot interface (MeasuredState in, Command out) with the
+// runtime's solvers; compute() is noexcept and allocation-free. (In src/sim,
+// "controller" means only the robot::Controller that sim::run drives.)
 #pragma once
 
 #include <array>
@@ -40,9 +42,9 @@ class GravityCompensation {
 // A commanded platform wrench distributed to the drives by the runtime's KELO
 // solver (kelo_force_step: Eq. 2-3 with the alignment reference), from the
 // measured pivot angles. Sets command.wheel_tau.
-class PlatformWrenchController {
+class PlatformWrenchDriver {
  public:
-  explicit PlatformWrenchController(const runtime::KeloGeometry& geometry);
+  explicit PlatformWrenchDriver(const runtime::KeloGeometry& geometry);
 
   void compute(const robot::MeasuredState& state, robot::Command& command) noexcept;
 

@@ -1,0 +1,620 @@
+// Internal to src/jsonld: the Context Processing machinery shared by the
+// files that implement the JSON-LD 1.1 Processing Algorithms on contexts:
+//   context_processing.cpp      Context Processing (4.1), process_context()
+//   create_term_definition.cpp  Create Term Definition (4.2)
+//   iri_expansion.cpp           IRI Expansion (4.3), during context processing
+//                               and expand_iri()
+//   context.cpp                 ActiveContext and ContextCache
+// Step numbers in comments refer to the JSON-LD 1.1 Processing Algorithms and API
+// recommendation: "CP n" is Context Processing (4.1.2), "CTD n" Create Term
+// Definition (4.2.2) and "IE n" IRI Expansion (4.3.2).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "jsonld/context.hpp"
+#include "jsonld/loader.hpp"
+#include "rdf/iri.hpp"
+
+namespace mospec::jsonld {
+
+namespace detail {
+
+struct StringHash {
+  using is_transparent = void;
+  size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+};
+
+using TermPtr = std::shared_ptr<const TermDefinition>;
+using TermMap = std::unordered_map<std::string, TermPtr, StringHash, std::equal_to<>>;
+
+// Term definitions are stored as a chain of immutable layers: processing a local
+// context adds one layer with the terms it (re)defined over the layer of the
+// context it started from, so deriving a context never copies the hundreds of
+// definitions of the remote contexts below it, and layers are shared between
+// all contexts derived from them. A null entry removes a term defined below.
+// Chains are flattened into one layer once they grow deeper than
+// kMaxLayerDepth, bounding the cost of a lookup.
+struct TermLayer {
+  std::shared_ptr<const TermLayer> parent;
+  TermMap defs;
+  uint32_t depth = 1;
+  size_t protected_count = 0;  // protected terms visible through this layer
+
+  const TermPtr* lookup(std::string_view term) const {
+    for (const TermLayer* l = this; l != nullptr; l = l->parent.get()) {
+      auto it = l->defs.find(term);
+      if (it != l->defs.end()) return &it->second;
+    }
+    return nullptr;
+  }
+};
+
+// What processing a context read from the term definitions of the active
+// context it started from (the "state"): the answer it got for `term`. With
+// `weak`, only whether that definition is protected mattered (Create Term
+// Definition looking for a previous definition to protect).
+struct Dep {
+  std::string term;
+  TermPtr def;  // null: not defined
+  bool weak = false;
+};
+
+// Records the Deps of one processing run; `opaque` when processing depended on
+// the state in a way Deps do not capture (nothing is then stored).
+struct DepLog {
+  std::vector<Dep> deps;
+  bool opaque = false;
+};
+
+// The result of one processing run as a change to the term state, valid for
+// any state on which `deps` hold.
+struct Delta {
+  unsigned flags = 0;
+  std::optional<std::string> vocab, language, direction;  // of the state
+  bool used_base = false;
+  std::string base;  // compared only when used_base
+  std::vector<Dep> deps;
+  TermMap changes;  // defined or (null) removed terms
+  std::optional<std::string> out_vocab, out_language, out_direction;
+};
+
+}  // namespace detail
+
+using detail::TermLayer;
+using detail::TermMap;
+using detail::TermPtr;
+using LayerPtr = std::shared_ptr<const TermLayer>;
+
+namespace internal {
+
+constexpr uint32_t kMaxLayerDepth = 6;
+// Processor-defined limit of CP 5.2.3: remote contexts nested deeper than this
+// are reported as "context overflow".
+constexpr size_t kMaxRemoteContexts = 32;
+// Processor-defined limit on the remote contexts one context processing may
+// process in all (repeats included), far above any real model's handful.
+constexpr size_t kMaxRemoteProcessing = 4096;
+
+constexpr std::array<std::string_view, 23> kKeywords = {
+    "@base",   "@container", "@context", "@direction", "@graph",     "@id",
+    "@import", "@included",  "@index",   "@json",      "@language",  "@list",
+    "@nest",   "@none",      "@prefix",  "@propagate", "@protected", "@reverse",
+    "@set",    "@type",      "@value",   "@version",   "@vocab"};
+
+inline bool is_blank_node(std::string_view s) {
+  return s.size() >= 2 && s[0] == '_' && s[1] == ':';
+}
+
+inline bool ends_with_gen_delim(std::string_view s) {
+  if (s.empty()) return false;
+  switch (s.back()) {
+    case ':':
+    case '/':
+    case '?':
+    case '#':
+    case '[':
+    case ']':
+    case '@':
+      return true;
+    default:
+      return false;
+  }
+}
+
+inline std::string quoted(std::string_view s) {
+  std::string out = "\"";
+  out += s;
+  out += '"';
+  return out;
+}
+
+}  // namespace internal
+
+struct ActiveContext::Impl {
+  LayerPtr terms;  // nullptr: no term definitions
+  std::string base;
+  std::string original_base;
+  std::optional<std::string> vocab;
+  std::optional<std::string> language;
+  std::optional<std::string> direction;
+  ContextPtr previous;
+};
+
+namespace internal {
+
+inline size_t mix(size_t h, size_t v) {
+  return h ^ (v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2));
+}
+
+// Structural hash consistent with json::Value's operator== (member order and
+// locations ignored).
+inline size_t hash_json(const json::Value& v) {
+  switch (v.kind()) {
+    case json::Kind::Null:
+      return 0x51;
+    case json::Kind::Boolean:
+      return v.as_bool() ? 0x52 : 0x53;
+    case json::Kind::Number: {
+      const double d = v.as_number();
+      return std::hash<double>{}(d == 0 ? 0.0 : d);
+    }
+    case json::Kind::String:
+      return std::hash<std::string_view>{}(v.as_string());
+    case json::Kind::Array: {
+      size_t h = 0x54;
+      for (const auto& e : v.as_array()) h = mix(h, hash_json(e));
+      return h;
+    }
+    case json::Kind::Object: {
+      size_t h = 0x55;
+      const json::Object& o = v.as_object();
+      for (size_t i = 0; i < o.size(); ++i) {
+        h += mix(std::hash<std::string_view>{}(o.key(i)), hash_json(o.value(i)));
+      }
+      return h;
+    }
+  }
+  return 0;
+}
+
+struct RemoteDoc {
+  std::shared_ptr<const json::Value> document;
+  std::string url;
+};
+
+}  // namespace internal
+
+using internal::hash_json;
+using internal::RemoteDoc;
+
+struct ContextCache::Impl {
+  Stats stats;
+
+  // Exact level: the result ContextPtr for one (active context, local context).
+  struct ExactEntry {
+    std::weak_ptr<const ActiveContext> active;
+    const ActiveContext* active_raw = nullptr;
+    TermPtr owner;        // the scoped context's definition, when known
+    json::Value content;  // otherwise a copy of the local context
+    std::string base_url;
+    unsigned flags = 0;
+    ContextPtr result;
+  };
+  std::unordered_map<size_t, std::vector<ExactEntry>> exact;
+
+  // Which term definition holds a scoped context, so expansion passing
+  // `*def->local_context` is recognised by address instead of by content.
+  struct Owner {
+    std::weak_ptr<const TermDefinition> def;
+    size_t hash = 0;  // hash_json of its local context, computed once
+  };
+  std::unordered_map<const json::Value*, Owner> owners;
+  size_t owners_purge_at = 1024;
+
+  // Remote level: what applying a remote context to a term state produced.
+  struct RemoteEntry {
+    std::weak_ptr<const TermLayer> terms;
+    const TermLayer* terms_raw = nullptr;
+    std::optional<std::string> vocab, language, direction;
+    unsigned flags = 0;
+    bool used_base = false;
+    std::string base;  // compared only when used_base
+    LayerPtr out_terms;
+    std::optional<std::string> out_vocab, out_language, out_direction;
+  };
+  std::unordered_map<std::string, std::vector<RemoteEntry>, detail::StringHash, std::equal_to<>>
+      remote;
+
+  // Term-state level for local contexts given to process_context (typically
+  // scoped contexts): like RemoteEntry, keyed by content.
+  struct StateEntry {
+    RemoteEntry state;
+    TermPtr owner;
+    json::Value content;
+    std::string base_url;
+    bool sets_previous = false;  // CP 3 applied
+  };
+  std::unordered_map<size_t, std::vector<StateEntry>> states;
+
+  std::unordered_map<std::string, RemoteDoc, detail::StringHash, std::equal_to<>> documents;
+
+  // Delta level, by remote context IRI and by local context content.
+  std::unordered_map<std::string, std::vector<detail::Delta>, detail::StringHash, std::equal_to<>>
+      remote_deltas;
+  struct LocalDelta {
+    detail::Delta delta;
+    TermPtr owner;
+    json::Value content;
+    std::string base_url;
+  };
+  std::unordered_map<size_t, std::vector<LocalDelta>> local_deltas;
+
+  void register_owner(const TermPtr& def) {
+    if (owners.size() >= owners_purge_at) {
+      std::erase_if(owners, [](const auto& kv) { return kv.second.def.expired(); });
+      owners_purge_at = std::max<size_t>(1024, owners.size() * 2);
+    }
+    owners[&*def->local_context] = Owner{def, hash_json(*def->local_context)};
+  }
+};
+
+namespace internal {
+
+// A context under construction: the frozen layers it started from plus the
+// definitions changed so far. A builder with a `parent` is the throw-away
+// context of a scoped-context validation (CTD 21.3), stacked on the builder
+// whose term is being defined.
+struct Builder {
+  const Builder* parent = nullptr;
+  LayerPtr layer;
+  TermMap overlay;
+  std::string base;
+  std::string original_base;
+  std::optional<std::string> vocab, language, direction;
+  ContextPtr previous;
+  // Whether processing read the base IRI (the cache key must then include it)
+  // or replaced it (the result is not a pure function of the term state).
+  mutable bool used_base = false;
+  bool touched_base = false;
+
+  Builder() = default;
+  explicit Builder(const ActiveContext& a) {
+    const ActiveContext::Impl& i = a.impl();
+    layer = i.terms;
+    base = i.base;
+    original_base = i.original_base;
+    vocab = i.vocab;
+    language = i.language;
+    direction = i.direction;
+    previous = i.previous;
+  }
+
+  // While set, lookups that reach `layer` (the state processing started from)
+  // are recorded, so the result can be cached as a Delta.
+  detail::DepLog* deps = nullptr;
+
+  const TermPtr* lookup(std::string_view term, bool weak = false) const {
+    auto it = overlay.find(term);
+    if (it != overlay.end()) return &it->second;
+    if (parent != nullptr) return parent->lookup(term, weak);
+    const TermPtr* p = layer ? layer->lookup(term) : nullptr;
+    if (deps != nullptr) {
+      TermPtr def = p != nullptr ? *p : nullptr;
+      const bool only_protection = weak && !(def && def->protected_);
+      deps->deps.push_back(
+          {std::string(term), only_protection ? nullptr : std::move(def), only_protection});
+    }
+    return p;
+  }
+  // CTD 6: the previous definition of a term being defined, which matters
+  // only if it is protected.
+  const TermPtr* lookup_previous(std::string_view term) const { return lookup(term, true); }
+  const TermDefinition* find(std::string_view term) const {
+    const TermPtr* p = lookup(term);
+    return p != nullptr ? p->get() : nullptr;
+  }
+  const std::string& base_iri() const {
+    used_base = true;
+    return base;
+  }
+
+  void set(std::string_view term, TermPtr def) {
+    auto it = overlay.find(term);
+    if (it != overlay.end()) {
+      it->second = std::move(def);
+    } else {
+      overlay.emplace(std::string(term), std::move(def));
+    }
+  }
+
+  void reset_terms() {
+    parent = nullptr;
+    layer = nullptr;
+    overlay.clear();
+  }
+
+  bool has_protected() const {
+    if (deps != nullptr) deps->opaque = true;
+    size_t n = 0;
+    if (parent != nullptr) {
+      n = parent->has_protected() ? 1 : 0;
+    } else if (layer) {
+      n = layer->protected_count;
+    }
+    for (const auto& [k, v] : overlay) {
+      const TermPtr* below = parent != nullptr ? parent->lookup(k)
+                             : layer           ? layer->lookup(k)
+                                               : nullptr;
+      if (below != nullptr && *below && (*below)->protected_ && n > 0) --n;
+      if (v && v->protected_) ++n;
+    }
+    return n != 0;
+  }
+
+  // Moves the overlay into a new immutable layer (requires parent == nullptr).
+  void freeze() {
+    if (deps != nullptr) deps->opaque = true;
+    size_t protected_count = layer ? layer->protected_count : 0;
+    for (auto it = overlay.begin(); it != overlay.end();) {
+      const TermPtr* below = layer ? layer->lookup(it->first) : nullptr;
+      const bool below_defined = below != nullptr && *below;
+      if (below_defined && (*below)->protected_) --protected_count;
+      if (it->second && it->second->protected_) ++protected_count;
+      if (!it->second && !below_defined) {
+        it = overlay.erase(it);  // removing nothing
+      } else {
+        ++it;
+      }
+    }
+    if (overlay.empty()) return;
+    auto l = std::make_shared<TermLayer>();
+    l->defs = std::move(overlay);  // the nodes move; nothing is reallocated
+    overlay = TermMap();
+    l->protected_count = protected_count;
+    if (layer && layer->depth + 1 > kMaxLayerDepth) {
+      // Flatten: upper layers first, so emplace keeps the visible definition.
+      for (const TermLayer* p = layer.get(); p != nullptr; p = p->parent.get()) {
+        for (const auto& [k, v] : p->defs) l->defs.emplace(k, v);
+      }
+      std::erase_if(l->defs, [](const auto& kv) { return !kv.second; });
+    } else {
+      l->parent = layer;
+      l->depth = layer ? layer->depth + 1 : 1;
+    }
+    layer = std::move(l);
+  }
+
+  ContextPtr to_context() {
+    freeze();
+    auto impl = std::make_shared<ActiveContext::Impl>();
+    impl->terms = layer;
+    impl->base = base;
+    impl->original_base = original_base;
+    impl->vocab = vocab;
+    impl->language = language;
+    impl->direction = direction;
+    impl->previous = previous;
+    return std::make_shared<const ActiveContext>(std::move(impl));
+  }
+};
+
+// The local context whose terms are being defined, with the `defined` map of
+// CP 5.12 kept per member index.
+struct LocalCtx {
+  enum State : uint8_t { Undefined, InProgress, Defined };
+  const json::Object* obj = nullptr;
+  std::vector<State> state;
+  std::unordered_map<std::string_view, size_t> index;  // built for large contexts
+
+  explicit LocalCtx(const json::Object& o) : obj(&o), state(o.size(), Undefined) {
+    if (o.size() > 16) {
+      index.reserve(o.size());
+      for (size_t i = 0; i < o.size(); ++i) index.emplace(o.key(i), i);
+    }
+  }
+  // Index of `key`, or npos.
+  size_t find(std::string_view key) const {
+    if (!index.empty()) {
+      auto it = index.find(key);
+      return it == index.end() ? std::string::npos : it->second;
+    }
+    for (size_t i = 0; i < obj->size(); ++i) {
+      if (obj->key(i) == key) return i;
+    }
+    return std::string::npos;
+  }
+};
+
+// Whether `state` answers every lookup in `deps` as the state they were
+// recorded on did: the same definition, or an equal unprotected one.
+inline bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* state) {
+  for (const detail::Dep& d : deps) {
+    const TermPtr* p = state != nullptr ? state->lookup(d.term) : nullptr;
+    const TermDefinition* now = p != nullptr ? p->get() : nullptr;
+    if (d.weak) {
+      if (now != nullptr && now->protected_) return false;
+      continue;
+    }
+    const TermDefinition* then = d.def.get();
+    if (now == then) continue;
+    if (now == nullptr || then == nullptr || now->protected_ || then->protected_ ||
+        now->base_url != then->base_url || !(*now == *then)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// One Dep per term (a full answer wins over a weak one), in first-lookup order.
+inline std::vector<detail::Dep> unique_deps(std::vector<detail::Dep> deps) {
+  std::unordered_map<std::string_view, size_t> at;  // views of out's terms
+  at.reserve(deps.size());
+  std::vector<detail::Dep> out;
+  out.reserve(deps.size());  // never reallocates, so the views stay valid
+  for (detail::Dep& d : deps) {
+    auto it = at.find(d.term);
+    if (it == at.end()) {
+      out.push_back(std::move(d));
+      at.emplace(out.back().term, out.size() - 1);
+    } else if (out[it->second].weak && !d.weak) {
+      out[it->second].weak = false;
+      out[it->second].def = std::move(d.def);
+    }
+  }
+  return out;
+}
+
+// Applies a cached Delta to `b` (whose state the Delta's deps hold on) and
+// freezes the result.
+inline void apply_delta(Builder& b, const detail::Delta& d) {
+  b.overlay = d.changes;
+  b.vocab = d.out_vocab;
+  b.language = d.out_language;
+  b.direction = d.out_direction;
+  if (d.used_base) b.used_base = true;
+  b.freeze();
+}
+
+// Turns off dependency recording when processing ends (even by an exception).
+struct DepRecording {
+  Builder& b;
+  DepRecording(Builder& builder, detail::DepLog* log) : b(builder) { b.deps = log; }
+  ~DepRecording() { b.deps = nullptr; }
+  DepRecording(const DepRecording&) = delete;
+  DepRecording& operator=(const DepRecording&) = delete;
+};
+
+// Flags that change a processing result, part of every cache key.
+inline unsigned flags_of(const Options& o, bool override_protected, bool propagate, bool validate) {
+  return (o.processing_mode == ProcessingMode::JsonLd10 ? 1u : 0u) |
+         (override_protected ? 2u : 0u) | (propagate ? 4u : 0u) | (validate ? 8u : 0u);
+}
+
+class Processor {
+ public:
+  explicit Processor(const Options& options)
+      : opts_(options),
+        cache_(options.context_cache ? &options.context_cache->impl() : nullptr),
+        json10_(options.processing_mode == ProcessingMode::JsonLd10) {}
+
+  ContextCache::Impl* cache() const { return cache_; }
+
+  // The Context Processing algorithm on `result` (which starts as a clone of the
+  // active context). `active` is the active context as a ContextPtr when known
+  // (CP 3 stores it as the previous context). `in_remote`: the local context
+  // came from a remote document, so @base is ignored (CP 5.7).
+  void process(Builder& result, const ContextPtr* active, const json::Value& local_context,
+               const std::string& base_url, std::vector<std::string>& remote_contexts,
+               bool override_protected, bool propagate, bool validate, bool in_remote);
+
+  [[noreturn]] void fail(const std::string& code, const std::string& message, SourceLoc loc) const {
+    std::string file;
+    if (opts_.loader != nullptr && loc.file != 0) file = opts_.loader->files().path(loc.file);
+    throw Error(code, message, std::move(file), loc.line, loc.column);
+  }
+
+ private:
+  const Options& opts_;
+  ContextCache::Impl* cache_;
+  bool json10_;
+  // Remote contexts processed (not answered from the cache) by this call.
+  size_t remote_processed_ = 0;
+  // The remote contexts being processed, outermost first: the ancestors of the
+  // one at hand, for cycle detection.
+  std::vector<std::string> chain_;
+  // Keeps `chain_` balanced when processing ends, even by an exception.
+  struct ChainEntry {
+    std::vector<std::string>& chain;
+    ChainEntry(std::vector<std::string>& c, const std::string& iri) : chain(c) {
+      chain.push_back(iri);
+    }
+    ~ChainEntry() { chain.pop_back(); }
+    ChainEntry(const ChainEntry&) = delete;
+    ChainEntry& operator=(const ChainEntry&) = delete;
+  };
+  // Documents dereferenced during this call when there is no shared cache (CP
+  // 5.2.4: a context is dereferenced at most once).
+  std::unordered_map<std::string, RemoteDoc, detail::StringHash, std::equal_to<>> local_docs_;
+
+  void warn(const std::string& message, SourceLoc loc) const {
+    if (opts_.diagnostics == nullptr) return;
+    std::string file;
+    if (opts_.loader != nullptr && loc.file != 0) file = opts_.loader->files().path(loc.file);
+    opts_.diagnostics->report(Diagnostic{Severity::Warning, std::move(file), loc.line, loc.column,
+                                         "keyword-like-term", message});
+  }
+
+  static ContextPtr snapshot(Builder& b) {
+    if (b.parent != nullptr) return nullptr;
+    return b.to_context();
+  }
+
+  void process_item(Builder& result, const json::Value& context, const std::string& base_url,
+                    std::vector<std::string>& remote_contexts, bool override_protected,
+                    bool propagate, bool validate, bool in_remote);
+
+  std::string resolve_context_iri(const std::string& base_url, const std::string& ref,
+                                  SourceLoc loc) const;
+
+  // CP 5.2.4, 5.2.5: the remote document (dereferenced at most once).
+  const RemoteDoc& dereference(const std::string& iri, SourceLoc loc);
+
+  void process_remote(Builder& result, const json::Value& context, const std::string& base_url,
+                      std::vector<std::string>& remote_contexts, bool override_protected,
+                      bool validate);
+
+  // Records the remote level's entry: `iri` applied to (in_terms, vocab,
+  // language, direction[, base]) gave `result` (frozen).
+  void store_remote(const std::string& iri, unsigned flags, const LayerPtr& in_terms,
+                    const std::optional<std::string>& vocab,
+                    const std::optional<std::string>& language,
+                    const std::optional<std::string>& direction, bool used_base,
+                    const std::string& base, const Builder& result);
+
+  struct TermArgs {
+    const std::string& base_url;
+    bool protected_default;
+    bool override_protected;
+    std::vector<std::string>* remote_contexts;
+    bool validate;
+  };
+
+  // IRI Expansion (4.3.2) during context processing; `lc` (may be null) is the
+  // local context whose undefined terms are created on demand (IE 3, IE 6.3).
+  std::optional<std::string> expand(Builder& active, std::string_view value, bool document_relative,
+                                    bool vocab, LocalCtx* lc, const std::optional<TermArgs>& args);
+
+  // A term definition's value as the map of CTD 7 - 9 without building it: a
+  // string or null value stands for {"@id": value}.
+  struct TermValue {
+    const json::Object* obj = nullptr;
+    const json::Value* id_only = nullptr;
+    const json::Value* find(std::string_view key) const {
+      if (obj != nullptr) return obj->find(key);
+      return key == "@id" ? id_only : nullptr;
+    }
+    bool contains(std::string_view key) const { return find(key) != nullptr; }
+    size_t size() const { return obj != nullptr ? obj->size() : 0; }
+    const std::string& key(size_t i) const { return obj->key(i); }
+    SourceLoc key_location(size_t i) const { return obj->key_location(i); }
+  };
+
+  // Create Term Definition (4.2.2) for member `idx` of the local context.
+  void create_term(Builder& active, LocalCtx& lc, size_t idx, const TermArgs& args);
+
+  void validate_container(std::string_view term, const json::Value& c, TermDefinition& def);
+};
+
+}  // namespace internal
+
+}  // namespace mospec::jsonld

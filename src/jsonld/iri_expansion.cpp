@@ -1,0 +1,101 @@
+// IRI Expansion (JSON-LD 1.1 Processing Algorithms 4.3): during context
+// processing (Processor::expand) and for expansion (expand_iri()).
+#include "jsonld/context_processing.hpp"
+
+namespace mospec::jsonld::internal {
+
+std::optional<std::string> Processor::expand(Builder& active, std::string_view value,
+                                             bool document_relative, bool vocab, LocalCtx* lc,
+                                             const std::optional<TermArgs>& args) {
+  // IE 1
+  if (is_keyword(value)) return std::string(value);
+  // IE 2
+  if (has_keyword_form(value)) return std::nullopt;
+  // IE 3
+  if (lc != nullptr) {
+    const size_t i = lc->find(value);
+    if (i != std::string::npos && lc->state[i] != LocalCtx::Defined) {
+      create_term(active, *lc, i, *args);
+    }
+  }
+  const TermDefinition* def = active.find(value);
+  // IE 4
+  if (def != nullptr && def->iri && is_keyword(*def->iri)) return def->iri;
+  // IE 5
+  if (vocab && def != nullptr) return def->iri;
+  // IE 6
+  const size_t colon = value.find(':', 1);
+  if (colon != std::string_view::npos) {
+    // IE 6.1
+    const std::string_view prefix = value.substr(0, colon);
+    const std::string_view suffix = value.substr(colon + 1);
+    // IE 6.2
+    if (prefix == "_" || suffix.starts_with("//")) return std::string(value);
+    // IE 6.3
+    if (lc != nullptr) {
+      const size_t i = lc->find(prefix);
+      if (i != std::string::npos && lc->state[i] != LocalCtx::Defined) {
+        create_term(active, *lc, i, *args);
+      }
+    }
+    // IE 6.4
+    const TermDefinition* pdef = active.find(prefix);
+    if (pdef != nullptr && pdef->iri && pdef->prefix) {
+      std::string out = *pdef->iri;
+      out += suffix;
+      return out;
+    }
+    // IE 6.5
+    if (rdf::is_absolute_iri(value)) return std::string(value);
+  }
+  // IE 7
+  if (vocab && active.vocab) return *active.vocab + std::string(value);
+  // IE 8
+  if (document_relative) return rdf::resolve_iri(active.base_iri(), value);
+  // IE 9
+  return std::string(value);
+}
+
+}  // namespace mospec::jsonld::internal
+
+namespace mospec::jsonld {
+
+using namespace internal;
+
+std::optional<std::string> expand_iri(const ActiveContext& active, std::string_view value,
+                                      bool document_relative, bool vocab) {
+  // IE 1
+  if (!value.empty() && value[0] == '@') {
+    if (is_keyword(value)) return std::string(value);
+    // IE 2
+    if (has_keyword_form(value)) return std::nullopt;
+  }
+  const TermDefinition* def = active.find(value);
+  if (def != nullptr) {
+    // IE 4
+    if (def->iri && is_keyword(*def->iri)) return def->iri;
+    // IE 5
+    if (vocab) return def->iri;
+  }
+  // IE 6
+  const size_t colon = value.find(':', 1);
+  if (colon != std::string_view::npos) {
+    const std::string_view prefix = value.substr(0, colon);
+    const std::string_view suffix = value.substr(colon + 1);
+    if (prefix == "_" || suffix.starts_with("//")) return std::string(value);
+    const TermDefinition* pdef = active.find(prefix);
+    if (pdef != nullptr && pdef->iri && pdef->prefix) {
+      std::string out = *pdef->iri;
+      out += suffix;
+      return out;
+    }
+    if (rdf::is_absolute_iri(value)) return std::string(value);
+  }
+  // IE 7
+  if (vocab && active.vocab()) return *active.vocab() + std::string(value);
+  // IE 8
+  if (document_relative) return rdf::resolve_iri(active.base(), value);
+  return std::string(value);
+}
+
+}  // namespace mospec::jsonld
