@@ -740,7 +740,17 @@ void Lowerer::lower_operators() {
       s.op = static_cast<int>(k);
       bool ok = true;
       const auto port_datum = [&](const OperatorPort& port) {
-        auto o = object(e, kind.property_iri(port.property));
+        const std::vector<TermId> values = objects(e, kind.property_iri(port.property));
+        if (values.size() > 1) {
+          error(e, "several-values",
+                "the " + std::string(kind.type) + " '" + s.iri + "' names " +
+                    std::to_string(values.size()) + " values for `" + std::string(port.property) +
+                    "` ('" + str(values[0]) + "', '" + str(values[1]) + "'" +
+                    (values.size() > 2 ? ", ..." : "") + "); an operator reads exactly one");
+          ok = false;
+          return -1;
+        }
+        auto o = values.empty() ? std::optional<TermId>() : std::optional<TermId>(values[0]);
         if (!o) {
           error(e, "missing-property",
                 "the " + std::string(kind.type) + " '" + s.iri + "' names no `" +
