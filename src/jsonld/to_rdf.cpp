@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -101,7 +102,11 @@ std::string double_lexical(double d) {
   // as "5" then only zeros after the 16th significant digit; check the full
   // expansion (at most 767 digits for a double) only in that rare case.
   char buf[1100];
-  std::snprintf(buf, sizeof buf, "%.40e", mag);
+  // The exact digits printf's "%.40e" gives, written several times faster
+  // (this ran for every number of a model: a sixth of converting it to RDF).
+  const auto written =
+      std::to_chars(buf, buf + sizeof buf - 1, mag, std::chars_format::scientific, 40);
+  *written.ptr = '\0';
   std::string digits;  // 41 significant digits, no point
   const char* p = buf;
   for (; *p != 'e'; ++p) {

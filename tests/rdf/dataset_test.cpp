@@ -108,7 +108,7 @@ TEST(Dataset, EveryPatternMatchesBruteForceSmall) {
   Dataset d;
   Pools pools = make_pools(d.terms());
   std::mt19937 rng(7);
-  add_random(d, pools, rng, 200);  // stays in the hash-map tail
+  add_random(d, pools, rng, 200);  // stays in the chained tail
   check_all_patterns(d, pools, rng);
 }
 
