@@ -11,9 +11,6 @@
 // a slow joint motion so nothing is constant-folded.
 #include <benchmark/benchmark.h>
 #include <dlfcn.h>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -28,6 +25,7 @@
 #include "ir/lower.hpp"
 #include "robot/controller.hpp"
 #include "sim/config.hpp"
+#include "spawn.hpp"
 
 extern char** environ;
 
@@ -39,25 +37,9 @@ using mospec::robot::Controller;
 const std::string kSource = MOSPEC_SOURCE_DIR;
 const std::string kMospec = MOSPEC_BINARY;
 
-// Runs argv with stdout redirected to `out_file` (or discarded); returns the exit status.
+// Runs argv in the source tree with stdout to `out_file` (or discarded).
 int spawn(const std::vector<std::string>& args, const std::string& out_file = "/dev/null") {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addchdir_np(&actions, kSource.c_str());
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return mospec::bench::spawn(args, kSource, out_file);
 }
 
 mospec::ir::Program lower_sc1() {

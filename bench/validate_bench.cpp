@@ -8,9 +8,6 @@
 // dynamic loading, validation, report), <= 15 ms wall. BM_HelpProcess is
 // `mospec --help`: the start-up alone.
 #include <benchmark/benchmark.h>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <filesystem>
 #include <memory>
@@ -21,6 +18,7 @@
 #include "rdf/turtle.hpp"
 #include "shacl/shapes.hpp"
 #include "shacl/validate.hpp"
+#include "spawn.hpp"
 #include "support/io.hpp"
 #include "validation/model_validation.hpp"
 
@@ -94,22 +92,7 @@ BENCHMARK_CAPTURE(BM_ValidateStages, sc1_validate_only, 1)->Unit(benchmark::kMil
 int run_mospec(const std::vector<std::string>& args, const fs::path& cwd) {
   std::vector<std::string> all{MOSPEC_BINARY};
   all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return mospec::bench::spawn(all, cwd.string());
 }
 
 // `mospec validate models/sc1.json` in the authors' tree: exit 1 (their SC1
