@@ -395,8 +395,6 @@ class Builder {
   const ir::ArmSolver& arm(const ir::Step& st) const {
     return p_.arms[static_cast<std::size_t>(st.solver)];
   }
-  int state_slot(const ir::Step& st, ir::StateKind) const { return st.state; }
-
   void add_slots(mus::data& root) const {
     mus::data types = list();
     for (int t = 0; t < ir::kDataTypes; ++t) {
@@ -777,7 +775,7 @@ class Builder {
       case StepKind::LevelMonitor:
       case StepKind::EdgeMonitor:
         s.set(st.kind == StepKind::LevelMonitor ? "is_level_monitor" : "is_edge_monitor", true);
-        s.set("state_slot", std::to_string(state_slot(st, ir::StateKind::Monitor)));
+        s.set("state_slot", std::to_string(st.state));
         s.set("in0", in(st, 0));
         s.set("tolerance", step_members_[index]);
         s.set("out0", out(st, 0));
@@ -795,14 +793,14 @@ class Builder {
         s.set("n_until", std::to_string(st.in.size() - n_when));
         s.set("when", when);
         s.set("until", until);
-        s.set("state_slot", std::to_string(state_slot(st, ir::StateKind::Motion)));
+        s.set("state_slot", std::to_string(st.state));
         s.set("out0", out(st, 0));
         break;
       }
       case StepKind::Pid:
         s.set("is_pid", true);
         s.set("pid", step_members_[index]);
-        s.set("state_slot", std::to_string(state_slot(st, ir::StateKind::Pid)));
+        s.set("state_slot", std::to_string(st.state));
         s.set("in0", in(st, 0));
         s.set("active", gate());
         s.set("out0", out(st, 0));
