@@ -12,41 +12,21 @@ namespace mospec::ir {
 namespace {
 
 // The C++ type and storage of each data type an operator can take or give.
+template <class Cpp, DataType D, std::vector<Cpp> Slots::*member, PortSource S = PortSource::Datum>
+struct SlotType {
+  using cpp = Cpp;
+  static constexpr DataType type = D;
+  static constexpr PortSource source = S;
+  static Cpp& at(Slots& s, int i) { return (s.*member)[static_cast<size_t>(i)]; }
+};
 namespace t {
-struct Scalar {
-  using cpp = double;
-  static constexpr DataType type = DataType::Scalar;
-  static constexpr PortSource source = PortSource::Datum;
-  static double& at(Slots& s, int i) { return s.scalars[static_cast<size_t>(i)]; }
-};
-struct Vector3 {
-  using cpp = runtime::Vec3;
-  static constexpr DataType type = DataType::Vector3;
-  static constexpr PortSource source = PortSource::Datum;
-  static cpp& at(Slots& s, int i) { return s.vec3s[static_cast<size_t>(i)]; }
-};
+using Scalar = SlotType<double, DataType::Scalar, &Slots::scalars>;
+using Vector3 = SlotType<runtime::Vec3, DataType::Vector3, &Slots::vec3s>;
 // An axis the model names (x, y or z): a unit-vector constant.
-struct Axis : Vector3 {
-  static constexpr PortSource source = PortSource::Axis;
-};
-struct Pose {
-  using cpp = runtime::Pose;
-  static constexpr DataType type = DataType::Pose;
-  static constexpr PortSource source = PortSource::Datum;
-  static cpp& at(Slots& s, int i) { return s.poses[static_cast<size_t>(i)]; }
-};
-struct Twist {
-  using cpp = runtime::Vec6;
-  static constexpr DataType type = DataType::Twist;
-  static constexpr PortSource source = PortSource::Datum;
-  static cpp& at(Slots& s, int i) { return s.twists[static_cast<size_t>(i)]; }
-};
-struct Wrench {
-  using cpp = runtime::Vec6;
-  static constexpr DataType type = DataType::Wrench;
-  static constexpr PortSource source = PortSource::Datum;
-  static cpp& at(Slots& s, int i) { return s.wrenches[static_cast<size_t>(i)]; }
-};
+using Axis = SlotType<runtime::Vec3, DataType::Vector3, &Slots::vec3s, PortSource::Axis>;
+using Pose = SlotType<runtime::Pose, DataType::Pose, &Slots::poses>;
+using Twist = SlotType<runtime::Vec6, DataType::Twist, &Slots::twists>;
+using Wrench = SlotType<runtime::Vec6, DataType::Wrench, &Slots::wrenches>;
 }  // namespace t
 
 // The interpreter's call of a kernel, derived from the declared signature
