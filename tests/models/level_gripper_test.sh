@@ -29,6 +29,11 @@ check "starts rolled (~0.28 rad, got $first)" within "$first" 0.25 0.32
 check "holds roll = 0 rad within 0.01 after 8 s (got $last)" within "$last" -0.01 0.01
 check "no instability" grep -q '"instabilities": 0' "$work/run.json"
 
+# The generated controller does exactly what the interpreter does.
+expect "runs (generated)" 0 "" -- "$mospec" run "$app" --sim --duration 8 --log "$work/gen.csv" \
+  --cache "$work/cache"
+check "generated and interpreted logs are byte-identical" cmp -s "$work/run.csv" "$work/gen.csv"
+
 # The reference is honoured, not a coincidence of the start pose.
 mkdir -p "$work/tree" && cp -r models metamodels robots "$work/tree/"
 sed -i 's/"value": "0.0"/"value": "0.2"/' "$work/tree/models/examples/level-gripper/00-misc.json"
