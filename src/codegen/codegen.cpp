@@ -693,15 +693,14 @@ class Builder {
     header.append(where(st.where));
     s.set("header", header);
     const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
+    s.set(ir::template_section(st.kind), true);
     switch (st.kind) {
       case StepKind::ReadClock:
-        s.set("is_read_clock", true);
         s.set("out0", out(st, 0));
         break;
       case StepKind::ArmKinematics: {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
-        s.set("is_arm_kinematics", true);
         s.set("arm", arm_names_[k].arm);
         s.set("task", arm_names_[k].task);
         s.set("workspace", arm_names_[k].ws);
@@ -727,14 +726,12 @@ class Builder {
         break;
       }
       case StepKind::ViewRead:
-        s.set("is_view_read", true);
         s.set("function", datum(st.in.at(0)).type == DataType::Pose ? "view_pose" : "view_vec6");
         s.set("in0", in(st, 0));
         s.set("component", std::to_string(st.views[0]));
         s.set("out0", out(st, 0));
         break;
       case StepKind::ViewWrite: {
-        s.set("is_view_write", true);
         s.set("out0", out(st, 0));
         mus::data components = list();
         for (std::size_t k = 0; k < st.in.size(); ++k) {
@@ -757,7 +754,6 @@ class Builder {
           args.append(in(st, i));
         }
         if (!k.kernel_returns) args.append(", ").append(out(st, 0));
-        s.set("is_operator", true);
         s.set("returns", k.kernel_returns);
         s.set("kernel", std::string(k.kernel));
         s.set("args", args);
@@ -765,7 +761,6 @@ class Builder {
         break;
       }
       case StepKind::Evaluate:
-        s.set("is_evaluate", true);
         s.set("evaluator", step_members_[index]);
         s.set("in0", in(st, 0));
         s.set("active", gate());
@@ -774,7 +769,6 @@ class Builder {
         break;
       case StepKind::LevelMonitor:
       case StepKind::EdgeMonitor:
-        s.set(st.kind == StepKind::LevelMonitor ? "is_level_monitor" : "is_edge_monitor", true);
         s.set("state_slot", std::to_string(st.state));
         s.set("in0", in(st, 0));
         s.set("tolerance", step_members_[index]);
@@ -788,7 +782,6 @@ class Builder {
           if (!list_text.empty()) list_text.append(", ");
           list_text.append(in(st, k));
         }
-        s.set("is_guarded_motion", true);
         s.set("n_when", std::to_string(n_when));
         s.set("n_until", std::to_string(st.in.size() - n_when));
         s.set("when", when);
@@ -798,7 +791,6 @@ class Builder {
         break;
       }
       case StepKind::Pid:
-        s.set("is_pid", true);
         s.set("pid", step_members_[index]);
         s.set("state_slot", std::to_string(st.state));
         s.set("in0", in(st, 0));
@@ -808,7 +800,6 @@ class Builder {
       case StepKind::ArmSolve: {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
-        s.set("is_arm_solve", true);
         s.set("arm", arm_names_[k].arm);
         s.set("task", arm_names_[k].task);
         s.set("workspace", arm_names_[k].ws);
@@ -855,7 +846,6 @@ class Builder {
         break;
       }
       case StepKind::BaseForceDistribution: {
-        s.set("is_base_force_distribution", true);
         s.set("in0", in(st, 0));
         // in[0] is the platform wrench; the rest are the running flags of the
         // motions that drive the base (none running: it brakes and holds).
@@ -870,7 +860,6 @@ class Builder {
         break;
       }
       case StepKind::BaseVelocityComposition:
-        s.set("is_base_velocity_composition", true);
         s.set("out0", out(st, 0));
         break;
     }
