@@ -4,6 +4,33 @@
 
 namespace mospec::ir::lowering {
 
+void State::several_values(TermId s, const std::string& p,
+                           const std::vector<TermId>& values) const {
+  if (!several_reported.emplace(s.index, p).second) return;
+  const auto quoted = [&](TermId v) {
+    if (graph.terms()[v].is_literal()) return literal_text(v);
+    std::string out = "'";
+    out.append(graph.str(v)).append("'");
+    return out;
+  };
+  std::string msg = "'";
+  msg.append(graph.str(s))
+      .append("' has ")
+      .append(std::to_string(values.size()))
+      .append(" values for `")
+      .append(local_name(p))
+      .append("`, which takes one: ");
+  for (size_t k = 0; k < values.size() && k < 3; ++k) {
+    if (k) msg.append(k + 1 == values.size() ? " and " : ", ");
+    msg.append(quoted(values[k])).append(" (").append(place(where(s, p, values[k]))).append(")");
+  }
+  if (values.size() > 3) msg.append(", ...");
+  msg.append(
+      "; give it once (a value in a second file does not override the first: both are part of "
+      "the model)");
+  error(where(s, p, values[1]), "several-values", msg);
+}
+
 std::optional<DataType> State::type_of(TermId e) const {
   if (has_type(e, vocab("geometry/spatial-relations", "Pose")) ||
       has_type(e, vocab("geometry/coordinates", "PoseCoordinate")))
