@@ -207,7 +207,13 @@ void lower_handlers(State& st) {
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     st.pending_iri = st.str(h);
     auto m = st.object(h, vocab(ch, "motion"));
-    if (!m) continue;
+    if (!m) {
+      st.error(h, "missing-property",
+               "the constraint handler '" + st.str(h) +
+                   "' names no motion: its evaluators and controllers would run whatever the "
+                   "task does; name the motion they serve (`motion`)");
+      continue;
+    }
     int active = -1;
     if (auto it = active_of_motion.find(m->index); it != active_of_motion.end()) {
       active = it->second;
