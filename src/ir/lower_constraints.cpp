@@ -46,7 +46,7 @@ void lower_evaluators(State& st) {
           st.error(st.where(*t, kQudt + "value", *lit), "invalid-number",
                    "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has the value " +
                        st.literal_text(*lit) + ", which is not a finite number of its datatype");
-        } else {
+        } else if (st.defined(*t)) {  // else undefined-quantity said it
           st.error(*t, "not-a-constant",
                    "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has no value");
         }

@@ -67,6 +67,9 @@ struct State {
     return all.front();
   }
   void several_values(TermId s, const std::string& p, const std::vector<TermId>& values) const;
+  // For a reference to `e` that nothing defines: "; did you mean '<nearest>'?"
+  // naming the defined entity of the same namespace nearest in spelling, or "".
+  std::string did_you_mean(TermId e) const;
   bool has_type(TermId s, const std::string& type) const { return graph.has_type(s, term(type)); }
   std::vector<TermId> instances(const std::string& type) const {
     return graph.instances(term(type));
