@@ -176,13 +176,18 @@ void lower_arm(State& st, TermId solver) {
     st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no gravity");
   }
   const int arm_index = static_cast<int>(st.program.arms.size());
+  // The arm's two steps, named and located by its solver.
+  const auto arm_step = [&](StepKind kind, const char* suffix) {
+    Step s;
+    s.kind = kind;
+    s.iri = arm.iri;
+    s.name = arm.name + suffix;
+    s.where = arm.where;
+    s.solver = arm_index;
+    return s;
+  };
   // Outputs.
-  Step kin;
-  kin.kind = StepKind::ArmKinematics;
-  kin.iri = arm.iri;
-  kin.name = arm.name + "_kinematics";
-  kin.where = arm.where;
-  kin.solver = arm_index;
+  Step kin = arm_step(StepKind::ArmKinematics, "_kinematics");
   for (TermId o : st.objects(solver, vocab(slv, "output"))) {
     const auto t = st.type_of(o);
     if (t == DataType::Pose) {
@@ -237,12 +242,7 @@ void lower_arm(State& st, TermId solver) {
   }
   // Motion drivers and their priority levels.
   auto drivers = st.object(solver, vocab(slv, "motion-drivers"));
-  Step solve;
-  solve.kind = StepKind::ArmSolve;
-  solve.iri = arm.iri;
-  solve.name = arm.name + "_solve";
-  solve.where = arm.where;
-  solve.solver = arm_index;
+  Step solve = arm_step(StepKind::ArmSolve, "_solve");
   // The link of the last segment, as the robot model relates it to its frame.
   const std::string last_link = frames.segments.empty() ? "" : frames.segments.back().body;
   if (!drivers) {

@@ -165,21 +165,22 @@ void State::fill_constant(Data& d, TermId e) {
 }
 
 int State::datum(TermId e, DataType expected, TermId referenced_by, const std::string& role) {
+  const auto type_mismatch = [&](const std::string& iri, DataType got) {
+    std::string msg = "'";
+    msg.append(str(referenced_by))
+        .append("' uses '")
+        .append(iri)
+        .append("' as its ")
+        .append(role)
+        .append(", which must be a ")
+        .append(to_string(expected))
+        .append(", but it is a ")
+        .append(to_string(got));
+    error(referenced_by, "type-mismatch", msg);
+  };
   if (auto it = data_of.find(e.index); it != data_of.end()) {
     const Data& d = program.data[static_cast<size_t>(it->second)];
-    if (d.type != expected) {
-      std::string msg = "'";
-      msg.append(str(referenced_by))
-          .append("' uses '")
-          .append(d.iri)
-          .append("' as its ")
-          .append(role)
-          .append(", which must be a ")
-          .append(to_string(expected))
-          .append(", but it is a ")
-          .append(to_string(d.type));
-      error(referenced_by, "type-mismatch", msg);
-    }
+    if (d.type != expected) type_mismatch(d.iri, d.type);
     return it->second;
   }
   Data d;
@@ -197,17 +198,7 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
         .append(did_you_mean(e));
     error(where(referenced_by), "undefined-quantity", msg);
   } else if (auto t = type_of(e); t && *t != expected) {
-    std::string msg = "'";
-    msg.append(str(referenced_by))
-        .append("' uses '")
-        .append(d.iri)
-        .append("' as its ")
-        .append(role)
-        .append(", which must be a ")
-        .append(to_string(expected))
-        .append(", but it is a ")
-        .append(to_string(*t));
-    error(referenced_by, "type-mismatch", msg);
+    type_mismatch(d.iri, *t);
   }
   const std::string gr = "geometry/spatial-relations";
   if (auto o = object(e, vocab(gr, "of"))) d.of = str(*o);
