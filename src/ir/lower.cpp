@@ -65,6 +65,7 @@ const PassInfo kPasses[] = {
     {"handlers", &lowering::lower_handlers},
     {"controllers", &lowering::lower_controllers},
     {"views", &lowering::lower_views},
+    {"driver-directions", &lowering::check_driver_directions},
     {"motion-gates", &lowering::gate_arm_solves},
     {"producers", &lowering::check_inputs},
     {"schedule", &lowering::schedule},

@@ -395,6 +395,39 @@ void lower_arm(State& st, TermId solver) {
   st.add_step(std::move(solve));
 }
 
+// A Cartesian force on the constrained segment whose view writes a component
+// an acceleration constraint also drives: ACHD satisfies the constraint and
+// cancels that component of the force, silently. Known once views are
+// lowered: a wrench assembled by views writes exactly their components (a
+// wrench an operator computes may point anywhere and is not judged here).
+void check_driver_directions(State& st) {
+  static const char* const kComponent[6] = {"angular x", "angular y", "angular z",
+                                            "linear x",  "linear y",  "linear z"};
+  for (const ArmSolver& arm : st.program.arms) {
+    const int last = arm.chain.size() - 1;
+    for (const CartesianForce& cf : arm.cartesian_forces) {
+      if (cf.segment != last || !arm.tip_is_last_segment) continue;
+      const auto it = st.producer.find(cf.wrench);
+      if (it == st.producer.end()) continue;
+      const Step& writer = st.steps[static_cast<size_t>(it->second)];
+      if (writer.kind != StepKind::ViewWrite) continue;
+      for (int component : writer.views) {
+        for (const AccelerationConstraint& ac : arm.acceleration_constraints) {
+          if (ac.component != component) continue;
+          const TermId force = st.term(cf.iri), constraint = st.term(ac.iri);
+          st.error(force, "driven-twice",
+                   "the Cartesian force '" + cf.iri + "' pushes along the " +
+                       kComponent[component] + " of '" + arm.iri +
+                       "', which the acceleration constraint '" + ac.iri + "' (" +
+                       st.place(constraint) +
+                       ") drives: ACHD would cancel that part of the force. Drive each "
+                       "direction once: drop the constraint on it, or the force's view of it");
+        }
+      }
+    }
+  }
+}
+
 // Which motions drive each arm and the base: the running flags gating the controllers and
 // assignments whose outputs reach the arm's drivers, through any operators.
 void gate_arm_solves(State& st) {

@@ -224,6 +224,7 @@ void lower_clocks(State& st);
 void lower_arms(State& st);
 void lower_arm(State& st, TermId solver);
 void gate_arm_solves(State& st);
+void check_driver_directions(State& st);
 // lower_operators.cpp
 void lower_operators(State& st);
 void refuse_unknown_properties(State& st, TermId e, const OperatorKind& kind);
