@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "ir/controllers.hpp"
 #include "ir/operators.hpp"
 
 namespace mospec::ir {
@@ -47,8 +48,8 @@ std::string_view to_string(StepKind k) {
       return "edge-monitor";
     case StepKind::GuardedMotion:
       return "guarded-motion";
-    case StepKind::Pid:
-      return "pid";
+    case StepKind::Controller:
+      return "controller";
     case StepKind::ArmSolve:
       return "arm-solve";
     case StepKind::BaseForceDistribution:
@@ -64,6 +65,11 @@ std::string_view kind_name(const Step& step) {
     const auto kinds = operator_kinds();
     if (step.op >= 0 && static_cast<size_t>(step.op) < kinds.size())
       return kinds[static_cast<size_t>(step.op)].name;
+  }
+  if (step.kind == StepKind::Controller) {
+    const auto kinds = controller_kinds();
+    if (step.controller >= 0 && static_cast<size_t>(step.controller) < kinds.size())
+      return kinds[static_cast<size_t>(step.controller)].name;
   }
   return to_string(step.kind);
 }
@@ -127,9 +133,20 @@ Signature signature(const Step& st, const Program& p) {
     case StepKind::Evaluate:
       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag, T::Scalar}};
       return {{T::Scalar}, {T::Flag, T::Scalar}};
-    case StepKind::Pid:
-      if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Scalar}};
-      return {{T::Scalar}, {T::Scalar}};
+    case StepKind::Controller: {
+      const auto kinds = controller_kinds();
+      if (st.controller < 0 || static_cast<size_t>(st.controller) >= kinds.size())
+        return {
+            {},
+            {},
+            true,
+            "names controller kind " + std::to_string(st.controller) + ", which does not exist"};
+      // The signals, then (when its motion gates it) the running flag.
+      const ControllerKind& k = kinds[static_cast<size_t>(st.controller)];
+      Signature s{std::vector<T>(k.in.size(), T::Scalar), {T::Scalar}};
+      if (st.in.size() == k.in.size() + 1) s.in.push_back(T::Flag);
+      return s;
+    }
     case StepKind::GuardedMotion:
       return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
     case StepKind::ViewRead: {
@@ -314,15 +331,30 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
         f.step(st, "has " + std::to_string(st.n_when) + " when- and " + std::to_string(n_until) +
                        " until-guards; at most " + std::to_string(kMaxGuards) + " each");
     }
-    if (st.kind == StepKind::Pid || st.kind == StepKind::LevelMonitor ||
-        st.kind == StepKind::EdgeMonitor || st.kind == StepKind::GuardedMotion) {
-      const StateKind sk = st.kind == StepKind::Pid             ? StateKind::Pid
-                           : st.kind == StepKind::GuardedMotion ? StateKind::Motion
-                                                                : StateKind::Monitor;
+    if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor ||
+        st.kind == StepKind::GuardedMotion) {
+      const StateKind sk =
+          st.kind == StepKind::GuardedMotion ? StateKind::Motion : StateKind::Monitor;
       const int n = p.states[static_cast<size_t>(sk)];
       if (st.state < 0 || st.state >= n)
         f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
                        std::to_string(n - 1));
+    }
+    if (st.kind == StepKind::Controller && st.controller >= 0 &&
+        static_cast<size_t>(st.controller) < controller_kinds().size()) {
+      const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
+      if (st.parameters.size() != k.parameters.size())
+        f.step(st, "has " + std::to_string(st.parameters.size()) + " parameters; a " +
+                       std::string(k.name) + " controller has " +
+                       std::to_string(k.parameters.size()));
+      const int n = p.controller_state_count(st.controller);
+      if (k.has_state() && (st.state < 0 || st.state >= n))
+        f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
+                       std::to_string(n - 1) + " (the program's " + std::string(k.name) +
+                       " states)");
+      if (!k.has_state() && st.state != -1)
+        f.step(st, "has state slot " + std::to_string(st.state) + "; a " + std::string(k.name) +
+                       " controller keeps no state (expected -1)");
     }
     if (st.kind == StepKind::ArmKinematics || st.kind == StepKind::ArmSolve) {
       if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size())
@@ -564,11 +596,16 @@ std::string to_json(const Program& p, const SourceFiles* files) {
       e["constraint"] = std::move(c);
     }
     if (st.kind == StepKind::GuardedMotion) e["when"] = st.n_when;
-    if (st.kind == StepKind::Pid) {
-      e["pid"] = {{"kp", st.pid.kp},
-                  {"ki", st.pid.ki},
-                  {"kd", st.pid.kd},
-                  {"decay-rate", st.pid.decay_rate}};
+    if (st.kind == StepKind::Controller && st.controller >= 0 &&
+        static_cast<size_t>(st.controller) < controller_kinds().size()) {
+      // The parameters the model states, by their JSON keys, under the kind's name.
+      const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
+      Json params = Json::object();
+      for (size_t i = 0; i < k.parameters.size() && i < st.parameters.size(); ++i) {
+        if (!k.parameters[i].json.empty())
+          params[std::string(k.parameters[i].json)] = st.parameters[i];
+      }
+      e[std::string(k.name)] = std::move(params);
     }
     if (st.state >= 0) e["state"] = st.state;
     e["where"] = location(st.where, files);

@@ -28,7 +28,6 @@
 #include <vector>
 
 #include "runtime/chain.hpp"
-#include "runtime/controllers.hpp"
 #include "runtime/evaluators.hpp"
 #include "runtime/kelo.hpp"
 #include "runtime/model.hpp"
@@ -65,7 +64,8 @@ enum class StepKind : uint8_t {
   LevelMonitor,   // in: [error]; out: [flag]
   EdgeMonitor,    // in: [error]; out: [event]
   GuardedMotion,  // ins: [when flags..., until flags...]; out: [active flag]
-  Pid,            // ins: [error, active flag]; out: [control signal]
+  Controller,     // ins: [signals..., (active flag)]; out: [control signal]; Step::controller
+                  // indexes controller_kinds() (controllers.hpp)
   ArmSolve,       // solver; ins: drivers' data, motion gates; writes the arm's joint torques
   BaseForceDistribution,    // base solver; ins: [platform wrench, motion gates...]; writes the hub
                             // torques
@@ -91,8 +91,9 @@ struct Step {
   runtime::ConstraintSpec constraint;  // Evaluate
   bool has_error_output = false;       // Evaluate: out[1] is the error (else none/output)
   int n_when = 0;                      // GuardedMotion: ins[0, n_when) are `when`
-  runtime::PidSpec pid;                // Pid
-  int state = -1;                      // Pid, monitors, motions: their state slot
+  int controller = -1;                 // Controller: index into controller_kinds()
+  std::vector<double> parameters;      // Controller: one value per parameter of its kind
+  int state = -1;                      // stateful controllers, monitors, motions: their state slot
   // ArmSolve: in[0, n_drivers) are the drivers' data; in[n_drivers, ...) the
   // running flags of the motions whose controllers drive this arm. With such
   // gates and none of them running, the arm holds (steps::arm_hold).
@@ -162,8 +163,9 @@ struct BaseSolver {
   SourceLoc where;
 };
 
-// Per-step state the tick keeps across ticks (controllers, monitors, motions).
-enum class StateKind : uint8_t { Pid, Monitor, Motion };
+// Per-step state the tick keeps across ticks: monitors, motions (controllers
+// count theirs per kind, Program::controller_states).
+enum class StateKind : uint8_t { Monitor, Motion };
 
 // One column of the per-tick log: the value of a datum after the tick (a flag
 // or event as 0/1). Chosen by lowering: every constraint's measured value,
@@ -179,7 +181,8 @@ struct LogColumn {
 
 struct Program;
 // A step's kind as the IR's JSON and messages name it: the operator's name
-// for an Operator step ("compose-pose"), else to_string(kind).
+// for an Operator step ("compose-pose"), the controller's for a Controller
+// step ("pid"), else to_string(kind).
 std::string_view kind_name(const Step& step);
 
 struct Program {
@@ -187,12 +190,20 @@ struct Program {
   std::vector<Data> data;
   std::array<int, kDataTypes> slots{};  // number of slots per DataType
   std::vector<Step> steps;              // schedule order
-  std::array<int, 3> states{};          // number of state slots per StateKind
+  std::array<int, 2> states{};          // number of state slots per StateKind
+  // Number of state slots per controller kind (controller_kinds() order; a
+  // kind past the end has none).
+  std::vector<int> controller_states;
   std::vector<ArmSolver> arms;
   std::optional<BaseSolver> base;
   std::vector<LogColumn> log;
 
   int count(DataType t) const { return slots[static_cast<int>(t)]; }
+  int controller_state_count(int kind) const {
+    return kind >= 0 && static_cast<size_t>(kind) < controller_states.size()
+               ? controller_states[static_cast<size_t>(kind)]
+               : 0;
+  }
 };
 
 // Most `when` or `until` guards one guarded motion may have.

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "description/chain_rdf.hpp"
+#include "ir/controllers.hpp"
 #include "ir/graph.hpp"
 #include "ir/operators.hpp"
 #include "vocab/metamodels.hpp"
@@ -1269,7 +1270,13 @@ void Lowerer::lower_controllers() {
             "the controller '" + str(c) + "' needs an error-signal and a control-signal");
       continue;
     }
-    Step s = step_for(StepKind::Pid, c);
+    Step s = step_for(StepKind::Controller, c);
+    s.controller = controller_index("pid");
+    const ControllerKind& kind = controller_kinds()[static_cast<size_t>(s.controller)];
+    s.parameters = kind.defaults();
+    const auto set = [&](std::string_view member, double v) {
+      s.parameters[static_cast<size_t>(kind.parameter(member))] = v;
+    };
     const auto gain = [&](const std::string& p, bool required) {
       const auto lit = object(c, vocab(ch, p));
       auto v = lit ? number(*lit) : std::nullopt;
@@ -1283,12 +1290,13 @@ void Lowerer::lower_controllers() {
       }
       return v.value_or(0.0);
     };
-    s.pid.kp = gain("proportional-gain", true);
-    s.pid.ki = gain("integral-gain", true);
-    s.pid.kd = gain("derivative-gain", true);
-    if (has_type(c, vocab(ch, "DecayingIntegralTerm"))) s.pid.decay_rate = gain("decay-rate", true);
+    set("kp", gain("proportional-gain", true));
+    set("ki", gain("integral-gain", true));
+    set("kd", gain("derivative-gain", true));
+    if (has_type(c, vocab(ch, "DecayingIntegralTerm")))
+      set("decay_rate", gain("decay-rate", true));
     try {
-      runtime::Pid check(s.pid, s.iri.c_str());
+      kind.instantiate(s.parameters, s.iri.c_str());
     } catch (const Error& e) {
       error(c, "invalid-controller", e.diagnostic().message);
     }
@@ -1296,7 +1304,8 @@ void Lowerer::lower_controllers() {
     if (auto it = active_of_controller_.find(c.index); it != active_of_controller_.end())
       s.in.push_back(it->second);
     s.out = {datum(*sig, DataType::Scalar, c, "control-signal")};
-    s.state = prog_.states[static_cast<int>(StateKind::Pid)]++;
+    prog_.controller_states.resize(controller_kinds().size());
+    s.state = prog_.controller_states[static_cast<size_t>(s.controller)]++;
     add_step(std::move(s));
   }
 }
@@ -1474,7 +1483,7 @@ void Lowerer::gate_arm_solves() {
       if (it == producer_.end() || it->second < 0) continue;
       const Step& p = steps_[static_cast<size_t>(it->second)];
       const bool gated =
-          (p.kind == StepKind::Pid && p.in.size() == 2) ||
+          (p.kind == StepKind::Controller && p.in.size() == 2) ||
           (p.kind == StepKind::Evaluate &&
            p.constraint.kind == runtime::ConstraintKind::Assignment && p.in.size() == 2);
       if (gated) gates.insert(p.in[1]);
@@ -1594,7 +1603,7 @@ void Lowerer::build_log() {
       case StepKind::GuardedMotion:
         add(".running", s.out[0]);
         break;
-      case StepKind::Pid:
+      case StepKind::Controller:
         add(".output", s.out[0]);
         break;
       default:
