@@ -98,7 +98,7 @@ struct Declaration {
   std::vector<std::string_view> frames;
   std::string_view summary;
   // false: the class's properties do not map one-to-one onto the ports
-  // (PlanarAngleFromDirections' ordered list); lower.cpp lowers it by hand.
+  // (PlanarAngleFromDirections' ordered list); lower_operators.cpp lowers it by hand.
   bool generic_lowering = true;
 };
 

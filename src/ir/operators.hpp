@@ -78,7 +78,7 @@ struct OperatorKind {
   Interpret interpret = nullptr;
   std::string_view summary;  // one line: what it computes, in which frames
   // Whether lowering maps the class's properties onto the ports one-to-one;
-  // false for a kind lower.cpp lowers by hand (an ordered list of inputs).
+  // false for a kind lowering lowers by hand (an ordered list of inputs).
   bool generic_lowering = true;
 
   std::string class_iri() const { return std::string(vocabulary).append(type); }

@@ -1,0 +1,388 @@
+// Lowering passes. Arms: each solver specification becomes an arm (its chain, ACHD's inputs and
+// priorities) and the clocks, and motions gate their arm's solve.
+#include <algorithm>
+#include <cmath>
+
+#include "description/chain_rdf.hpp"
+#include "ir/controllers.hpp"
+#include "ir/lowering.hpp"
+
+namespace mospec::ir::lowering {
+
+// ---------------------------------------------------------------------------
+void lower_clocks(State& st) {
+  for (TermId c : st.instances(vocab("mospec/time", "Clock"))) {
+    st.pending_iri = st.str(c);
+    auto t = st.object(c, vocab("mospec/time", "time"));
+    if (!t) {
+      st.error(c, "missing-property", "the clock '" + st.str(c) + "' names no `time` quantity");
+      continue;
+    }
+    Step s = st.step_for(StepKind::ReadClock, c);
+    s.out = {st.datum(*t, DataType::Scalar, c, "time")};
+    if (st.program.data[static_cast<size_t>(s.out[0])].unit != "SEC")
+      st.error(*t, "wrong-unit", "the clock's time '" + st.str(*t) + "' must be in SEC");
+    st.add_step(std::move(s));
+  }
+}
+
+void lower_arms(State& st) {
+  for (TermId s : st.instances(vocab("task/solver-specification", "SolverWithInputAndOutput")))
+    lower_arm(st, s);
+}
+
+void lower_arm(State& st, TermId solver) {
+  const std::string slv = "task/solver-specification";
+  st.pending_iri = st.str(solver);
+  ArmSolver arm;
+  arm.iri = st.str(solver);
+  arm.name = identifier(local_name(arm.iri));
+  arm.where = st.where(solver);
+  auto chain_t = st.object(solver, vocab(slv, "kinematic-chain"));
+  if (!chain_t) {
+    st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no kinematic-chain");
+    return;
+  }
+  arm.chain_iri = st.str(*chain_t);
+  description::ChainFrames frames;
+  try {
+    description::ChainDescription described =
+        description::describe_chain(st.chain_graph(arm.chain_iri), arm.chain_iri);
+    arm.chain = std::move(described.chain);
+    frames = std::move(described.frames);
+  } catch (const Error& e) {
+    st.error(st.where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
+             "the solver '" + arm.iri + "': " + e.diagnostic().message);
+    return;
+  }
+  if (auto it = st.options.ports.find(arm.chain_iri); it != st.options.ports.end()) {
+    arm.port = it->second;
+  } else {
+    st.error(
+        solver, "unbound-chain",
+        "no robot arm is bound to the chain '" + arm.chain_iri +
+            "' (mospec's robot has a right and a left Gen3; bind it with --bind CHAIN=right|left)");
+  }
+  // The chain's frames, their origins and links, as the robot model relates
+  // them (description::describe_chain): segment i by its frame, its origin
+  // point or its link.
+  using Entity = std::string description::FrameEntities::*;
+  const auto segment_by = [&](const std::string& iri, Entity what) {
+    if (iri.empty()) return -1;
+    for (size_t i = 0; i < frames.segments.size(); ++i) {
+      if (frames.segments[i].*what == iri) return static_cast<int>(i);
+    }
+    return -1;
+  };
+  const Entity frame_of = &description::FrameEntities::frame;
+  const Entity link_of = &description::FrameEntities::body;
+  const auto origin_of = [&](int segment) {
+    return frames.segments[static_cast<size_t>(segment)].origin;
+  };
+  const std::string chain_root_frame = frames.root.frame;
+  const std::string chain_root_link = frames.root.body;
+  if (auto root = st.object(solver, vocab(slv, "root"))) {
+    arm.root_frame = st.str(*root);
+  } else {
+    st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no root");
+    arm.root_frame = chain_root_frame;
+  }
+  if (arm.root_frame != chain_root_frame) {
+    // A solver rooted at, e.g., the platform: the chain hangs from it by a
+    // constant mount pose, which becomes part of the first joint's placement.
+    std::optional<runtime::Pose> X_RB;
+    for (TermId p : st.instances(vocab("geometry/spatial-relations", "Pose"))) {
+      auto of = st.object(p, vocab("geometry/spatial-relations", "of"));
+      auto wrt = st.object(p, vocab("geometry/spatial-relations", "with-respect-to"));
+      auto seen = st.object(p, vocab("geometry/coordinates", "as-seen-by"));
+      if (!of || !wrt || !seen || st.str(*of) != chain_root_frame ||
+          st.str(*wrt) != arm.root_frame || st.str(*seen) != arm.root_frame)
+        continue;
+      const int d = st.datum(p, DataType::Pose, solver, "mount pose");
+      if (st.program.data[static_cast<size_t>(d)].value.empty()) continue;
+      X_RB = constant_pose(st.program.data[static_cast<size_t>(d)].value);
+      arm.mount_pose_iri = st.str(p);
+      arm.X_RB = *X_RB;
+      break;
+    }
+    if (!X_RB) {
+      st.error(solver, "unsupported-root",
+               "the solver '" + arm.iri + "' is rooted at '" + arm.root_frame +
+                   "', not at the chain's root '" + chain_root_frame +
+                   "'; mospec needs a constant pose of '" + chain_root_frame +
+                   "' w.r.t. and seen by '" + arm.root_frame +
+                   "' (the mount) to move the chain there");
+    } else {
+      runtime::Chain rerooted(local_name(arm.root_frame));
+      rerooted.add_fixed(arm.chain.root(), *X_RB, runtime::RigidInertia{});
+      for (int i = 0; i < arm.chain.size(); ++i) rerooted.add_segment(arm.chain.segment(i));
+      if (arm.chain.X_NT().R != runtime::Mat3::Identity() || !arm.chain.X_NT().p.isZero(0.0)) {
+        rerooted.add_fixed(arm.chain.tip(), arm.chain.X_NT(), runtime::RigidInertia{});
+      }
+      arm.chain = std::move(rerooted);
+    }
+  }
+  // Gravity: a uniform field in the root frame.
+  if (auto grav = st.object(solver, vocab(slv, "gravity"))) {
+    const std::string gc = "geometry/coordinates";
+    auto x = st.number(*grav, vocab(gc, "x")), y = st.number(*grav, vocab(gc, "y")),
+         z = st.number(*grav, vocab(gc, "z"));
+    std::string seen;
+    if (auto s = st.object(*grav, vocab(gc, "as-seen-by"))) seen = st.str(*s);
+    if (auto s = st.object(*grav, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by")))
+      seen = st.str(*s);
+    std::string unit;
+    if (auto u = st.object(*grav, kQudt + "unit")) unit = local_name(st.str(*u));
+    if (!x || !y || !z) {
+      st.error(*grav, "missing-property", "the gravity '" + st.str(*grav) + "' needs x, y and z");
+    } else if (seen != arm.root_frame) {
+      st.error(*grav, "frame-mismatch",
+               "the gravity '" + st.str(*grav) + "' is seen by '" + seen + "', but the solver '" +
+                   arm.iri + "' needs it in its root frame '" + arm.root_frame + "'");
+    } else if (unit != "M-PER-SEC2") {
+      st.error(*grav, "wrong-unit",
+               "the gravity '" + st.str(*grav) + "' must be in M-PER-SEC2, not '" + unit + "'");
+    } else {
+      arm.gravity = {*x, *y, *z};
+    }
+  } else {
+    st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no gravity");
+  }
+  const int arm_index = static_cast<int>(st.program.arms.size());
+  // Outputs.
+  Step kin;
+  kin.kind = StepKind::ArmKinematics;
+  kin.iri = arm.iri;
+  kin.name = arm.name + "_kinematics";
+  kin.where = arm.where;
+  kin.solver = arm_index;
+  for (TermId o : st.objects(solver, vocab(slv, "output"))) {
+    const auto t = st.type_of(o);
+    if (t == DataType::Pose) {
+      const int d = st.datum(o, DataType::Pose, solver, "output");
+      const Data& dd = st.program.data[static_cast<size_t>(d)];
+      const int seg = segment_by(dd.of, frame_of);
+      const bool in_root = dd.with_respect_to == arm.root_frame && dd.as_seen_by == arm.root_frame;
+      const bool in_chain_root = arm.root_frame != chain_root_frame &&
+                                 dd.with_respect_to == chain_root_frame &&
+                                 dd.as_seen_by == chain_root_frame;
+      if (seg < 0 || !(in_root || in_chain_root)) {
+        st.error(o, "unsupported-output",
+                 "the solver '" + arm.iri +
+                     "' outputs poses of the chain's segment frames w.r.t. and seen by its root '" +
+                     arm.root_frame + "' (or the chain's root '" + chain_root_frame + "'); '" +
+                     dd.iri + "' is of '" + dd.of + "' w.r.t. '" + dd.with_respect_to +
+                     "' seen by '" + dd.as_seen_by + "'");
+        continue;
+      }
+      if (in_chain_root) {
+        arm.outputs.push_back({ArmOutput::What::ChainRootPose, seg, d});
+        kin.out.push_back(d);
+        continue;
+      }
+      arm.outputs.push_back({ArmOutput::What::SegmentPose, seg, d});
+      kin.out.push_back(d);
+    } else if (t == DataType::Twist) {
+      const int d = st.datum(o, DataType::Twist, solver, "output");
+      const Data& dd = st.program.data[static_cast<size_t>(d)];
+      int seg = segment_by(dd.of, link_of);
+      if (seg < 0) seg = segment_by(dd.of, frame_of);
+      const bool wrt_root = (!chain_root_link.empty() && dd.with_respect_to == chain_root_link) ||
+                            dd.with_respect_to == chain_root_frame ||
+                            dd.with_respect_to == arm.root_frame;
+      if (seg < 0 || !wrt_root || dd.as_seen_by != arm.root_frame || dd.reference_point.empty() ||
+          dd.reference_point != origin_of(seg)) {
+        st.error(
+            o, "unsupported-output",
+            "the solver '" + arm.iri +
+                "' outputs twists of a segment w.r.t. the root, at the segment's origin, seen by "
+                "the root '" +
+                arm.root_frame + "'; '" + dd.iri + "' does not fit");
+        continue;
+      }
+      arm.outputs.push_back({ArmOutput::What::SegmentTwist, seg, d});
+      kin.out.push_back(d);
+    } else {
+      st.error(
+          o, "unsupported-output",
+          "the solver '" + arm.iri + "' cannot output '" + st.str(o) + "' (poses and twists only)");
+    }
+  }
+  // Motion drivers and their priority levels.
+  auto drivers = st.object(solver, vocab(slv, "motion-drivers"));
+  Step solve;
+  solve.kind = StepKind::ArmSolve;
+  solve.iri = arm.iri;
+  solve.name = arm.name + "_solve";
+  solve.where = arm.where;
+  solve.solver = arm_index;
+  // The link of the last segment, as the robot model relates it to its frame.
+  const std::string last_link = frames.segments.empty() ? "" : frames.segments.back().body;
+  if (!drivers) {
+    st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no motion-drivers");
+  } else {
+    std::map<uint32_t, int> level_of;
+    int level = 0;
+    for (TermId head : st.objects(*drivers, vocab(slv, "prioritization-hierarchy"))) {
+      for (TermId lv : st.list(head)) {
+        std::vector<std::string> names;
+        for (TermId d : st.objects(lv, vocab(slv, "motion-drivers"))) {
+          level_of[d.index] = level;
+          names.push_back(st.str(d));
+        }
+        arm.priority_levels.push_back(names);
+        ++level;
+      }
+    }
+    const auto level_for = [&](TermId spec) {
+      auto it = level_of.find(spec.index);
+      if (it == level_of.end()) {
+        if (!arm.priority_levels.empty())
+          st.error(spec, "unprioritised-driver",
+                   "the motion driver '" + st.str(spec) + "' is in no prioritization level of '" +
+                       st.str(*drivers) + "'");
+        return 0;
+      }
+      return it->second;
+    };
+    for (TermId spec : st.objects(*drivers, vocab(slv, "acceleration-constraint"))) {
+      st.pending_iri = st.str(spec);
+      const int lv = level_for(spec);
+      if (lv != 0) {
+        st.error(spec, "unsupported-priority",
+                 "acceleration constraints must be in the highest priority level: one ACHD solve "
+                 "honours one level of constraints; '" +
+                     st.str(spec) + "' is in level " + std::to_string(lv + 1));
+      }
+      auto link = st.object(spec, vocab(slv, "attached-to"));
+      if (last_link.empty() && !frames.segments.empty()) {
+        st.error(
+            spec, "unsupported-attachment",
+            "ACHD constrains the chain's last segment, but no link of the robot model holds its "
+            "frame '" +
+                frames.segments.back().frame +
+                "' (state the link's `simplices`: its frame and origin point, as "
+                "robots/kinova-gen3.jsonld does); '" +
+                st.str(spec) + "' is attached to '" +
+                (link ? st.str(*link) : std::string("nothing")) + "'");
+      } else if (!link || st.str(*link) != last_link) {
+        st.error(spec, "unsupported-attachment",
+                 "ACHD constrains the chain's last segment '" + last_link + "'; '" + st.str(spec) +
+                     "' is attached to '" + (link ? st.str(*link) : std::string("nothing")) + "'");
+      }
+      for (TermId c : st.objects(spec, vocab(slv, "constraints"))) {
+        AccelerationConstraint ac;
+        ac.iri = st.str(c);
+        ac.level = lv;
+        auto sub = st.object(c, vocab(slv, "subspace"));
+        auto axis = st.object(c, vocab(slv, "axis"));
+        const std::string sn = sub ? local_name(st.str(*sub)) : "",
+                          an = axis ? local_name(st.str(*axis)) : "";
+        const int base = sn == "angular-acceleration" ? 0 : sn == "linear-acceleration" ? 3 : -1;
+        const int ax = an == "x" ? 0 : an == "y" ? 1 : an == "z" ? 2 : -1;
+        if (base < 0 || ax < 0) {
+          st.error(c, "invalid-constraint",
+                   "the acceleration constraint '" + ac.iri +
+                       "' needs subspace linear-/angular-acceleration and axis x, y or z");
+          continue;
+        }
+        ac.component = base + ax;
+        auto energy = st.object(c, vocab(slv, "acceleration-energy"));
+        if (!energy) {
+          st.error(c, "missing-property",
+                   "the acceleration constraint '" + ac.iri + "' names no acceleration-energy");
+          continue;
+        }
+        ac.energy = st.datum(*energy, DataType::Scalar, c, "acceleration-energy");
+        solve.in.push_back(ac.energy);
+        arm.acceleration_constraints.push_back(ac);
+      }
+    }
+    if (arm.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints)) {
+      st.error(solver, "too-many-constraints",
+               "the solver '" + arm.iri + "' has more than 6 acceleration constraints");
+    }
+    for (TermId spec : st.objects(*drivers, vocab(slv, "cartesian-force"))) {
+      st.pending_iri = st.str(spec);
+      CartesianForce cf;
+      cf.iri = st.str(spec);
+      cf.level = level_for(spec);
+      auto link = st.object(spec, vocab(slv, "attached-to"));
+      auto force = st.object(spec, vocab(slv, "force"));
+      if (!link || !force) {
+        st.error(spec, "missing-property",
+                 "the Cartesian force '" + cf.iri + "' needs `force` and `attached-to`");
+        continue;
+      }
+      cf.segment = segment_by(st.str(*link), link_of);
+      if (cf.segment < 0) {
+        st.error(spec, "unknown-link",
+                 "'" + cf.iri + "' is attached to '" + st.str(*link) +
+                     "', which is no moving link of '" + arm.chain_iri + "'");
+        continue;
+      }
+      cf.wrench = st.datum(*force, DataType::Wrench, spec, "force");
+      const Data& w = st.program.data[static_cast<size_t>(cf.wrench)];
+      const std::string origin = origin_of(cf.segment);
+      if (w.reference_point != origin || w.as_seen_by != arm.root_frame) {
+        st.error(
+            *force, "frame-mismatch",
+            "the wrench '" + w.iri + "' drives '" + st.str(*link) + "' through '" + cf.iri +
+                "', so ACHD needs it at that link's origin '" + origin +
+                "' and seen by the root '" + arm.root_frame + "'; it is at '" + w.reference_point +
+                "' seen by '" + w.as_seen_by +
+                "' (transform it with TransformWrenchToProximal/RotateWrenchToProximalWithPose)");
+      }
+      solve.in.push_back(cf.wrench);
+      arm.cartesian_forces.push_back(cf);
+    }
+    for (TermId spec : st.objects(*drivers, vocab(slv, "joint-force"))) {
+      st.error(spec, "unsupported-driver",
+               "joint-force motion drivers ('" + st.str(spec) + "') are not supported yet");
+    }
+  }
+  // Drivers a level lists but the solver's drivers do not.
+  st.pending_iri = arm.iri;
+  st.program.arms.push_back(std::move(arm));
+  st.add_step(std::move(kin));
+  st.add_step(std::move(solve));
+}
+
+// Which motions drive each arm and the base: the running flags gating the controllers and
+// assignments whose outputs reach the arm's drivers, through any operators.
+void gate_arm_solves(State& st) {
+  for (Step& solve : st.steps) {
+    if (solve.kind != StepKind::ArmSolve && solve.kind != StepKind::BaseForceDistribution) continue;
+    solve.n_drivers = static_cast<int>(solve.in.size());
+    std::set<int> gates, seen_data;
+    std::vector<int> todo(solve.in.begin(), solve.in.end());
+    while (!todo.empty()) {
+      const int d = todo.back();
+      todo.pop_back();
+      if (!seen_data.insert(d).second) continue;
+      auto it = st.producer.find(d);
+      if (it == st.producer.end() || it->second < 0) continue;
+      const Step& p = st.steps[static_cast<size_t>(it->second)];
+      // A gated step's running flag: a controller's after its signals, an
+      // assignment's after its value.
+      const size_t gate =
+          p.kind == StepKind::Controller
+              ? controller_kinds()[static_cast<size_t>(p.controller)].in.size()
+          : p.kind == StepKind::Evaluate && p.constraint.kind == runtime::ConstraintKind::Assignment
+              ? 1
+              : p.in.size();
+      const bool gated = gate + 1 == p.in.size();
+      if (gated) gates.insert(p.in[gate]);
+      if (p.kind == StepKind::GuardedMotion || p.kind == StepKind::ArmKinematics ||
+          p.kind == StepKind::BaseVelocityComposition)
+        continue;
+      for (size_t k = 0; k < p.in.size(); ++k) {
+        if (gated && k == gate) continue;
+        todo.push_back(p.in[k]);
+      }
+    }
+    solve.in.insert(solve.in.end(), gates.begin(), gates.end());
+  }
+}
+
+}  // namespace mospec::ir::lowering

@@ -1,0 +1,74 @@
+// Lowering passes. The mobile base: KELO force distribution (Eq. 2-3) and platform twist.
+#include <algorithm>
+#include <cmath>
+
+#include "ir/lowering.hpp"
+
+namespace mospec::ir::lowering {
+
+void lower_base(State& st) {
+  const std::string slv = "task/solver-specification";
+  const auto forces = st.instances(vocab(slv, "ForceDistributionSolver"));
+  const auto velocities = st.instances(vocab(slv, "VelocityCompositionSolver"));
+  if (forces.size() > 1)
+    st.error(forces[1], "too-many-bases",
+             "mospec's robot has one base; a second force distribution solver '" +
+                 st.str(forces[1]) + "' has nothing to drive");
+  if (velocities.size() > 1)
+    st.error(velocities[1], "too-many-bases",
+             "mospec's robot has one base; a second velocity composition solver '" +
+                 st.str(velocities[1]) + "' has nothing to measure");
+  if (forces.empty() && velocities.empty()) return;
+  BaseSolver base;
+  const TermId first = forces.empty() ? velocities.front() : forces.front();
+  base.iri = st.str(first);
+  base.name = identifier(local_name(base.iri));
+  base.where = st.where(first);
+  base.geometry = runtime::KeloGeometry::paper();
+  // A platform quantity must be at the origin of the frame it is seen by.
+  const auto at_frame_origin = [&](const Data& q) {
+    std::string origin;
+    if (auto frame = st.term(q.as_seen_by); !st.absent(frame)) {
+      if (auto o = st.object(frame, vocab("geometry/structural-entities", "origin")))
+        origin = st.str(*o);
+    }
+    return !origin.empty() && q.reference_point == origin;
+  };
+  // One platform quantity per solver: the twist it composes, the wrench it
+  // distributes; each at the origin of the frame it is seen by (the platform's).
+  std::vector<Step> new_steps;
+  const auto platform_step = [&](TermId solver, const char* property, DataType type, StepKind kind,
+                                 int& field) {
+    st.pending_iri = st.str(solver);
+    auto q = st.object(solver, vocab(slv, property));
+    if (!q) {
+      st.error(solver, "missing-property",
+               "the solver '" + st.str(solver) + "' names no " + property);
+      return;
+    }
+    field = st.datum(*q, type, solver, property);
+    const Data& d = st.program.data[static_cast<size_t>(field)];
+    if (!at_frame_origin(d)) {
+      st.error(
+          *q, "frame-mismatch",
+          "the platform " + std::string(to_string(type)) + " '" + d.iri +
+              "' must be at the origin of the frame it is seen by (the platform's); it is at '" +
+              d.reference_point + "' seen by '" + d.as_seen_by + "'");
+    }
+    Step s = st.step_for(kind, solver);
+    (kind == StepKind::BaseVelocityComposition ? s.out : s.in) = {field};
+    new_steps.push_back(std::move(s));
+  };
+  if (!velocities.empty()) {
+    platform_step(velocities.front(), "velocity", DataType::Twist,
+                  StepKind::BaseVelocityComposition, base.twist);
+  }
+  if (!forces.empty()) {
+    platform_step(forces.front(), "force", DataType::Wrench, StepKind::BaseForceDistribution,
+                  base.wrench);
+  }
+  st.program.base = std::move(base);
+  for (Step& s : new_steps) st.add_step(std::move(s));
+}
+
+}  // namespace mospec::ir::lowering

@@ -1,0 +1,262 @@
+// Lowering passes. Constraints: evaluators, monitors, the constraint handlers (their
+// controllers: lower_controllers.cpp).
+#include <algorithm>
+#include <cmath>
+
+#include "ir/lowering.hpp"
+
+namespace mospec::ir::lowering {
+
+void lower_evaluators(State& st) {
+  const std::string ch = "task/constraint-handler";
+  const std::string cs = "task/constraint";
+  std::vector<TermId> evals = st.instances(vocab(ch, "ErrorEvaluator"));
+  for (TermId a : st.instances(vocab(ch, "AssignmentEvaluator"))) evals.push_back(a);
+  for (TermId e : evals) {
+    st.pending_iri = st.str(e);
+    const bool assignment = st.has_type(e, vocab(ch, "AssignmentEvaluator"));
+    auto c = st.object(e, vocab(ch, "constraint"));
+    if (!c) {
+      st.error(e, "missing-property", "the evaluator '" + st.str(e) + "' names no constraint");
+      continue;
+    }
+    if (!st.defined(*c)) {
+      st.error(st.where(e, vocab(ch, "constraint"), *c), "undefined-constraint",
+               "the evaluator '" + st.str(e) + "' evaluates '" + st.str(*c) +
+                   "', which no model file defines");
+      continue;
+    }
+    auto q = st.object(*c, vocab(cs, "quantity"));
+    if (!q) {
+      st.error(*c, "missing-property", "the constraint '" + st.str(*c) + "' names no quantity");
+      continue;
+    }
+    Step s = st.step_for(StepKind::Evaluate, e);
+    const int quantity = st.datum(*q, DataType::Scalar, *c, "quantity");
+    const std::string unit = st.program.data[static_cast<size_t>(quantity)].unit;
+    // A threshold/reference: a constant with the quantity's unit.
+    const auto constant = [&](const std::string& prop) -> std::optional<double> {
+      auto t = st.object(*c, vocab(cs, prop));
+      if (!t) return std::nullopt;
+      const int d = st.datum(*t, DataType::Scalar, *c, prop);
+      const Data& dd = st.program.data[static_cast<size_t>(d)];
+      if (dd.value.empty()) {
+        const auto lit = st.object(*t, kQudt + "value");
+        if (lit && st.graph.terms()[*lit].is_literal()) {
+          st.error(st.where(*t, kQudt + "value", *lit), "invalid-number",
+                   "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has the value " +
+                       st.literal_text(*lit) + ", which is not a finite number of its datatype");
+        } else {
+          st.error(*t, "not-a-constant",
+                   "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has no value");
+        }
+        return std::nullopt;
+      }
+      if (dd.unit != unit) {
+        st.error(*t, "wrong-unit",
+                 "the " + prop + " '" + dd.iri + "' is in '" + dd.unit +
+                     "' but the constrained quantity '" +
+                     st.program.data[static_cast<size_t>(quantity)].iri + "' is in '" + unit + "'");
+      }
+      return dd.value[0];
+    };
+    runtime::ConstraintSpec spec;
+    std::optional<int> reference_datum;
+    if (st.has_type(*c, vocab(cs, "BilateralConstraint"))) {
+      spec.kind = runtime::ConstraintKind::Bilateral;
+      auto lo = constant("lower-threshold"), hi = constant("upper-threshold");
+      if (!lo || !hi) {
+        // An invalid threshold has been reported by constant(); only a
+        // missing one is reported here.
+        if (!st.object(*c, vocab(cs, "lower-threshold")) ||
+            !st.object(*c, vocab(cs, "upper-threshold")))
+          st.error(
+              *c, "missing-property",
+              "the bilateral constraint '" + st.str(*c) + "' needs a lower and an upper threshold");
+        continue;
+      }
+      spec.lower = *lo;
+      spec.upper = *hi;
+      if (!(spec.lower < spec.upper)) {
+        st.error(*c, "invalid-constraint",
+                 "the bilateral constraint '" + st.str(*c) + "' needs lower < upper");
+        continue;
+      }
+    } else if (st.has_type(*c, vocab(cs, "GreaterThanConstraint")) ||
+               st.has_type(*c, vocab(cs, "LessThanConstraint"))) {
+      spec.kind = st.has_type(*c, vocab(cs, "GreaterThanConstraint"))
+                      ? runtime::ConstraintKind::GreaterThan
+                      : runtime::ConstraintKind::LessThan;
+      auto t = constant("threshold");
+      if (!t) {
+        if (!st.object(*c, vocab(cs, "threshold")))
+          st.error(*c, "missing-property", "the constraint '" + st.str(*c) + "' needs a threshold");
+        continue;
+      }
+      spec.threshold = *t;
+      // A timeout: a threshold on a clock's time, which starts at 0 and only
+      // grows. A threshold <= 0 s is decided before the first tick (a
+      // greater-than constraint holds at once, a less-than never does).
+      if (!(spec.threshold > 0.0) && st.is_clock_time(*q)) {
+        const TermId th = *st.object(*c, vocab(cs, "threshold"));
+        const auto lit = st.object(th, kQudt + "value");
+        st.error(lit ? st.where(th, kQudt + "value", *lit) : st.where(th), "invalid-timeout",
+                 "the timeout '" + st.str(th) + "' of '" + st.str(*c) + "' is " +
+                     exact_number(spec.threshold) + " s; a threshold on the clock's time '" +
+                     st.str(*q) + "' must be > 0 s");
+        continue;
+      }
+    } else if (st.has_type(*c, vocab(cs, "EqualityConstraint"))) {
+      spec.kind =
+          assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
+      auto r = constant("reference-value");
+      if (!r) {
+        if (!st.object(*c, vocab(cs, "reference-value")))
+          st.error(*c, "missing-property",
+                   "the equality constraint '" + st.str(*c) + "' needs a reference-value");
+        continue;
+      }
+      spec.reference = *r;
+      if (auto t = st.object(*c, vocab(cs, "reference-value")))
+        reference_datum = st.data_of.at(t->index);
+    } else {
+      st.error(*c, "unsupported-constraint",
+               "'" + st.str(*c) +
+                   "' is not an equality, bilateral, greater-than or less-than constraint");
+      continue;
+    }
+    if (assignment && spec.kind != runtime::ConstraintKind::Assignment) {
+      st.error(e, "invalid-evaluator",
+               "the assignment evaluator '" + st.str(e) + "' needs an equality constraint");
+      continue;
+    }
+    s.constraint = spec;
+    const int satisfied =
+        st.synthetic(st.str(*c) + "#satisfied", local_name(st.str(*c)) + "_satisfied",
+                     DataType::Flag, st.where(*c));
+    if (spec.kind == runtime::ConstraintKind::Bilateral) {
+      st.bounds_of_satisfied[satisfied] = {
+          st.data_of.at(st.object(*c, vocab(cs, "lower-threshold"))->index),
+          st.data_of.at(st.object(*c, vocab(cs, "upper-threshold"))->index)};
+    }
+    if (assignment) {
+      // The quantity is what the evaluator writes: the reference value.
+      s.in = {*reference_datum};
+      s.out = {satisfied, quantity};
+    } else {
+      int err = -1;
+      if (auto eo = st.object(e, vocab(ch, "error"))) {
+        err = st.datum(*eo, DataType::Scalar, e, "error");
+        s.has_error_output = true;
+      } else {
+        err = st.synthetic(st.str(e) + "#error", local_name(st.str(e)) + "_error", DataType::Scalar,
+                           st.where(e), unit);
+      }
+      s.in = {quantity};
+      s.out = {satisfied, err};
+    }
+    const int index = st.add_step(std::move(s));
+    if (st.evaluator_of_constraint.count(c->index)) {
+      st.error(e, "evaluated-twice", "the constraint '" + st.str(*c) + "' has two evaluators");
+    }
+    st.evaluator_of_constraint[c->index] = index;
+    st.evaluate_step_of_evaluator[e.index] = index;
+  }
+}
+
+void lower_monitors(State& st) {
+  const std::string ch = "task/constraint-handler";
+  for (const bool edge : {false, true}) {
+    for (TermId m :
+         st.instances(vocab(ch, edge ? "EdgeTriggeredMonitor" : "LevelTriggeredMonitor"))) {
+      st.pending_iri = st.str(m);
+      auto err = st.object(m, vocab(ch, "error"));
+      auto out = st.object(m, vocab(ch, edge ? "event" : "flag"));
+      if (!err || !out) {
+        st.error(m, "missing-property",
+                 std::string("the monitor '") + st.str(m) + "' needs `error` and `" +
+                     (edge ? "event" : "flag") + "`");
+        continue;
+      }
+      Step s;
+      s.kind = edge ? StepKind::EdgeMonitor : StepKind::LevelMonitor;
+      s.iri = st.str(m);
+      s.name = local_name(s.iri);
+      s.where = st.where(m);
+      s.in = {st.datum(*err, DataType::Scalar, m, "error")};
+      // The watched constraint's tolerance (via the evaluator producing the error).
+      for (const auto& [eval_term, step] : st.evaluate_step_of_evaluator) {
+        const Step& ev = st.steps[static_cast<size_t>(step)];
+        if (ev.out.size() > 1 && ev.out[1] == s.in[0]) s.constraint = ev.constraint;
+      }
+      const int d = st.synthetic(st.str(*out), local_name(st.str(*out)),
+                                 edge ? DataType::Event : DataType::Flag, st.where(*out));
+      st.data_of[out->index] = d;
+      s.out = {d};
+      s.state = st.program.states[static_cast<int>(StateKind::Monitor)]++;
+      st.add_step(std::move(s));
+    }
+  }
+}
+
+void lower_handlers(State& st) {
+  std::map<uint32_t, int> active_of_evaluator;  // evaluator -> its motion's running flag
+  const std::string ch = "task/constraint-handler";
+  const std::string mot = "task/motion-specification";
+  std::map<uint32_t, int> active_of_motion;
+  for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
+    st.pending_iri = st.str(h);
+    auto m = st.object(h, vocab(ch, "motion"));
+    if (!m) continue;
+    int active = -1;
+    if (auto it = active_of_motion.find(m->index); it != active_of_motion.end()) {
+      active = it->second;
+    } else {
+      Step s = st.step_for(StepKind::GuardedMotion, *m);
+      const auto guards = [&](const std::string& prop) {
+        std::vector<int> flags;
+        for (TermId c : st.objects(*m, vocab(mot, prop))) {
+          auto it = st.evaluator_of_constraint.find(c.index);
+          if (it == st.evaluator_of_constraint.end()) {
+            st.error(st.where(*m, vocab(mot, prop), c), "unevaluated-constraint",
+                     "the motion '" + st.str(*m) + "' lists '" + st.str(c) + "' in `" + prop +
+                         "`, but no evaluator evaluates it");
+            continue;
+          }
+          if (prop != "while") flags.push_back(st.steps[static_cast<size_t>(it->second)].out[0]);
+        }
+        return flags;
+      };
+      const std::vector<int> when = guards("when");
+      guards("while");
+      const std::vector<int> until = guards("until");
+      s.in = when;
+      s.in.insert(s.in.end(), until.begin(), until.end());
+      s.n_when = static_cast<int>(when.size());
+      if (when.size() > static_cast<size_t>(kMaxGuards) ||
+          until.size() > static_cast<size_t>(kMaxGuards)) {
+        st.error(*m, "too-many-guards",
+                 "the motion '" + st.str(*m) + "' has more than 16 when or until guards");
+        continue;
+      }
+      active = st.synthetic(st.str(*m) + "#running", local_name(st.str(*m)) + "_running",
+                            DataType::Flag, st.where(*m));
+      s.out = {active};
+      s.state = st.program.states[static_cast<int>(StateKind::Motion)]++;
+      st.add_step(std::move(s));
+      active_of_motion[m->index] = active;
+    }
+    for (TermId c : st.objects(h, vocab(ch, "controllers")))
+      st.active_of_controller[c.index] = active;
+    for (TermId e : st.objects(h, vocab(ch, "evaluators"))) active_of_evaluator[e.index] = active;
+  }
+  // Assignments write only while their motion runs.
+  for (auto& [eval, step] : st.evaluate_step_of_evaluator) {
+    Step& s = st.steps[static_cast<size_t>(step)];
+    if (s.constraint.kind != runtime::ConstraintKind::Assignment) continue;
+    if (auto it = active_of_evaluator.find(eval); it != active_of_evaluator.end())
+      s.in.push_back(it->second);
+  }
+}
+
+}  // namespace mospec::ir::lowering

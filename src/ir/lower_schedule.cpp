@@ -1,0 +1,123 @@
+// Lowering passes. Producers, the schedule (a topological order from sensor reads to actuator
+// writes) and the log.
+#include <algorithm>
+#include <cmath>
+
+#include "ir/lowering.hpp"
+
+namespace mospec::ir::lowering {
+
+void check_inputs(State& st) {
+  for (const Step& s : st.steps) {
+    for (int d : s.in) {
+      if (st.produced(d)) continue;
+      const Data& dd = st.program.data[static_cast<size_t>(d)];
+      std::string msg = "nothing produces '";
+      msg.append(dd.iri).append("', which '").append(s.iri).append("' needs");
+      st.error(dd.where.known() ? dd.where : s.where, "unproduced-quantity", msg);
+      st.producer.emplace(d, -1);  // report once
+    }
+  }
+}
+
+void schedule(State& st) {
+  const size_t n = st.steps.size();
+  std::vector<std::vector<size_t>> next(n);
+  std::vector<int> waiting(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    for (int d : st.steps[i].in) {
+      auto it = st.producer.find(d);
+      if (it == st.producer.end() || it->second < 0) continue;
+      next[static_cast<size_t>(it->second)].push_back(i);
+      ++waiting[i];
+    }
+  }
+  // Kahn's algorithm, always taking the earliest-declared ready step: the
+  // order is a function of the model only.
+  std::set<size_t> ready;
+  for (size_t i = 0; i < n; ++i) {
+    if (waiting[i] == 0) ready.insert(i);
+  }
+  std::vector<size_t> order;
+  while (!ready.empty()) {
+    const size_t i = *ready.begin();
+    ready.erase(ready.begin());
+    order.push_back(i);
+    for (size_t j : next[i]) {
+      if (--waiting[j] == 0) ready.insert(j);
+    }
+  }
+  if (order.size() != n) {
+    for (size_t i = 0; i < n; ++i) {
+      if (waiting[i] > 0) {
+        st.error(st.steps[i].where, "cycle",
+                 "'" + st.steps[i].iri + "' (" + std::string(kind_name(st.steps[i])) +
+                     ") is on a dependency cycle: each quantity on it needs another one of them in "
+                     "the same tick");
+      }
+    }
+    return;
+  }
+  for (size_t i : order) st.program.steps.push_back(st.steps[i]);
+}
+
+void build_log(State& st) {
+  for (const Step& s : st.program.steps) {
+    const auto add = [&](const std::string& suffix, int d) {
+      const Data& dd = st.program.data[static_cast<size_t>(d)];
+      std::string name = local_name(s.iri);
+      if (s.kind == StepKind::Evaluate) name = local_name(dd.iri.substr(0, dd.iri.find('#')));
+      st.program.log.push_back({name + suffix, dd.unit, d});
+    };
+    switch (s.kind) {
+      case StepKind::Evaluate: {
+        const bool assignment = s.constraint.kind == runtime::ConstraintKind::Assignment;
+        const Data& sat = st.program.data[static_cast<size_t>(s.out[0])];
+        const std::string cname = local_name(sat.iri.substr(0, sat.iri.find('#')));
+        const Data& value = st.program.data[static_cast<size_t>(assignment ? s.out[1] : s.in[0])];
+        st.program.log.push_back({cname + ".value", value.unit, assignment ? s.out[1] : s.in[0]});
+        if (!assignment)
+          st.program.log.push_back(
+              {cname + ".error", st.program.data[static_cast<size_t>(s.out[1])].unit, s.out[1]});
+        st.program.log.push_back({cname + ".satisfied", "", s.out[0]});
+        if (auto it = st.bounds_of_satisfied.find(s.out[0]); it != st.bounds_of_satisfied.end()) {
+          st.program.log.push_back({cname + ".lower", value.unit, it->second.first});
+          st.program.log.push_back({cname + ".upper", value.unit, it->second.second});
+        }
+        break;
+      }
+      case StepKind::BaseVelocityComposition: {
+        // The platform's measured planar twist [v_x, v_y, w_z].
+        const std::string base = local_name(s.iri);
+        st.program.log.push_back({base + ".vx", "M-PER-SEC", s.out[0], 3});
+        st.program.log.push_back({base + ".vy", "M-PER-SEC", s.out[0], 4});
+        st.program.log.push_back({base + ".wz", "RAD-PER-SEC", s.out[0], 2});
+        break;
+      }
+      case StepKind::BaseForceDistribution: {
+        // The platform wrench [f_x, f_y, m_z] the drives are to exert.
+        const std::string base = local_name(s.iri);
+        st.program.log.push_back({base + ".fx", "N", s.in[0], 3});
+        st.program.log.push_back({base + ".fy", "N", s.in[0], 4});
+        st.program.log.push_back({base + ".mz", "N-M", s.in[0], 2});
+        break;
+      }
+      case StepKind::LevelMonitor:
+        add(".flag", s.out[0]);
+        break;
+      case StepKind::EdgeMonitor:
+        add(".event", s.out[0]);
+        break;
+      case StepKind::GuardedMotion:
+        add(".running", s.out[0]);
+        break;
+      case StepKind::Controller:
+        add(".output", s.out[0]);
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+}  // namespace mospec::ir::lowering

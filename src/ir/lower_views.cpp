@@ -1,0 +1,104 @@
+// Lowering passes. Views: components of 3D quantities read from or written into them.
+#include <algorithm>
+#include <cmath>
+
+#include "ir/lowering.hpp"
+
+namespace mospec::ir::lowering {
+
+void lower_views(State& st) {
+  const std::string map = "task/map";
+  struct ViewInfo {
+    TermId view, super, sub;
+    int index = 0;
+    DataType super_type = DataType::Pose;
+  };
+  std::vector<ViewInfo> views;
+  for (TermId v : st.instances(vocab(map, "View"))) {
+    auto super = st.object(v, vocab(map, "superobject"));
+    auto sub = st.object(v, vocab(map, "subobject"));
+    auto space = st.object(v, vocab(map, "subspace"));
+    auto axis = st.object(v, vocab(map, "axis"));
+    if (!super || !sub || !space || !axis) {
+      st.error(v, "missing-property",
+               "the view '" + st.str(v) + "' needs superobject, subobject, subspace and axis");
+      continue;
+    }
+    ViewInfo info{v, *super, *sub};
+    const std::string sp = local_name(st.str(*space)), ax = local_name(st.str(*axis));
+    const int a = ax == "x" ? 0 : ax == "y" ? 1 : ax == "z" ? 2 : -1;
+    int base = -1;
+    if (st.has_type(v, vocab(map, "PoseCoordinateView"))) {
+      info.super_type = DataType::Pose;
+      base = sp == "orientation" || sp == "rotation" ? 0 : sp == "position" ? 3 : -1;
+    } else if (st.has_type(v, vocab(map, "VelocityTwistCoordinateView"))) {
+      info.super_type = DataType::Twist;
+      base = sp == "angular-velocity" ? 0 : sp == "linear-velocity" ? 3 : -1;
+    } else if (st.has_type(v, vocab(map, "WrenchCoordinateView"))) {
+      info.super_type = DataType::Wrench;
+      base = sp == "torque" || sp == "moment" ? 0 : sp == "force" ? 3 : -1;
+    }
+    if (base < 0 || a < 0) {
+      st.error(v, "invalid-view",
+               "the view '" + st.str(v) + "' has subspace '" + sp + "' and axis '" + ax +
+                   "', which mospec cannot read");
+      continue;
+    }
+    info.index = base + a;
+    views.push_back(info);
+  }
+  // Direction: a view reads when its superobject is produced, writes when its
+  // subobject is. Writes into one superobject become one step.
+  std::vector<char> done(views.size(), 0);
+  for (bool progress = true; progress;) {
+    progress = false;
+    std::map<uint32_t, std::vector<size_t>> writes;
+    for (size_t i = 0; i < views.size(); ++i) {
+      if (done[i]) continue;
+      const ViewInfo& v = views[i];
+      st.pending_iri = st.str(v.view);
+      const int super = st.datum(v.super, v.super_type, v.view, "superobject");
+      const int sub = st.datum(v.sub, DataType::Scalar, v.view, "subobject");
+      if (st.produced(super)) {
+        Step s;
+        s.kind = StepKind::ViewRead;
+        s.iri = st.str(v.view);
+        s.name = local_name(s.iri);
+        s.where = st.where(v.view);
+        s.in = {super};
+        s.out = {sub};
+        s.views = {v.index};
+        st.add_step(std::move(s));
+        done[i] = 1;
+        progress = true;
+      } else if (st.produced(sub) && v.super_type != DataType::Pose) {
+        writes[v.super.index].push_back(i);
+      }
+    }
+    for (auto& [super_term, list] : writes) {
+      Step s;
+      s.kind = StepKind::ViewWrite;
+      const ViewInfo& first = views[list.front()];
+      s.iri = st.str(first.super);
+      s.name = "assemble_" + local_name(s.iri);
+      s.where = st.where(first.view);
+      for (size_t i : list) {
+        s.in.push_back(st.datum(views[i].sub, DataType::Scalar, views[i].view, "subobject"));
+        s.views.push_back(views[i].index);
+        done[i] = 1;
+      }
+      s.out = {st.datum(first.super, first.super_type, first.view, "superobject")};
+      st.add_step(std::move(s));
+      progress = true;
+    }
+  }
+  for (size_t i = 0; i < views.size(); ++i) {
+    if (done[i]) continue;
+    st.error(views[i].view, "unproduced-quantity",
+             "the view '" + st.str(views[i].view) + "': nothing produces its superobject '" +
+                 st.str(views[i].super) + "' or its subobject '" + st.str(views[i].sub) + "'");
+    done[i] = 1;
+  }
+}
+
+}  // namespace mospec::ir::lowering

@@ -1,0 +1,166 @@
+#include "ir/lowering.hpp"
+
+#include <Eigen/SVD>
+
+namespace mospec::ir::lowering {
+
+std::optional<DataType> State::type_of(TermId e) const {
+  if (has_type(e, vocab("geometry/spatial-relations", "Pose")) ||
+      has_type(e, vocab("geometry/coordinates", "PoseCoordinate")))
+    return DataType::Pose;
+  if (has_type(e, vocab("geometry/spatial-relations", "VelocityTwist")) ||
+      has_type(e, vocab("geometry/coordinates", "VelocityTwistCoordinate")))
+    return DataType::Twist;
+  if (has_type(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "Wrench")) ||
+      has_type(e, vocab("newtonian-rigid-body-dynamics/coordinates", "WrenchCoordinate")))
+    return DataType::Wrench;
+  if (has_type(e, vocab("geometry/coordinates", "DirectionCoordinate")) ||
+      has_type(e, vocab("geometry/spatial-relations", "Position")) ||
+      has_type(e, vocab("geometry/coordinates", "PositionCoordinate")))
+    return DataType::Vector3;
+  if (has_type(e, kQudt + "Quantity") ||
+      has_type(e, vocab("geometry/spatial-relations", "LinearDistance")) ||
+      !objects(e, kQudt + "hasQuantityKind").empty())
+    return DataType::Scalar;
+  return std::nullopt;
+}
+
+void State::fill_constant(Data& d, TermId e) {
+  const std::string gc = "geometry/coordinates";
+  switch (d.type) {
+    case DataType::Scalar:
+      if (auto v = number(e, kQudt + "value")) d.value = {*v};
+      break;
+    case DataType::Vector3: {
+      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")),
+           z = number(e, vocab(gc, "z"));
+      if (x && y && z) d.value = {*x, *y, *z};
+      break;
+    }
+    case DataType::Pose: {
+      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")),
+           z = number(e, vocab(gc, "z"));
+      std::array<std::vector<double>, 3> cols;
+      bool ok = x && y && z;
+      const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
+      for (int c = 0; c < 3 && ok; ++c) {
+        auto head = object(e, vocab(gc, names[c]));
+        if (!head) {
+          ok = false;
+          break;
+        }
+        for (TermId t : list(*head)) {
+          if (auto v = number(t)) cols[static_cast<size_t>(c)].push_back(*v);
+        }
+        ok = cols[static_cast<size_t>(c)].size() == 3;
+      }
+      if (!ok) break;
+      // direction-cosine-x is the x axis of the distal frame seen by the
+      // proximal one: the first column of R.
+      runtime::Mat3 R;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) R(r, c) = cols[static_cast<size_t>(c)][static_cast<size_t>(r)];
+      if (!((R.transpose() * R - runtime::Mat3::Identity()).cwiseAbs().maxCoeff() < 1e-6) ||
+          R.determinant() < 0) {
+        error(e, "invalid-pose",
+              "the direction cosines of '" + d.iri +
+                  "' are not a rotation (orthonormal, right-handed to 1e-6)");
+        break;
+      }
+      // Direction cosines are written to a few digits: use the nearest
+      // rotation (polar decomposition), so composed poses stay rigid.
+      {
+        Eigen::JacobiSVD<runtime::Mat3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        R = svd.matrixU() * svd.matrixV().transpose();
+      }
+      d.value = {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2),
+                 R(2, 0), R(2, 1), R(2, 2), *x,      *y,      *z};
+      break;
+    }
+    default:
+      break;
+  }
+}
+
+int State::datum(TermId e, DataType expected, TermId referenced_by, const std::string& role) {
+  if (auto it = data_of.find(e.index); it != data_of.end()) {
+    const Data& d = program.data[static_cast<size_t>(it->second)];
+    if (d.type != expected) {
+      std::string msg = "'";
+      msg.append(str(referenced_by))
+          .append("' uses '")
+          .append(d.iri)
+          .append("' as its ")
+          .append(role)
+          .append(", which must be a ")
+          .append(to_string(expected))
+          .append(", but it is a ")
+          .append(to_string(d.type));
+      error(referenced_by, "type-mismatch", msg);
+    }
+    return it->second;
+  }
+  Data d;
+  d.iri = str(e);
+  d.type = expected;
+  d.where = where(e);
+  if (!defined(e)) {
+    std::string msg = "'";
+    msg.append(str(referenced_by))
+        .append("' names '")
+        .append(d.iri)
+        .append("' as its ")
+        .append(role)
+        .append(", but no model file defines it");
+    error(where(referenced_by), "undefined-quantity", msg);
+  } else if (auto t = type_of(e); t && *t != expected) {
+    std::string msg = "'";
+    msg.append(str(referenced_by))
+        .append("' uses '")
+        .append(d.iri)
+        .append("' as its ")
+        .append(role)
+        .append(", which must be a ")
+        .append(to_string(expected))
+        .append(", but it is a ")
+        .append(to_string(*t));
+    error(referenced_by, "type-mismatch", msg);
+  }
+  const std::string gr = "geometry/spatial-relations";
+  if (auto o = object(e, vocab(gr, "of"))) d.of = str(*o);
+  if (auto o = object(e, vocab(gr, "with-respect-to"))) d.with_respect_to = str(*o);
+  if (auto o = object(e, vocab(gr, "reference-point"))) d.reference_point = str(*o);
+  if (auto o =
+          object(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "reference-point")))
+    d.reference_point = str(*o);
+  if (auto o = object(e, vocab("geometry/coordinates", "as-seen-by"))) d.as_seen_by = str(*o);
+  if (auto o = object(e, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by")))
+    d.as_seen_by = str(*o);
+  std::vector<std::string> kinds, units;
+  for (TermId k : objects(e, kQudt + "hasQuantityKind")) kinds.push_back(local_name(str(k)));
+  for (TermId u : objects(e, kQudt + "unit")) units.push_back(local_name(str(u)));
+  for (size_t i = 0; i < kinds.size(); ++i) d.quantity_kind.append(i ? "," : "").append(kinds[i]);
+  for (size_t i = 0; i < units.size(); ++i) d.unit.append(i ? "," : "").append(units[i]);
+  fill_constant(d, e);
+  d.name = unique_name(local_name(d.iri), data_names);
+  d.slot = program.slots[static_cast<size_t>(d.type)]++;
+  const int index = static_cast<int>(program.data.size());
+  program.data.push_back(std::move(d));
+  data_of[e.index] = index;
+  return index;
+}
+
+int State::synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
+                     const std::string& unit) {
+  Data d;
+  d.iri = iri;
+  d.type = type;
+  d.where = loc;
+  d.unit = unit;
+  d.name = unique_name(name, data_names);
+  d.slot = program.slots[static_cast<size_t>(type)]++;
+  program.data.push_back(std::move(d));
+  return static_cast<int>(program.data.size()) - 1;
+}
+
+}  // namespace mospec::ir::lowering

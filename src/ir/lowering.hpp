@@ -1,0 +1,231 @@
+// Lowering's explicit state and its passes (internal to src/ir; the public
+// entry point is lower.hpp).
+//
+// Each pass is a free function over one State: it reads the model through
+// State's graph accessors and adds data and steps through State's builders.
+// lower.cpp runs them in order (kPasses) and checks the program after each.
+// A State is the only thing passes share: the program under construction and
+// the few cross-pass tables below, each documented with who writes it and who
+// reads it.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "ir/graph.hpp"
+#include "ir/ir.hpp"
+#include "ir/lower.hpp"
+#include "ir/operators.hpp"
+#include "vocab/metamodels.hpp"
+#include "vocab/w3c.hpp"
+
+namespace mospec::ir::lowering {
+
+using rdf::TermId;
+
+inline std::string vocab(std::string_view domain, std::string_view local) {
+  return mospec::vocab::metamodel_term(domain, local);
+}
+inline const std::string kXsd(mospec::vocab::xsd::ns);
+inline const std::string kQudt(mospec::vocab::qudt::ns);
+
+inline std::string local_name(std::string_view iri) {
+  const size_t k = iri.find_last_of("#/");
+  return std::string(k == std::string_view::npos ? iri : iri.substr(k + 1));
+}
+
+inline std::string identifier(std::string_view s) {
+  std::string out;
+  for (char c : s) out.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
+  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out.insert(0, "q_");
+  return out;
+}
+
+struct State {
+  State(const app::LoadedModel& loaded, const LowerOptions& lower_options)
+      : model(loaded), graph(loaded.dataset()), options(lower_options) {}
+
+  // --- graph access (ir/graph.hpp) ---------------------------------------
+  TermId term(const std::string& iri) const { return graph.term(iri); }
+  static bool absent(TermId t) { return t.is_any(); }
+  std::string str(TermId t) const { return std::string(graph.str(t)); }
+  std::vector<TermId> objects(TermId s, const std::string& p) const {
+    return graph.objects(s, term(p));
+  }
+  std::optional<TermId> object(TermId s, const std::string& p) const {
+    return graph.object(s, term(p));
+  }
+  bool has_type(TermId s, const std::string& type) const { return graph.has_type(s, term(type)); }
+  std::vector<TermId> instances(const std::string& type) const {
+    return graph.instances(term(type));
+  }
+  bool defined(TermId s) const { return graph.defined(s); }
+  SourceLoc where(TermId s) const { return graph.where(s); }
+  SourceLoc where(TermId s, const std::string& p, TermId o) const {
+    return graph.where(s, term(p), o);
+  }
+  // Whether `q` is the time some clock gives (mospec/time).
+  bool is_clock_time(TermId q) const {
+    for (TermId c : graph.subjects(term(vocab("mospec/time", "time")), q)) {
+      if (has_type(c, vocab("mospec/time", "Clock"))) return true;
+    }
+    return false;
+  }
+  std::vector<TermId> list(TermId head) const { return graph.list(head); }
+  std::optional<double> number(TermId lit) const { return graph.number(lit); }
+  // The literal as messages quote it: "+1e400"^^xsd:double.
+  std::string literal_text(TermId lit) const {
+    const rdf::Term& t = graph.terms()[lit];
+    std::string dt(graph.terms()[t.datatype].value);
+    if (dt.starts_with(kXsd)) dt.replace(0, kXsd.size(), "xsd:");
+    std::string out = "\"";
+    out.append(t.value).append("\"^^").append(dt);
+    return out;
+  }
+  std::optional<double> number(TermId s, const std::string& p) const {
+    return graph.number(s, term(p));
+  }
+
+  // The graph of the file that describes a chain: other files' poses between
+  // the robot's frames (task quantities) are not part of its structure.
+  rdf::Dataset chain_graph(const std::string& chain_iri) const {
+    return graph.graphs_describing(term(chain_iri));
+  }
+
+  // --- diagnostics --------------------------------------------------------
+  void error(SourceLoc loc, std::string code, std::string message) {
+    Diagnostic d;
+    d.severity = Severity::Error;
+    if (loc.known()) {
+      d.file = model.files().path(loc.file);
+      d.line = loc.line;
+      d.column = loc.column;
+    }
+    d.code = std::move(code);
+    d.message = std::move(message);
+    errors.push_back(std::move(d));
+  }
+  void error(TermId at, std::string code, std::string message) {
+    error(where(at), std::move(code), std::move(message));
+  }
+
+  // --- data ---------------------------------------------------------------
+  std::optional<DataType> type_of(TermId e) const;
+  int datum(TermId e, DataType expected, TermId referenced_by, const std::string& role);
+  int synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
+                const std::string& unit = {});
+  std::string unique_name(const std::string& base, std::set<std::string>& used) {
+    std::string n = identifier(base);
+    std::string candidate = n;
+    for (int k = 2; used.count(candidate); ++k) candidate = n + "_" + std::to_string(k);
+    used.insert(candidate);
+    return candidate;
+  }
+  void fill_constant(Data& d, TermId e);
+
+  // --- steps --------------------------------------------------------------
+  // A step asked for by model entity `e`, named and located by it.
+  Step step_for(StepKind kind, TermId e) const {
+    Step s;
+    s.kind = kind;
+    s.iri = str(e);
+    s.name = local_name(s.iri);
+    s.where = where(e);
+    return s;
+  }
+  int add_step(Step step) {
+    step.name = unique_name(step.name, step_names);
+    const int index = static_cast<int>(steps.size());
+    for (int d : step.out) produce(d, index);
+    steps.push_back(std::move(step));
+    return index;
+  }
+  void produce(int d, int step) {
+    if (!program.data[static_cast<size_t>(d)].value.empty()) {
+      const Data& dd = program.data[static_cast<size_t>(d)];
+      error(dd.where, "produced-constant",
+            "'" + dd.iri + "' has a fixed value in the model, but '" + pending_iri +
+                "' also writes it");
+      return;
+    }
+    auto [it, fresh] = producer.emplace(d, step);
+    if (!fresh) {
+      const Data& dd = program.data[static_cast<size_t>(d)];
+      std::string msg = "'";
+      msg.append(dd.iri)
+          .append("' is produced twice: by '")
+          .append(steps[static_cast<size_t>(it->second)].iri)
+          .append("' and by '")
+          .append(pending_iri)
+          .append("'");
+      error(dd.where, "produced-twice", msg);
+    }
+  }
+  bool produced(int d) const {
+    return producer.count(d) || !program.data[static_cast<size_t>(d)].value.empty();
+  }
+
+  // The model, read-only.
+  const app::LoadedModel& model;
+  Graph graph;  // the model's flattened union, read in place
+  const LowerOptions& options;
+
+  // What every pass builds: the program's data (through datum/synthetic), its
+  // steps in declaration order (add_step; "schedule" moves them into
+  // program.steps), the problems found (error), and the names taken so far.
+  Program program;
+  std::vector<Step> steps;
+  std::vector<Diagnostic> errors;
+  std::set<std::string> data_names, step_names;
+  std::unordered_map<uint32_t, int> data_of;  // model entity (term index) -> its datum
+  std::map<int, int> producer;                // datum -> the step that writes it
+  std::string pending_iri;                    // the entity being lowered, for messages
+
+  // Tables one pass leaves for a later one (writer -> readers).
+  // evaluators -> handlers: which Evaluate step checks a constraint.
+  std::map<uint32_t, int> evaluator_of_constraint;
+  // evaluators -> monitors, handlers: an evaluator's Evaluate step.
+  std::map<uint32_t, int> evaluate_step_of_evaluator;
+  // handlers -> controllers: the flag that activates a controller.
+  std::map<uint32_t, int> active_of_controller;
+  // evaluators -> log: a bilateral constraint's satisfied flag -> its lower
+  // and upper threshold data.
+  std::map<int, std::pair<int, int>> bounds_of_satisfied;
+};
+
+// --- the passes, in the order lower.cpp runs them ---------------------------
+// lower_arms.cpp
+void lower_clocks(State& st);
+void lower_arms(State& st);
+void lower_arm(State& st, TermId solver);
+void gate_arm_solves(State& st);
+// lower_operators.cpp
+void lower_operators(State& st);
+void refuse_unknown_properties(State& st, TermId e, const OperatorKind& kind);
+int axis_constant(State& st, TermId e, const OperatorKind& kind, const OperatorPort& port,
+                  TermId axis);
+void check_frames(State& st, TermId e, const OperatorKind& kind, const Step& s);
+std::string frame_origin(const State& st, const std::string& frame);
+void lower_accumulated_wrenches(State& st);
+void lower_planar_angles(State& st);
+// lower_base.cpp
+void lower_base(State& st);
+// lower_constraints.cpp
+void lower_evaluators(State& st);
+void lower_monitors(State& st);
+void lower_handlers(State& st);
+// lower_controllers.cpp
+void lower_controllers(State& st);
+// lower_views.cpp
+void lower_views(State& st);
+// lower_schedule.cpp
+void check_inputs(State& st);
+void schedule(State& st);
+void build_log(State& st);
+
+}  // namespace mospec::ir::lowering
