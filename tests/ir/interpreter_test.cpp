@@ -74,6 +74,37 @@ TEST(Interpreter, GuardedMotionRunsBetweenItsWhenAndUntil) {
   EXPECT_EQ(events, 1) << "the edge monitor fires once, when the start condition becomes true";
 }
 
+// tests/ir/data/controllers: a damping controller and an impedance controller
+// gated by a motion (0.5 s <= t < 2 s), and an angular damper that always runs.
+TEST(Interpreter, DampingAndImpedanceControllersFromAModel) {
+  const std::string dir = std::string(MOSPEC_SOURCE_DIR) + "/tests/ir/data";
+  Interpreter in(lower_app(dir + "/controllers.json", dir));
+  const int damper = column(in, "damper.output");
+  const int angular = column(in, "damper-ang.output");
+  const int spring = column(in, "spring.output");
+  const int error = column(in, "cstr-x.error");
+  robot::MeasuredState state;
+  robot::Command command;
+  std::vector<double> values(in.log_columns().size());
+  for (int k = 0; k <= 2500; ++k) {
+    state.clock.tick = static_cast<std::uint64_t>(k);
+    state.clock.t = 0.001 * k;
+    state.clock.dt = k == 0 ? 0.0 : 0.001;
+    in.tick(state, command);
+    in.log_values(values);
+    const double t = state.clock.t;
+    const bool running = t >= 0.5 - 1e-12 && t < 2.0 - 1e-12;
+    const auto at = [&](int c) { return values[static_cast<size_t>(c)]; };
+    // v = 0.1 m/s, v_max = 0.2 m/s, F_max = 10 N: -(10 / 0.2) 0.1 = -5 N.
+    ASSERT_EQ(at(damper), running ? -5.0 : 0.0) << "t = " << t;
+    // w = 0.75 rad/s beyond w_max = 0.5 rad/s: saturated at -2 N m, always.
+    ASSERT_EQ(at(angular), -2.0) << "t = " << t;
+    // A constant error: the damper of the impedance adds nothing; K = 300 N/m.
+    ASSERT_NE(at(error), 0.0);
+    ASSERT_EQ(at(spring), running ? 300.0 * at(error) : 0.0) << "t = " << t;
+  }
+}
+
 TEST(Interpreter, RejectsAProgramThatDoesNotVerify) {
   Program p = tiny();
   std::swap(p.steps.front(), p.steps.back());  // the controller before its inputs
