@@ -176,9 +176,10 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
     }
     if (row == nullptr && port_datum.count(key)) {
       st.error(where_of(key), "wrong-unit",
-               ctrl + ": its " + std::string(key) + " is in '" + key_unit + "', which mospec's " +
-                   std::string(kind.name) + " controller does not take (it takes " +
-                   accepted_units(kind) + ")");
+               ctrl + ": its " + std::string(key) +
+                   (key_unit.empty() ? " has no unit" : " is in '" + key_unit + "'") +
+                   ", which mospec's " + std::string(kind.name) +
+                   " controller does not take (it takes " + accepted_units(kind) + ")");
       ok = false;
     }
     for (size_t i = 1; row != nullptr && i < kind.unit_ports.size(); ++i) {
@@ -187,7 +188,8 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
       const std::string unit = unit_of(port);
       if (unit == (*row)[i]) continue;
       st.error(where_of(port), "wrong-unit",
-               ctrl + ": its " + std::string(port) + " is in '" + unit + "', but with its " +
+               ctrl + ": its " + std::string(port) +
+                   (unit.empty() ? " has no unit" : " is in '" + unit + "'") + ", but with its " +
                    std::string(key) + " in '" + key_unit + "' it must be in '" +
                    std::string((*row)[i]) + "' (mospec's " + std::string(kind.name) +
                    " controller takes " + accepted_units(kind) + ")");
