@@ -723,15 +723,14 @@ class Builder {
     header.append(where(st.where));
     s.set("header", header);
     const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
+    s.set(ir::template_section(st.kind), true);
     switch (st.kind) {
       case StepKind::ReadClock:
-        s.set("is_read_clock", true);
         s.set("out0", out(st, 0));
         break;
       case StepKind::ArmKinematics: {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
-        s.set("is_arm_kinematics", true);
         s.set("arm", arm_names_[k].arm);
         s.set("task", arm_names_[k].task);
         s.set("workspace", arm_names_[k].ws);
@@ -757,14 +756,12 @@ class Builder {
         break;
       }
       case StepKind::ViewRead:
-        s.set("is_view_read", true);
         s.set("function", datum(st.in.at(0)).type == DataType::Pose ? "view_pose" : "view_vec6");
         s.set("in0", in(st, 0));
         s.set("component", std::to_string(st.views[0]));
         s.set("out0", out(st, 0));
         break;
       case StepKind::ViewWrite: {
-        s.set("is_view_write", true);
         s.set("out0", out(st, 0));
         mus::data components = list();
         for (std::size_t k = 0; k < st.in.size(); ++k) {
@@ -787,7 +784,6 @@ class Builder {
           args.append(in(st, i));
         }
         if (!k.kernel_returns) args.append(", ").append(out(st, 0));
-        s.set("is_operator", true);
         s.set("returns", k.kernel_returns);
         s.set("kernel", std::string(k.kernel));
         s.set("args", args);
@@ -795,7 +791,6 @@ class Builder {
         break;
       }
       case StepKind::Evaluate:
-        s.set("is_evaluate", true);
         s.set("evaluator", step_members_[index]);
         s.set("in0", in(st, 0));
         s.set("active", gate());
@@ -804,7 +799,6 @@ class Builder {
         break;
       case StepKind::LevelMonitor:
       case StepKind::EdgeMonitor:
-        s.set(st.kind == StepKind::LevelMonitor ? "is_level_monitor" : "is_edge_monitor", true);
         s.set("state_slot", std::to_string(st.state));
         s.set("in0", in(st, 0));
         s.set("tolerance", step_members_[index]);
@@ -818,7 +812,6 @@ class Builder {
           if (!list_text.empty()) list_text.append(", ");
           list_text.append(in(st, k));
         }
-        s.set("is_guarded_motion", true);
         s.set("n_when", std::to_string(n_when));
         s.set("n_until", std::to_string(st.in.size() - n_when));
         s.set("when", when);
@@ -843,7 +836,6 @@ class Builder {
         if (k.kernel_takes_dt) call.append(", state.clock.dt");
         call.append(", ").append(st.in.size() > k.in.size() ? in(st, k.in.size()) : "true");
         call.append(")");
-        s.set("is_controller", true);
         s.set("call", call);
         s.set("out0", out(st, 0));
         break;
@@ -851,7 +843,6 @@ class Builder {
       case StepKind::ArmSolve: {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
-        s.set("is_arm_solve", true);
         s.set("arm", arm_names_[k].arm);
         s.set("task", arm_names_[k].task);
         s.set("workspace", arm_names_[k].ws);
@@ -898,7 +889,6 @@ class Builder {
         break;
       }
       case StepKind::BaseForceDistribution: {
-        s.set("is_base_force_distribution", true);
         s.set("in0", in(st, 0));
         // in[0] is the platform wrench; the rest are the running flags of the
         // motions that drive the base (none running: it brakes and holds).
@@ -913,7 +903,6 @@ class Builder {
         break;
       }
       case StepKind::BaseVelocityComposition:
-        s.set("is_base_velocity_composition", true);
         s.set("out0", out(st, 0));
         break;
     }

@@ -29,35 +29,7 @@ std::string_view to_string(DataType t) {
 }
 
 std::string_view to_string(StepKind k) {
-  switch (k) {
-    case StepKind::ReadClock:
-      return "read-clock";
-    case StepKind::ArmKinematics:
-      return "arm-kinematics";
-    case StepKind::ViewRead:
-      return "view-read";
-    case StepKind::ViewWrite:
-      return "view-write";
-    case StepKind::Operator:
-      return "operator";
-    case StepKind::Evaluate:
-      return "evaluate";
-    case StepKind::LevelMonitor:
-      return "level-monitor";
-    case StepKind::EdgeMonitor:
-      return "edge-monitor";
-    case StepKind::GuardedMotion:
-      return "guarded-motion";
-    case StepKind::Controller:
-      return "controller";
-    case StepKind::ArmSolve:
-      return "arm-solve";
-    case StepKind::BaseForceDistribution:
-      return "base-force-distribution";
-    case StepKind::BaseVelocityComposition:
-      return "base-velocity-composition";
-  }
-  return "?";
+  return info(k).name;
 }
 
 std::string_view kind_name(const Step& step) {
@@ -109,82 +81,138 @@ struct Signature {
   std::string problem;
 };
 
-Signature signature(const Step& st, const Program& p) {
-  using T = DataType;
-  switch (st.kind) {
-    case StepKind::ReadClock:
-      return {{}, {T::Scalar}};
-    case StepKind::Operator: {
-      const auto kinds = operator_kinds();
-      if (st.op < 0 || static_cast<size_t>(st.op) >= kinds.size())
-        return {{},
-                {},
-                true,
-                "names operator kind " + std::to_string(st.op) + ", which does not exist"};
-      const OperatorKind& k = kinds[static_cast<size_t>(st.op)];
-      Signature s{{}, {k.out.type}};
-      for (const OperatorPort& port : k.in) s.in.push_back(port.type);
-      return s;
-    }
-    case StepKind::LevelMonitor:
-      return {{T::Scalar}, {T::Flag}};
-    case StepKind::EdgeMonitor:
-      return {{T::Scalar}, {T::Event}};
-    case StepKind::Evaluate:
-      if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag, T::Scalar}};
-      return {{T::Scalar}, {T::Flag, T::Scalar}};
-    case StepKind::Controller: {
-      const auto kinds = controller_kinds();
-      if (st.controller < 0 || static_cast<size_t>(st.controller) >= kinds.size())
-        return {
+using T = DataType;
+
+Signature operator_signature(const Step& st, const Program&) {
+  const auto kinds = operator_kinds();
+  if (st.op < 0 || static_cast<size_t>(st.op) >= kinds.size())
+    return {
+        {}, {}, true, "names operator kind " + std::to_string(st.op) + ", which does not exist"};
+  const OperatorKind& k = kinds[static_cast<size_t>(st.op)];
+  Signature s{{}, {k.out.type}};
+  for (const OperatorPort& port : k.in) s.in.push_back(port.type);
+  return s;
+}
+
+Signature view_read_signature(const Step& st, const Program& p) {
+  const bool known =
+      !st.in.empty() && st.in[0] >= 0 && static_cast<size_t>(st.in[0]) < p.data.size();
+  const T super = known ? p.data[static_cast<size_t>(st.in[0])].type : T::Pose;
+  if (super != T::Pose && super != T::Twist && super != T::Wrench)
+    return {{},
             {},
+            true,
+            "reads a view of a " + std::string(to_string(super)) +
+                "; a view reads a pose, twist or wrench"};
+  return {{super}, {T::Scalar}};
+}
+
+Signature view_write_signature(const Step& st, const Program& p) {
+  const bool known =
+      !st.out.empty() && st.out[0] >= 0 && static_cast<size_t>(st.out[0]) < p.data.size();
+  const T super = known ? p.data[static_cast<size_t>(st.out[0])].type : T::Wrench;
+  if (super != T::Twist && super != T::Wrench)
+    return {{},
+            {},
+            true,
+            "writes a view of a " + std::string(to_string(super)) +
+                "; a view writes a twist or wrench"};
+  return {std::vector<T>(st.in.size(), T::Scalar), {super}};
+}
+
+Signature controller_signature(const Step& st, const Program&) {
+  const auto kinds = controller_kinds();
+  if (st.controller < 0 || static_cast<size_t>(st.controller) >= kinds.size())
+    return {{},
             {},
             true,
             "names controller kind " + std::to_string(st.controller) + ", which does not exist"};
-      // The signals, then (when its motion gates it) the running flag.
-      const ControllerKind& k = kinds[static_cast<size_t>(st.controller)];
-      Signature s{std::vector<T>(k.in.size(), T::Scalar), {T::Scalar}};
-      if (st.in.size() == k.in.size() + 1) s.in.push_back(T::Flag);
-      return s;
-    }
-    case StepKind::GuardedMotion:
-      return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
-    case StepKind::ViewRead: {
-      const bool known =
-          !st.in.empty() && st.in[0] >= 0 && static_cast<size_t>(st.in[0]) < p.data.size();
-      const T super = known ? p.data[static_cast<size_t>(st.in[0])].type : T::Pose;
-      if (super != T::Pose && super != T::Twist && super != T::Wrench)
-        return {{},
-                {},
-                true,
-                "reads a view of a " + std::string(to_string(super)) +
-                    "; a view reads a pose, twist or wrench"};
-      return {{super}, {T::Scalar}};
-    }
-    case StepKind::ViewWrite: {
-      const bool known =
-          !st.out.empty() && st.out[0] >= 0 && static_cast<size_t>(st.out[0]) < p.data.size();
-      const T super = known ? p.data[static_cast<size_t>(st.out[0])].type : T::Wrench;
-      if (super != T::Twist && super != T::Wrench)
-        return {{},
-                {},
-                true,
-                "writes a view of a " + std::string(to_string(super)) +
-                    "; a view writes a twist or wrench"};
-      return {std::vector<T>(st.in.size(), T::Scalar), {super}};
-    }
-    case StepKind::ArmKinematics:
-    case StepKind::ArmSolve:
-      return {{}, {}, true};
-    case StepKind::BaseForceDistribution: {
-      Signature s{{T::Wrench}, {}};
-      for (size_t k = 1; k < st.in.size(); ++k) s.in.push_back(T::Flag);
-      return s;
-    }
-    case StepKind::BaseVelocityComposition:
-      return {{}, {T::Twist}};
-  }
-  return {{}, {}, true, "has an unknown kind"};
+  // The signals, then (when its motion gates it) the running flag.
+  const ControllerKind& k = kinds[static_cast<size_t>(st.controller)];
+  Signature s{std::vector<T>(k.in.size(), T::Scalar), {T::Scalar}};
+  if (st.in.size() == k.in.size() + 1) s.in.push_back(T::Flag);
+  return s;
+}
+
+struct KindEntry {
+  StepKindInfo info;
+  Signature (*signature)(const Step&, const Program&);
+};
+
+// The step kinds, in StepKind's order.
+const KindEntry kStepKinds[] = {
+    {{StepKind::ReadClock, "read-clock", std::nullopt, "mospec/time Clock", "out: [time]"},
+     [](const Step&, const Program&) -> Signature {
+       return {{}, {T::Scalar}};
+     }},
+    {{StepKind::ArmKinematics, "arm-kinematics", std::nullopt,
+      "slv:SolverWithInputAndOutput (its outputs)",
+      "outs: the solver's outputs (poses, twists of segments w.r.t. the root)"},
+     [](const Step&, const Program&) -> Signature {
+       return {{}, {}, true};
+     }},
+    {{StepKind::ViewRead, "view-read", std::nullopt,
+      "map:PoseCoordinateView, VelocityTwistCoordinateView, WrenchCoordinateView (read)",
+      "in: [pose|twist|wrench]; out: [scalar]"},
+     &view_read_signature},
+    {{StepKind::ViewWrite, "view-write", std::nullopt,
+      "map:VelocityTwistCoordinateView, WrenchCoordinateView (written)",
+      "ins: [scalar...]; out: [twist|wrench] (other components zero)"},
+     &view_write_signature},
+    {{StepKind::Operator, "operator", std::nullopt, "the operator registry (operators.hpp)",
+      "the operator kind's ports"},
+     &operator_signature},
+    {{StepKind::Evaluate, "evaluate", std::nullopt, "cstr-hdl:ErrorEvaluator, AssignmentEvaluator",
+      "ins: [quantity, (active flag)]; outs: [satisfied flag, error|output]"},
+     [](const Step& st, const Program&) -> Signature {
+       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag, T::Scalar}};
+       return {{T::Scalar}, {T::Flag, T::Scalar}};
+     }},
+    {{StepKind::LevelMonitor, "level-monitor", StateKind::Monitor, "cstr-hdl:LevelTriggeredMonitor",
+      "in: [error]; out: [flag]"},
+     [](const Step&, const Program&) -> Signature {
+       return {{T::Scalar}, {T::Flag}};
+     }},
+    {{StepKind::EdgeMonitor, "edge-monitor", StateKind::Monitor, "cstr-hdl:EdgeTriggeredMonitor",
+      "in: [error]; out: [event]"},
+     [](const Step&, const Program&) -> Signature {
+       return {{T::Scalar}, {T::Event}};
+     }},
+    {{StepKind::GuardedMotion, "guarded-motion", StateKind::Motion, "mot:GuardedMotion",
+      "ins: [when flags..., until flags...]; out: [running flag]"},
+     [](const Step& st, const Program&) -> Signature {
+       return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
+     }},
+    {{StepKind::Controller, "controller", std::nullopt,
+      "the controller registry (controllers.hpp); state slots per controller kind",
+      "ins: [signals..., (active flag)]; out: [control signal]"},
+     &controller_signature},
+    {{StepKind::ArmSolve, "arm-solve", std::nullopt, "slv:SolverWithInputAndOutput (its drivers)",
+      "ins: the drivers' data, then the motion gates; writes the arm's joint torques"},
+     [](const Step&, const Program&) -> Signature {
+       return {{}, {}, true};
+     }},
+    {{StepKind::BaseForceDistribution, "base-force-distribution", std::nullopt,
+      "mospec platform force-distribution solver",
+      "ins: [platform wrench, motion gates...]; writes the hub torques"},
+     [](const Step& st, const Program&) -> Signature {
+       Signature s{{T::Wrench}, {}};
+       for (size_t k = 1; k < st.in.size(); ++k) s.in.push_back(T::Flag);
+       return s;
+     }},
+    {{StepKind::BaseVelocityComposition, "base-velocity-composition", std::nullopt,
+      "mospec platform velocity-composition solver",
+      "out: [platform twist] from the pivots' and wheels' rates"},
+     [](const Step&, const Program&) -> Signature {
+       return {{}, {T::Twist}};
+     }},
+};
+static_assert(std::size(kStepKinds) == kStepKindCount, "one kStepKinds entry per StepKind");
+
+Signature signature(const Step& st, const Program& p) {
+  const auto k = static_cast<size_t>(st.kind);
+  if (k >= std::size(kStepKinds)) return {{}, {}, true, "has an unknown kind"};
+  return kStepKinds[k].signature(st, p);
 }
 
 // Collects the verifier's findings, each located at the model entity involved.
@@ -229,6 +257,28 @@ class Findings {
 };
 
 }  // namespace
+
+std::span<const StepKindInfo> step_kinds() {
+  static const std::vector<StepKindInfo> infos = [] {
+    std::vector<StepKindInfo> out;
+    for (const KindEntry& e : kStepKinds) out.push_back(e.info);
+    return out;
+  }();
+  return infos;
+}
+
+const StepKindInfo& info(StepKind kind) {
+  static const StepKindInfo unknown{static_cast<StepKind>(kStepKindCount), "?", std::nullopt, "",
+                                    ""};
+  const auto k = static_cast<size_t>(kind);
+  return k < std::size(kStepKinds) ? kStepKinds[k].info : unknown;
+}
+
+std::string template_section(StepKind kind) {
+  std::string out = "is_";
+  for (char c : info(kind).name) out.push_back(c == '-' ? '_' : c);
+  return out;
+}
 
 std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage stage) {
   Findings f(p, files);
@@ -331,11 +381,9 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
         f.step(st, "has " + std::to_string(st.n_when) + " when- and " + std::to_string(n_until) +
                        " until-guards; at most " + std::to_string(kMaxGuards) + " each");
     }
-    if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor ||
-        st.kind == StepKind::GuardedMotion) {
-      const StateKind sk =
-          st.kind == StepKind::GuardedMotion ? StateKind::Motion : StateKind::Monitor;
-      const int n = p.states[static_cast<size_t>(sk)];
+    if (const auto sk =
+            static_cast<size_t>(st.kind) < kStepKindCount ? info(st.kind).state : std::nullopt) {
+      const int n = p.states[static_cast<size_t>(*sk)];
       if (st.state < 0 || st.state >= n)
         f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
                        std::to_string(n - 1));

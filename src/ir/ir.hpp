@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -71,7 +72,32 @@ enum class StepKind : uint8_t {
                             // torques
   BaseVelocityComposition,  // base solver; out: [platform twist] from pivots and wheel rates
 };
+// Keep BaseVelocityComposition the last StepKind (the table below checks it).
+inline constexpr size_t kStepKindCount = static_cast<size_t>(StepKind::BaseVelocityComposition) + 1;
 std::string_view to_string(StepKind);
+
+// Per-step state the tick keeps across ticks (controllers, monitors, motions).
+enum class StateKind : uint8_t { Monitor, Motion };
+
+// Every step kind, declared once (kStepKinds in ir.cpp): its IR name (the
+// JSON's "kind", and codegen's template section `is_<name>` with '-' as '_'),
+// the state slot it owns, the vocabulary it lowers from, and what it reads and
+// writes. The verifier takes each kind's signature from the same entry; the
+// interpreter's and codegen's switches over StepKind have no default, so
+// -Wswitch fails the build when a kind lacks either; ir_step_kinds_test fails
+// when the controller template lacks its section. Operators are one kind
+// whose instances come from their own registry (operators.hpp).
+struct StepKindInfo {
+  StepKind kind;
+  std::string_view name;
+  std::optional<StateKind> state;  // the per-step state slot, if any
+  std::string_view lowered_from;   // the vocabulary class(es), or how lowering derives it
+  std::string_view summary;        // inputs and outputs
+};
+std::span<const StepKindInfo> step_kinds();
+const StepKindInfo& info(StepKind kind);
+// The codegen template's section for a kind: "is_" + name, '-' -> '_'.
+std::string template_section(StepKind kind);
 
 struct ViewSpec {
   int index = 0;  // component: 0..5 of an angular-first 6-vector; 0..5 of a pose
@@ -162,10 +188,6 @@ struct BaseSolver {
   int twist = -1;   // platform twist w.r.t. the floor, at the platform origin, seen by it
   SourceLoc where;
 };
-
-// Per-step state the tick keeps across ticks: monitors, motions (controllers
-// count theirs per kind, Program::controller_states).
-enum class StateKind : uint8_t { Monitor, Motion };
 
 // One column of the per-tick log: the value of a datum after the tick (a flag
 // or event as 0/1). Chosen by lowering: every constraint's measured value,

@@ -29,6 +29,24 @@ void lower_clocks(State& st) {
 void lower_arms(State& st) {
   for (TermId s : st.instances(vocab("task/solver-specification", "SolverWithInputAndOutput")))
     lower_arm(st, s);
+  // Each solve writes its arm's joint torques: two solvers on one arm would
+  // silently overwrite each other.
+  for (size_t i = 0; i < st.program.arms.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      const ArmSolver& a = st.program.arms[j];
+      const ArmSolver& b = st.program.arms[i];
+      if (a.port != b.port || !st.options.ports.count(a.chain_iri) ||
+          !st.options.ports.count(b.chain_iri))
+        continue;
+      st.error(b.where, "arm-driven-twice",
+               "the solvers '" + a.iri + "' (" + st.place(a.where) + ") and '" + b.iri +
+                   "' both drive the " + (b.port == 0 ? "right" : "left") +
+                   " arm (their chains are bound to it), and each would overwrite the other's "
+                   "joint torques; bind the chains to different arms (--bind CHAIN=right|left) or "
+                   "merge the solvers' motion drivers");
+      break;
+    }
+  }
 }
 
 void lower_arm(State& st, TermId solver) {
@@ -38,6 +56,16 @@ void lower_arm(State& st, TermId solver) {
   arm.iri = st.str(solver);
   arm.name = identifier(local_name(arm.iri));
   arm.where = st.where(solver);
+  // The vocabulary names the algorithm; mospec's arms run ACHD and nothing else.
+  const std::string achd = vocab(slv, "AccelerationConstrainedHybridDynamicsAlgorithm");
+  for (TermId algorithm : st.objects(solver, vocab(slv, "solver"))) {
+    if (st.str(algorithm) == achd) continue;
+    st.error(st.where(solver, vocab(slv, "solver"), algorithm), "unsupported-solver",
+             "the solver '" + arm.iri + "' asks for the algorithm '" + st.str(algorithm) +
+                 "', but mospec's arms run only the acceleration-constrained hybrid dynamics "
+                 "(AccelerationConstrainedHybridDynamicsAlgorithm); state that or leave `solver` "
+                 "out");
+  }
   auto chain_t = st.object(solver, vocab(slv, "kinematic-chain"));
   if (!chain_t) {
     st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no kinematic-chain");
@@ -245,6 +273,7 @@ void lower_arm(State& st, TermId solver) {
       }
       return it->second;
     };
+    std::map<int, TermId> constrained_by;  // tip component -> its acceleration constraint
     for (TermId spec : st.objects(*drivers, vocab(slv, "acceleration-constraint"))) {
       st.pending_iri = st.str(spec);
       const int lv = level_for(spec);
@@ -287,6 +316,17 @@ void lower_arm(State& st, TermId solver) {
           continue;
         }
         ac.component = base + ax;
+        // A second constraint on a direction ACHD already constrains makes
+        // its system singular, and the solve would average the two.
+        if (auto first = constrained_by.emplace(ac.component, c); !first.second) {
+          st.error(c, "driven-twice",
+                   "'" + ac.iri + "' constrains the " + sn + " along " + an + " of '" + arm.iri +
+                       "', which '" + st.str(first.first->second) + "' (" +
+                       st.place(first.first->second) +
+                       ") already constrains; ACHD would average the two. Drive each direction "
+                       "once: remove one, or combine their controllers' outputs with an operator");
+          continue;
+        }
         auto energy = st.object(c, vocab(slv, "acceleration-energy"));
         if (!energy) {
           st.error(c, "missing-property",
@@ -298,15 +338,23 @@ void lower_arm(State& st, TermId solver) {
         arm.acceleration_constraints.push_back(ac);
       }
     }
-    if (arm.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints)) {
-      st.error(solver, "too-many-constraints",
-               "the solver '" + arm.iri + "' has more than 6 acceleration constraints");
-    }
+    // One constraint per tip direction (driven-twice) keeps them within
+    // runtime::kMaxConstraints; the verifier checks it again.
     for (TermId spec : st.objects(*drivers, vocab(slv, "cartesian-force"))) {
       st.pending_iri = st.str(spec);
       CartesianForce cf;
       cf.iri = st.str(spec);
       cf.level = level_for(spec);
+      if (cf.level != 0) {
+        // ACHD adds every Cartesian force to one solve, where each acts in
+        // what the acceleration constraints leave free; a force of a lower
+        // level would not yield to the forces above it.
+        st.error(spec, "unsupported-priority",
+                 "Cartesian forces must be in the highest priority level: one ACHD solve adds "
+                 "every force alike (each acting where the acceleration constraints leave "
+                 "freedom), so a lower level would not yield to the forces above it; '" +
+                     cf.iri + "' is in level " + std::to_string(cf.level + 1));
+      }
       auto link = st.object(spec, vocab(slv, "attached-to"));
       auto force = st.object(spec, vocab(slv, "force"));
       if (!link || !force) {

@@ -110,6 +110,12 @@ struct State {
     d.message = std::move(message);
     errors.push_back(std::move(d));
   }
+  // "file:line" of an entity, for a message that names a second place.
+  std::string place(SourceLoc loc) const {
+    if (!loc.known()) return "an unknown place";
+    return std::string(model.files().path(loc.file)) + ":" + std::to_string(loc.line);
+  }
+  std::string place(TermId e) const { return place(where(e)); }
   void error(TermId at, std::string code, std::string message) {
     error(where(at), std::move(code), std::move(message));
   }

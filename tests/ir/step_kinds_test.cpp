@@ -1,0 +1,61 @@
+// The step kinds (ir.hpp: step_kinds()): each StepKind is declared once, in
+// order, with a unique name, and the generated controller's template has the
+// section codegen selects for it. The interpreter's and codegen's switches over
+// StepKind have no default, so the build (-Wswitch -Werror) fails first when
+// either lacks a kind; this test covers what the compiler cannot see.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "ir/ir.hpp"
+
+namespace mospec::ir {
+namespace {
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(StepKinds, EachDeclaredOnceInOrderWithAUniqueName) {
+  const auto kinds = step_kinds();
+  ASSERT_EQ(kinds.size(), kStepKindCount);
+  std::set<std::string_view> names;
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    EXPECT_EQ(static_cast<size_t>(kinds[k].kind), k) << kinds[k].name << " is out of order";
+    EXPECT_EQ(info(kinds[k].kind).name, kinds[k].name);
+    EXPECT_EQ(to_string(kinds[k].kind), kinds[k].name);
+    EXPECT_TRUE(names.insert(kinds[k].name).second) << kinds[k].name << " is declared twice";
+    EXPECT_FALSE(kinds[k].lowered_from.empty()) << kinds[k].name << " says nothing it lowers from";
+    EXPECT_FALSE(kinds[k].summary.empty()) << kinds[k].name << " has no summary";
+  }
+  EXPECT_EQ(to_string(static_cast<StepKind>(kStepKindCount)), "?");
+}
+
+TEST(StepKinds, TheControllerTemplateHasASectionForEachKind) {
+  const std::string tpl = slurp(std::filesystem::path(MOSPEC_SOURCE_DIR) /
+                                "src/codegen/templates/controller.cpp.mustache");
+  ASSERT_FALSE(tpl.empty());
+  for (const StepKindInfo& k : step_kinds()) {
+    const std::string section = template_section(k.kind);
+    EXPECT_NE(tpl.find("{{#" + section + "}}"), std::string::npos)
+        << "controller.cpp.mustache has no {{#" << section << "}} section for step kind " << k.name;
+  }
+}
+
+TEST(StepKinds, StateSlotsAreThoseOfStatefulKinds) {
+  // Controllers keep their state per controller kind (controllers.hpp).
+  EXPECT_EQ(info(StepKind::Controller).state, std::nullopt);
+  EXPECT_EQ(info(StepKind::LevelMonitor).state, StateKind::Monitor);
+  EXPECT_EQ(info(StepKind::EdgeMonitor).state, StateKind::Monitor);
+  EXPECT_EQ(info(StepKind::GuardedMotion).state, StateKind::Motion);
+  EXPECT_EQ(info(StepKind::Operator).state, std::nullopt);
+}
+
+}  // namespace
+}  // namespace mospec::ir
