@@ -46,7 +46,7 @@ void lower_evaluators(State& st) {
           st.error(st.where(*t, kQudt + "value", *lit), "invalid-number",
                    "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has the value " +
                        st.literal_text(*lit) + ", which is not a finite number of its datatype");
-        } else {
+        } else if (st.defined(*t)) {  // else undefined-quantity said it
           st.error(*t, "not-a-constant",
                    "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has no value");
         }
@@ -207,7 +207,13 @@ void lower_handlers(State& st) {
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     st.pending_iri = st.str(h);
     auto m = st.object(h, vocab(ch, "motion"));
-    if (!m) continue;
+    if (!m) {
+      st.error(h, "missing-property",
+               "the constraint handler '" + st.str(h) +
+                   "' names no motion: its evaluators and controllers would run whatever the "
+                   "task does; name the motion they serve (`motion`)");
+      continue;
+    }
     int active = -1;
     if (auto it = active_of_motion.find(m->index); it != active_of_motion.end()) {
       active = it->second;

@@ -1,8 +1,90 @@
 #include "ir/lowering.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 
 namespace mospec::ir::lowering {
+
+namespace {
+
+// Levenshtein distance, or limit + 1 once it is certainly above `limit`.
+size_t edit_distance(std::string_view a, std::string_view b, size_t limit) {
+  if (a.size() > b.size() + limit || b.size() > a.size() + limit) return limit + 1;
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    size_t best = row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+      best = std::min(best, row[j]);
+    }
+    if (best > limit) return limit + 1;
+  }
+  return row[b.size()];
+}
+
+std::string_view namespace_of(std::string_view iri) {
+  const size_t k = iri.find_last_of("#/");
+  return k == std::string_view::npos ? std::string_view{} : iri.substr(0, k + 1);
+}
+
+}  // namespace
+
+std::string State::did_you_mean(TermId e) const {
+  const std::string_view iri = graph.str(e);
+  const std::string_view ns = namespace_of(iri);
+  const std::string_view local = iri.substr(ns.size());
+  // At most a third of the name wrong (and at least two edits allowed).
+  const size_t limit = std::max<size_t>(2, local.size() / 3);
+  std::string_view nearest;
+  size_t best = limit + 1;
+  const rdf::TermTable& terms = graph.terms();
+  for (uint32_t k = 0; k < terms.size(); ++k) {
+    const TermId t{k};
+    if (!terms[t].is_iri() || t == e) continue;
+    const std::string_view candidate = terms[t].value;
+    if (namespace_of(candidate) != ns || !graph.defined(t)) continue;
+    const size_t d = edit_distance(local, candidate.substr(ns.size()), limit);
+    if (d < best || (d == best && candidate < nearest)) {
+      best = d;
+      nearest = candidate;
+    }
+  }
+  if (nearest.empty()) return "";
+  std::string out = "; did you mean '";
+  out.append(nearest).append("'?");
+  return out;
+}
+
+void State::several_values(TermId s, const std::string& p,
+                           const std::vector<TermId>& values) const {
+  if (!several_reported.emplace(s.index, p).second) return;
+  const auto quoted = [&](TermId v) {
+    if (graph.terms()[v].is_literal()) return literal_text(v);
+    std::string out = "'";
+    out.append(graph.str(v)).append("'");
+    return out;
+  };
+  std::string msg = "'";
+  msg.append(graph.str(s))
+      .append("' has ")
+      .append(std::to_string(values.size()))
+      .append(" values for `")
+      .append(local_name(p))
+      .append("`, which takes one: ");
+  for (size_t k = 0; k < values.size() && k < 3; ++k) {
+    if (k) msg.append(k + 1 == values.size() ? " and " : ", ");
+    msg.append(quoted(values[k])).append(" (").append(place(where(s, p, values[k]))).append(")");
+  }
+  if (values.size() > 3) msg.append(", ...");
+  msg.append(
+      "; give it once (a value in a second file does not override the first: both are part of "
+      "the model)");
+  error(where(s, p, values[1]), "several-values", msg);
+}
 
 std::optional<DataType> State::type_of(TermId e) const {
   if (has_type(e, vocab("geometry/spatial-relations", "Pose")) ||
@@ -111,7 +193,8 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
         .append(d.iri)
         .append("' as its ")
         .append(role)
-        .append(", but no model file defines it");
+        .append(", but no model file defines it")
+        .append(did_you_mean(e));
     error(where(referenced_by), "undefined-quantity", msg);
   } else if (auto t = type_of(e); t && *t != expected) {
     std::string msg = "'";

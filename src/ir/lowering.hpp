@@ -57,9 +57,19 @@ struct State {
   std::vector<TermId> objects(TermId s, const std::string& p) const {
     return graph.objects(s, term(p));
   }
+  // The one value of a single-valued property. A second value (e.g. a
+  // quantity given a value by two files) is never resolved by picking one:
+  // it is a located error naming both (several_values).
   std::optional<TermId> object(TermId s, const std::string& p) const {
-    return graph.object(s, term(p));
+    const std::vector<TermId> all = graph.objects(s, term(p));
+    if (all.empty()) return std::nullopt;
+    if (all.size() > 1) several_values(s, p, all);
+    return all.front();
   }
+  void several_values(TermId s, const std::string& p, const std::vector<TermId>& values) const;
+  // For a reference to `e` that nothing defines: "; did you mean '<nearest>'?"
+  // naming the defined entity of the same namespace nearest in spelling, or "".
+  std::string did_you_mean(TermId e) const;
   bool has_type(TermId s, const std::string& type) const { return graph.has_type(s, term(type)); }
   std::vector<TermId> instances(const std::string& type) const {
     return graph.instances(term(type));
@@ -88,7 +98,8 @@ struct State {
     return out;
   }
   std::optional<double> number(TermId s, const std::string& p) const {
-    return graph.number(s, term(p));
+    auto o = object(s, p);
+    return o ? graph.number(*o) : std::nullopt;
   }
 
   // The graph of the file that describes a chain: other files' poses between
@@ -98,7 +109,7 @@ struct State {
   }
 
   // --- diagnostics --------------------------------------------------------
-  void error(SourceLoc loc, std::string code, std::string message) {
+  void error(SourceLoc loc, std::string code, std::string message) const {
     Diagnostic d;
     d.severity = Severity::Error;
     if (loc.known()) {
@@ -116,7 +127,7 @@ struct State {
     return std::string(model.files().path(loc.file)) + ":" + std::to_string(loc.line);
   }
   std::string place(TermId e) const { return place(where(e)); }
-  void error(TermId at, std::string code, std::string message) {
+  void error(TermId at, std::string code, std::string message) const {
     error(where(at), std::move(code), std::move(message));
   }
 
@@ -186,7 +197,10 @@ struct State {
   // program.steps), the problems found (error), and the names taken so far.
   Program program;
   std::vector<Step> steps;
-  std::vector<Diagnostic> errors;
+  // Mutable: the graph accessors, const otherwise, report a property that has
+  // several values where one is read (once per subject and property).
+  mutable std::vector<Diagnostic> errors;
+  mutable std::set<std::pair<uint32_t, std::string>> several_reported;
   std::set<std::string> data_names, step_names;
   std::unordered_map<uint32_t, int> data_of;  // model entity (term index) -> its datum
   std::map<int, int> producer;                // datum -> the step that writes it
