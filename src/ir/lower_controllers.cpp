@@ -41,19 +41,9 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   const std::string ctrl = "the controller '" + iri + "'";
   st.pending_iri = iri;
   bool ok = true;
-  // The one value of a property (several: refused; none: nullopt).
-  const auto value_of = [&](std::string_view property) -> std::optional<TermId> {
-    const std::vector<TermId> values = st.objects(c, kind.property_iri(property));
-    if (values.size() > 1) {
-      st.error(c, "several-values",
-               ctrl + " names " + std::to_string(values.size()) + " values for `" +
-                   std::string(property) + "` ('" + st.str(values[0]) + "', '" + st.str(values[1]) +
-                   "'" + (values.size() > 2 ? ", ..." : "") + "); a controller reads exactly one");
-      ok = false;
-      return std::nullopt;
-    }
-    if (values.empty()) return std::nullopt;
-    return values[0];
+  // The one value of a property (several: refused by State::object; none: nullopt).
+  const auto value_of = [&](std::string_view property) {
+    return st.object(c, kind.property_iri(property));
   };
 
   // Signals: the scalar inputs, then the control signal.
@@ -66,14 +56,12 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
     all_signals = all_signals && signals.back().has_value();
   }
   if (!all_signals) {
-    if (ok) {
-      std::string needs;
-      for (size_t i = 0; i < signal_properties.size(); ++i) {
-        needs.append(i == 0 ? "" : i + 1 == signal_properties.size() ? " and " : ", ");
-        needs.append(article(signal_properties[i])).append(signal_properties[i]);
-      }
-      st.error(c, "missing-property", ctrl + " needs " + needs);
+    std::string needs;
+    for (size_t i = 0; i < signal_properties.size(); ++i) {
+      needs.append(i == 0 ? "" : i + 1 == signal_properties.size() ? " and " : ", ");
+      needs.append(article(signal_properties[i])).append(signal_properties[i]);
     }
+    st.error(c, "missing-property", ctrl + " needs " + needs);
     return;
   }
 
