@@ -17,10 +17,7 @@ template <class T>
 struct Type {
   std::string_view name;
 };
-#define MOSPEC_TYPE(T)         \
-  Type<::mospec::runtime::T> { \
-#T                         \
-  }
+#define MOSPEC_TYPE(T) (Type<::mospec::runtime::T>{#T})
 struct NoState {};
 constexpr Type<NoState> kStateless{""};
 
