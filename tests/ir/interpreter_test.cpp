@@ -111,6 +111,39 @@ TEST(Interpreter, RejectsAProgramThatDoesNotVerify) {
   EXPECT_THROW(Interpreter{p}, Error);
 }
 
+// The verifier's checks of controller steps, against the registry's kind.
+TEST(Verifier, ChecksControllerStepsAgainstTheirKind) {
+  const std::string dir = std::string(MOSPEC_SOURCE_DIR) + "/tests/ir/data";
+  const Program good = lower_app(dir + "/controllers.json", dir);
+  EXPECT_TRUE(check(good).empty());
+  const auto problems = [&](const auto& edit) {
+    Program p = good;
+    for (Step& st : p.steps) {
+      if (st.kind == StepKind::Controller && kind_name(st) == std::string_view("damping")) {
+        edit(st);
+        break;
+      }
+    }
+    std::string all;
+    for (const Diagnostic& d : check(p)) all.append(d.message).append("\n");
+    return all;
+  };
+  EXPECT_NE(problems([](Step& st) {
+              st.parameters.pop_back();
+            }).find("has 1 parameters; a damping controller has 2"),
+            std::string::npos);
+  EXPECT_NE(problems([](Step& st) {
+              st.state = 0;
+            }).find("a damping controller keeps no state (expected -1)"),
+            std::string::npos);
+  EXPECT_NE(problems([](Step& st) {
+              st.controller = 99;
+            }).find("names controller kind 99, which does not exist"),
+            std::string::npos);
+  EXPECT_NE(problems([](Step& st) { st.in.push_back(st.in.front()); }).find("inputs"),
+            std::string::npos);
+}
+
 // A tick of the right-arm scenario against a robot standing in its initial
 // pose: arm kinematics, views, operators, evaluators, monitors, controllers,
 // the ACHD solve. Deterministic, finite, allocation-free.
