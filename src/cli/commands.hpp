@@ -24,6 +24,7 @@ struct LoadFlags {
   std::vector<std::string> maps;  // IRI=DIR
   std::string root;
   bool strict = false;
+  bool listed_shapes_only = false;  // no shapes for the vocabulary, only the listed ones
   void add_to(CLI::App& cmd);
   app::LoadOptions to_options() const;  // throws mospec::Error on a malformed --map
 };

@@ -31,6 +31,10 @@ void LoadFlags::add_to(CLI::App& cmd) {
                  "directory")
       ->type_name("DIR");
   cmd.add_flag("--strict", strict, "Treat warnings (dropped keys, undefined types) as findings");
+  cmd.add_flag("--listed-shapes-only", listed_shapes_only,
+               "Apply only the shape files the app lists (and --shapes), not mospec's shapes for "
+               "every term of mospec's vocabulary the model uses; to test shapes, or what "
+               "lowering refuses by itself, in isolation");
 }
 
 app::LoadOptions LoadFlags::to_options() const {

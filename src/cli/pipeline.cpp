@@ -48,6 +48,7 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
   const size_t warnings = print_diagnostics(model.diagnostics());
   validation::ModelValidationOptions vopt;
   vopt.strict = flags.load.strict;
+  vopt.vocabulary_shapes = !flags.load.listed_shapes_only;
   validation::ModelValidation v = validation::validate_model(model, vopt);
   print_diagnostics(v.shape_diagnostics);
   const size_t violations =

@@ -45,6 +45,7 @@ Action add_validate_command(CLI::App& app) {
     validation::ModelValidationOptions options;
     options.extra_shapes = flags->shapes;
     options.strict = flags->load.strict;
+    options.vocabulary_shapes = !flags->load.listed_shapes_only;
     validation::ModelValidation v = validation::validate_model(model, options);
     warnings += print_diagnostics(v.shape_diagnostics);
     for (const Diagnostic& d : v.strict_findings) std::cerr << format(d) << '\n';

@@ -14,6 +14,7 @@
 #include "rdf/turtle.hpp"
 #include "shacl/validate.hpp"
 #include "support/io.hpp"
+#include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
 namespace mospec::validation {
@@ -225,7 +226,8 @@ std::vector<std::string> context_term_iris(app::LoadedModel& model) {
   return out;
 }
 
-std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& shapes) {
+std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& shapes,
+                                      const std::vector<ShapeFile>& automatic) {
   std::vector<Diagnostic> out;
   const SourceFiles& files = model.files();
   auto located = [&](SourceLoc loc, std::string code, std::string message) {
@@ -247,6 +249,13 @@ std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& sha
   for (uint32_t i = 0; i < shapes.shapes().size(); ++i) {
     const Shape& s = shapes[i];
     if (!s.has_targets() || s.deactivated || counts[i] != 0) continue;
+    // A file mospec added because the model uses part of it: its other
+    // shapes are not the author's choice.
+    const bool added =
+        s.where.known() && std::any_of(automatic.begin(), automatic.end(), [&](const ShapeFile& f) {
+          return f.automatic && files.path(s.where.file) == f.path;
+        });
+    if (added) continue;
     out.push_back(located(
         s.where, "shape-unused",
         "shape " + shapes.describe(i) + " has targets but selects no focus node in the model"));
@@ -305,20 +314,119 @@ std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& sha
   return out;
 }
 
+// ---- shapes that come with the vocabulary ----------------------------------
+
+namespace {
+
+// Whether a shapes file's targets select any node of `data`.
+bool selects_a_node(const rdf::Dataset& shapes, const rdf::Dataset& data) {
+  const rdf::TermTable& st = shapes.terms();
+  const rdf::TermTable& dt = data.terms();
+  const TermId type = dt.find_iri(vocab::rdf::type);
+  const auto in_data = [&](TermId shapes_term) {
+    return st[shapes_term].is_iri() ? dt.find_iri(st[shapes_term].value) : TermId::any();
+  };
+  const auto typed = [&](TermId cls) {
+    const TermId c = in_data(cls);
+    return !c.is_any() && !type.is_any() && data.count(TermId::any(), type, c, TermId::any(), 1);
+  };
+  const TermId s_type = st.find_iri(vocab::rdf::type);
+  const TermId node_shape = st.find_iri(vocab::sh::NodeShape);
+  const TermId rdfs_class = st.find_iri(vocab::rdfs::Class);
+  bool selected = false;
+  for (const rdf::Quad& q : shapes.quads()) {
+    const std::string_view p = st[q.predicate].value;
+    if (p == vocab::sh::targetClass) {
+      selected = typed(q.object);
+    } else if (p == vocab::sh::targetSubjectsOf || p == vocab::sh::targetObjectsOf) {
+      const TermId pd = in_data(q.object);
+      selected = !pd.is_any() && data.count(TermId::any(), pd, TermId::any(), TermId::any(), 1);
+    } else if (p == vocab::sh::targetNode) {
+      const TermId n = in_data(q.object);
+      selected = !n.is_any() && (data.count(n, TermId::any(), TermId::any(), TermId::any(), 1) ||
+                                 data.count(TermId::any(), TermId::any(), n, TermId::any(), 1));
+    } else if (q.predicate == s_type && q.object == node_shape && !rdfs_class.is_any() &&
+               shapes.count(q.subject, s_type, rdfs_class, TermId::any(), 1)) {
+      selected = typed(q.subject);  // an implicit class target
+    }
+    if (selected) return true;
+  }
+  return false;
+}
+
+// Whether every IRI node shape of `file` is already a node shape of `already`.
+bool already_read(const rdf::Dataset& file, const rdf::Dataset& already) {
+  const rdf::TermTable& ft = file.terms();
+  const rdf::TermTable& at = already.terms();
+  const TermId f_type = ft.find_iri(vocab::rdf::type), f_shape = ft.find_iri(vocab::sh::NodeShape);
+  const TermId a_type = at.find_iri(vocab::rdf::type), a_shape = at.find_iri(vocab::sh::NodeShape);
+  if (f_type.is_any() || f_shape.is_any()) return false;
+  bool any = false, all = true;
+  file.scan(TermId::any(), f_type, f_shape, TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+    if (!ft[q.subject].is_iri()) return true;
+    any = true;
+    const TermId s = at.find_iri(ft[q.subject].value);
+    if (s.is_any() || a_type.is_any() || a_shape.is_any() ||
+        !already.count(s, a_type, a_shape, TermId::any(), 1))
+      all = false;
+    return all;
+  });
+  return any && all;
+}
+
+}  // namespace
+
+std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Dataset& into,
+                                              DiagnosticSink* diagnostics) {
+  std::vector<ShapeFile> out;
+  const std::string base(vocab::kMetamodels);
+  const std::string manifest = model.loader().resolve(base + "mospec/shape-files.txt");
+  std::error_code ec;
+  if (manifest.empty() || !fs::is_regular_file(manifest, ec)) return out;
+  const std::string text = read_file(manifest);
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    start = end + 1;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    ShapeFile f;
+    f.iri = base + line;
+    f.path = model.loader().resolve(f.iri);
+    f.automatic = true;
+    if (f.path.empty()) continue;
+    rdf::Dataset shapes;
+    read_shape_file(f, model.loader(), shapes, diagnostics);
+    if (!selects_a_node(shapes, model.dataset()) || already_read(shapes, into)) continue;
+    // Read again into `into` (not merged): its reader gives this document's
+    // blank nodes labels fresh in `into`, where `shapes` could reuse labels.
+    read_shape_file(f, model.loader(), into, diagnostics);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 // ---- the pipeline ----------------------------------------------------------
 
 ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOptions& options) {
   ModelValidation out;
   out.files = shape_files(model, options.extra_shapes, options.use_app_constraints);
-  if (out.files.empty())
-    throw Error("usage",
-                "no shapes to validate against: the app names no constraints; pass --shapes FILE");
   out.shapes_graph = std::make_unique<rdf::Dataset>();
   for (const ShapeFile& f : out.files)
     read_shape_file(f, model.loader(), *out.shapes_graph, &out.shape_diagnostics);
+  if (options.vocabulary_shapes && options.use_app_constraints) {
+    for (ShapeFile& f : vocabulary_shape_files(model, *out.shapes_graph, &out.shape_diagnostics))
+      out.files.push_back(std::move(f));
+  }
+  if (out.files.empty())
+    throw Error("usage",
+                "no shapes to validate against: the app names no constraints and its vocabulary "
+                "does not resolve to mospec's metamodels; pass --shapes FILE");
   out.shapes = std::make_unique<Shapes>(Shapes::compile(*out.shapes_graph, &model.files()));
   out.report = validate(*out.shapes, model.dataset());
-  if (options.strict) out.strict_findings = strict_checks(model, *out.shapes);
+  if (options.strict) out.strict_findings = strict_checks(model, *out.shapes, out.files);
   return out;
 }
 

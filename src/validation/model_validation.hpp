@@ -24,6 +24,9 @@ struct ShapeFile {
   std::string path;    // local path
   std::string iri;     // base IRI for relative references inside it
   SourceLoc named_at;  // where an app file names it (unknown for --shapes)
+  // Added by validate_model because the model uses its vocabulary (not listed
+  // by the app): mospec's own shapes come with mospec's metamodels.
+  bool automatic = false;
 };
 
 // The syntax of a shape file, from its extension (.ttl/.turtle, .trig,
@@ -50,7 +53,12 @@ std::vector<ShapeFile> shape_files(app::LoadedModel& model, const std::vector<st
 struct ModelValidationOptions {
   std::vector<std::string> extra_shapes;  // local paths (--shapes)
   bool use_app_constraints = true;        // read the apps' `constraints` lists
-  bool strict = false;                    // compute strict_findings
+  // When the model's vocabulary resolves to mospec's metamodels (the
+  // directory holding mospec/shape-files.txt), also apply every shape file it
+  // lists whose targets select a node of the model — whatever the apps list.
+  // An app resolving the vocabulary elsewhere keeps exactly its own list.
+  bool vocabulary_shapes = true;
+  bool strict = false;  // compute strict_findings
 };
 
 struct ModelValidation {
@@ -64,6 +72,16 @@ struct ModelValidation {
   // Loader-style warnings raised while reading JSON-LD shape files.
   DiagnosticSink shape_diagnostics;
 };
+
+// mospec's shape files for a model (ModelValidationOptions::vocabulary_shapes):
+// those listed by <metamodels>/mospec/shape-files.txt, as the model's loader
+// resolves it, whose targets (sh:targetClass, implicit class targets,
+// sh:targetSubjectsOf/ObjectsOf, sh:targetNode) select a node of the model and
+// whose node shapes `already` (the shapes read so far) does not hold. Each is
+// read into `into`. Empty when the vocabulary does not resolve to mospec's
+// metamodels.
+std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Dataset& into,
+                                              DiagnosticSink* diagnostics = nullptr);
 
 // The whole pipeline on a loaded model: read shape files, compile (ill-formed
 // shapes throw mospec::Error "shacl-ill-formed", located), validate every graph
@@ -80,7 +98,9 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
 //    contexts those load, and the scoped contexts inside their term
 //    definitions) maps to exactly that IRI; or the shapes graph mentions it
 //    as a subject or as the object of sh:targetClass or sh:class.
-std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const shacl::Shapes& shapes);
+// Shapes of `files` marked automatic are not reported as shape-unused.
+std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const shacl::Shapes& shapes,
+                                      const std::vector<ShapeFile>& files = {});
 
 // Every IRI that a term of the model files' JSON-LD contexts maps to.
 std::vector<std::string> context_term_iris(app::LoadedModel& model);
