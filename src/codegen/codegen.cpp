@@ -11,6 +11,7 @@
 
 #include "codegen/build.hpp"
 #include "codegen/templates.hpp"
+#include "ir/controllers.hpp"
 #include "ir/operators.hpp"
 #include "support/io.hpp"
 
@@ -223,18 +224,6 @@ std::string mat3(const runtime::Mat3& M) {
   return join_doubles(r.data(), 9);
 }
 
-std::string anti_windup(runtime::AntiWindup a) {
-  switch (a) {
-    case runtime::AntiWindup::None:
-      return "rt::AntiWindup::None";
-    case runtime::AntiWindup::ConditionalIntegration:
-      return "rt::AntiWindup::ConditionalIntegration";
-    case runtime::AntiWindup::BackCalculation:
-      return "rt::AntiWindup::BackCalculation";
-  }
-  return "rt::AntiWindup::ConditionalIntegration";
-}
-
 std::string constraint_kind(runtime::ConstraintKind k) {
   switch (k) {
     case runtime::ConstraintKind::Equality:
@@ -311,7 +300,11 @@ class Builder {
     // injective), so only two entities with the same IR name in one role can
     // collide: that is an error naming both.
     Scope slots(*this, "data"), arms(*this, "arm solvers"), evals(*this, "evaluation steps"),
-        pids(*this, "PID steps"), monitors(*this, "monitor steps");
+        monitors(*this, "monitor steps");
+    // One role per controller kind: its name ("pid_<step>").
+    std::vector<Scope> controllers;
+    for (const ir::ControllerKind& k : ir::controller_kinds())
+      controllers.emplace_back(*this, std::string(k.title));
     for (std::size_t i = 0; i < p.data.size(); ++i) {
       const ir::Data& d = p.data[i];
       data_names_.push_back(slots.take("v", d.name, d.iri, d.where));
@@ -329,7 +322,10 @@ class Builder {
     for (const ir::Step& st : p.steps) {
       std::string m;
       if (st.kind == StepKind::Evaluate) m = evals.take("eval", st.name, st.iri, st.where);
-      if (st.kind == StepKind::Pid) m = pids.take("pid", st.name, st.iri, st.where);
+      if (st.kind == StepKind::Controller) {
+        const auto k = static_cast<std::size_t>(st.controller);
+        m = controllers[k].take(ir::controller_kinds()[k].name, st.name, st.iri, st.where);
+      }
       if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor) {
         m = monitors.take("tolerance", st.name, st.iri, st.where);
       }
@@ -364,6 +360,13 @@ class Builder {
     return s;
   }
   std::string in(const ir::Step& st, std::size_t k) const { return ref(st.in[k]); }
+  // Whether a step of controller kind `k` is in the program.
+  bool uses_controller(int k) const {
+    for (const ir::Step& st : p_.steps) {
+      if (st.kind == StepKind::Controller && st.controller == k) return true;
+    }
+    return false;
+  }
   std::string out(const ir::Step& st, std::size_t k) const { return ref(st.out[k]); }
   // The path of a location's file ("" when unknown).
   std::string file_of(const SourceLoc& loc) const {
@@ -527,7 +530,7 @@ class Builder {
       inits.emplace_back("base(base_config())");
     }
 
-    mus::data evaluators = list(), pids = list(), monitors = list();
+    mus::data evaluators = list(), monitors = list();
     for (std::size_t i = 0; i < p_.steps.size(); ++i) {
       const ir::Step& st = p_.steps[i];
       if (st.kind != StepKind::Evaluate) continue;
@@ -546,25 +549,43 @@ class Builder {
       init.append("},\n        ").append(cpp_string(st.name)).append(")");
       inits.push_back(init);
     }
-    for (std::size_t i = 0; i < p_.steps.size(); ++i) {
-      const ir::Step& st = p_.steps[i];
-      if (st.kind != StepKind::Pid) continue;
-      const runtime::PidSpec& c = st.pid;
+    // Controllers, kind by kind in the registry's order: each step's runtime
+    // model, built from the kind's Spec with the step's parameter values.
+    mus::data controller_kinds = list();
+    const auto kinds = ir::controller_kinds();
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+      const ir::ControllerKind& kind = kinds[k];
+      mus::data members = list();
+      for (std::size_t i = 0; i < p_.steps.size(); ++i) {
+        const ir::Step& st = p_.steps[i];
+        if (st.kind != StepKind::Controller || st.controller != static_cast<int>(k)) continue;
+        mus::data e;
+        e.set("type", std::string(kind.model_type));
+        e.set("member", step_members_[i]);
+        e.set("iri", comment_text(st.iri));
+        members.push_back(e);
+        std::string init = step_members_[i];
+        init.append("(rt::").append(kind.spec_type).append("{");
+        for (std::size_t f = 0; f < kind.parameters.size(); ++f) {
+          const ir::ControllerParameter& field = kind.parameters[f];
+          if (f > 0) init.append(field.new_line ? ",\n                   " : ", ");
+          init.append(".").append(field.member).append(" = ");
+          const double v = st.parameters[f];
+          if (field.enumerators.empty()) {
+            init.append(cpp_double(v));
+          } else {
+            init.append("rt::").append(field.enum_type).append("::");
+            init.append(field.enumerators.at(static_cast<std::size_t>(v)));
+          }
+        }
+        init.append("},\n        ").append(cpp_string(st.name)).append(")");
+        inits.push_back(init);
+      }
+      if (members.list_value().empty()) continue;
       mus::data e;
-      e.set("member", step_members_[i]);
-      e.set("iri", comment_text(st.iri));
-      pids.push_back(e);
-      std::string init = step_members_[i];
-      init.append("(rt::PidSpec{.kp = ").append(cpp_double(c.kp));
-      init.append(", .ki = ").append(cpp_double(c.ki));
-      init.append(", .kd = ").append(cpp_double(c.kd));
-      init.append(", .decay_rate = ").append(cpp_double(c.decay_rate));
-      init.append(",\n                   .output_min = ").append(cpp_double(c.output_min));
-      init.append(",\n                   .output_max = ").append(cpp_double(c.output_max));
-      init.append(",\n                   .anti_windup = ").append(anti_windup(c.anti_windup));
-      init.append(", .tracking_rate = ").append(cpp_double(c.tracking_rate));
-      init.append("},\n        ").append(cpp_string(st.name)).append(")");
-      inits.push_back(init);
+      e.set("title", std::string(kind.title));
+      e.set("members", members);
+      controller_kinds.push_back(e);
     }
     for (std::size_t i = 0; i < p_.steps.size(); ++i) {
       const ir::Step& st = p_.steps[i];
@@ -577,8 +598,7 @@ class Builder {
     }
     root.set("has_evaluators", !evaluators.list_value().empty());
     root.set("evaluators", evaluators);
-    root.set("has_pids", !pids.list_value().empty());
-    root.set("pids", pids);
+    root.set("controller_kinds", controller_kinds);
     root.set("has_monitors", !monitors.list_value().empty());
     root.set("monitors", monitors);
     root.set("has_initializers", !inits.empty());
@@ -604,8 +624,18 @@ class Builder {
     root.set("n_wrench", std::to_string(p_.count(DataType::Wrench)));
     root.set("n_flag", std::to_string(p_.count(DataType::Flag)));
     root.set("n_event", std::to_string(p_.count(DataType::Event)));
-    root.set("n_pid_states",
-             std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Pid)]));
+    // Controller state, one array per stateful kind the program uses.
+    mus::data controller_states = list();
+    const auto kinds = ir::controller_kinds();
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+      if (!kinds[k].has_state() || !uses_controller(static_cast<int>(k))) continue;
+      mus::data e;
+      e.set("type", std::string(kinds[k].state_type));
+      e.set("count", std::to_string(p_.controller_state_count(static_cast<int>(k))));
+      e.set("member", std::string(kinds[k].name));
+      controller_states.push_back(e);
+    }
+    root.set("controller_states", controller_states);
     root.set("n_monitor_states",
              std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Monitor)]));
     root.set("n_motion_states",
@@ -790,13 +820,26 @@ class Builder {
         s.set("out0", out(st, 0));
         break;
       }
-      case StepKind::Pid:
-        s.set("pid", step_members_[index]);
-        s.set("state_slot", std::to_string(st.state));
-        s.set("in0", in(st, 0));
-        s.set("active", gate());
+      case StepKind::Controller: {
+        // The registry's kernel, called as it declares: (model, [state,]
+        // signals..., [dt,] active), active being the running flag after the
+        // signals, if any.
+        const ir::ControllerKind& k =
+            ir::controller_kinds()[static_cast<std::size_t>(st.controller)];
+        std::string call = "rt::";
+        call.append(k.kernel).append("(m.").append(step_members_[index]);
+        if (k.has_state()) {
+          call.append(", d.").append(k.name).append("[").append(std::to_string(st.state));
+          call.append("]");
+        }
+        for (std::size_t i = 0; i < k.in.size(); ++i) call.append(", ").append(in(st, i));
+        if (k.kernel_takes_dt) call.append(", state.clock.dt");
+        call.append(", ").append(st.in.size() > k.in.size() ? in(st, k.in.size()) : "true");
+        call.append(")");
+        s.set("call", call);
         s.set("out0", out(st, 0));
         break;
+      }
       case StepKind::ArmSolve: {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);

@@ -72,7 +72,6 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
         break;
     }
   }
-  pid_states_.resize(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Pid)]));
   monitor_states_.resize(
       static_cast<size_t>(program_.states[static_cast<int>(StateKind::Monitor)]));
   motion_states_.assign(static_cast<size_t>(program_.states[static_cast<int>(StateKind::Motion)]),
@@ -85,15 +84,15 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
     for (int d : st.in) operator_slots_.push_back(static_cast<int>(slot(d)));
   }
   evaluators_.resize(program_.steps.size());
+  controllers_.resize(program_.steps.size());
   for (size_t i = 0; i < program_.steps.size(); ++i) {
     const Step& st = program_.steps[i];
     if (st.kind == StepKind::Evaluate) {
       evaluators_[i] =
           std::make_unique<runtime::ConstraintEvaluator>(st.constraint, st.name.c_str());
-    } else if (st.kind == StepKind::Pid) {
-      if (pids_.size() <= static_cast<size_t>(st.state))
-        pids_.resize(static_cast<size_t>(st.state) + 1, runtime::Pid(runtime::PidSpec{}));
-      pids_[static_cast<size_t>(st.state)] = runtime::Pid(st.pid, st.name.c_str());
+    } else if (st.kind == StepKind::Controller) {
+      controllers_[i] = controller_kinds()[static_cast<size_t>(st.controller)].instantiate(
+          st.parameters, st.name.c_str());
     }
   }
   for (const ArmSolver& a : program_.arms) arms_.push_back(std::make_unique<Arm>(a));
@@ -193,11 +192,14 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
           std::span<const bool>(until.data(), st.in.size() - n_when));
       break;
     }
-    case StepKind::Pid: {
-      const bool active = st.in.size() < 2 || s_.flags[in(1)] != 0;
-      s_.scalars[out(0)] = steps::pid(pids_[static_cast<size_t>(st.state)],
-                                      pid_states_[static_cast<size_t>(st.state)], s_.scalars[in(0)],
-                                      state.clock.dt, active);
+    case StepKind::Controller: {
+      // The kind's kernel on its signals (at most kMaxControllerSignals), gated by
+      // the running flag after them, if any.
+      const size_t n = controller_kinds()[static_cast<size_t>(st.controller)].in.size();
+      std::array<double, kMaxControllerSignals> signals{};
+      for (size_t k = 0; k < n; ++k) signals[k] = s_.scalars[in(k)];
+      const bool active = st.in.size() <= n || s_.flags[in(n)] != 0;
+      s_.scalars[out(0)] = controllers_[index]->step(signals.data(), state.clock.dt, active);
       break;
     }
     case StepKind::ArmSolve: {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ir/controllers.hpp"
 #include "ir/ir.hpp"
 #include "ir/operators.hpp"
 #include "robot/controller.hpp"
@@ -49,8 +50,8 @@ class Interpreter final : public robot::Controller {
   // Operator steps' input slots, flattened; a step's start by step index.
   std::vector<int> operator_slots_;
   std::vector<size_t> operator_slot_offset_;
-  std::vector<runtime::Pid> pids_;  // by Step::state
-  std::vector<runtime::PidState> pid_states_;
+  // Controller steps' runtime models and states, by step index (null for other steps).
+  std::vector<std::unique_ptr<ControllerInstance>> controllers_;
   std::vector<runtime::MonitorState> monitor_states_;
   std::vector<runtime::steps::MotionState> motion_states_;
   std::vector<std::unique_ptr<runtime::ConstraintEvaluator>> evaluators_;  // by step index

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "ir/controllers.hpp"
 #include "ir/operators.hpp"
 
 namespace mospec::ir {
@@ -36,6 +37,11 @@ std::string_view kind_name(const Step& step) {
     const auto kinds = operator_kinds();
     if (step.op >= 0 && static_cast<size_t>(step.op) < kinds.size())
       return kinds[static_cast<size_t>(step.op)].name;
+  }
+  if (step.kind == StepKind::Controller) {
+    const auto kinds = controller_kinds();
+    if (step.controller >= 0 && static_cast<size_t>(step.controller) < kinds.size())
+      return kinds[static_cast<size_t>(step.controller)].name;
   }
   return to_string(step.kind);
 }
@@ -114,6 +120,20 @@ Signature view_write_signature(const Step& st, const Program& p) {
   return {std::vector<T>(st.in.size(), T::Scalar), {super}};
 }
 
+Signature controller_signature(const Step& st, const Program&) {
+  const auto kinds = controller_kinds();
+  if (st.controller < 0 || static_cast<size_t>(st.controller) >= kinds.size())
+    return {{},
+            {},
+            true,
+            "names controller kind " + std::to_string(st.controller) + ", which does not exist"};
+  // The signals, then (when its motion gates it) the running flag.
+  const ControllerKind& k = kinds[static_cast<size_t>(st.controller)];
+  Signature s{std::vector<T>(k.in.size(), T::Scalar), {T::Scalar}};
+  if (st.in.size() == k.in.size() + 1) s.in.push_back(T::Flag);
+  return s;
+}
+
 struct KindEntry {
   StepKindInfo info;
   Signature (*signature)(const Step&, const Program&);
@@ -163,12 +183,10 @@ const KindEntry kStepKinds[] = {
      [](const Step& st, const Program&) -> Signature {
        return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
      }},
-    {{StepKind::Pid, "pid", StateKind::Pid, "cstr-hdl:ProportionalIntegralDerivative",
-      "ins: [error, (active flag)]; out: [control signal]"},
-     [](const Step& st, const Program&) -> Signature {
-       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Scalar}};
-       return {{T::Scalar}, {T::Scalar}};
-     }},
+    {{StepKind::Controller, "controller", std::nullopt,
+      "the controller registry (controllers.hpp); state slots per controller kind",
+      "ins: [signals..., (active flag)]; out: [control signal]"},
+     &controller_signature},
     {{StepKind::ArmSolve, "arm-solve", std::nullopt, "slv:SolverWithInputAndOutput (its drivers)",
       "ins: the drivers' data, then the motion gates; writes the arm's joint torques"},
      [](const Step&, const Program&) -> Signature {
@@ -369,6 +387,22 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
       if (st.state < 0 || st.state >= n)
         f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
                        std::to_string(n - 1));
+    }
+    if (st.kind == StepKind::Controller && st.controller >= 0 &&
+        static_cast<size_t>(st.controller) < controller_kinds().size()) {
+      const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
+      if (st.parameters.size() != k.parameters.size())
+        f.step(st, "has " + std::to_string(st.parameters.size()) + " parameters; a " +
+                       std::string(k.name) + " controller has " +
+                       std::to_string(k.parameters.size()));
+      const int n = p.controller_state_count(st.controller);
+      if (k.has_state() && (st.state < 0 || st.state >= n))
+        f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
+                       std::to_string(n - 1) + " (the program's " + std::string(k.name) +
+                       " states)");
+      if (!k.has_state() && st.state != -1)
+        f.step(st, "has state slot " + std::to_string(st.state) + "; a " + std::string(k.name) +
+                       " controller keeps no state (expected -1)");
     }
     if (st.kind == StepKind::ArmKinematics || st.kind == StepKind::ArmSolve) {
       if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size())
@@ -610,11 +644,16 @@ std::string to_json(const Program& p, const SourceFiles* files) {
       e["constraint"] = std::move(c);
     }
     if (st.kind == StepKind::GuardedMotion) e["when"] = st.n_when;
-    if (st.kind == StepKind::Pid) {
-      e["pid"] = {{"kp", st.pid.kp},
-                  {"ki", st.pid.ki},
-                  {"kd", st.pid.kd},
-                  {"decay-rate", st.pid.decay_rate}};
+    if (st.kind == StepKind::Controller && st.controller >= 0 &&
+        static_cast<size_t>(st.controller) < controller_kinds().size()) {
+      // The parameters the model states, by their JSON keys, under the kind's name.
+      const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
+      Json params = Json::object();
+      for (size_t i = 0; i < k.parameters.size() && i < st.parameters.size(); ++i) {
+        if (!k.parameters[i].json.empty())
+          params[std::string(k.parameters[i].json)] = st.parameters[i];
+      }
+      e[std::string(k.name)] = std::move(params);
     }
     if (st.state >= 0) e["state"] = st.state;
     e["where"] = location(st.where, files);

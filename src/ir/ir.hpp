@@ -29,7 +29,6 @@
 #include <vector>
 
 #include "runtime/chain.hpp"
-#include "runtime/controllers.hpp"
 #include "runtime/evaluators.hpp"
 #include "runtime/kelo.hpp"
 #include "runtime/model.hpp"
@@ -66,7 +65,8 @@ enum class StepKind : uint8_t {
   LevelMonitor,   // in: [error]; out: [flag]
   EdgeMonitor,    // in: [error]; out: [event]
   GuardedMotion,  // ins: [when flags..., until flags...]; out: [active flag]
-  Pid,            // ins: [error, active flag]; out: [control signal]
+  Controller,     // ins: [signals..., (active flag)]; out: [control signal]; Step::controller
+                  // indexes controller_kinds() (controllers.hpp)
   ArmSolve,       // solver; ins: drivers' data, motion gates; writes the arm's joint torques
   BaseForceDistribution,    // base solver; ins: [platform wrench, motion gates...]; writes the hub
                             // torques
@@ -77,7 +77,7 @@ inline constexpr size_t kStepKindCount = static_cast<size_t>(StepKind::BaseVeloc
 std::string_view to_string(StepKind);
 
 // Per-step state the tick keeps across ticks (controllers, monitors, motions).
-enum class StateKind : uint8_t { Pid, Monitor, Motion };
+enum class StateKind : uint8_t { Monitor, Motion };
 
 // Every step kind, declared once (kStepKinds in ir.cpp): its IR name (the
 // JSON's "kind", and codegen's template section `is_<name>` with '-' as '_'),
@@ -117,8 +117,9 @@ struct Step {
   runtime::ConstraintSpec constraint;  // Evaluate
   bool has_error_output = false;       // Evaluate: out[1] is the error (else none/output)
   int n_when = 0;                      // GuardedMotion: ins[0, n_when) are `when`
-  runtime::PidSpec pid;                // Pid
-  int state = -1;                      // Pid, monitors, motions: their state slot
+  int controller = -1;                 // Controller: index into controller_kinds()
+  std::vector<double> parameters;      // Controller: one value per parameter of its kind
+  int state = -1;                      // stateful controllers, monitors, motions: their state slot
   // ArmSolve: in[0, n_drivers) are the drivers' data; in[n_drivers, ...) the
   // running flags of the motions whose controllers drive this arm. With such
   // gates and none of them running, the arm holds (steps::arm_hold).
@@ -202,7 +203,8 @@ struct LogColumn {
 
 struct Program;
 // A step's kind as the IR's JSON and messages name it: the operator's name
-// for an Operator step ("compose-pose"), else to_string(kind).
+// for an Operator step ("compose-pose"), the controller's for a Controller
+// step ("pid"), else to_string(kind).
 std::string_view kind_name(const Step& step);
 
 struct Program {
@@ -210,12 +212,20 @@ struct Program {
   std::vector<Data> data;
   std::array<int, kDataTypes> slots{};  // number of slots per DataType
   std::vector<Step> steps;              // schedule order
-  std::array<int, 3> states{};          // number of state slots per StateKind
+  std::array<int, 2> states{};          // number of state slots per StateKind
+  // Number of state slots per controller kind (controller_kinds() order; a
+  // kind past the end has none).
+  std::vector<int> controller_states;
   std::vector<ArmSolver> arms;
   std::optional<BaseSolver> base;
   std::vector<LogColumn> log;
 
   int count(DataType t) const { return slots[static_cast<int>(t)]; }
+  int controller_state_count(int kind) const {
+    return kind >= 0 && static_cast<size_t>(kind) < controller_states.size()
+               ? controller_states[static_cast<size_t>(kind)]
+               : 0;
+  }
 };
 
 // Most `when` or `until` guards one guarded motion may have.

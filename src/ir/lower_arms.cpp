@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "description/chain_rdf.hpp"
+#include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
 
 namespace mospec::ir::lowering {
@@ -443,16 +444,21 @@ void gate_arm_solves(State& st) {
       auto it = st.producer.find(d);
       if (it == st.producer.end() || it->second < 0) continue;
       const Step& p = st.steps[static_cast<size_t>(it->second)];
-      const bool gated =
-          (p.kind == StepKind::Pid && p.in.size() == 2) ||
-          (p.kind == StepKind::Evaluate &&
-           p.constraint.kind == runtime::ConstraintKind::Assignment && p.in.size() == 2);
-      if (gated) gates.insert(p.in[1]);
+      // A gated step's running flag: a controller's after its signals, an
+      // assignment's after its value.
+      const size_t gate =
+          p.kind == StepKind::Controller
+              ? controller_kinds()[static_cast<size_t>(p.controller)].in.size()
+          : p.kind == StepKind::Evaluate && p.constraint.kind == runtime::ConstraintKind::Assignment
+              ? 1
+              : p.in.size();
+      const bool gated = gate + 1 == p.in.size();
+      if (gated) gates.insert(p.in[gate]);
       if (p.kind == StepKind::GuardedMotion || p.kind == StepKind::ArmKinematics ||
           p.kind == StepKind::BaseVelocityComposition)
         continue;
       for (size_t k = 0; k < p.in.size(); ++k) {
-        if (gated && k == 1) continue;
+        if (gated && k == gate) continue;
         todo.push_back(p.in[k]);
       }
     }

@@ -1,5 +1,5 @@
-// Lowering passes. Constraints: evaluators, monitors, the constraint handlers and their
-// controllers.
+// Lowering passes. Constraints: evaluators, monitors, the constraint handlers (their
+// controllers: lower_controllers.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -262,50 +262,6 @@ void lower_handlers(State& st) {
     if (s.constraint.kind != runtime::ConstraintKind::Assignment) continue;
     if (auto it = active_of_evaluator.find(eval); it != active_of_evaluator.end())
       s.in.push_back(it->second);
-  }
-}
-
-void lower_controllers(State& st) {
-  const std::string ch = "task/constraint-handler";
-  for (TermId c : st.instances(vocab(ch, "ProportionalIntegralDerivative"))) {
-    st.pending_iri = st.str(c);
-    auto err = st.object(c, vocab(ch, "error-signal"));
-    auto sig = st.object(c, vocab(ch, "control-signal"));
-    if (!err || !sig) {
-      st.error(c, "missing-property",
-               "the controller '" + st.str(c) + "' needs an error-signal and a control-signal");
-      continue;
-    }
-    Step s = st.step_for(StepKind::Pid, c);
-    const auto gain = [&](const std::string& p, bool required) {
-      const auto lit = st.object(c, vocab(ch, p));
-      auto v = lit ? st.number(*lit) : std::nullopt;
-      if (!v && required && lit && st.graph.terms()[*lit].is_literal()) {
-        st.error(st.where(c, vocab(ch, p), *lit), "invalid-number",
-                 "the controller '" + st.str(c) + "' has " + p + " " + st.literal_text(*lit) +
-                     ", which is not a finite number of its datatype (xsd:double: e.g. 100, "
-                     "+100.0, -1.5e2)");
-      } else if (!v && required) {
-        st.error(c, "missing-property", "the controller '" + st.str(c) + "' needs a numeric " + p);
-      }
-      return v.value_or(0.0);
-    };
-    s.pid.kp = gain("proportional-gain", true);
-    s.pid.ki = gain("integral-gain", true);
-    s.pid.kd = gain("derivative-gain", true);
-    if (st.has_type(c, vocab(ch, "DecayingIntegralTerm")))
-      s.pid.decay_rate = gain("decay-rate", true);
-    try {
-      runtime::Pid check(s.pid, s.iri.c_str());
-    } catch (const Error& e) {
-      st.error(c, "invalid-controller", e.diagnostic().message);
-    }
-    s.in = {st.datum(*err, DataType::Scalar, c, "error-signal")};
-    if (auto it = st.active_of_controller.find(c.index); it != st.active_of_controller.end())
-      s.in.push_back(it->second);
-    s.out = {st.datum(*sig, DataType::Scalar, c, "control-signal")};
-    s.state = st.program.states[static_cast<int>(StateKind::Pid)]++;
-    st.add_step(std::move(s));
   }
 }
 

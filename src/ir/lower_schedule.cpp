@@ -111,7 +111,7 @@ void build_log(State& st) {
       case StepKind::GuardedMotion:
         add(".running", s.out[0]);
         break;
-      case StepKind::Pid:
+      case StepKind::Controller:
         add(".output", s.out[0]);
         break;
       default:

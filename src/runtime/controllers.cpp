@@ -120,4 +120,47 @@ PidStatus Pid::step(PidState& s, double error, double dt, double feed_forward) c
   return PidStatus::Ok;
 }
 
+Damping::Damping(const DampingSpec& spec, const char* name) : spec_(spec) {
+  if (!(spec.maximum_velocity > 0.0) || !std::isfinite(spec.maximum_velocity) ||
+      !(spec.maximum_force > 0.0) || !std::isfinite(spec.maximum_force)) {
+    reject(name,
+           "a damping controller needs a finite maximum velocity > 0 and a finite maximum "
+           "force > 0, got maximum velocity " +
+               exact_number(spec.maximum_velocity) + " and maximum force " +
+               exact_number(spec.maximum_force));
+  }
+  coefficient_ = spec.maximum_force / spec.maximum_velocity;
+}
+
+double Damping::force(double velocity) const noexcept {
+  if (!std::isfinite(velocity)) return 0.0;
+  return std::clamp(-coefficient_ * velocity, -spec_.maximum_force, spec_.maximum_force);
+}
+
+Impedance::Impedance(const ImpedanceSpec& spec, const char* name) : spec_(spec) {
+  if (!(spec.stiffness >= 0.0) || !std::isfinite(spec.stiffness) || !(spec.damping >= 0.0) ||
+      !std::isfinite(spec.damping)) {
+    reject(name,
+           "an impedance controller needs a finite stiffness >= 0 and a finite damping >= 0 "
+           "(a negative spring or damper is not passive), got stiffness " +
+               exact_number(spec.stiffness) + " and damping " + exact_number(spec.damping));
+  }
+  if (spec.stiffness == 0.0 && spec.damping == 0.0) {
+    reject(name, "an impedance controller with stiffness 0 and damping 0 commands nothing");
+  }
+}
+
+void Impedance::step(ImpedanceState& s, double error, double dt) const noexcept {
+  if (!(dt > 0.0) || !std::isfinite(dt)) return;
+  if (!std::isfinite(error)) {
+    s.fault = true;
+    return;
+  }
+  const double rate = s.has_previous ? (error - s.previous_error) / dt : 0.0;
+  s.rate = rate;
+  s.previous_error = error;
+  s.has_previous = true;
+  s.output = spec_.stiffness * error + spec_.damping * rate;
+}
+
 }  // namespace mospec::runtime

@@ -1,6 +1,19 @@
-// Controllers (paper Sec. II-E and Eq. 4): 1D PID controllers that map a
-// constraint's error signal to a control signal (a force, an acceleration
-// setpoint), with the paper's decaying integral term
+// Controllers (paper Sec. II-E): 1D laws that map a signal (a constraint's
+// error, a measured velocity) to a control signal (a force, an acceleration
+// setpoint). The IR declares each kind once (src/ir/controllers.cpp); this file
+// holds their arithmetic. Three kinds:
+//
+//   Pid        Eq. (4), below;
+//   Damping    the published DampingController: a saturated linear damper;
+//   Impedance  the published ImpedanceController: a spring and a damper on
+//              the error.
+//
+// Each is Model/Data shaped: a constant description checked at construction
+// (throwing mospec::Error "invalid-controller" that names the controller and
+// the offending values) and, where it needs one, a per-controller state; the
+// step functions are noexcept and allocation-free.
+//
+// PID: 1D PID controllers with the paper's decaying integral term
 //
 //   f(t) = Kp ε(t) + Ki ∫_0^t e^{λ(τ - t)} ε(τ) dτ + Kd dε(t)/dt      (4)
 //
@@ -119,6 +132,87 @@ class Pid {
 
  private:
   PidSpec spec_;
+};
+
+// ---------------------------------------------------------------------------
+// Damping (the published cstr-hdl:DampingController): the force that opposes a
+// measured velocity v, proportional to it, such that the maximum velocity
+// v_max calls for the maximum force F_max, and never more than F_max:
+//
+//   f = clamp(-(F_max / v_max) v, -F_max, F_max)
+//
+// that is, a linear damper with coefficient b = F_max / v_max [N s/m or
+// N m s/rad] saturated at F_max. Units pair up: a linear velocity [m/s] with a
+// force [N], an angular velocity [rad/s] with a torque [N m]. It has no state.
+// A non-finite velocity (a sensor that fails) commands no force.
+struct DampingSpec {
+  double maximum_velocity = 1.0;  // v_max > 0 [m/s or rad/s]
+  double maximum_force = 0.0;     // F_max > 0 [N or N m]
+};
+
+class Damping {
+ public:
+  // Throws mospec::Error("invalid-controller") naming `name` unless v_max and
+  // F_max are finite and > 0.
+  explicit Damping(const DampingSpec& spec, const char* name = "controller");
+
+  const DampingSpec& spec() const { return spec_; }
+  // b = F_max / v_max.
+  double coefficient() const { return coefficient_; }
+  double force(double velocity) const noexcept;
+
+ private:
+  DampingSpec spec_;
+  double coefficient_ = 0.0;
+};
+
+// ---------------------------------------------------------------------------
+// Impedance (the published cstr-hdl:ImpedanceController): a spring of
+// stiffness K and a damper of damping D acting on the error signal ε,
+//
+//   f = K ε + D dε/dt,
+//
+// with dε/dt the difference quotient over the MEASURED dt, as the PID's
+// derivative (zero on the first step after a reset). With a constant
+// reference, dε/dt is minus the measured rate, so this is the spring-damper
+// the controlled coordinate feels; its sign convention is the PID's (K = Kp,
+// D = Kd give the same output as a PD controller). K, D >= 0 (a negative
+// spring or damper is not passive) and not both 0. Units: an error in m gives
+// a force in N (K in N/m, D in N s/m); in rad a torque in N m (K in N m/rad,
+// D in N m s/rad).
+//
+// Apparent inertia (the vocabulary's `inertia`) needs the measured contact
+// force (admittance control), which this controller's signals do not carry:
+// lowering refuses a model that states it.
+//
+// dt <= 0, NaN or inf changes nothing; a non-finite error holds the previous
+// output and latches state.fault (cleared by a reset), as the PID does.
+struct ImpedanceSpec {
+  double stiffness = 0.0;  // K >= 0 [N/m or N m/rad]
+  double damping = 0.0;    // D >= 0 [N s/m or N m s/rad]
+};
+
+struct ImpedanceState {
+  double previous_error = 0.0;
+  bool has_previous = false;
+  double rate = 0.0;    // the last dε/dt
+  double output = 0.0;  // the last output (held while inputs are invalid)
+  bool fault = false;   // latched: a non-finite error was seen since reset
+};
+
+class Impedance {
+ public:
+  // Throws mospec::Error("invalid-controller") naming `name` unless K and D
+  // are finite, >= 0 and not both 0.
+  explicit Impedance(const ImpedanceSpec& spec, const char* name = "controller");
+
+  const ImpedanceSpec& spec() const { return spec_; }
+  // One control step; the output is also in state.output.
+  void step(ImpedanceState& state, double error, double dt) const noexcept;
+  static void reset(ImpedanceState& state) noexcept { state = ImpedanceState{}; }
+
+ private:
+  ImpedanceSpec spec_;
 };
 
 }  // namespace mospec::runtime

@@ -152,6 +152,22 @@ inline double pid(const Pid& controller, PidState& state, double error, double d
   return state.output;
 }
 
+// A damping controller (stateless): the force opposing `velocity`.
+inline double damping(const Damping& controller, double velocity, bool active) noexcept {
+  return active ? controller.force(velocity) : 0.0;
+}
+
+// An impedance controller: as pid() (inactive: 0, state reset).
+inline double impedance(const Impedance& controller, ImpedanceState& state, double error, double dt,
+                        bool active) noexcept {
+  if (!active) {
+    Impedance::reset(state);
+    return 0.0;
+  }
+  controller.step(state, error, dt);
+  return state.output;
+}
+
 // ---------------------------------------------------------------------------
 // Base: the platform wrench F_Po_P (at the platform origin, seen by P)
 // distributed to the drives (paper Eq. 2-3) from the measured pivot angles.

@@ -107,7 +107,8 @@ TEST(GeneratedController, EmptyProgramMatchesTheInterpreter) {
 
 // Names and IRIs hostile to C++ (a trigraph, U+202E, C macros, keywords, two
 // solvers that once collided): the project built with -Werror, and behaves.
-// Every operator kind of the registry, each on its own inputs and logged whole:
+// Every operator kind of the registry, each on its own inputs and logged whole,
+// and every controller kind, free and gated (the gate turns off at 0.1 s):
 // the generated call of each kernel computes what the interpreter's does.
 TEST(GeneratedController, EveryOperatorKindMatchesTheInterpreterBitForBit) {
   expect_like_the_interpreter(

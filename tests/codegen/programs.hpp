@@ -25,6 +25,7 @@
 
 #include "app/app.hpp"
 #include "description/chain_rdf.hpp"
+#include "ir/controllers.hpp"
 #include "ir/ir.hpp"
 #include "ir/operators.hpp"
 #include "robot/interface.hpp"
@@ -75,6 +76,31 @@ class ProgramBuilder {
   }
 
   int state(ir::StateKind kind) { return p.states[static_cast<std::size_t>(kind)]++; }
+
+  // A controller step, by the registry's name of its kind ("pid"): its
+  // parameters are the kind's defaults, then `values` by Spec field name; a
+  // stateful kind gets the next state slot of its kind.
+  ir::Step& controller(std::string_view kind, const std::string& name, std::vector<int> in,
+                       std::vector<int> out,
+                       const std::vector<std::pair<std::string, double>>& values = {}) {
+    const int k = ir::controller_index(kind);
+    if (k < 0) throw std::logic_error("no controller kind '" + std::string(kind) + "'");
+    const ir::ControllerKind& ck = ir::controller_kinds()[static_cast<std::size_t>(k)];
+    ir::Step& s = step(ir::StepKind::Controller, name, std::move(in), std::move(out));
+    s.controller = k;
+    s.parameters = ck.defaults();
+    for (const auto& [member, v] : values) {
+      const int f = ck.parameter(member);
+      if (f < 0)
+        throw std::logic_error("controller kind '" + std::string(kind) + "' has no " + member);
+      s.parameters[static_cast<std::size_t>(f)] = v;
+    }
+    if (ck.has_state()) {
+      p.controller_states.resize(ir::controller_kinds().size());
+      s.state = p.controller_states[static_cast<std::size_t>(k)]++;
+    }
+    return s;
+  }
 
   void log(const std::string& name, int data, const std::string& unit = "") {
     p.log.push_back({name, unit, data});
@@ -152,14 +178,13 @@ inline ir::Program small_program(SourceFiles& files) {
   gm.n_when = 0;  // starts at once; height_ok is a second until guard
   gm.state = b.state(ir::StateKind::Motion);
   const int force = b.datum("force", T::Scalar, {}, "N");
-  ir::Step& pid = b.step(K::Pid, "pid_height", {height_err, approach}, {force});
-  pid.pid.kp = 200.0;
-  pid.pid.ki = 15.0;
-  pid.pid.kd = 0.5;
-  pid.pid.decay_rate = 0.99;
-  pid.pid.output_min = -50.0;
-  pid.pid.output_max = 50.0;
-  pid.state = b.state(ir::StateKind::Pid);
+  b.controller("pid", "pid_height", {height_err, approach}, {force},
+               {{"kp", 200.0},
+                {"ki", 15.0},
+                {"kd", 0.5},
+                {"decay_rate", 0.99},
+                {"output_min", -50.0},
+                {"output_max", 50.0}});
   // A contact force: an assignment gated by the motion.
   const int push_ok = b.datum("push_ok", T::Flag);
   const int push = b.datum("push", T::Scalar, {}, "N");
@@ -273,11 +298,7 @@ inline ir::Program arm_program(SourceFiles& files) {
   ev.constraint = {runtime::ConstraintKind::Bilateral, 0.0, 0.0, 0.55, 0.65, 0.001};
   ev.has_error_output = true;
   const int acc = b.datum("acc_z", T::Scalar, {}, "M-PER-SEC2");
-  ir::Step& pid = b.step(K::Pid, "pid_height", {err}, {acc});
-  pid.pid.kp = 40.0;
-  pid.pid.ki = 2.0;
-  pid.pid.kd = 0.0;
-  pid.state = b.state(ir::StateKind::Pid);
+  b.controller("pid", "pid_height", {err}, {acc}, {{"kp", 40.0}, {"ki", 2.0}, {"kd", 0.0}});
   const int push = b.datum("push", T::Scalar, {}, "N");
   const int push_ok = b.datum("push_ok", T::Flag);
   const int push_ref = b.datum("push_ref", T::Scalar, {0.0}, "N");
@@ -331,10 +352,7 @@ inline ir::Program hostile_program(SourceFiles& files) {
   ev.has_error_output = true;
   ev.iri.append("*/\n#error injected\\");
   const int out = b.datum("NULL", T::Scalar, {}, "N-M");
-  ir::Step& pid = b.step(K::Pid, "switch", {err}, {out});
-  pid.pid.kp = 2.0;
-  pid.pid.ki = 0.5;
-  pid.state = b.state(ir::StateKind::Pid);
+  b.controller("pid", "switch", {err}, {out}, {{"kp", 2.0}, {"ki", 0.5}});
   const int level = b.datum("unix", T::Flag);
   ir::Step& lm = b.step(K::LevelMonitor, "EOF", {err}, {level});
   lm.constraint.tolerance = 0.01;
@@ -396,8 +414,12 @@ inline ir::Program hostile_program(SourceFiles& files) {
 // constant inputs (a scalar input is the clock's time, so values change from
 // tick to tick); every output is logged: a scalar as it is, a twist or wrench
 // by component, a pose through six views, a vector as the force of a wrench.
-// A new operator kind is in this program, and so in the interpreter ==
-// generated and allocation tests, without editing it.
+// Then every controller kind (ir::controller_kinds()), each twice with the
+// clock's time as every signal: once always running, once gated by a flag
+// that turns off (so its reset runs too); its k-th model parameter is
+// 0.25 (k + 1), the rest the runtime's defaults; the control signal is logged.
+// A new operator or controller kind is in this program, and so in the
+// interpreter == generated and allocation tests, without editing it.
 inline ir::Program operators_program(SourceFiles& files) {
   using T = ir::DataType;
   using K = ir::StepKind;
@@ -468,6 +490,29 @@ inline ir::Program operators_program(SourceFiles& files) {
       default:
         throw std::logic_error("operators_program: cannot log the output of " +
                                std::string(kind.name));
+    }
+  }
+  // The gate: "t < 0.1 s", which turns off during the tests' runs.
+  const int gate = b.datum("gate_early", T::Flag);
+  const int gate_err = b.datum("gate_early_err", T::Scalar, {}, "SEC");
+  b.step(K::Evaluate, "gate_early_eval", {time}, {gate, gate_err}).constraint = {
+      runtime::ConstraintKind::LessThan, 0.0, 0.1, 0.0, 0.0, 0.0};
+  const auto ckinds = ir::controller_kinds();
+  for (std::size_t k = 0; k < ckinds.size(); ++k) {
+    const ir::ControllerKind& kind = ckinds[k];
+    std::vector<std::pair<std::string, double>> values;
+    double next = 0.0;
+    for (const ir::ControllerParameter& param : kind.parameters) {
+      if (param.source != ir::ParameterSource::Fixed)
+        values.emplace_back(std::string(param.member), next += 0.25);
+    }
+    for (const bool gated : {false, true}) {
+      const std::string name = "c" + std::to_string(k) + (gated ? "_gated" : "_free");
+      const int out = b.datum(name + "_out", T::Scalar);
+      std::vector<int> in(kind.in.size(), time);
+      if (gated) in.push_back(gate);
+      b.controller(kind.name, name, in, {out}, values);
+      b.log(name + "_out", out);
     }
   }
   return b.p;

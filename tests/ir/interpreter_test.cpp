@@ -74,10 +74,74 @@ TEST(Interpreter, GuardedMotionRunsBetweenItsWhenAndUntil) {
   EXPECT_EQ(events, 1) << "the edge monitor fires once, when the start condition becomes true";
 }
 
+// tests/ir/data/controllers: a damping controller and an impedance controller
+// gated by a motion (0.5 s <= t < 2 s), and an angular damper that always runs.
+TEST(Interpreter, DampingAndImpedanceControllersFromAModel) {
+  const std::string dir = std::string(MOSPEC_SOURCE_DIR) + "/tests/ir/data";
+  Interpreter in(lower_app(dir + "/controllers.json", dir));
+  const int damper = column(in, "damper.output");
+  const int angular = column(in, "damper-ang.output");
+  const int spring = column(in, "spring.output");
+  const int error = column(in, "cstr-x.error");
+  robot::MeasuredState state;
+  robot::Command command;
+  std::vector<double> values(in.log_columns().size());
+  for (int k = 0; k <= 2500; ++k) {
+    state.clock.tick = static_cast<std::uint64_t>(k);
+    state.clock.t = 0.001 * k;
+    state.clock.dt = k == 0 ? 0.0 : 0.001;
+    in.tick(state, command);
+    in.log_values(values);
+    const double t = state.clock.t;
+    const bool running = t >= 0.5 - 1e-12 && t < 2.0 - 1e-12;
+    const auto at = [&](int c) { return values[static_cast<size_t>(c)]; };
+    // v = 0.1 m/s, v_max = 0.2 m/s, F_max = 10 N: -(10 / 0.2) 0.1 = -5 N.
+    ASSERT_EQ(at(damper), running ? -5.0 : 0.0) << "t = " << t;
+    // w = 0.75 rad/s beyond w_max = 0.5 rad/s: saturated at -2 N m, always.
+    ASSERT_EQ(at(angular), -2.0) << "t = " << t;
+    // A constant error: the damper of the impedance adds nothing; K = 300 N/m.
+    ASSERT_NE(at(error), 0.0);
+    ASSERT_EQ(at(spring), running ? 300.0 * at(error) : 0.0) << "t = " << t;
+  }
+}
+
 TEST(Interpreter, RejectsAProgramThatDoesNotVerify) {
   Program p = tiny();
   std::swap(p.steps.front(), p.steps.back());  // the controller before its inputs
   EXPECT_THROW(Interpreter{p}, Error);
+}
+
+// The verifier's checks of controller steps, against the registry's kind.
+TEST(Verifier, ChecksControllerStepsAgainstTheirKind) {
+  const std::string dir = std::string(MOSPEC_SOURCE_DIR) + "/tests/ir/data";
+  const Program good = lower_app(dir + "/controllers.json", dir);
+  EXPECT_TRUE(check(good).empty());
+  const auto problems = [&](const auto& edit) {
+    Program p = good;
+    for (Step& st : p.steps) {
+      if (st.kind == StepKind::Controller && kind_name(st) == std::string_view("damping")) {
+        edit(st);
+        break;
+      }
+    }
+    std::string all;
+    for (const Diagnostic& d : check(p)) all.append(d.message).append("\n");
+    return all;
+  };
+  EXPECT_NE(problems([](Step& st) {
+              st.parameters.pop_back();
+            }).find("has 1 parameters; a damping controller has 2"),
+            std::string::npos);
+  EXPECT_NE(problems([](Step& st) {
+              st.state = 0;
+            }).find("a damping controller keeps no state (expected -1)"),
+            std::string::npos);
+  EXPECT_NE(problems([](Step& st) {
+              st.controller = 99;
+            }).find("names controller kind 99, which does not exist"),
+            std::string::npos);
+  EXPECT_NE(problems([](Step& st) { st.in.push_back(st.in.front()); }).find("inputs"),
+            std::string::npos);
 }
 
 // A tick of the right-arm scenario against a robot standing in its initial

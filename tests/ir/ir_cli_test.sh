@@ -31,6 +31,15 @@ order=$(grep -o '"kind": "[a-z-]*"' "$work/tiny.json" | sed 's/"kind": //; s/"//
 check "tiny schedule: clock, evaluators, monitors, motion, controller" \
   test "$order" = "read-clock evaluate evaluate evaluate level-monitor edge-monitor guarded-motion pid "
 
+# The damping and impedance controllers of the published vocabulary lower to
+# steps of their registry kinds, with the parameters the model states.
+expect "controllers lower" 0 "" -- "$mospec" ir --root "$D" "$D/controllers.json" -o "$work/controllers.json"
+order=$(grep -o '"kind": "[a-z-]*"' "$work/controllers.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
+check "controllers schedule: clock, evaluators, motion, two dampers, an impedance" \
+  test "$order" = "read-clock evaluate evaluate evaluate guarded-motion damping damping impedance "
+check "... the damper's limits and the spring's stiffness and damping in the IR" \
+  grep -Pzq '"damping": \{\n *"maximum-velocity": 0.2,\n *"maximum-force": 10.0\n *\}(.|\n)*"impedance": \{\n *"stiffness": 300.0,\n *"damping": 20.0' "$work/controllers.json"
+
 variant() {  # NAME SED-EXPRESSION: a copy of the tiny model with one edit
   rm -rf "$work/$1"; mkdir -p "$work/$1/tiny"; cp "$D/tiny.json" "$work/$1/"
   sed "$2" "$D/tiny/model.json" > "$work/$1/tiny/model.json"

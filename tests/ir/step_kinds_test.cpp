@@ -49,7 +49,8 @@ TEST(StepKinds, TheControllerTemplateHasASectionForEachKind) {
 }
 
 TEST(StepKinds, StateSlotsAreThoseOfStatefulKinds) {
-  EXPECT_EQ(info(StepKind::Pid).state, StateKind::Pid);
+  // Controllers keep their state per controller kind (controllers.hpp).
+  EXPECT_EQ(info(StepKind::Controller).state, std::nullopt);
   EXPECT_EQ(info(StepKind::LevelMonitor).state, StateKind::Monitor);
   EXPECT_EQ(info(StepKind::EdgeMonitor).state, StateKind::Monitor);
   EXPECT_EQ(info(StepKind::GuardedMotion).state, StateKind::Motion);

@@ -100,6 +100,24 @@ bad handler "task/constraint-handler.ttl task/decaying-integral-term.ttl task/mo
   'warning: <https://ex.org/h>: the handler evaluates a constraint that is not part of its motion.*ex.org/c3' \
   '<https://ex.org/h3>: a pre- or post-condition \(when, until\) must be evaluated by an error evaluator of the handler.*ex.org/c4>'
 
+# The damping and impedance controllers (src/ir/controllers.cpp; the registry
+# test ir_controllers_test checks each controller kind has a case here).
+ctrl="task/constraint-handler.ttl task/damping-controller.ttl task/impedance-controller.ttl task/motion-specification.ttl"
+good controllers "$ctrl"
+bad controllers "$ctrl" 12 \
+  "<https://ex.org/damp-bad>: a damping controller pairs a linear velocity \\(M-PER-SEC\\) with a force \\(N\\).*ex.org/f-max-nm" \
+  '<https://ex.org/damp-bad>: a damping controller.s maximum velocity is one number > 0' \
+  '<https://ex.org/damp-none>: a damping controller measures exactly one velocity' \
+  '<https://ex.org/damp-none>: a damping controller has exactly one maximum force' \
+  '<https://ex.org/damp-none>: a damping controller.s maximum force is in N or N-M' \
+  '<https://ex.org/damp-none>: a damping controller.s maximum force is one number > 0' \
+  "<https://ex.org/imp-bad>: an impedance controller's control signal, stiffness and damping have the units.*ex.org/k-bad" \
+  '<https://ex.org/imp-bad>: mospec.s impedance controller has no apparent inertia' \
+  '<https://ex.org/imp-bad>: an impedance controller.s damping is a number >= 0' \
+  '<https://ex.org/imp-none>: an impedance controller is a controller' \
+  '<https://ex.org/imp-none>: an impedance controller states a stiffness or a damping' \
+  "<https://ex.org/h>: a handler's controllers are controllers \\(or damping controllers.*ex.org/x-err"
+
 good unilateral task/unilateral-constraint.ttl
 bad unilateral task/unilateral-constraint.ttl 8 \
   '<https://ex.org/u1>: a unilateral constraint has exactly one threshold' \

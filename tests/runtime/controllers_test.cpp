@@ -1,5 +1,7 @@
 // PID with the paper's decaying integral (Eq. 4): closed-form responses,
-// variable dt, invalid dt and inputs, saturation and anti-windup.
+// variable dt, invalid dt and inputs, saturation and anti-windup. The damping
+// and impedance controllers: their laws, saturation, invalid inputs and
+// refused descriptions.
 #include "runtime/controllers.hpp"
 
 #include <gtest/gtest.h>
@@ -8,6 +10,7 @@
 #include <limits>
 #include <random>
 
+#include "runtime/steps.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::runtime {
@@ -305,6 +308,93 @@ TEST(Pid, SetupChecksNameTheController) {
   EXPECT_EQ(error_of({.tracking_rate = -1}),
             "ctrl-dist: tracking rate must be finite and >= 0, got -1");
   EXPECT_EQ(error_of({.kp = 450, .ki = 65.5, .kd = 80, .decay_rate = 0.99}), "(no error)");
+}
+
+template <class Controller, class Spec>
+std::string refusal(const Spec& spec) {
+  try {
+    Controller c(spec, "ctrl");
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "invalid-controller");
+    return e.diagnostic().message;
+  }
+  return "(no error)";
+}
+
+TEST(Damping, OpposesTheVelocityLinearlyUpToTheMaximumForce) {
+  // v_max 0.2 m/s calls for F_max 10 N: b = 50 N s/m.
+  const Damping damper({.maximum_velocity = 0.2, .maximum_force = 10.0});
+  EXPECT_DOUBLE_EQ(damper.coefficient(), 50.0);
+  EXPECT_DOUBLE_EQ(damper.force(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(damper.force(0.1), -5.0);
+  EXPECT_DOUBLE_EQ(damper.force(-0.1), 5.0);
+  EXPECT_DOUBLE_EQ(damper.force(0.2), -10.0);
+  EXPECT_DOUBLE_EQ(damper.force(3.0), -10.0);  // saturated
+  EXPECT_DOUBLE_EQ(damper.force(-kInf), 0.0);  // not finite: no force
+  EXPECT_DOUBLE_EQ(damper.force(kNaN), 0.0);
+}
+
+TEST(Damping, InactiveCommandsNothing) {
+  const Damping damper({.maximum_velocity = 1.0, .maximum_force = 2.0});
+  EXPECT_DOUBLE_EQ(steps::damping(damper, 0.5, true), -1.0);
+  EXPECT_DOUBLE_EQ(steps::damping(damper, 0.5, false), 0.0);
+}
+
+TEST(Damping, RefusesLimitsThatAreNotPositiveAndFinite) {
+  EXPECT_EQ(refusal<Damping>(DampingSpec{.maximum_velocity = 0.0, .maximum_force = 1.0}),
+            "ctrl: a damping controller needs a finite maximum velocity > 0 and a finite maximum "
+            "force > 0, got maximum velocity 0 and maximum force 1");
+  EXPECT_NE(refusal<Damping>(DampingSpec{.maximum_velocity = 1.0, .maximum_force = -1.0}),
+            "(no error)");
+  EXPECT_NE(refusal<Damping>(DampingSpec{.maximum_velocity = kInf, .maximum_force = 1.0}),
+            "(no error)");
+  EXPECT_NE(refusal<Damping>(DampingSpec{.maximum_velocity = 1.0, .maximum_force = kNaN}),
+            "(no error)");
+}
+
+TEST(Impedance, SpringAndDamperOnTheError) {
+  const Impedance imp({.stiffness = 300.0, .damping = 20.0});
+  ImpedanceState s;
+  imp.step(s, 0.01, 1e-3);  // first step: no rate yet
+  EXPECT_DOUBLE_EQ(s.output, 3.0);
+  imp.step(s, 0.011, 1e-3);  // de/dt = 1 m/s
+  EXPECT_NEAR(s.rate, 1.0, 1e-9);
+  EXPECT_NEAR(s.output, 300.0 * 0.011 + 20.0 * 1.0, 1e-9);
+}
+
+TEST(Impedance, EqualsAPdControllerWithTheSameGains) {
+  const Impedance imp({.stiffness = 40.0, .damping = 3.0});
+  const Pid pd({.kp = 40.0, .kd = 3.0});
+  ImpedanceState si;
+  PidState sp;
+  for (int k = 0; k < 100; ++k) {
+    const double e = std::sin(0.05 * k), dt = 1e-3 * (1 + k % 3);
+    imp.step(si, e, dt);
+    pd.step(sp, e, dt);
+    EXPECT_DOUBLE_EQ(si.output, sp.output) << "step " << k;
+  }
+}
+
+TEST(Impedance, HoldsOnInvalidDtAndInputsAndResetsWhenInactive) {
+  const Impedance imp({.stiffness = 1.0, .damping = 1.0});
+  ImpedanceState s;
+  EXPECT_DOUBLE_EQ(steps::impedance(imp, s, 2.0, 0.5, true), 2.0);
+  EXPECT_DOUBLE_EQ(steps::impedance(imp, s, 3.0, 0.0, true), 2.0);   // dt 0: held
+  EXPECT_DOUBLE_EQ(steps::impedance(imp, s, kNaN, 0.5, true), 2.0);  // held, fault latched
+  EXPECT_TRUE(s.fault);
+  EXPECT_DOUBLE_EQ(steps::impedance(imp, s, 3.0, 0.5, true), 3.0 + 2.0);
+  EXPECT_DOUBLE_EQ(steps::impedance(imp, s, 3.0, 0.5, false), 0.0);
+  EXPECT_FALSE(s.fault);
+  EXPECT_FALSE(s.has_previous);
+}
+
+TEST(Impedance, RefusesANegativeOrAbsentSpringAndDamper) {
+  EXPECT_EQ(refusal<Impedance>(ImpedanceSpec{.stiffness = -1.0, .damping = 1.0}),
+            "ctrl: an impedance controller needs a finite stiffness >= 0 and a finite damping >= 0 "
+            "(a negative spring or damper is not passive), got stiffness -1 and damping 1");
+  EXPECT_EQ(refusal<Impedance>(ImpedanceSpec{.stiffness = 0.0, .damping = 0.0}),
+            "ctrl: an impedance controller with stiffness 0 and damping 0 commands nothing");
+  EXPECT_NE(refusal<Impedance>(ImpedanceSpec{.stiffness = 1.0, .damping = kInf}), "(no error)");
 }
 
 }  // namespace
