@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -27,9 +28,12 @@ std::string cpp_double(double value) {
     return value > 0 ? "std::numeric_limits<double>::infinity()"
                      : "-std::numeric_limits<double>::infinity()";
   }
+  // "%.17g": to_chars with a precision writes what printf would, without
+  // printf's cost (this runs for every number of the model).
   std::array<char, 40> buf{};
-  std::snprintf(buf.data(), buf.size(), "%.17g", value);
-  std::string s(buf.data());
+  const auto written =
+      std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::general, 17);
+  std::string s(buf.data(), written.ptr);
   if (s.find_first_of(".e") == std::string::npos) s.append(".0");
   return s;
 }
@@ -115,6 +119,15 @@ std::string hex_escape(const char* format, unsigned long value) {
 }  // namespace
 
 std::string comment_text(std::string_view text) {
+  // The common case, an IRI or a name: nothing to escape.
+  bool plain = true;
+  for (std::size_t at = 0; at < text.size() && plain; ++at) {
+    const auto u = static_cast<unsigned char>(text[at]);
+    const char next = at + 1 < text.size() ? text[at + 1] : '\0';
+    plain = u >= 0x20 && u < 0x7f && u != '\\' && !(u == '?' && next == '?') &&
+            !(u == '*' && next == '/') && !(u == '/' && next == '*');
+  }
+  if (plain) return std::string(text);
   std::string out;
   for (std::size_t at = 0; at < text.size();) {
     const char c = text[at];
