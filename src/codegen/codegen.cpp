@@ -1,6 +1,8 @@
 #include "codegen/codegen.hpp"
 
+#include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -27,9 +29,12 @@ std::string cpp_double(double value) {
     return value > 0 ? "std::numeric_limits<double>::infinity()"
                      : "-std::numeric_limits<double>::infinity()";
   }
+  // "%.17g": to_chars with a precision writes what printf would, without
+  // printf's cost (this runs for every number of the model).
   std::array<char, 40> buf{};
-  std::snprintf(buf.data(), buf.size(), "%.17g", value);
-  std::string s(buf.data());
+  const auto written =
+      std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::general, 17);
+  std::string s(buf.data(), written.ptr);
   if (s.find_first_of(".e") == std::string::npos) s.append(".0");
   return s;
 }
@@ -115,6 +120,15 @@ std::string hex_escape(const char* format, unsigned long value) {
 }  // namespace
 
 std::string comment_text(std::string_view text) {
+  // The common case, an IRI or a name: nothing to escape.
+  bool plain = true;
+  for (std::size_t at = 0; at < text.size() && plain; ++at) {
+    const auto u = static_cast<unsigned char>(text[at]);
+    const char next = at + 1 < text.size() ? text[at + 1] : '\0';
+    plain = u >= 0x20 && u < 0x7f && u != '\\' && !(u == '?' && next == '?') &&
+            !(u == '*' && next == '/') && !(u == '/' && next == '*');
+  }
+  if (plain) return std::string(text);
   std::string out;
   for (std::size_t at = 0; at < text.size();) {
     const char c = text[at];
@@ -250,6 +264,26 @@ mus::data list() {
   return mus::data{mus::data::type::list};
 }
 
+// kainjow's set() and push_back() take a const reference and copy the value
+// deeply, and its move constructor is not noexcept, so a growing list copied
+// every element it held: each nested value was copied once per level it was
+// handed up and again whenever a list grew (two fifths of building the data).
+// These move values into place instead.
+void put(mus::data& object, const std::string& key, mus::data value) {
+  object[key] = std::move(value);
+}
+void append(mus::data& list, mus::data value) {
+  // The list owns its elements; list_value() is only a const view of them.
+  auto& items = const_cast<mus::list&>(list.list_value());
+  if (items.size() == items.capacity()) {
+    mus::list grown;
+    grown.reserve(std::max<std::size_t>(8, 2 * items.size()));
+    for (mus::data& item : items) grown.push_back(std::move(item));
+    items.swap(grown);
+  }
+  items.push_back(std::move(value));
+}
+
 // Builds the template data for one Program. Every choice is made here.
 class Builder {
   // The identifiers of one arm solver's members and functions.
@@ -335,8 +369,8 @@ class Builder {
 
   mus::data build() {
     mus::data root;
-    root.set("app_comment", comment_text(p_.app));
-    root.set("app_literal", cpp_string(p_.app));
+    put(root, "app_comment", comment_text(p_.app));
+    put(root, "app_literal", cpp_string(p_.app));
     add_slots(root);
     add_model(root);
     add_data(root);
@@ -413,20 +447,20 @@ class Builder {
         if (i == p_.data.size()) continue;
         const ir::Data& d = p_.data[i];
         mus::data s;
-        s.set("name", data_names_[i]);
-        s.set("slot", std::to_string(d.slot));
-        s.set("iri", comment_text(d.iri));
-        s.set("has_unit", !d.unit.empty());
-        s.set("unit", comment_text(d.unit));
-        slots.push_back(s);
+        put(s, "name", data_names_[i]);
+        put(s, "slot", std::to_string(d.slot));
+        put(s, "iri", comment_text(d.iri));
+        put(s, "has_unit", !d.unit.empty());
+        put(s, "unit", comment_text(d.unit));
+        append(slots, std::move(s));
       }
       mus::data entry;
-      entry.set("type", std::string(type_member(type)));
-      entry.set("count", std::to_string(p_.count(type)));
-      entry.set("slots", slots);
-      types.push_back(entry);
+      put(entry, "type", std::string(type_member(type)));
+      put(entry, "count", std::to_string(p_.count(type)));
+      put(entry, "slots", std::move(slots));
+      append(types, std::move(entry));
     }
-    root.set("slot_types", types);
+    put(root, "slot_types", std::move(types));
   }
 
   void add_model(mus::data& root) const {
@@ -437,49 +471,49 @@ class Builder {
       const ArmNames& n = arm_names_[a];
       const std::string& member = n.arm;
       mus::data e;
-      e.set("name", comment_text(s.name));
-      e.set("iri", comment_text(s.iri));
-      e.set("chain_iri", comment_text(s.chain_iri));
-      e.set("root", comment_text(s.chain.root()));
-      e.set("root_literal", cpp_string(s.chain.root()));
-      e.set("segments", std::to_string(s.chain.size()));
-      e.set("port", std::to_string(s.port));
-      e.set("member", member);
-      e.set("workspace", n.ws);
-      e.set("task", n.task);
-      e.set("X_BR", n.X_BR);
-      e.set("model_fn", n.model_fn);
-      e.set("X_RB_fn", n.X_RB_fn);
-      e.set("constraints", std::to_string(s.acceleration_constraints.size()));
-      e.set("gravity", join_doubles(s.gravity.data(), 3));
-      e.set("X_RB_R", mat3(s.X_RB.R));
-      e.set("X_RB_p", vec3(s.X_RB.p));
-      e.set("has_mount", !s.mount_pose_iri.empty());
-      e.set("mount_iri", comment_text(s.mount_pose_iri));
-      e.set("tip_is_last_segment", s.tip_is_last_segment);
+      put(e, "name", comment_text(s.name));
+      put(e, "iri", comment_text(s.iri));
+      put(e, "chain_iri", comment_text(s.chain_iri));
+      put(e, "root", comment_text(s.chain.root()));
+      put(e, "root_literal", cpp_string(s.chain.root()));
+      put(e, "segments", std::to_string(s.chain.size()));
+      put(e, "port", std::to_string(s.port));
+      put(e, "member", member);
+      put(e, "workspace", n.ws);
+      put(e, "task", n.task);
+      put(e, "X_BR", n.X_BR);
+      put(e, "model_fn", n.model_fn);
+      put(e, "X_RB_fn", n.X_RB_fn);
+      put(e, "constraints", std::to_string(s.acceleration_constraints.size()));
+      put(e, "gravity", join_doubles(s.gravity.data(), 3));
+      put(e, "X_RB_R", mat3(s.X_RB.R));
+      put(e, "X_RB_p", vec3(s.X_RB.p));
+      put(e, "has_mount", !s.mount_pose_iri.empty());
+      put(e, "mount_iri", comment_text(s.mount_pose_iri));
+      put(e, "tip_is_last_segment", s.tip_is_last_segment);
       const runtime::Pose X_NT = s.tip_is_last_segment ? runtime::Pose{} : s.chain.X_NT();
-      e.set("X_NT_R", mat3(X_NT.R));
-      e.set("X_NT_p", vec3(X_NT.p));
+      put(e, "X_NT_R", mat3(X_NT.R));
+      put(e, "X_NT_p", vec3(X_NT.p));
       mus::data segments = list();
       runtime::Chain rebuilt(s.chain.root());
       for (int i = 0; i < s.chain.size(); ++i) {
         const runtime::Segment& g = s.chain.segment(i);
         mus::data seg;
-        seg.set("link_literal", cpp_string(g.link));
-        seg.set("joint_literal", cpp_string(g.joint));
-        seg.set("joint_type", g.type == runtime::JointType::Revolute ? "Revolute" : "Prismatic");
-        seg.set("R", mat3(g.X_PJ.R));
-        seg.set("p", vec3(g.X_PJ.p));
-        seg.set("axis", vec3(g.axis_J));
-        seg.set("mass", cpp_double(g.inertia.mass));
-        seg.set("com", vec3(g.inertia.p_SoScm_S));
-        seg.set("inertia", mat3(g.inertia.I_Scm_S));
-        seg.set("lower", cpp_double(g.limits.lower));
-        seg.set("upper", cpp_double(g.limits.upper));
-        seg.set("velocity", cpp_double(g.limits.velocity));
-        seg.set("effort", cpp_double(g.limits.effort));
-        seg.set("armature", cpp_double(g.armature));
-        segments.push_back(seg);
+        put(seg, "link_literal", cpp_string(g.link));
+        put(seg, "joint_literal", cpp_string(g.joint));
+        put(seg, "joint_type", g.type == runtime::JointType::Revolute ? "Revolute" : "Prismatic");
+        put(seg, "R", mat3(g.X_PJ.R));
+        put(seg, "p", vec3(g.X_PJ.p));
+        put(seg, "axis", vec3(g.axis_J));
+        put(seg, "mass", cpp_double(g.inertia.mass));
+        put(seg, "com", vec3(g.inertia.p_SoScm_S));
+        put(seg, "inertia", mat3(g.inertia.I_Scm_S));
+        put(seg, "lower", cpp_double(g.limits.lower));
+        put(seg, "upper", cpp_double(g.limits.upper));
+        put(seg, "velocity", cpp_double(g.limits.velocity));
+        put(seg, "effort", cpp_double(g.limits.effort));
+        put(seg, "armature", cpp_double(g.armature));
+        append(segments, std::move(seg));
         runtime::Segment copy = g;
         rebuilt.add_segment(std::move(copy));
       }
@@ -494,18 +528,18 @@ class Builder {
                "'s joint placement does not survive Chain::add_segment bit for bit");
         }
       }
-      e.set("chain_segments", segments);
+      put(e, "chain_segments", std::move(segments));
       mus::data alpha = list();
       for (std::size_t k = 0; k < s.acceleration_constraints.size(); ++k) {
         mus::data c;
-        c.set("workspace", n.ws);
-        c.set("component", std::to_string(s.acceleration_constraints[k].component));
-        c.set("column", std::to_string(k));
-        c.set("iri", comment_text(s.acceleration_constraints[k].iri));
-        alpha.push_back(c);
+        put(c, "workspace", n.ws);
+        put(c, "component", std::to_string(s.acceleration_constraints[k].component));
+        put(c, "column", std::to_string(k));
+        put(c, "iri", comment_text(s.acceleration_constraints[k].iri));
+        append(alpha, std::move(c));
       }
-      e.set("alpha", alpha);
-      arms.push_back(e);
+      put(e, "alpha", std::move(alpha));
+      append(arms, std::move(e));
       // The physical model (the solver's gravity: kinematics and the torque
       // command), the task model (no gravity: the ACHD solve), the mount.
       inits.push_back(member + "(" + n.model_fn + "(rt::Vec3(" + join_doubles(s.gravity.data(), 3) +
@@ -513,20 +547,20 @@ class Builder {
       inits.push_back(n.task + "(" + n.model_fn + "(rt::Vec3::Zero()))");
       inits.push_back(n.X_BR + "(" + n.X_RB_fn + "().inverse())");
     }
-    root.set("arms", arms);
+    put(root, "arms", std::move(arms));
 
-    root.set("has_base", p_.base.has_value());
+    put(root, "has_base", p_.base.has_value());
     if (p_.base) {
       const ir::BaseSolver& b = *p_.base;
-      root.set("base_name", comment_text(b.name));
-      root.set("base_iri", comment_text(b.iri));
+      put(root, "base_name", comment_text(b.name));
+      put(root, "base_iri", comment_text(b.iri));
       for (int i = 0; i < runtime::kKeloDrives; ++i) {
-        root.set("pivot" + std::to_string(i),
-                 join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
+        put(root, "pivot" + std::to_string(i),
+            join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
       }
-      root.set("wheel_diameter", cpp_double(b.geometry.wheel_diameter));
-      root.set("wheel_distance", cpp_double(b.geometry.wheel_distance));
-      root.set("castor_offset", cpp_double(b.geometry.castor_offset));
+      put(root, "wheel_diameter", cpp_double(b.geometry.wheel_diameter));
+      put(root, "wheel_distance", cpp_double(b.geometry.wheel_distance));
+      put(root, "castor_offset", cpp_double(b.geometry.castor_offset));
       inits.emplace_back("base(base_config())");
     }
 
@@ -536,9 +570,9 @@ class Builder {
       if (st.kind != StepKind::Evaluate) continue;
       const runtime::ConstraintSpec& c = st.constraint;
       mus::data e;
-      e.set("member", step_members_[i]);
-      e.set("iri", comment_text(st.iri));
-      evaluators.push_back(e);
+      put(e, "member", step_members_[i]);
+      put(e, "iri", comment_text(st.iri));
+      append(evaluators, std::move(e));
       std::string init = step_members_[i];
       init.append("(rt::ConstraintSpec{.kind = ").append(constraint_kind(c.kind));
       init.append(", .reference = ").append(cpp_double(c.reference));
@@ -560,10 +594,10 @@ class Builder {
         const ir::Step& st = p_.steps[i];
         if (st.kind != StepKind::Controller || st.controller != static_cast<int>(k)) continue;
         mus::data e;
-        e.set("type", std::string(kind.model_type));
-        e.set("member", step_members_[i]);
-        e.set("iri", comment_text(st.iri));
-        members.push_back(e);
+        put(e, "type", std::string(kind.model_type));
+        put(e, "member", step_members_[i]);
+        put(e, "iri", comment_text(st.iri));
+        append(members, std::move(e));
         std::string init = step_members_[i];
         init.append("(rt::").append(kind.spec_type).append("{");
         for (std::size_t f = 0; f < kind.parameters.size(); ++f) {
@@ -583,63 +617,63 @@ class Builder {
       }
       if (members.list_value().empty()) continue;
       mus::data e;
-      e.set("title", std::string(kind.title));
-      e.set("members", members);
-      controller_kinds.push_back(e);
+      put(e, "title", std::string(kind.title));
+      put(e, "members", std::move(members));
+      append(controller_kinds, std::move(e));
     }
     for (std::size_t i = 0; i < p_.steps.size(); ++i) {
       const ir::Step& st = p_.steps[i];
       if (st.kind != StepKind::LevelMonitor && st.kind != StepKind::EdgeMonitor) continue;
       mus::data e;
-      e.set("member", step_members_[i]);
-      e.set("iri", comment_text(st.iri));
-      e.set("tolerance", cpp_double(st.constraint.tolerance));
-      monitors.push_back(e);
+      put(e, "member", step_members_[i]);
+      put(e, "iri", comment_text(st.iri));
+      put(e, "tolerance", cpp_double(st.constraint.tolerance));
+      append(monitors, std::move(e));
     }
-    root.set("has_evaluators", !evaluators.list_value().empty());
-    root.set("evaluators", evaluators);
-    root.set("controller_kinds", controller_kinds);
-    root.set("has_monitors", !monitors.list_value().empty());
-    root.set("monitors", monitors);
-    root.set("has_initializers", !inits.empty());
-    root.set("initializers", initializer_list(inits));
+    put(root, "has_evaluators", !evaluators.list_value().empty());
+    put(root, "evaluators", std::move(evaluators));
+    put(root, "controller_kinds", std::move(controller_kinds));
+    put(root, "has_monitors", !monitors.list_value().empty());
+    put(root, "monitors", std::move(monitors));
+    put(root, "has_initializers", !inits.empty());
+    put(root, "initializers", initializer_list(inits));
   }
 
   static mus::data initializer_list(const std::vector<std::string>& inits) {
     mus::data l = list();
     for (std::size_t i = 0; i < inits.size(); ++i) {
       mus::data e;
-      e.set("text", inits[i]);
-      e.set("last", i + 1 == inits.size());
-      l.push_back(e);
+      put(e, "text", inits[i]);
+      put(e, "last", i + 1 == inits.size());
+      append(l, std::move(e));
     }
     return l;
   }
 
   void add_data(mus::data& root) const {
-    root.set("n_scalar", std::to_string(p_.count(DataType::Scalar)));
-    root.set("n_vec3", std::to_string(p_.count(DataType::Vector3)));
-    root.set("n_pose", std::to_string(p_.count(DataType::Pose)));
-    root.set("n_twist", std::to_string(p_.count(DataType::Twist)));
-    root.set("n_wrench", std::to_string(p_.count(DataType::Wrench)));
-    root.set("n_flag", std::to_string(p_.count(DataType::Flag)));
-    root.set("n_event", std::to_string(p_.count(DataType::Event)));
+    put(root, "n_scalar", std::to_string(p_.count(DataType::Scalar)));
+    put(root, "n_vec3", std::to_string(p_.count(DataType::Vector3)));
+    put(root, "n_pose", std::to_string(p_.count(DataType::Pose)));
+    put(root, "n_twist", std::to_string(p_.count(DataType::Twist)));
+    put(root, "n_wrench", std::to_string(p_.count(DataType::Wrench)));
+    put(root, "n_flag", std::to_string(p_.count(DataType::Flag)));
+    put(root, "n_event", std::to_string(p_.count(DataType::Event)));
     // Controller state, one array per stateful kind the program uses.
     mus::data controller_states = list();
     const auto kinds = ir::controller_kinds();
     for (std::size_t k = 0; k < kinds.size(); ++k) {
       if (!kinds[k].has_state() || !uses_controller(static_cast<int>(k))) continue;
       mus::data e;
-      e.set("type", std::string(kinds[k].state_type));
-      e.set("count", std::to_string(p_.controller_state_count(static_cast<int>(k))));
-      e.set("member", std::string(kinds[k].name));
-      controller_states.push_back(e);
+      put(e, "type", std::string(kinds[k].state_type));
+      put(e, "count", std::to_string(p_.controller_state_count(static_cast<int>(k))));
+      put(e, "member", std::string(kinds[k].name));
+      append(controller_states, std::move(e));
     }
-    root.set("controller_states", controller_states);
-    root.set("n_monitor_states",
-             std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Monitor)]));
-    root.set("n_motion_states",
-             std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Motion)]));
+    put(root, "controller_states", std::move(controller_states));
+    put(root, "n_monitor_states",
+        std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Monitor)]));
+    put(root, "n_motion_states",
+        std::to_string(p_.states[static_cast<std::size_t>(ir::StateKind::Motion)]));
 
     std::vector<std::string> inits;
     for (std::size_t a = 0; a < p_.arms.size(); ++a) {
@@ -648,8 +682,8 @@ class Builder {
                       std::to_string(p_.arms[a].acceleration_constraints.size()) + ")");
     }
     if (p_.base) inits.emplace_back("base(m.base)");
-    root.set("has_data_initializers", !inits.empty());
-    root.set("data_initializers", initializer_list(inits));
+    put(root, "has_data_initializers", !inits.empty());
+    put(root, "data_initializers", initializer_list(inits));
 
     // Model constants: values in Model (set by its constructor), copied into
     // their slots by Data's constructor once (as the interpreter does).
@@ -686,33 +720,33 @@ class Builder {
           break;
       }
       mus::data c;
-      c.set("type", type);
-      c.set("member", member);
-      c.set("assign", assign);
-      c.set("copy", ref(static_cast<int>(i), "") + " = m." + member + ";");
-      c.set("name", comment_text(d.iri.empty() ? d.name : d.iri));
-      c.set("has_unit", !d.unit.empty());
-      c.set("unit", comment_text(d.unit));
-      constants.push_back(c);
+      put(c, "type", type);
+      put(c, "member", member);
+      put(c, "assign", assign);
+      put(c, "copy", ref(static_cast<int>(i), "") + " = m." + member + ";");
+      put(c, "name", comment_text(d.iri.empty() ? d.name : d.iri));
+      put(c, "has_unit", !d.unit.empty());
+      put(c, "unit", comment_text(d.unit));
+      append(constants, std::move(c));
     }
-    root.set("has_constants", !constants.list_value().empty());
-    root.set("constants", constants);
+    put(root, "has_constants", !constants.list_value().empty());
+    put(root, "constants", std::move(constants));
   }
 
   void add_steps(mus::data& root) const {
     mus::data steps = list();
-    for (std::size_t i = 0; i < p_.steps.size(); ++i) steps.push_back(step(i));
-    root.set("steps", steps);
+    for (std::size_t i = 0; i < p_.steps.size(); ++i) append(steps, step(i));
+    put(root, "steps", std::move(steps));
   }
 
   mus::data step(std::size_t index) const {
     const ir::Step& st = p_.steps[index];
     mus::data s;
-    s.set("index", std::to_string(index));
-    s.set("kind", std::string(ir::kind_name(st)));
-    s.set("name", comment_text(st.name));
-    s.set("iri", comment_text(st.iri));
-    s.set("where", where(st.where));
+    put(s, "index", std::to_string(index));
+    put(s, "kind", std::string(ir::kind_name(st)));
+    put(s, "name", comment_text(st.name));
+    put(s, "iri", comment_text(st.iri));
+    put(s, "where", where(st.where));
     // A blank line, then what the block implements and where it is written.
     std::string header = "\n  // [";
     header.append(std::to_string(index)).append("] ").append(ir::kind_name(st)).append(" '");
@@ -721,24 +755,24 @@ class Builder {
         .append(comment_text(st.iri))
         .append("\n  //     ");
     header.append(where(st.where));
-    s.set("header", header);
+    put(s, "header", header);
     const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
-    s.set(ir::template_section(st.kind), true);
+    put(s, ir::template_section(st.kind), true);
     switch (st.kind) {
       case StepKind::ReadClock:
-        s.set("out0", out(st, 0));
+        put(s, "out0", out(st, 0));
         break;
       case StepKind::ArmKinematics: {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
-        s.set("arm", arm_names_[k].arm);
-        s.set("task", arm_names_[k].task);
-        s.set("workspace", arm_names_[k].ws);
-        s.set("port", std::to_string(a.port));
+        put(s, "arm", arm_names_[k].arm);
+        put(s, "task", arm_names_[k].task);
+        put(s, "workspace", arm_names_[k].ws);
+        put(s, "port", std::to_string(a.port));
         mus::data outputs = list();
         for (const ir::ArmOutput& o : a.outputs) {
           mus::data e;
-          e.set("target", ref(o.data));
+          put(e, "target", ref(o.data));
           std::string call = "rt::steps::";
           if (o.what == ir::ArmOutput::What::SegmentPose) {
             call.append("segment_pose(d.").append(arm_names_[k].arm).append(", ");
@@ -749,29 +783,29 @@ class Builder {
             call.append("segment_twist(d.").append(arm_names_[k].arm).append(", ");
           }
           call.append(std::to_string(o.segment)).append(")");
-          e.set("call", call);
-          outputs.push_back(e);
+          put(e, "call", call);
+          append(outputs, std::move(e));
         }
-        s.set("outputs", outputs);
+        put(s, "outputs", std::move(outputs));
         break;
       }
       case StepKind::ViewRead:
-        s.set("function", datum(st.in.at(0)).type == DataType::Pose ? "view_pose" : "view_vec6");
-        s.set("in0", in(st, 0));
-        s.set("component", std::to_string(st.views[0]));
-        s.set("out0", out(st, 0));
+        put(s, "function", datum(st.in.at(0)).type == DataType::Pose ? "view_pose" : "view_vec6");
+        put(s, "in0", in(st, 0));
+        put(s, "component", std::to_string(st.views[0]));
+        put(s, "out0", out(st, 0));
         break;
       case StepKind::ViewWrite: {
-        s.set("out0", out(st, 0));
+        put(s, "out0", out(st, 0));
         mus::data components = list();
         for (std::size_t k = 0; k < st.in.size(); ++k) {
           mus::data c;
-          c.set("out0", out(st, 0));
-          c.set("component", std::to_string(st.views[k]));
-          c.set("source", in(st, k));
-          components.push_back(c);
+          put(c, "out0", out(st, 0));
+          put(c, "component", std::to_string(st.views[k]));
+          put(c, "source", in(st, k));
+          append(components, std::move(c));
         }
-        s.set("components", components);
+        put(s, "components", std::move(components));
         break;
       }
       case StepKind::Operator: {
@@ -784,25 +818,25 @@ class Builder {
           args.append(in(st, i));
         }
         if (!k.kernel_returns) args.append(", ").append(out(st, 0));
-        s.set("returns", k.kernel_returns);
-        s.set("kernel", std::string(k.kernel));
-        s.set("args", args);
-        s.set("out0", out(st, 0));
+        put(s, "returns", k.kernel_returns);
+        put(s, "kernel", std::string(k.kernel));
+        put(s, "args", args);
+        put(s, "out0", out(st, 0));
         break;
       }
       case StepKind::Evaluate:
-        s.set("evaluator", step_members_[index]);
-        s.set("in0", in(st, 0));
-        s.set("active", gate());
-        s.set("out0", out(st, 0));
-        s.set("out1", out(st, 1));
+        put(s, "evaluator", step_members_[index]);
+        put(s, "in0", in(st, 0));
+        put(s, "active", gate());
+        put(s, "out0", out(st, 0));
+        put(s, "out1", out(st, 1));
         break;
       case StepKind::LevelMonitor:
       case StepKind::EdgeMonitor:
-        s.set("state_slot", std::to_string(st.state));
-        s.set("in0", in(st, 0));
-        s.set("tolerance", step_members_[index]);
-        s.set("out0", out(st, 0));
+        put(s, "state_slot", std::to_string(st.state));
+        put(s, "in0", in(st, 0));
+        put(s, "tolerance", step_members_[index]);
+        put(s, "out0", out(st, 0));
         break;
       case StepKind::GuardedMotion: {
         const auto n_when = static_cast<std::size_t>(st.n_when);
@@ -812,12 +846,12 @@ class Builder {
           if (!list_text.empty()) list_text.append(", ");
           list_text.append(in(st, k));
         }
-        s.set("n_when", std::to_string(n_when));
-        s.set("n_until", std::to_string(st.in.size() - n_when));
-        s.set("when", when);
-        s.set("until", until);
-        s.set("state_slot", std::to_string(st.state));
-        s.set("out0", out(st, 0));
+        put(s, "n_when", std::to_string(n_when));
+        put(s, "n_until", std::to_string(st.in.size() - n_when));
+        put(s, "when", when);
+        put(s, "until", until);
+        put(s, "state_slot", std::to_string(st.state));
+        put(s, "out0", out(st, 0));
         break;
       }
       case StepKind::Controller: {
@@ -836,17 +870,17 @@ class Builder {
         if (k.kernel_takes_dt) call.append(", state.clock.dt");
         call.append(", ").append(st.in.size() > k.in.size() ? in(st, k.in.size()) : "true");
         call.append(")");
-        s.set("call", call);
-        s.set("out0", out(st, 0));
+        put(s, "call", call);
+        put(s, "out0", out(st, 0));
         break;
       }
       case StepKind::ArmSolve: {
         const ir::ArmSolver& a = arm(st);
         const auto k = static_cast<std::size_t>(st.solver);
-        s.set("arm", arm_names_[k].arm);
-        s.set("task", arm_names_[k].task);
-        s.set("workspace", arm_names_[k].ws);
-        s.set("port", std::to_string(a.port));
+        put(s, "arm", arm_names_[k].arm);
+        put(s, "task", arm_names_[k].task);
+        put(s, "workspace", arm_names_[k].ws);
+        put(s, "port", std::to_string(a.port));
         // in[0, drivers) are the drivers' data; the rest gate the solve: the
         // running flags of the motions that drive this arm (none running: hold).
         const std::size_t drivers = st.drivers();
@@ -855,41 +889,41 @@ class Builder {
           if (!gates.empty()) gates.append(" || ");
           gates.append(in(st, g));
         }
-        s.set("gated", !gates.empty());
-        s.set("gates", gates);
-        s.set("indent", gates.empty() ? "  " : "    ");
+        put(s, "gated", !gates.empty());
+        put(s, "gates", gates);
+        put(s, "indent", gates.empty() ? "  " : "    ");
         mus::data forces = list(), joint_forces = list(), betas = list();
         for (const ir::CartesianForce& f : a.cartesian_forces) {
           mus::data e;
-          e.set("workspace", arm_names_[k].ws);
-          e.set("segment", std::to_string(f.segment));
-          e.set("source", ref(f.wrench));
-          e.set("iri", comment_text(f.iri));
-          forces.push_back(e);
+          put(e, "workspace", arm_names_[k].ws);
+          put(e, "segment", std::to_string(f.segment));
+          put(e, "source", ref(f.wrench));
+          put(e, "iri", comment_text(f.iri));
+          append(forces, std::move(e));
         }
         for (const ir::JointForce& f : a.joint_forces) {
           mus::data e;
-          e.set("workspace", arm_names_[k].ws);
-          e.set("joint", std::to_string(f.joint));
-          e.set("source", ref(f.force));
-          e.set("iri", comment_text(f.iri));
-          joint_forces.push_back(e);
+          put(e, "workspace", arm_names_[k].ws);
+          put(e, "joint", std::to_string(f.joint));
+          put(e, "source", ref(f.force));
+          put(e, "iri", comment_text(f.iri));
+          append(joint_forces, std::move(e));
         }
         for (std::size_t c = 0; c < a.acceleration_constraints.size(); ++c) {
           mus::data e;
-          e.set("workspace", arm_names_[k].ws);
-          e.set("column", std::to_string(c));
-          e.set("source", ref(a.acceleration_constraints[c].energy));
-          e.set("iri", comment_text(a.acceleration_constraints[c].iri));
-          betas.push_back(e);
+          put(e, "workspace", arm_names_[k].ws);
+          put(e, "column", std::to_string(c));
+          put(e, "source", ref(a.acceleration_constraints[c].energy));
+          put(e, "iri", comment_text(a.acceleration_constraints[c].iri));
+          append(betas, std::move(e));
         }
-        s.set("forces", forces);
-        s.set("joint_forces", joint_forces);
-        s.set("betas", betas);
+        put(s, "forces", std::move(forces));
+        put(s, "joint_forces", std::move(joint_forces));
+        put(s, "betas", std::move(betas));
         break;
       }
       case StepKind::BaseForceDistribution: {
-        s.set("in0", in(st, 0));
+        put(s, "in0", in(st, 0));
         // in[0] is the platform wrench; the rest are the running flags of the
         // motions that drive the base (none running: it brakes and holds).
         std::string gates;
@@ -897,13 +931,13 @@ class Builder {
           if (!gates.empty()) gates.append(" || ");
           gates.append(in(st, g));
         }
-        s.set("gated", !gates.empty());
-        s.set("gates", gates);
-        s.set("indent", gates.empty() ? "  " : "    ");
+        put(s, "gated", !gates.empty());
+        put(s, "gates", gates);
+        put(s, "indent", gates.empty() ? "  " : "    ");
         break;
       }
       case StepKind::BaseVelocityComposition:
-        s.set("out0", out(st, 0));
+        put(s, "out0", out(st, 0));
         break;
     }
     return s;
@@ -936,14 +970,14 @@ class Builder {
           break;
       }
       mus::data e;
-      e.set("index", std::to_string(i));
-      e.set("name_literal", cpp_string(c.name));
-      e.set("unit_literal", cpp_string(c.unit));
-      e.set("value", value);
-      log.push_back(e);
+      put(e, "index", std::to_string(i));
+      put(e, "name_literal", cpp_string(c.name));
+      put(e, "unit_literal", cpp_string(c.unit));
+      put(e, "value", value);
+      append(log, std::move(e));
     }
-    root.set("n_log", std::to_string(p_.log.size()));
-    root.set("log", log);
+    put(root, "n_log", std::to_string(p_.log.size()));
+    put(root, "log", std::move(log));
   }
 
   const ir::Program& p_;

@@ -1,6 +1,7 @@
 #include "json/json.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -212,6 +213,16 @@ namespace {
 // exhaust the stack on hostile input.
 constexpr int kMaxDepth = 512;
 
+// The bytes that end a run of a string's ordinary bytes: the closing quote, a
+// backslash, control characters and the bytes of multi-byte UTF-8.
+constexpr std::array<bool, 256> kEndsRun = [] {
+  std::array<bool, 256> t{};
+  for (int c = 0; c < 256; ++c) t[static_cast<size_t>(c)] = c < 0x20 || c >= 0x80;
+  t['"'] = true;
+  t['\\'] = true;
+  return t;
+}();
+
 class Parser {
  public:
   Parser(std::string_view text, uint32_t file_id, std::string_view file_name)
@@ -257,7 +268,11 @@ class Parser {
   void skip_ws() {
     while (pos_ < text_.size()) {
       const char c = text_[pos_];
-      if (c == ' ' || c == '\t' || c == '\r') {
+      if (c == ' ') {
+        // Indentation: a run of spaces.
+        const size_t run = text_.find_first_not_of(' ', pos_ + 1);
+        pos_ = run == std::string_view::npos ? text_.size() : run;
+      } else if (c == '\t' || c == '\r') {
         ++pos_;
       } else if (c == '\n') {
         ++pos_;
@@ -277,42 +292,45 @@ class Parser {
     return std::string("byte ") + buf;
   }
 
+  // Each value is built in place (returned, not assigned into a variant).
   Value parse_value(int depth) {
     if (at_end()) fail("unexpected end of input; expected a JSON value");
     const SourceLoc start = here();
-    Value v;
+    auto located = [start](Value v) {
+      v.set_location(start);
+      return v;
+    };
     switch (peek()) {
-      case '{':
-        v = parse_object(depth);
-        break;
-      case '[':
-        v = parse_array(depth);
-        break;
-      case '"':
-        v = Value(parse_string());
-        break;
+      case '{': {
+        Value v = parse_object(depth);
+        v.set_location(start);
+        return v;
+      }
+      case '[': {
+        Value v = parse_array(depth);
+        v.set_location(start);
+        return v;
+      }
+      case '"': {
+        Value v(parse_string());
+        v.set_location(start);
+        return v;
+      }
       case 't':
         expect_literal("true");
-        v = Value(true);
-        break;
+        return located(Value(true));
       case 'f':
         expect_literal("false");
-        v = Value(false);
-        break;
+        return located(Value(false));
       case 'n':
         expect_literal("null");
-        break;
+        return located(Value());
       default: {
         const char c = peek();
-        if (c == '-' || (c >= '0' && c <= '9')) {
-          v = Value(parse_number());
-        } else {
-          fail("unexpected " + describe(c) + "; expected a JSON value");
-        }
+        if (c == '-' || (c >= '0' && c <= '9')) return located(Value(parse_number()));
+        fail("unexpected " + describe(c) + "; expected a JSON value");
       }
     }
-    v.set_location(start);
-    return v;
   }
 
   void expect_literal(std::string_view lit) {
@@ -528,11 +546,8 @@ class Parser {
     for (;;) {
       // Copy the longest run of ordinary bytes in one go.
       const size_t run = pos_;
-      while (pos_ < text_.size()) {
-        const auto c = static_cast<unsigned char>(text_[pos_]);
-        if (c == '"' || c == '\\' || c < 0x20 || c >= 0x80) break;
-        ++pos_;
-      }
+      const auto* bytes = reinterpret_cast<const unsigned char*>(text_.data());
+      while (pos_ < text_.size() && !kEndsRun[bytes[pos_]]) ++pos_;
       out.append(text_.data() + run, pos_ - run);
       if (at_end()) fail_at(open, "unterminated string");
       const auto c = static_cast<unsigned char>(peek());

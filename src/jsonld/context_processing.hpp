@@ -29,13 +29,28 @@ namespace mospec::jsonld {
 
 namespace detail {
 
+// A term with its hash computed once, for looking it up in every layer of a
+// chain (TermLayer::lookup) without hashing it again per layer.
+struct HashedKey {
+  std::string_view text;
+  size_t hash;
+};
+
 struct StringHash {
   using is_transparent = void;
   size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+  size_t operator()(const HashedKey& k) const noexcept { return k.hash; }
+};
+
+struct StringEq {
+  using is_transparent = void;
+  bool operator()(std::string_view a, std::string_view b) const noexcept { return a == b; }
+  bool operator()(const HashedKey& a, std::string_view b) const noexcept { return a.text == b; }
+  bool operator()(std::string_view a, const HashedKey& b) const noexcept { return a == b.text; }
 };
 
 using TermPtr = std::shared_ptr<const TermDefinition>;
-using TermMap = std::unordered_map<std::string, TermPtr, StringHash, std::equal_to<>>;
+using TermMap = std::unordered_map<std::string, TermPtr, StringHash, StringEq>;
 
 // Term definitions are stored as a chain of immutable layers: processing a local
 // context adds one layer with the terms it (re)defined over the layer of the
@@ -51,8 +66,9 @@ struct TermLayer {
   size_t protected_count = 0;  // protected terms visible through this layer
 
   const TermPtr* lookup(std::string_view term) const {
+    const HashedKey key{term, StringHash{}(term)};
     for (const TermLayer* l = this; l != nullptr; l = l->parent.get()) {
-      auto it = l->defs.find(term);
+      auto it = l->defs.find(key);
       if (it != l->defs.end()) return &it->second;
     }
     return nullptr;

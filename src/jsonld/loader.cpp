@@ -1,5 +1,7 @@
 #include "jsonld/loader.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -110,6 +112,25 @@ std::string code_point(int u) {
 
 }  // namespace
 
+std::string MappedDocumentLoader::canonical_document_path(const std::string& path) const {
+  const fs::path p(path);
+  const fs::path name = p.filename();
+  struct stat st {};
+  if (!name.empty() && name != "." && name != ".." && ::lstat(path.c_str(), &st) == 0 &&
+      !S_ISLNK(st.st_mode)) {
+    const std::string dir = p.parent_path().string();
+    auto it = canonical_dirs_.find(dir);
+    if (it == canonical_dirs_.end()) {
+      it = canonical_dirs_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string()).first;
+    }
+    std::string out = it->second;
+    if (out.empty() || out.back() != '/') out += '/';
+    out += name.string();
+    return out;
+  }
+  return canonical_path(path).string();
+}
+
 void MappedDocumentLoader::add_root(const std::string& dir) {
   if (!root_paths_.contains(dir))
     root_paths_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string());
@@ -187,7 +208,7 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
                "; IRIs that name files may not contain U+0000-U+001F or U+007F");
   }
   if (confined_) {
-    const std::string canonical = canonical_path(path).string();
+    const std::string canonical = canonical_document_path(path);
     if (!inside_sandbox(canonical)) {
       throw fail("it resolves to '" + escaped_bytes(canonical) +
                  "', outside the model tree (the directories of --map, --root, the app's "

@@ -87,6 +87,12 @@ class MappedDocumentLoader : public DocumentLoader {
   // Records the canonical form of a sandbox root when it is added, so each
   // check costs one canonicalisation (of the document) rather than one per root.
   void add_root(const std::string& dir);
+  // canonical_path(path), with the canonical form of each directory computed
+  // once per loader: a document that is not itself a symbolic link is its
+  // directory's canonical path plus its name (one lstat instead of realpath's
+  // readlink per path component). The directory memo lives as long as this
+  // loader, i.e. one load.
+  std::string canonical_document_path(const std::string& path) const;
 
   std::map<std::string, std::string, std::greater<>> prefixes_;  // longest first
   std::vector<std::string> allowed_;                             // allow()'s directories
@@ -96,6 +102,7 @@ class MappedDocumentLoader : public DocumentLoader {
   // there, and its canonical_path() at the time it was added.
   std::unordered_map<std::string, std::string> root_paths_;
   std::unordered_map<std::string, RemoteDocument> cache_;  // by path
+  mutable std::unordered_map<std::string, std::string> canonical_dirs_;
   size_t reads_ = 0;
 };
 

@@ -98,38 +98,42 @@ std::string double_lexical(double d) {
   if (d == 0) return "0.0E0";
   const bool negative = d < 0;
   const double mag = std::fabs(d);
-  // printf rounds exact ties to even; ECMAScript rounds them up. A tie shows
-  // as "5" then only zeros after the 16th significant digit; check the full
-  // expansion (at most 767 digits for a double) only in that rare case.
   char buf[1100];
-  // The exact digits printf's "%.40e" gives, written several times faster
-  // (this ran for every number of a model: a sixth of converting it to RDF).
-  const auto written =
-      std::to_chars(buf, buf + sizeof buf - 1, mag, std::chars_format::scientific, 40);
-  *written.ptr = '\0';
-  std::string digits;  // 41 significant digits, no point
-  const char* p = buf;
-  for (; *p != 'e'; ++p) {
-    if (*p != '.') digits += *p;
-  }
-  const int exponent40 = std::atoi(p + 1);  // read before buf is reused below
-  bool tie = digits[16] == '5' && digits.find_first_not_of('0', 17) == std::string::npos;
-  if (tie) {
-    std::snprintf(buf, sizeof buf, "%.800e", mag);
-    std::string full;
-    for (const char* q = buf; *q != 'e'; ++q) {
-      if (*q != '.') full += *q;
-    }
-    tie = full.find_first_not_of('0', 17) == std::string::npos;
-  }
-  std::string mantissa;
+  std::string mantissa;  // "d.ddddddddddddddd"
   int exponent = 0;
+  // printf rounds exact ties to even; ECMAScript rounds them up. A tie's 17
+  // correctly rounded significant digits end in the tie's "5", so any other
+  // 17th digit rules one out (17 digits cost far less than the 41 below: this
+  // runs for every number of a model). to_chars with a precision writes what
+  // printf would.
+  auto written = std::to_chars(buf, buf + sizeof buf - 1, mag, std::chars_format::scientific, 16);
+  bool tie = buf[17] == '5';  // buf is "d.dddddddddddddddde..."
+  std::string digits;         // 41 significant digits, no point
+  if (tie) {
+    // A "5" then only zeros up to the 41st digit; then the full expansion (at
+    // most 767 digits for a double) decides, in this rare case only.
+    written = std::to_chars(buf, buf + sizeof buf - 1, mag, std::chars_format::scientific, 40);
+    *written.ptr = '\0';
+    const char* p = buf;
+    for (; *p != 'e'; ++p) {
+      if (*p != '.') digits += *p;
+    }
+    exponent = std::atoi(p + 1);  // read before buf is reused below
+    tie = digits[16] == '5' && digits.find_first_not_of('0', 17) == std::string::npos;
+    if (tie) {
+      std::snprintf(buf, sizeof buf, "%.800e", mag);
+      std::string full;
+      for (const char* q = buf; *q != 'e'; ++q) {
+        if (*q != '.') full += *q;
+      }
+      tie = full.find_first_not_of('0', 17) == std::string::npos;
+    }
+  }
   if (tie) {
     // Round the first 16 digits up by hand.
     std::string m = digits.substr(0, 16);
     int i = 15;
     while (i >= 0 && m[static_cast<size_t>(i)] == '9') m[static_cast<size_t>(i--)] = '0';
-    exponent = exponent40;
     if (i < 0) {
       m.insert(m.begin(), '1');
       m.pop_back();
@@ -140,11 +144,11 @@ std::string double_lexical(double d) {
     mantissa.assign(1, m[0]);
     mantissa.append(".").append(m, 1, std::string::npos);
   } else {
-    std::snprintf(buf, sizeof buf, "%.15e", mag);
-    std::string s = buf;
-    size_t e = s.find('e');
-    mantissa = s.substr(0, e);
-    exponent = std::atoi(s.c_str() + e + 1);
+    written = std::to_chars(buf, buf + sizeof buf - 1, mag, std::chars_format::scientific, 15);
+    *written.ptr = '\0';
+    const char* e = std::find(buf, written.ptr, 'e');
+    mantissa.assign(buf, static_cast<size_t>(e - buf));
+    exponent = std::atoi(e + 1);
   }
   size_t last = mantissa.find_last_not_of('0');
   if (mantissa[last] == '.') ++last;  // keep one fractional digit

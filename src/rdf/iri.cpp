@@ -123,8 +123,33 @@ bool is_absolute_iri(std::string_view s) {
 
 std::string resolve_iri(std::string_view base, std::string_view reference) {
   if (base.empty()) return std::string(reference);
-  const Parts r = split(reference);
   const Parts b = split(base);
+  // The common case, a reference that is one plain segment ("link-1": no
+  // scheme, authority, query, fragment or dot segment) against a base whose
+  // path has no dot segment: 5.2.2's merge and remove_dot_segments change
+  // nothing but the base's last segment, so the result is written directly.
+  if (!reference.empty() && reference != "." && reference != ".." &&
+      reference.find_first_of(":/?#") == std::string_view::npos &&
+      b.path.find("/.") == std::string_view::npos && !b.path.starts_with('.')) {
+    std::string out;
+    out.reserve(base.size() + reference.size() + 1);
+    if (b.has_scheme) {
+      out.append(b.scheme);
+      out += ':';
+    }
+    if (b.has_authority) {
+      out += "//";
+      out.append(b.authority);
+    }
+    if (b.has_authority && b.path.empty()) {
+      out += '/';
+    } else if (size_t slash = b.path.rfind('/'); slash != std::string_view::npos) {
+      out.append(b.path.substr(0, slash + 1));
+    }
+    out.append(reference);
+    return out;
+  }
+  const Parts r = split(reference);
 
   // RFC 3986 section 5.2.2 (strict: a reference with a scheme is never
   // treated as relative, even when the scheme equals the base's).

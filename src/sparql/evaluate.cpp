@@ -647,8 +647,19 @@ class Engine {
       case rdf::TermKind::Blank:
         v.kind = Value::Kind::Blank;
         return v;
-      case rdf::TermKind::Literal:
-        return decode_literal(t.value, (*table)[t.datatype].value, t.language, id);
+      case rdf::TermKind::Literal: {
+        if (id.index >= kConstTier) {
+          return decode_literal(t.value, (*table)[t.datatype].value, t.language, id);
+        }
+        auto it = decoded_.find(id.index);
+        if (it == decoded_.end()) {
+          it = decoded_
+                   .emplace(id.index,
+                            decode_literal(t.value, (*table)[t.datatype].value, t.language, id))
+                   .first;
+        }
+        return it->second;
+      }
       default:
         return Value::make_error();
     }
@@ -1093,6 +1104,11 @@ class Engine {
   std::unordered_map<std::string, std::optional<Regex>> regex_cache_;
   std::vector<TermId> all_nodes_;
   bool all_nodes_ready_ = false;
+  // The dataset's literals as decoded so far (numbers parsed, datatypes
+  // checked): decode_literal depends on the term alone and the dataset does
+  // not change under an evaluator, while SHACL runs hundreds of queries over
+  // the same values.
+  mutable std::unordered_map<uint32_t, Value> decoded_;
   Limits limits_;
 
   // Per evaluation.

@@ -152,6 +152,22 @@ TEST(JsonParse, Locations) {
   EXPECT_EQ(a[2].location(), (SourceLoc{4, 4, 2}));
 }
 
+// Runs of indentation are skipped whole and a string's plain bytes are copied
+// a run at a time: columns, lines and contents stay exact around them.
+TEST(JsonParse, LocationsAfterIndentationRunsAndMixedStrings) {
+  const std::string text = "{\r\n" + std::string(40, ' ') + "\"k\":  \t \"" + std::string(50, 'a') +
+                           "\\n\xC3\xA9" + std::string(20, 'b') + "\",\n" + std::string(8, ' ') +
+                           "\"n\": null" + std::string(30, ' ') + "}" + std::string(25, ' ');
+  const Value v = parse(text, 2, "f.json");
+  const Object& o = v.as_object();
+  EXPECT_EQ(o.key_location(0), (SourceLoc{2, 2, 41}));
+  EXPECT_EQ(o.value(0).location(), (SourceLoc{2, 2, 49}));
+  EXPECT_EQ(o.value(0).as_string(), std::string(50, 'a') + "\n\xC3\xA9" + std::string(20, 'b'));
+  EXPECT_EQ(o.key_location(1), (SourceLoc{2, 3, 9}));
+  EXPECT_EQ(o.value(1).location(), (SourceLoc{2, 3, 14}));
+  EXPECT_TRUE(o.value(1).is_null());
+}
+
 TEST(JsonParse, LocationsCountBytesAndSkipBom) {
   // "é" is two bytes, so the value after it starts two columns later.
   const Value v = parse("\xEF\xBB\xBF[\"\xC3\xA9\", 1]");

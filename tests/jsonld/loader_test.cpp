@@ -237,6 +237,24 @@ TEST_F(SandboxTest, RefusesEveryWayOut) {
   EXPECT_EQ(loader_.documents_read(), 1u);  // app.json only
 }
 
+// The loader remembers each directory's canonical form (a document that is
+// not a link is its directory's canonical path plus its name): a link beside
+// documents already loaded, or a linked directory, is still resolved and
+// refused.
+TEST_F(SandboxTest, RememberedDirectoriesStillResolveLinks) {
+  const std::string secret = fs::canonical(dir("secret.json")).string();
+  EXPECT_NO_THROW(loader_.load("https://ex.org/ok.json", ref_, true));
+  write("tree/sub/inside.json", R"({"@context": {}})");
+  EXPECT_NO_THROW(loader_.load("https://ex.org/sub/inside.json", ref_, true));
+  for (const std::string& iri :
+       std::vector<std::string>{"https://ex.org/link.json", "https://ex.org/sub/up/secret.json",
+                                "https://ex.org/sub/../link.json"}) {
+    std::string what = error_of(iri);
+    EXPECT_EQ(what.substr(0, outside(iri, secret).size()), outside(iri, secret)) << what;
+  }
+  EXPECT_EQ(loader_.documents_read(), 3u);  // app.json, ok.json, inside.json
+}
+
 TEST_F(SandboxTest, AllowedDirectoriesAndFallbacksCount) {
   const std::string sibling = "file://" + fs::canonical(dir("tree2/ok.json")).string();
   loader_.allow(dir("tree2"));

@@ -73,6 +73,11 @@ TEST(ToRdf, NativeNumbers) {
       {"1234567890123456.5", "1.234567890123457E15", xsd("double")},
       {"-1234567890123456.5", "-1.234567890123457E15", xsd("double")},
       {"4503599627370494.5", "4.503599627370495E15", xsd("double")},
+      // A 17th significant digit of 5 that is not an exact tie: correctly
+      // rounded, whichever way.
+      {"943.3567736415966", "9.433567736415966E2", xsd("double")},
+      {"215.48195374356305", "2.154819537435631E2", xsd("double")},
+      {"289.30587844175875", "2.893058784417588E2", xsd("double")},
       {"5", "5", xsd("integer")},
       {"-0", "0", xsd("integer")},
       {"1e20", "100000000000000000000", xsd("integer")},

@@ -100,6 +100,22 @@ TEST(ResolveIri, NonHierarchicalAndFileBases) {
                   {{"ctx.jsonld", "file:///home/u/ctx.jsonld"}, {"../c", "file:///home/c"}});
 }
 
+// A one-segment reference ("g", the common case in models) against bases of
+// every shape: the result is what RFC 3986's merge and remove_dot_segments give,
+// including the normalisation of dot segments in the base's own path.
+TEST(ResolveIri, OneSegmentReferenceAgainstEveryBaseShape) {
+  expect_resolves("http://a", {{"g", "http://a/g"}});
+  expect_resolves("http://a/", {{"g", "http://a/g"}, {".g", "http://a/.g"}});
+  expect_resolves("http://a/b/./c/d", {{"g", "http://a/b/c/g"}});
+  expect_resolves("http://a/b/../c/d", {{"g", "http://a/c/g"}});
+  expect_resolves("http://a/b/c/..", {{"g", "http://a/b/c/g"}});
+  expect_resolves("http://a/.well-known/x", {{"g", "http://a/.well-known/g"}});
+  expect_resolves("http://a/b?q#f", {{"g", "http://a/g"}, {".", "http://a/"}, {"..", "http://a/"}});
+  expect_resolves("a/b", {{"g", "a/g"}});
+  expect_resolves("./a/b", {{"g", "a/g"}});
+  expect_resolves("mailto:x", {{"g", "mailto:g"}});
+}
+
 TEST(ResolveIri, EmptyBaseReturnsReference) {
   EXPECT_EQ(resolve_iri("", "a/../b"), "a/../b");
   EXPECT_EQ(resolve_iri("", "http://x/./y"), "http://x/./y");
