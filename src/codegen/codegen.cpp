@@ -854,6 +854,16 @@ class Builder {
         put(s, "out0", out(st, 0));
         break;
       }
+      case StepKind::AnyOf: {
+        std::string any;
+        for (std::size_t k = 0; k < st.in.size(); ++k) {
+          if (k) any.append(" || ");
+          any.append(in(st, k));
+        }
+        put(s, "any", any);
+        put(s, "out0", out(st, 0));
+        break;
+      }
       case StepKind::Controller: {
         // The registry's kernel, called as it declares: (model, [state,]
         // signals..., [dt,] active), active being the running flag after the

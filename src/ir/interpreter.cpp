@@ -192,6 +192,12 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
           std::span<const bool>(until.data(), st.in.size() - n_when));
       break;
     }
+    case StepKind::AnyOf: {
+      bool any = false;
+      for (size_t k = 0; k < st.in.size(); ++k) any = any || s_.flags[in(k)] != 0;
+      s_.flags[out(0)] = any;
+      break;
+    }
     case StepKind::Controller: {
       // The kind's kernel on its signals (at most kMaxControllerSignals), gated by
       // the running flag after them, if any.

@@ -183,6 +183,12 @@ const KindEntry kStepKinds[] = {
      [](const Step& st, const Program&) -> Signature {
        return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
      }},
+    {{StepKind::AnyOf, "any-of", std::nullopt,
+      "cstr-hdl:ConstraintHandler (a controller or evaluator several motions' handlers list)",
+      "ins: [running flags...]; out: [flag]: true while any of them is"},
+     [](const Step& st, const Program&) -> Signature {
+       return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
+     }},
     {{StepKind::Controller, "controller", std::nullopt,
       "the controller registry (controllers.hpp); state slots per controller kind",
       "ins: [signals..., (active flag)]; out: [control signal]"},

@@ -65,6 +65,7 @@ enum class StepKind : uint8_t {
   LevelMonitor,   // in: [error]; out: [flag]
   EdgeMonitor,    // in: [error]; out: [event]
   GuardedMotion,  // ins: [when flags..., until flags...]; out: [active flag]
+  AnyOf,          // ins: [flags...] (2 or more); out: [flag] = any of them
   Controller,     // ins: [signals..., (active flag)]; out: [control signal]; Step::controller
                   // indexes controller_kinds() (controllers.hpp)
   ArmSolve,       // solver; ins: drivers' data, motion gates; writes the arm's joint torques

@@ -200,7 +200,9 @@ void lower_monitors(State& st) {
 }
 
 void lower_handlers(State& st) {
-  std::map<uint32_t, int> active_of_evaluator;  // evaluator -> its motion's running flag
+  // The running flags of the motions whose handlers list each controller and
+  // evaluator (in order of term, so the program is a function of the model).
+  std::map<TermId, std::set<int>> flags_of_controller, flags_of_evaluator;
   const std::string ch = "task/constraint-handler";
   const std::string mot = "task/motion-specification";
   std::map<uint32_t, int> active_of_motion;
@@ -252,16 +254,33 @@ void lower_handlers(State& st) {
       st.add_step(std::move(s));
       active_of_motion[m->index] = active;
     }
-    for (TermId c : st.objects(h, vocab(ch, "controllers")))
-      st.active_of_controller[c.index] = active;
-    for (TermId e : st.objects(h, vocab(ch, "evaluators"))) active_of_evaluator[e.index] = active;
+    for (TermId c : st.objects(h, vocab(ch, "controllers"))) flags_of_controller[c].insert(active);
+    for (TermId e : st.objects(h, vocab(ch, "evaluators"))) flags_of_evaluator[e].insert(active);
   }
-  // Assignments write only while their motion runs.
-  for (auto& [eval, step] : st.evaluate_step_of_evaluator) {
-    Step& s = st.steps[static_cast<size_t>(step)];
-    if (s.constraint.kind != runtime::ConstraintKind::Assignment) continue;
-    if (auto it = active_of_evaluator.find(eval); it != active_of_evaluator.end())
-      s.in.push_back(it->second);
+  // Listed by the handlers of several motions: active while any of them runs.
+  const auto any_of = [&](TermId entity, const std::set<int>& flags) {
+    if (flags.size() == 1) return *flags.begin();
+    Step s = st.step_for(StepKind::AnyOf, entity);
+    s.name += "_active";
+    s.in.assign(flags.begin(), flags.end());
+    const int d = st.synthetic(st.str(entity) + "#active", local_name(st.str(entity)) + "_active",
+                               DataType::Flag, st.where(entity));
+    s.out = {d};
+    st.add_step(std::move(s));
+    return d;
+  };
+  for (const auto& [c, flags] : flags_of_controller)
+    st.active_of_controller[c.index] = any_of(c, flags);
+
+  // Assignments write only while their motion runs (or one of their motions).
+  for (const auto& [e, flags] : flags_of_evaluator) {
+    const auto it = st.evaluate_step_of_evaluator.find(e.index);
+    if (it == st.evaluate_step_of_evaluator.end()) continue;
+    if (st.steps[static_cast<size_t>(it->second)].constraint.kind !=
+        runtime::ConstraintKind::Assignment)
+      continue;
+    const int active = any_of(e, flags);  // may grow st.steps
+    st.steps[static_cast<size_t>(it->second)].in.push_back(active);
   }
 }
 

@@ -20,6 +20,7 @@
 //                    members collided under the old naming (arm_r_task).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -497,7 +498,32 @@ inline ir::Program operators_program(SourceFiles& files) {
   const int gate_err = b.datum("gate_early_err", T::Scalar, {}, "SEC");
   b.step(K::Evaluate, "gate_early_eval", {time}, {gate, gate_err}).constraint = {
       runtime::ConstraintKind::LessThan, 0.0, 0.1, 0.0, 0.0, 0.0};
+  // Any of two motions' flags (a controller several handlers list): "t < 0.1 s"
+  // or "t > 0.2 s" (thresholds met at equality), so off in between; one PID
+  // runs under it.
+  const int late = b.datum("gate_late", T::Flag);
+  const int late_err = b.datum("gate_late_err", T::Scalar, {}, "SEC");
+  b.step(K::Evaluate, "gate_late_eval", {time}, {late, late_err}).constraint = {
+      runtime::ConstraintKind::GreaterThan, 0.0, 0.2, 0.0, 0.0, 0.0};
+  const int either = b.datum("gate_either", T::Flag);
+  b.step(K::AnyOf, "gate_either_any", {gate, late}, {either});
+  b.log("gate_either", either);
   const auto ckinds = ir::controller_kinds();
+  {
+    const ir::ControllerKind& pid = *std::find_if(ckinds.begin(), ckinds.end(), [](const auto& k) {
+      return k.name == std::string_view("pid");
+    });
+    std::vector<std::pair<std::string, double>> values;
+    for (const ir::ControllerParameter& param : pid.parameters) {
+      if (param.source != ir::ParameterSource::Fixed)
+        values.emplace_back(std::string(param.member), 0.5);
+    }
+    const int out = b.datum("c_either_out", T::Scalar);
+    std::vector<int> in(pid.in.size(), time);
+    in.push_back(either);
+    b.controller(pid.name, "c_either", in, {out}, values);
+    b.log("c_either_out", out);
+  }
   for (std::size_t k = 0; k < ckinds.size(); ++k) {
     const ir::ControllerKind& kind = ckinds[k];
     std::vector<std::pair<std::string, double>> values;

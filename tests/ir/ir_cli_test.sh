@@ -40,6 +40,18 @@ check "controllers schedule: clock, evaluators, motion, two dampers, an impedanc
 check "... the damper's limits and the spring's stiffness and damping in the IR" \
   grep -Pzq '"damping": \{\n *"maximum-velocity": 0.2,\n *"maximum-force": 10.0\n *\}(.|\n)*"impedance": \{\n *"stiffness": 300.0,\n *"damping": 20.0' "$work/controllers.json"
 
+# A controller two motions' handlers list runs while either motion runs: its
+# gate is an any-of step over both running flags (it was gated by the handler
+# read last only).
+mkdir -p "$work/shared/controllers" && cp "$D/controllers.json" "$work/shared/"
+sed 's|^        { "@id": "handler", "@type": "ConstraintHandler", "motion": "motion",|        { "@id": "motion-2", "@type": "GuardedMotion", "when": ["cstr-done"], "while": [], "until": [] },\n        { "@id": "handler-2", "@type": "ConstraintHandler", "motion": "motion-2",\n          "evaluators": ["eval-done"], "controllers": ["damper"] },\n&|' \
+  "$D/controllers/model.json" > "$work/shared/controllers/model.json"
+expect "a controller shared by two motions lowers" 0 "" -- \
+  "$mospec" ir --root "$work/shared" "$work/shared/controllers.json" -o "$work/shared.json"
+order=$(grep -o '"kind": "[a-z-]*"' "$work/shared.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
+check "... two motions, one any-of, then the damper it gates (got: $order)" \
+  test "$order" = "read-clock evaluate evaluate evaluate guarded-motion guarded-motion any-of damping damping impedance "
+
 variant() {  # NAME SED-EXPRESSION: a copy of the tiny model with one edit
   rm -rf "$work/$1"; mkdir -p "$work/$1/tiny"; cp "$D/tiny.json" "$work/$1/"
   sed "$2" "$D/tiny/model.json" > "$work/$1/tiny/model.json"
