@@ -15,30 +15,13 @@
 #include <sstream>
 
 #include "runtime/controllers.hpp"
+#include "source_tree.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::ir {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> files(const fs::path& dir, const std::string& suffix) {
-  std::vector<std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    if (e.is_regular_file() && name.size() >= suffix.size() &&
-        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
-      out.push_back(slurp(e.path()));
-  }
-  return out;
-}
 
 TEST(ControllerRegistry, EveryKindIsComplete) {
   // Generated code's Data names each stateful kind's state array by the kind's
@@ -96,10 +79,10 @@ TEST(ControllerRegistry, EveryKindIsComplete) {
 
 TEST(ControllerRegistry, EveryClassHasContextTermsAShapeAndShapeTests) {
   const fs::path src = MOSPEC_SOURCE_DIR;
-  const auto contexts = files(src / "metamodels", ".json");
-  const auto shapes = files(src / "metamodels", ".ttl");
-  const auto good = files(src / "tests/models/data", "-good.json");
-  const auto bad = files(src / "tests/models/data", "-bad.json");
+  const auto contexts = mospec::test::texts_of_files(src / "metamodels", ".json");
+  const auto shapes = mospec::test::texts_of_files(src / "metamodels", ".ttl");
+  const auto good = mospec::test::texts_of_files(src / "tests/models/data", "-good.json");
+  const auto bad = mospec::test::texts_of_files(src / "tests/models/data", "-bad.json");
   for (const ControllerKind& k : controller_kinds()) {
     SCOPED_TRACE(k.class_iri());
     std::vector<std::string> terms{std::string(k.type), std::string(k.out)};

@@ -13,30 +13,12 @@
 #include <set>
 #include <sstream>
 
+#include "source_tree.hpp"
+
 namespace mospec::ir {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// The text of every file under `dir` whose name ends with `suffix`.
-std::vector<std::pair<fs::path, std::string>> files(const fs::path& dir,
-                                                    const std::string& suffix) {
-  std::vector<std::pair<fs::path, std::string>> out;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    if (e.is_regular_file() && name.size() >= suffix.size() &&
-        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
-      out.emplace_back(e.path(), slurp(e.path()));
-  }
-  return out;
-}
 
 // A prefixed name of the class in a file that declares the prefix for the
 // class's namespace: `geom-op:ComposePose` where geom-op is the namespace.
@@ -70,24 +52,24 @@ TEST(OperatorRegistry, EveryKindIsComplete) {
 
 TEST(OperatorRegistry, EveryClassHasAContextTermAShapeAndShapeTests) {
   const fs::path src = MOSPEC_SOURCE_DIR;
-  const auto contexts = files(src / "metamodels", ".json");
-  const auto shapes = files(src / "metamodels", ".ttl");
-  const auto good = files(src / "tests/models/data", "-good.json");
-  const auto bad = files(src / "tests/models/data", "-bad.json");
+  const auto contexts = mospec::test::texts_of_files(src / "metamodels", ".json");
+  const auto shapes = mospec::test::texts_of_files(src / "metamodels", ".ttl");
+  const auto good = mospec::test::texts_of_files(src / "tests/models/data", "-good.json");
+  const auto bad = mospec::test::texts_of_files(src / "tests/models/data", "-bad.json");
   for (const OperatorKind& k : operator_kinds()) {
     SCOPED_TRACE(k.class_iri());
     bool context = false, shape = false, conforming = false, violating = false;
-    for (const auto& [path, text] : contexts) {
+    for (const std::string& text : contexts) {
       context = context || (text.find(std::string(k.vocabulary)) != std::string::npos &&
                             text.find('"' + std::string(k.type) + "\": {") != std::string::npos);
     }
-    for (const auto& [path, text] : shapes) {
+    for (const std::string& text : shapes) {
       shape = shape || (text.find("sh:targetClass") != std::string::npos && names_class(text, k));
     }
     // A node typed with the class (prefixed or in full, alone or in a list).
     const std::regex typed("\"([A-Za-z_-]+:|[^\"]*#)" + std::string(k.type) + "\"");
-    for (const auto& [path, text] : good) conforming = conforming || std::regex_search(text, typed);
-    for (const auto& [path, text] : bad) violating = violating || std::regex_search(text, typed);
+    for (const std::string& text : good) conforming = conforming || std::regex_search(text, typed);
+    for (const std::string& text : bad) violating = violating || std::regex_search(text, typed);
     EXPECT_TRUE(context) << "no JSON-LD context in metamodels/ defines the term " << k.type;
     EXPECT_TRUE(shape) << "no shape in metamodels/ targets " << k.type;
     EXPECT_TRUE(conforming) << "no tests/models/data/*-good.json has an instance of " << k.type;

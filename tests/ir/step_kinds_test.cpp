@@ -11,16 +11,10 @@
 #include <sstream>
 
 #include "ir/ir.hpp"
+#include "source_tree.hpp"
 
 namespace mospec::ir {
 namespace {
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 TEST(StepKinds, EachDeclaredOnceInOrderWithAUniqueName) {
   const auto kinds = step_kinds();
@@ -38,8 +32,8 @@ TEST(StepKinds, EachDeclaredOnceInOrderWithAUniqueName) {
 }
 
 TEST(StepKinds, TheControllerTemplateHasASectionForEachKind) {
-  const std::string tpl = slurp(std::filesystem::path(MOSPEC_SOURCE_DIR) /
-                                "src/codegen/templates/controller.cpp.mustache");
+  const std::string tpl = mospec::test::slurp(std::filesystem::path(MOSPEC_SOURCE_DIR) /
+                                              "src/codegen/templates/controller.cpp.mustache");
   ASSERT_FALSE(tpl.empty());
   for (const StepKindInfo& k : step_kinds()) {
     const std::string section = template_section(k.kind);
