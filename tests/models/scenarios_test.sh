@@ -29,12 +29,13 @@ sed -i 's/"M-PER-SEC2"/"N"/' "$work/models/platform/01-world-model.json"
 if [ $? -eq 1 ] && grep -q 'gravity is an acceleration' "$work/out"; then echo "ok   changed copy is rejected"
 else fail "a copy with gravity in N was not rejected"; fi
 
-# SC1's distance tube upside down ([0.68, 0.60] m) is rejected.
+# SC1's distance tube upside down ([0.68, 0.60] m) is rejected, the message
+# quoting both thresholds.
 if [ -f models/sc1.json ]; then
   rm -rf "$work/models" && cp -r models "$work/"
   sed -i 's/"0.72"/"0.60"/' "$work/models/sc1/00-misc.json"
   (cd "$work" && "$mospec" validate models/sc1.json --strict > out 2>&1)
-  if [ $? -eq 1 ] && [ "$(grep -c 'lower threshold must be less than the upper threshold' "$work/out")" -eq 2 ]; then
+  if [ $? -eq 1 ] && [ "$(grep -c 'lower threshold must be less than the upper threshold (lower 0.68, upper 0.60)' "$work/out")" -eq 2 ]; then
     echo "ok   sc1 with an empty distance tube is rejected"
   else fail "sc1 with lower > upper was not rejected twice"; fi
 fi

@@ -60,7 +60,7 @@ bad bilateral task/constraint.ttl 8 \
   '<https://ex.org/c5>: reference value or threshold has a unit the constrained quantity does not have' \
   '<https://ex.org/c5>: reference value or threshold has a quantity kind the constrained quantity does not have' \
   '<https://ex.org/c6>: the constrained quantity has no unit' \
-  '<https://ex.org/b1>: lower threshold must be less than the upper threshold' \
+  '<https://ex.org/b1>: lower threshold must be less than the upper threshold \(lower 7\.2E-1, upper 6\.8E-1\)' \
   '<https://ex.org/b2>: a bilateral constraint has exactly one lower threshold' \
   '<https://ex.org/b2>: a bilateral constraint has exactly one upper threshold' \
   '<https://ex.org/b3>: lower and upper threshold must have the same unit' \
