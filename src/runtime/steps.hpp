@@ -142,14 +142,20 @@ inline bool guarded_motion(MotionState& state, std::span<const bool> when,
 // Controllers run while their motion runs; otherwise their output is 0 and
 // their state is reset (a motion that starts later starts from a clean
 // integral).
-inline double pid(const Pid& controller, PidState& state, double error, double dt,
-                  bool active) noexcept {
+template <class Controller, class State>
+inline double gated_step(const Controller& controller, State& state, double error, double dt,
+                         bool active) noexcept {
   if (!active) {
-    Pid::reset(state);
+    Controller::reset(state);
     return 0.0;
   }
   controller.step(state, error, dt);
   return state.output;
+}
+
+inline double pid(const Pid& controller, PidState& state, double error, double dt,
+                  bool active) noexcept {
+  return gated_step(controller, state, error, dt, active);
 }
 
 // A damping controller (stateless): the force opposing `velocity`.
@@ -160,12 +166,7 @@ inline double damping(const Damping& controller, double velocity, bool active) n
 // An impedance controller: as pid() (inactive: 0, state reset).
 inline double impedance(const Impedance& controller, ImpedanceState& state, double error, double dt,
                         bool active) noexcept {
-  if (!active) {
-    Impedance::reset(state);
-    return 0.0;
-  }
-  controller.step(state, error, dt);
-  return state.output;
+  return gated_step(controller, state, error, dt, active);
 }
 
 // ---------------------------------------------------------------------------

@@ -43,6 +43,16 @@ int column(const Interpreter& in, const std::string& name) {
   return 0;
 }
 
+// Tick k of a 1 kHz run (dt 0 on the first tick), then the log row.
+void tick_at(Interpreter& in, int k, robot::MeasuredState& state, robot::Command& command,
+             std::vector<double>& values) {
+  state.clock.tick = static_cast<std::uint64_t>(k);
+  state.clock.t = 0.001 * k;
+  state.clock.dt = k == 0 ? 0.0 : 0.001;
+  in.tick(state, command);
+  in.log_values(values);
+}
+
 TEST(Interpreter, GuardedMotionRunsBetweenItsWhenAndUntil) {
   Interpreter in(tiny());
   const int running = column(in, "motion.running");
@@ -54,11 +64,7 @@ TEST(Interpreter, GuardedMotionRunsBetweenItsWhenAndUntil) {
   std::vector<double> values(in.log_columns().size());
   int events = 0;
   for (int k = 0; k <= 3000; ++k) {
-    state.clock.tick = static_cast<std::uint64_t>(k);
-    state.clock.t = 0.001 * k;
-    state.clock.dt = k == 0 ? 0.0 : 0.001;
-    in.tick(state, command);
-    in.log_values(values);
+    tick_at(in, k, state, command, values);
     const double t = state.clock.t;
     const bool should_run = t >= 0.5 - 1e-12 && t < 2.0 - 1e-12;
     ASSERT_EQ(values[static_cast<size_t>(running)] == 1.0, should_run) << "t = " << t;
@@ -87,11 +93,7 @@ TEST(Interpreter, DampingAndImpedanceControllersFromAModel) {
   robot::Command command;
   std::vector<double> values(in.log_columns().size());
   for (int k = 0; k <= 2500; ++k) {
-    state.clock.tick = static_cast<std::uint64_t>(k);
-    state.clock.t = 0.001 * k;
-    state.clock.dt = k == 0 ? 0.0 : 0.001;
-    in.tick(state, command);
-    in.log_values(values);
+    tick_at(in, k, state, command, values);
     const double t = state.clock.t;
     const bool running = t >= 0.5 - 1e-12 && t < 2.0 - 1e-12;
     const auto at = [&](int c) { return values[static_cast<size_t>(c)]; };
