@@ -216,6 +216,8 @@ std::string_view type_member(DataType t) {
       return "flag";
     case DataType::Event:
       return "event";
+    case DataType::Inertia:
+      return "inertia";
   }
   return "scalar";
 }
@@ -658,6 +660,10 @@ class Builder {
     put(root, "n_wrench", std::to_string(p_.count(DataType::Wrench)));
     put(root, "n_flag", std::to_string(p_.count(DataType::Flag)));
     put(root, "n_event", std::to_string(p_.count(DataType::Event)));
+    // Only programs that use inertias declare their array, so the others'
+    // generated code does not change with the type's introduction.
+    put(root, "has_inertia", p_.count(DataType::Inertia) > 0);
+    put(root, "n_inertia", std::to_string(p_.count(DataType::Inertia)));
     // Controller state, one array per stateful kind the program uses.
     mus::data controller_states = list();
     const auto kinds = ir::controller_kinds();
@@ -717,6 +723,11 @@ class Builder {
           assign = member + " = " + (d.value[0] != 0.0 ? "true" : "false") + ";";
           break;
         case DataType::Event:
+          break;
+        case DataType::Inertia:
+          type = "rt::RigidBodyInertia";
+          assign = member + " = rt::rigid_body_inertia(std::array<double, 10>{" +
+                   join_doubles(d.value.data(), 10) + "});";
           break;
       }
       mus::data c;

@@ -45,6 +45,7 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
   s_.wrenches.assign(static_cast<size_t>(program_.count(DataType::Wrench)), Vec6::Zero());
   s_.flags.assign(static_cast<size_t>(program_.count(DataType::Flag)), 0);
   s_.events.assign(static_cast<size_t>(program_.count(DataType::Event)), 0);
+  s_.inertias.assign(static_cast<size_t>(program_.count(DataType::Inertia)), {});
   for (const Data& d : program_.data) {
     if (d.value.empty()) continue;
     const auto s = static_cast<size_t>(d.slot);
@@ -69,6 +70,10 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
         s_.flags[s] = d.value[0] != 0.0;
         break;
       case DataType::Event:
+        break;
+      case DataType::Inertia:
+        s_.inertias[s] =
+            runtime::rigid_body_inertia(std::span<const double, 10>(d.value.data(), 10));
         break;
     }
   }

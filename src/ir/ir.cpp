@@ -24,6 +24,8 @@ std::string_view to_string(DataType t) {
       return "flag";
     case DataType::Event:
       return "event";
+    case DataType::Inertia:
+      return "inertia";
   }
   return "?";
 }
@@ -314,6 +316,7 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
                         : d.type == DataType::Vector3                             ? 3
                         : d.type == DataType::Twist || d.type == DataType::Wrench ? 6
                         : d.type == DataType::Event                               ? 0
+                        : d.type == DataType::Inertia                             ? 10
                                                                                   : 1;
     if (d.value.size() != need)
       f.add(d.where, "constant '" + d.name + "' has " + std::to_string(d.value.size()) +

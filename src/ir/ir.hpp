@@ -36,8 +36,10 @@
 
 namespace mospec::ir {
 
-enum class DataType : uint8_t { Scalar, Vector3, Pose, Twist, Wrench, Flag, Event };
-inline constexpr int kDataTypes = 7;
+// Inertia: a rigid body's inertia (runtime::RigidBodyInertia), always a model
+// constant: mass, first moment of mass, rotational inertia about a point.
+enum class DataType : uint8_t { Scalar, Vector3, Pose, Twist, Wrench, Flag, Event, Inertia };
+inline constexpr int kDataTypes = 8;
 std::string_view to_string(DataType);
 
 struct Data {
@@ -50,7 +52,8 @@ struct Data {
   std::string quantity_kind;  // QUDT local names joined by ',' (angular part first)
   std::string unit;           // QUDT local names joined by ','
   // A model constant (a reference value, a fixed pose): Scalar 1 value, Vector3
-  // 3, Pose 12 (R row-major, then p). Empty for data a step produces.
+  // 3, Pose 12 (R row-major, then p), Inertia 10 (m; h; Ixx, Iyy, Izz, Ixy,
+  // Ixz, Iyz). Empty for data a step produces.
   std::vector<double> value;
   SourceLoc where;
 };

@@ -12,6 +12,8 @@ void check_inputs(State& st) {
     for (int d : s.in) {
       if (st.produced(d)) continue;
       const Data& dd = st.program.data[static_cast<size_t>(d)];
+      // An inertia is a constant or refused where it is read (fill_inertia).
+      if (dd.type == DataType::Inertia) continue;
       std::string msg = "nothing produces '";
       msg.append(dd.iri).append("', which '").append(s.iri).append("' needs");
       st.error(dd.where.known() ? dd.where : s.where, "unproduced-quantity", msg);

@@ -1,7 +1,9 @@
 #include "ir/lowering.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <cstdio>
 
 namespace mospec::ir::lowering {
 
@@ -96,6 +98,9 @@ std::optional<DataType> State::type_of(TermId e) const {
   if (has_type(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "Wrench")) ||
       has_type(e, vocab("newtonian-rigid-body-dynamics/coordinates", "WrenchCoordinate")))
     return DataType::Wrench;
+  if (has_type(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "RigidBodyInertia")) ||
+      has_type(e, vocab("newtonian-rigid-body-dynamics/coordinates", "RigidBodyInertiaCoordinate")))
+    return DataType::Inertia;
   if (has_type(e, vocab("geometry/coordinates", "DirectionCoordinate")) ||
       has_type(e, vocab("geometry/spatial-relations", "Position")) ||
       has_type(e, vocab("geometry/coordinates", "PositionCoordinate")))
@@ -159,9 +164,88 @@ void State::fill_constant(Data& d, TermId e) {
                  R(2, 0), R(2, 1), R(2, 2), *x,      *y,      *z};
       break;
     }
+    case DataType::Inertia:
+      if (defined(e)) fill_inertia(d, e);
+      break;
     default:
       break;
   }
+}
+
+// A rigid-body inertia is always a constant: its ten numbers are read here, and
+// a model that leaves one out, or states a body no physical mass distribution
+// has, is refused rather than run with zeros.
+void State::fill_inertia(Data& d, TermId e) {
+  const std::string dc = "newtonian-rigid-body-dynamics/coordinates";
+  const auto missing = [&](const std::string& what) {
+    error(e, "missing-property",
+          "the rigid-body inertia '" + d.iri + "' gives no " + what +
+              "; state `mass` (kg), `first-moment-of-mass` (3 values, kg m: the mass times the "
+              "centre of mass's position from `about`), `ixx`, `iyy`, `izz` and, unless its axes "
+              "are principal, `ixy`, `ixz`, `iyz` (kg m2, about `about`)");
+  };
+  // Units, when stated, must be the SI ones the numbers are read in.
+  for (TermId u : objects(e, kQudt + "unit")) {
+    const std::string unit = local_name(str(u));
+    if (unit != "KiloGM" && unit != "KiloGM-M" && unit != "KiloGM-M2")
+      error(e, "wrong-unit",
+            "the rigid-body inertia '" + d.iri + "' states the unit '" + unit +
+                "'; its numbers are read in KiloGM (mass), KiloGM-M (first moment) and KiloGM-M2 "
+                "(moments of inertia): convert them, or state no unit");
+  }
+  const auto m = number(e, vocab(dc, "mass"));
+  if (!m) return missing("`mass`");
+  std::vector<double> h;
+  if (auto head = object(e, vocab(dc, "first-moment-of-mass"))) {
+    for (TermId t : list(*head)) {
+      if (auto v = number(t)) h.push_back(*v);
+    }
+  }
+  if (h.size() != 3) return missing("`first-moment-of-mass` of 3 numbers");
+  std::array<std::optional<double>, 6> I;
+  const char* names[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+  for (size_t k = 0; k < 6; ++k) I[k] = number(e, vocab(dc, names[k]));
+  for (size_t k = 0; k < 3; ++k) {
+    if (!I[k]) return missing(std::string("`") + names[k] + "`");
+  }
+  const int products = (I[3] ? 1 : 0) + (I[4] ? 1 : 0) + (I[5] ? 1 : 0);
+  if (products != 0 && products != 3) return missing("all three products of inertia");
+  std::vector<double> value = {*m, h[0], h[1], h[2], *I[0], *I[1], *I[2]};
+  for (size_t k = 3; k < 6; ++k) value.push_back(I[k].value_or(0.0));
+  // Physical: m > 0, and the rotational inertia about the centre of mass
+  // (I_Po + [h]x [h]x / m) positive semi-definite with its principal moments
+  // obeying the triangle inequality.
+  std::string why;
+  if (!(*m > 0.0)) {
+    why = "its mass " + literal_text(*object(e, vocab(dc, "mass"))) + " is not positive";
+  } else {
+    const runtime::RigidBodyInertia M =
+        runtime::rigid_body_inertia(std::span<const double, 10>(value.data(), 10));
+    const runtime::Mat3 hx = runtime::skew(M.h);
+    const runtime::Mat3 I_cm = M.I + hx * hx / M.m;
+    const Eigen::SelfAdjointEigenSolver<runtime::Mat3> eig(I_cm);
+    const runtime::Vec3 l = eig.eigenvalues();  // ascending
+    const double tol = 1e-9 * std::max(1.0, l.cwiseAbs().maxCoeff());
+    char moments[96];
+    std::snprintf(moments, sizeof moments, " (%.6g, %.6g, %.6g kg m2)", l[0], l[1], l[2]);
+    if (!(l[0] >= -tol)) {
+      why = "its rotational inertia about the centre of mass has a negative principal moment";
+      why.append(moments);
+    } else if (!(l[0] + l[1] >= l[2] - tol)) {
+      why =
+          "its principal moments about the centre of mass break the triangle inequality "
+          "(the two smaller sum to less than the largest)";
+      why.append(moments);
+    }
+  }
+  if (!why.empty()) {
+    error(e, "invalid-inertia",
+          "the rigid-body inertia '" + d.iri + "' is not a physical body: " + why +
+              "; check the values' signs and that the moments are about `about`, not about the "
+              "centre of mass");
+    return;
+  }
+  d.value = std::move(value);
 }
 
 int State::datum(TermId e, DataType expected, TermId referenced_by, const std::string& role) {
@@ -207,6 +291,11 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
   if (auto o =
           object(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "reference-point")))
     d.reference_point = str(*o);
+  if (d.type == DataType::Inertia) {
+    const std::string de = "newtonian-rigid-body-dynamics/structural-entities";
+    if (auto o = object(e, vocab(de, "of-body"))) d.of = str(*o);
+    if (auto o = object(e, vocab(de, "about"))) d.reference_point = str(*o);
+  }
   if (auto o = object(e, vocab("geometry/coordinates", "as-seen-by"))) d.as_seen_by = str(*o);
   if (auto o = object(e, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by")))
     d.as_seen_by = str(*o);

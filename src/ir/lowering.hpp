@@ -144,6 +144,7 @@ struct State {
     return candidate;
   }
   void fill_constant(Data& d, TermId e);
+  void fill_inertia(Data& d, TermId e);
 
   // --- steps --------------------------------------------------------------
   // A step asked for by model entity `e`, named and located by it.

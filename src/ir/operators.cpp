@@ -27,6 +27,7 @@ using Axis = SlotType<runtime::Vec3, DataType::Vector3, &Slots::vec3s, PortSourc
 using Pose = SlotType<runtime::Pose, DataType::Pose, &Slots::poses>;
 using Twist = SlotType<runtime::Vec6, DataType::Twist, &Slots::twists>;
 using Wrench = SlotType<runtime::Vec6, DataType::Wrench, &Slots::wrenches>;
+using Inertia = SlotType<runtime::RigidBodyInertia, DataType::Inertia, &Slots::inertias>;
 }  // namespace t
 
 // The interpreter's call of a kernel, derived from the declared signature
@@ -311,6 +312,19 @@ std::vector<OperatorKind> declare_all() {
        {"to.reference-point = from.reference-point", "to.as-seen-by = from.as-seen-by"},
        "a copy of F"},
       MOSPEC_KERNEL(assign_wrench)));
+  k.push_back(declare<t::Wrench(t::Inertia, t::Twist)>(
+      {"inertial-wrench",
+       kDynOp,
+       "InertialWrench",
+       {"rigid-body-inertia", "velocity-twist"},
+       "wrench",
+       {"velocity-twist.reference-point = rigid-body-inertia.reference-point",
+        "velocity-twist.as-seen-by = rigid-body-inertia.as-seen-by",
+        "wrench.reference-point = rigid-body-inertia.reference-point",
+        "wrench.as-seen-by = rigid-body-inertia.as-seen-by"},
+       "V x* (M V): the velocity-product (Coriolis, centripetal) wrench of a body of inertia M "
+       "moving with twist V, about M's point, seen by M's frame"},
+      MOSPEC_KERNEL(inertial_wrench)));
   return k;
 }
 

@@ -36,6 +36,7 @@ struct Slots {
   std::vector<runtime::Pose> poses;
   std::vector<runtime::Vec6> twists, wrenches;
   std::vector<char> flags, events;
+  std::vector<runtime::RigidBodyInertia> inertias;
 };
 
 // The frame attributes of a quantity an operator relates (ir::Data's fields).

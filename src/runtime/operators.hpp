@@ -224,6 +224,22 @@ inline Vec6 invert_wrench(const Vec6& F) noexcept {
 inline Vec6 assign_wrench(const Vec6& F) noexcept {
   return F;
 }
+// InertialWrench: the velocity-product wrench V x* (M V) of a rigid body with
+// spatial inertia M moving with twist V (both about one point, seen by one
+// frame): the Coriolis and centripetal part of Newton-Euler's
+// F = M A + V x* (M V). For a body spinning about a principal axis through its
+// centre of mass it is zero; for a flywheel spinning off-axis it is the
+// gyroscopic moment.
+inline Vec6 inertial_wrench(const RigidBodyInertia& M, const Vec6& V) noexcept {
+  const Vec3 w = V.head<3>(), v = V.tail<3>();
+  // The momentum M V: angular L = I w + h x v, linear p = m v - h x w.
+  const Vec3 L = M.I * w + M.h.cross(v);
+  const Vec3 p = M.m * v - M.h.cross(w);
+  Vec6 F;
+  F.head<3>() = w.cross(L) + v.cross(p);
+  F.tail<3>() = w.cross(p);
+  return F;
+}
 // AddVelocityTwist: V_CA = V_BA + V_CB (twists composed along B), all three at
 // one reference point and seen by one frame.
 inline Vec6 add_velocity_twist(const Vec6& V_BA, const Vec6& V_CB) noexcept {

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <span>
 
 namespace mospec::runtime {
 
@@ -40,6 +41,26 @@ struct Pose {
   // p_AoQ_A from p_BoQ_B.
   Vec3 apply(const Vec3& p_BoQ_B) const { return p + R * p_BoQ_B; }
 };
+
+// A rigid body's inertia about a reference point Po, seen by a frame A
+// (Featherstone's ten parameters): the mass m, the first moment of mass
+// h = m p_PoBcm_A, and the rotational inertia I_Po_A about Po (not about the
+// centre of mass). Angular first, its spatial inertia is [I_Po, [h]x; [h]x^T, m 1].
+struct RigidBodyInertia {
+  double m = 0.0;
+  Vec3 h = Vec3::Zero();
+  Mat3 I = Mat3::Zero();
+};
+
+// From the IR's ten values: m; h; Ixx, Iyy, Izz, Ixy, Ixz, Iyz (the tensor's
+// entries, as URDF writes them: I = [Ixx Ixy Ixz; Ixy Iyy Iyz; Ixz Iyz Izz]).
+inline RigidBodyInertia rigid_body_inertia(std::span<const double, 10> v) {
+  RigidBodyInertia M;
+  M.m = v[0];
+  M.h = Vec3(v[1], v[2], v[3]);
+  M.I << v[4], v[7], v[8], v[7], v[5], v[9], v[8], v[9], v[6];
+  return M;
+}
 
 inline Mat3 skew(const Vec3& w) {
   Mat3 S;

@@ -453,6 +453,10 @@ inline ir::Program operators_program(SourceFiles& files) {
         case T::Wrench:
           in.push_back(b.datum(name, kind.in[i].type, {a, -a, 0.5, 1.0 - a, 2.0 * a, -0.25}));
           break;
+        case T::Inertia:  // a 1.5 kg body, its centre of mass off the reference point
+          in.push_back(b.datum(name, T::Inertia,
+                               {1.5, 0.03, -0.02, 0.15, 0.04, 0.05, 0.01, 0.001, -0.002, 0.003}));
+          break;
         default:
           throw std::logic_error("operators_program: no constant for an input of " +
                                  std::string(kind.name));

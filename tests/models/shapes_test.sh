@@ -199,7 +199,7 @@ done
 # registry test ir_operators_test checks each has a case here or above).
 kinds="geometry/spatial-relations.ttl geometry/spatial-operators.ttl newtonian-rigid-body-dynamics/operators.ttl"
 good operator-kinds "$kinds"
-bad operator-kinds "$kinds" 12 \
+bad operator-kinds "$kinds" 13 \
   '<https://ex.org/dist-bad>: value is not an instance of .*spatial-relations#Pose' \
   '<https://ex.org/dir-bad>: fewer than 1 value .*spatial-operators#direction' \
   '<https://ex.org/yaw-bad>: an angle around an axis names exactly one of the axes x, y, z' \
@@ -211,7 +211,8 @@ bad operator-kinds "$kinds" 12 \
   '<https://ex.org/addw-bad>: value is not an instance of .*structural-entities#Wrench' \
   '<https://ex.org/inv-bad>: exactly one output wrench \(to\)' \
   '<https://ex.org/copy-bad>: exactly one output wrench \(to\)' \
-  '<https://ex.org/acc-bad>: mospec accumulates single wrenches'
+  '<https://ex.org/acc-bad>: mospec accumulates single wrenches' \
+  '<https://ex.org/inertial-bad>: an inertial wrench reads exactly one rigid-body inertia that states'
 
 # geometry/spatial-operators.ttl is exactly the family files' shapes: its text
 # after the prefixes is theirs, concatenated in the order above.
@@ -228,7 +229,7 @@ done
 # shapes (wrench, add, rotate, transform, and the operators no scenario uses:
 # rotate-distal, assign, accumulate): sc1 lists wrench, add and transform,
 # sc2 wrench and rotate, so that --strict finds no unused shape in either.
-dyn_families="wrench add rotate transform rotate-distal assign accumulate"
+dyn_families="wrench add rotate transform rotate-distal assign accumulate inertia"
 if diff <(body "$mm/newtonian-rigid-body-dynamics/operators.ttl") \
         <(for f in $dyn_families; do body "$mm/newtonian-rigid-body-dynamics/operators/$f.ttl"; done) > "$out"; then
   echo "ok   newtonian-rigid-body-dynamics/operators.ttl = its per-operator files"

@@ -219,6 +219,52 @@ TEST(WrenchAndTwistAlgebra, AddInvertAssign) {
   EXPECT_DOUBLE_EQ(power(V, invert_wrench(F1)), -power(V, F1));
 }
 
+// InertialWrench is V x* (M V). Checked against the 6x6 form (the spatial
+// force cross product times spatial_inertia), and on two bodies whose answer
+// is known without algebra.
+TEST(InertialWrench, IsTheVelocityProductOfNewtonEuler) {
+  Random r(11);
+  for (int k = 0; k < 50; ++k) {
+    const double m = r.uniform(0.1, 5.0);
+    const Vec3 c = r.vec3(0.3);
+    const Vec3 d(r.uniform(0.01, 0.1), r.uniform(0.01, 0.1), r.uniform(0.01, 0.1));
+    const Mat3 I_cm = d.asDiagonal();
+    const Mat6 I6 = spatial_inertia(m, c, I_cm);
+    RigidBodyInertia M;
+    M.m = m;
+    M.h = m * c;
+    M.I = I6.topLeftCorner<3, 3>();
+    const Vec6 V = r.vec6();
+    Mat6 crf = Mat6::Zero();  // V x*: [[w]x, [v]x; 0, [w]x]
+    crf.topLeftCorner<3, 3>() = skew(V.head<3>());
+    crf.topRightCorner<3, 3>() = skew(V.tail<3>());
+    crf.bottomRightCorner<3, 3>() = skew(V.head<3>());
+    EXPECT_LT((inertial_wrench(M, V) - crf * (I6 * V)).norm(), 1e-12);
+  }
+  // A body spinning about a principal axis through its centre of mass needs
+  // no wrench to keep spinning.
+  RigidBodyInertia top;
+  top.m = 2.0;
+  top.I = Vec3(0.1, 0.1, 0.3).asDiagonal();
+  Vec6 spin;
+  spin << 0, 0, 5.0, 0, 0, 0;
+  EXPECT_LT(inertial_wrench(top, spin).norm(), 1e-15);
+  // A point mass m at c, swung about the z axis through the reference point
+  // at rate w: the force that keeps it on its circle is centripetal,
+  // -m w^2 c, with the moment c x f = 0 about the axis point.
+  const double mass = 3.0, w = 2.0;
+  const Vec3 at(0.5, 0.0, 0.0);
+  RigidBodyInertia point;
+  point.m = mass;
+  point.h = mass * at;
+  point.I = mass * skew(at) * skew(at).transpose();
+  Vec6 swing;
+  swing << 0, 0, w, 0, 0, 0;
+  const Vec6 F = inertial_wrench(point, swing);
+  EXPECT_LT((F.tail<3>() - (-mass * w * w * at)).norm(), 1e-12);
+  EXPECT_LT(F.head<3>().norm(), 1e-12);
+}
+
 TEST(PlanarAngle, IsSignedAboutTheNormal) {
   double a = 0;
   ASSERT_TRUE(planar_angle_from_directions(Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), a));
