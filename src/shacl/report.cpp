@@ -130,6 +130,20 @@ std::string result_component_iri(const Report& report, const Result& r) {
   return std::string(component_iri(r.component));
 }
 
+std::string_view diagnostic_level(Level level) {
+  switch (level) {
+    case Level::Info:
+      return "info";
+    case Level::Warning:
+      return "warning";
+    case Level::Violation:
+      return "error";
+    case Level::Other:
+      return "other";
+  }
+  return "error";
+}
+
 std::string_view level_name(Level level) {
   switch (level) {
     case Level::Info:
@@ -225,26 +239,25 @@ std::string to_text(const Report& report, const SourceFiles* data_files,
   const rdf::TermTable& t = report.terms;
   std::string out;
   for (const Result& r : report.results) {
+    // The project's one diagnostic shape: the finding at the model's node,
+    // then a note at the shape that fired.
     std::string where = location(data_files, r.focus_loc);
     out += where.empty() ? "mospec" : where;
     out += ": ";
     out += r.level == Level::Other ? rdf::to_ntriples(t, r.severity)
-                                   : std::string(level_name(r.level));
+                                   : std::string(diagnostic_level(r.level));
     out += ": " + rdf::to_ntriples(t, r.focus) + ": " + pick_message(report, r);
-    out += " [shape ";
-    if (t[r.shape].is_iri()) {
-      out += rdf::to_ntriples(t, r.shape);
-    } else {
-      out += "[]";
-      std::string at = location(shape_files, r.shape_loc);
-      if (!at.empty()) out += " at " + at;
-    }
-    out += ", ";
+    out += " [";
     out += r.component == Component::SparqlComponent ? rdf::to_ntriples(t, r.component_node)
                                                      : std::string(component_name(r.component));
     if (r.path) out += ", path " + path_to_sparql(t, *r.path);
     if (!r.value.is_any()) out += ", value " + rdf::to_ntriples(t, r.value);
     out += "]\n";
+    std::string at = location(shape_files, r.shape_loc);
+    out += at.empty() ? "mospec" : at;
+    out += ": note: the shape that fired: ";
+    out += t[r.shape].is_iri() ? rdf::to_ntriples(t, r.shape) : "[]";
+    out += "\n";
   }
   auto plural = [](size_t n, std::string_view one, std::string_view many) {
     return std::to_string(n) + " " + std::string(n == 1 ? one : many);

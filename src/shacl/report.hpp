@@ -44,6 +44,9 @@ class Report {
 };
 
 std::string_view level_name(Level);  // "violation", "warning", "info", "other"
+// As the text report writes it, in the project's diagnostic shape
+// (file:line:col: error: ...): "error", "warning", "info", "other".
+std::string_view diagnostic_level(Level);
 
 // The IRI of a result's sh:sourceConstraintComponent.
 std::string result_component_iri(const Report& report, const Result& result);
@@ -52,8 +55,10 @@ std::string result_component_iri(const Report& report, const Result& result);
 // standard prefixes, byte-for-byte deterministic for a sorted report.
 std::string to_turtle(const Report& report);
 
-// One line per result,
-//   file:line:col: <severity>: <focus>: <message> [shape <S>, <component>, path <P>, value <V>]
+// Two lines per result, in the project's diagnostic shape: the finding at the
+// focus node, then a note at the shape that fired,
+//   file:line:col: error|warning|info: <focus>: <message> [<component>, path <P>, value <V>]
+//   shapes.ttl:line:col: note: the shape that fired: <S>|[]
 // then "shacl: N violations, M warnings, K infos" (plus other severities when
 // present). `data_files` names Result::focus_loc, `shape_files` Result::shape_loc.
 std::string to_text(const Report& report, const SourceFiles* data_files,

@@ -15,14 +15,14 @@ if [ -f models/sc1.json ] && [ -d comp-rob2b/metamodels ]; then
   for case in sc0a-right-arm:1 sc0b-dual-arm:2 sc1:2 sc2:2; do
     app=${case%%:*}; n=${case##*:}
     expect "upstream-$app" 1 '' -- "$mospec" validate "models/$app.json"
-    results=$(grep -c ': violation: ' "$work/stdout.txt")
-    xone=$(grep -c ": violation: <https://secorolab.github.io/models/demo/pose-[a-z]*-platform-shoulder>: .*\[shape $dcm, sh:XoneConstraintComponent" "$work/stdout.txt")
+    results=$(grep -c ': error: ' "$work/stdout.txt")
+    xone=$(grep -A1 ": error: <https://secorolab.github.io/models/demo/pose-[a-z]*-platform-shoulder>: .*\[sh:XoneConstraintComponent" "$work/stdout.txt" | grep -c "note: the shape that fired: $dcm")
     [ "$results" -eq "$n" ] && [ "$xone" -eq "$n" ] || fail "upstream-$app: $results results, $xone Xone on DirectionCosineXYZ; expected $n"
     stdout_has "upstream-$app" "^shacl: $n violations?, 0 warnings, 0 infos$"
   done
   expect upstream-sc1-location 1 '' -- "$mospec" validate models/sc1.json
-  stdout_has upstream-sc1-location '^models/01-right-arm/00-misc\.json:59:20: violation: <https://secorolab\.github\.io/models/demo/pose-rightarm-platform-shoulder>: '
-  stdout_has upstream-sc1-location '^models/02-left-arm/00-misc\.json:59:20: violation: <https://secorolab\.github\.io/models/demo/pose-leftarm-platform-shoulder>: '
+  stdout_has upstream-sc1-location '^models/01-right-arm/00-misc\.json:59:20: error: <https://secorolab\.github\.io/models/demo/pose-rightarm-platform-shoulder>: '
+  stdout_has upstream-sc1-location '^models/02-left-arm/00-misc\.json:59:20: error: <https://secorolab\.github\.io/models/demo/pose-leftarm-platform-shoulder>: '
   cp "$work/stdout.txt" "$work/sc1-first.txt"
   expect upstream-sc1-deterministic 1 '' -- "$mospec" validate models/sc1.json
   cmp -s "$work/stdout.txt" "$work/sc1-first.txt" || fail "upstream-sc1-deterministic: two runs differ"
@@ -175,10 +175,11 @@ expect no-shapes 2 '^mospec: error: no shapes to validate against' -- "$mospec" 
 expect conforms 0 '' -- "$mospec" validate good-model.json --shapes shapes/person.ttl
 stdout_has conforms '^shacl: 0 violations, 0 warnings, 0 infos$'
 expect violation 1 '' -- "$mospec" validate model.json --shapes shapes/person.ttl
-stdout_has violation '^model\.json:4:[0-9]+: violation: <http://example\.org/bob>: .*\[shape \[\] at shapes/person\.ttl:4:[0-9]+, sh:MinCountConstraintComponent, path <http://example\.org/name>\]$'
+stdout_has violation '^model\.json:4:[0-9]+: error: <http://example\.org/bob>: .*\[sh:MinCountConstraintComponent, path <http://example\.org/name>\]$'
+stdout_has violation '^shapes/person\.ttl:4:[0-9]+: note: the shape that fired: \[\]$'
 stdout_has violation '^shacl: 1 violation, 0 warnings, 0 infos$'
 expect jsonld-shapes 1 '' -- "$mospec" validate model.json --shapes shapes/person.jsonld
-stdout_has jsonld-shapes '^model\.json:4:[0-9]+: violation: <http://example\.org/bob>: .*sh:MinCountConstraintComponent'
+stdout_has jsonld-shapes '^model\.json:4:[0-9]+: error: <http://example\.org/bob>: .*sh:MinCountConstraintComponent'
 expect two-shape-files 1 '' -- "$mospec" validate model.json --shapes shapes/person.ttl --shapes shapes/warning.ttl
 stdout_has two-shape-files '^shacl: 1 violation, 1 warning, 0 infos$'
 expect warning-only 0 '' -- "$mospec" validate model.json --shapes shapes/warning.ttl
@@ -190,7 +191,7 @@ expect unused-strict 1 '^shapes/unused\.ttl:3:[0-9]+: warning: shape <http://exa
 expect undefined-type-strict 1 '^undefined-type\.json:2:[0-9]+: warning: type <http://example\.org/Robot> is defined by no loaded JSON-LD context or shape' -- "$mospec" validate --strict undefined-type.json --shapes shapes/person.ttl
 expect defined-by-shape-strict 0 '' -- "$mospec" validate --strict good-model.json --shapes shapes/person.ttl
 expect app 1 '' -- "$mospec" validate app.json
-stdout_has app '^\./model\.json:4:[0-9]+: violation: <http://example\.org/bob>|^model\.json:4:[0-9]+: violation: <http://example\.org/bob>'
+stdout_has app '^\./model\.json:4:[0-9]+: error: <http://example\.org/bob>|^model\.json:4:[0-9]+: error: <http://example\.org/bob>'
 expect app-missing-shape-file 2 "^app-missing\.json:[0-9]+:[0-9]+: error: cannot read shape file 'shapes/missing\.ttl'.*No such file" -- "$mospec" validate app-missing.json
 expect app-unmapped-shape-file 2 '^app-unmapped\.json:[0-9]+:[0-9]+: error: shape file <https://elsewhere\.example/person\.ttl> is not mapped to a local path' -- "$mospec" validate app-unmapped.json
 expect app-map-flag 1 '' -- "$mospec" validate app-unmapped.json --map https://elsewhere.example/=shapes

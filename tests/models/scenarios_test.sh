@@ -47,8 +47,8 @@ if [ -f models/sc1.json ]; then
   sed -i 's/"pose": "pose-rightarm-shoulder-ee",/"pose": ["pose-rightarm-shoulder-ee", "pose-leftarm-shoulder-ee"],/' \
     "$work/models/sc1/02-map.json"
   (cd "$work" && "$mospec" validate models/sc1.json --strict > out 2>&1)
-  if [ $? -eq 1 ] && grep -q 'violation: <[^>]*pose-to-dist-rightarm>' "$work/out" \
-     && grep -q 'violation: <[^>]*pose-to-dir-rightarm>' "$work/out"; then
+  if [ $? -eq 1 ] && grep -q 'error: <[^>]*pose-to-dist-rightarm>' "$work/out" \
+     && grep -q 'error: <[^>]*pose-to-dir-rightarm>' "$work/out"; then
     echo "ok   sc1 with a two-pose distance and direction operator is rejected"
   else fail "sc1's distance/direction operators with two poses were not rejected"; fi
 fi
@@ -70,8 +70,8 @@ fi
 rm -rf "$work/models" && cp -r models "$work/"
 sed -i '/"@id": "pos-rightarm-ee-x-contact-lost"/,/}/ s/"unit": "M"/"unit": "MilliM"/' "$work/models/sc0a/00-misc.json"
 (cd "$work" && "$mospec" validate models/sc0a.json --strict > out 2>&1)
-if [ $? -eq 1 ] && grep -q 'violation: <[^>]*cstr-pos-rightarm-contact-lost>: the threshold has a unit the constrained quantity does not have' "$work/out" \
-   && grep -q "violation: <[^>]*mon-rightarm-contact-lost>: a threshold of the watched constraint has a unit the monitor's error signal does not have" "$work/out"; then
+if [ $? -eq 1 ] && grep -q 'error: <[^>]*cstr-pos-rightarm-contact-lost>: the threshold has a unit the constrained quantity does not have' "$work/out" \
+   && grep -q "error: <[^>]*mon-rightarm-contact-lost>: a threshold of the watched constraint has a unit the monitor's error signal does not have" "$work/out"; then
   echo "ok   sc0a with a contact-lost threshold in mm is rejected"
 else fail "sc0a's contact-lost threshold in mm was not rejected"; fi
 
@@ -79,7 +79,7 @@ else fail "sc0a's contact-lost threshold in mm was not rejected"; fi
 rm -rf "$work/models" && cp -r models "$work/"
 sed -i 's/"unit": "SEC"/"unit": "MIN"/' "$work/models/common/clock.json"
 (cd "$work" && "$mospec" validate models/sc0a.json --strict > out 2>&1)
-if [ $? -eq 1 ] && grep -q "violation: <[^>]*clock-controller>: a clock's time is in seconds" "$work/out"; then
+if [ $? -eq 1 ] && grep -q "error: <[^>]*clock-controller>: a clock's time is in seconds" "$work/out"; then
   echo "ok   a clock whose time is in minutes is rejected"
 else fail "a clock whose time is in minutes was not rejected"; fi
 
@@ -89,7 +89,7 @@ if [ -f models/sc1.json ]; then
   rm -rf "$work/models" && cp -r models "$work/"
   sed -i 's/"cstr-time-sc1-rightarm-timeout"/"cstr-frc-rightarm-ee-contact"/' "$work/models/sc1/04-motion-specification.json"
   (cd "$work" && "$mospec" validate models/sc1.json --strict > out 2>&1)
-  if [ $? -eq 1 ] && grep -q 'violation: <[^>]*cstr-hdl-sc1-rightarm>: a pre- or post-condition (when, until) must be evaluated by an error evaluator.*cstr-frc-rightarm-ee-contact' "$work/out"; then
+  if [ $? -eq 1 ] && grep -q 'error: <[^>]*cstr-hdl-sc1-rightarm>: a pre- or post-condition (when, until) must be evaluated by an error evaluator.*cstr-frc-rightarm-ee-contact' "$work/out"; then
     echo "ok   sc1 ending on a constraint without an error evaluator is rejected"
   else fail "sc1 with an until constraint evaluated by no error evaluator was not rejected"; fi
 fi

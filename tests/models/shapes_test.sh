@@ -259,9 +259,9 @@ if [ -d "$upstream/models" ]; then
     IFS=: read -r name n nu <<< "$app"
     "$mospec" validate "models/$name.json" --shapes "$mm/geometry/coordinates.ttl" \
       --shapes "$mm/task/constraint.ttl" --shapes "$mm/task/solver-specification.ttl" > "$out" 2>/dev/null
-    total=$(grep -c 'violation:' "$out"); xone=$(grep -c 'violation:.*XoneConstraintComponent' "$out")
-    frc=$(grep -c 'violation: <https://secorolab.github.io/models/demo/spec-frc-[a-z]*-ee-z>: nothing produces the applied wrench' "$out")
-    nounit=$(grep -c 'violation: .*cstr-ang-[a-z]*-shoulder-ee-vertical>: the constrained quantity has no unit' "$out")
+    total=$(grep -c ': error: ' "$out"); xone=$(grep -c 'error:.*XoneConstraintComponent' "$out")
+    frc=$(grep -c 'error: <https://secorolab.github.io/models/demo/spec-frc-[a-z]*-ee-z>: nothing produces the applied wrench' "$out")
+    nounit=$(grep -c 'error: .*cstr-ang-[a-z]*-shoulder-ee-vertical>: the constrained quantity has no unit' "$out")
     if [ "$xone" -eq "$n" ] && [ "$frc" -eq "$n" ] && [ "$nounit" -eq "$nu" ] && [ "$total" -eq $((2 * n + nu)) ]; then
       echo "ok   upstream $name: $n sh:xone, $n unproduced-wrench and $nu undefined-quantity finding(s), nothing else"
     else
@@ -273,9 +273,9 @@ if [ -d "$upstream/models" ]; then
   for app in sc0a-right-arm:3:0:1 sc0b-dual-arm:7:0:2 sc1:5:4:2 sc2:5:4:2; do
     IFS=: read -r name nv nw ng <<< "$app"
     "$mospec" validate "models/$name.json" --map "https://comp-rob2b.github.io/metamodels/=$mm" > "$out" 2>/dev/null
-    rot=$(grep -c "violation: <https://secorolab.github.io/models/demo/rot-platform-to-rightarm-ee>: the rotated" "$out")
+    rot=$(grep -c "error: <https://secorolab.github.io/models/demo/rot-platform-to-rightarm-ee>: the rotated" "$out")
     scope=$(grep -c 'warning: .*the handler evaluates a constraint that is not part of its motion' "$out")
-    grav=$(grep -c 'violation: .*gravity is an acceleration: its unit must be M-PER-SEC2' "$out")
+    grav=$(grep -c 'error: .*gravity is an acceleration: its unit must be M-PER-SEC2' "$out")
     if grep -q "^shacl: $nv violations, $nw warnings, 0 infos" "$out" && [ "$rot" -eq 2 ] && [ "$grav" -eq "$ng" ] \
        && [ "$scope" -eq "$nw" ]; then
       echo "ok   upstream $name with mospec's metamodels: $nv violation(s), $nw warning(s) as documented"

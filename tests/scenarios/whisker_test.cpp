@@ -48,7 +48,6 @@ constexpr double kDuration = 15.0;  // [s] simulated
 constexpr double kHold = 8.0;       // [s] from here on the criteria must hold
 constexpr double kPi = 3.14159265358979323846;
 
-
 // A number of the summary's top level ("key": value).
 double summary_number(const std::string& json, const std::string& key) {
   const std::regex re("\"" + key + "\": (-?[0-9.eE+-]+)");
@@ -262,7 +261,7 @@ TEST_F(Whisker, DistanceControllersWithoutGainsAreRefused) {
   if (g_app != "sc1") GTEST_SKIP() << "checked once, on SC1";
   expect_refused(
       dir_ / "no-gains", "sed -i '/-gain\"/d' models/sc1/05-distance-controller.json",
-      "models/sc1/05-distance-controller\\.json:[0-9]+:[0-9]+: violation: "
+      "models/sc1/05-distance-controller\\.json:[0-9]+:[0-9]+: error: "
       "<[^>]*ctrl-dist-rightarm-shoulder-ee>: a PID controller has exactly one proportional gain");
 }
 
@@ -272,7 +271,7 @@ TEST_F(Whisker, ADistanceThresholdInMillimetresIsRefused) {
                  "sed -i '/\"@id\": \"dist-rightarm-shoulder-ee-upper\"/,/}/ s/\"unit\": "
                  "\"M\"/\"unit\": \"MilliM\"/' "
                  "models/sc1/00-misc.json",
-                 "models/sc1/03-constraints\\.json:[0-9]+:[0-9]+: violation: "
+                 "models/sc1/03-constraints\\.json:[0-9]+:[0-9]+: error: "
                  "<[^>]*cstr-dist-rightarm-shoulder-ee>: "
                  "reference value or threshold has a unit the constrained quantity does not have");
 }

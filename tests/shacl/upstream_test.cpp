@@ -84,7 +84,7 @@ TEST_P(UpstreamShapes, OnlyTheListVersusCountMismatchIsReported) {
   }
   if (GetParam() == "sc1") {
     EXPECT_NE(
-        text.find("models/01-right-arm/00-misc.json:59:20: violation: "
+        text.find("models/01-right-arm/00-misc.json:59:20: error: "
                   "<https://secorolab.github.io/models/demo/pose-rightarm-platform-shoulder>"),
         std::string::npos)
         << text;
