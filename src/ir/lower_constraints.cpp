@@ -10,7 +10,11 @@ namespace mospec::ir::lowering {
 void lower_evaluators(State& st) {
   const std::string ch = "task/constraint-handler";
   const std::string cs = "task/constraint";
-  std::vector<TermId> evals = st.instances(vocab(ch, "ErrorEvaluator"));
+  // An evaluator that is also an assignment is lowered once, as an assignment
+  // (its `error` is refused by lower_properties.cpp).
+  std::vector<TermId> evals;
+  for (TermId e : st.instances(vocab(ch, "ErrorEvaluator")))
+    if (!st.has_type(e, vocab(ch, "AssignmentEvaluator"))) evals.push_back(e);
   for (TermId a : st.instances(vocab(ch, "AssignmentEvaluator"))) evals.push_back(a);
   for (TermId e : evals) {
     st.pending_iri = st.str(e);

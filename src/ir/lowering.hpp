@@ -219,6 +219,8 @@ struct State {
 };
 
 // --- the passes, in the order lower.cpp runs them ---------------------------
+// lower_properties.cpp
+void refuse_unread_properties(State& st);
 // lower_arms.cpp
 void lower_clocks(State& st);
 void lower_arms(State& st);
