@@ -115,6 +115,11 @@ std::string advice(std::string_view type, std::string_view property) {
   if (type == "EdgeTriggeredMonitor" && property == "flag")
     return "an edge-triggered monitor emits an event; for a flag make it a "
            "LevelTriggeredMonitor";
+  if (type == "GuardedMotion")
+    return "a motion starts when its `when` constraints hold and ends when one of its `until` "
+           "constraints does (a timeout is a GreaterThanConstraint on the clock's time in "
+           "`until`); remove `" +
+           std::string(property) + "`";
   if (type == "EqualityConstraint" && property == "threshold")
     return "an equality constraint has no tolerance; for a band, make it a BilateralConstraint "
            "with a lower-threshold and an upper-threshold";
