@@ -115,6 +115,10 @@ std::string advice(std::string_view type, std::string_view property) {
   if (type == "EdgeTriggeredMonitor" && property == "flag")
     return "an edge-triggered monitor emits an event; for a flag make it a "
            "LevelTriggeredMonitor";
+  if (property.find("priorit") != std::string_view::npos)
+    return "a motion driver's priority is the level of the solver's prioritization-hierarchy "
+           "that lists it (mospec honours one level); remove `" +
+           std::string(property) + "`";
   if (type == "GuardedMotion")
     return "a motion starts when its `when` constraints hold and ends when one of its `until` "
            "constraints does (a timeout is a GreaterThanConstraint on the clock's time in "
