@@ -398,13 +398,15 @@ void lower_arm(State& st, TermId solver) {
 
 namespace {
 
+// The tip's spatial-acceleration components, in ACHD's order, as messages name them.
+constexpr const char* kComponent[6] = {"angular x", "angular y", "angular z",
+                                       "linear x",  "linear y",  "linear z"};
+
 // An acceleration constraint's energy is what a controller asks of one tip
 // direction: it must be an acceleration energy, and a controller of a linear
 // quantity (M, M-PER-SEC) drives a linear direction, one of an angle an
 // angular one. Known once controllers are lowered.
 void check_acceleration_energies(State& st, const ArmSolver& arm) {
-  static const char* const kComponent[6] = {"angular x", "angular y", "angular z",
-                                            "linear x",  "linear y",  "linear z"};
   for (const AccelerationConstraint& ac : arm.acceleration_constraints) {
     const Data& energy = st.program.data[static_cast<size_t>(ac.energy)];
     const TermId constraint = st.term(ac.iri);
@@ -445,8 +447,6 @@ void check_acceleration_energies(State& st, const ArmSolver& arm) {
 // lowered: a wrench assembled by views writes exactly their components (a
 // wrench an operator computes may point anywhere and is not judged here).
 void check_driver_directions(State& st) {
-  static const char* const kComponent[6] = {"angular x", "angular y", "angular z",
-                                            "linear x",  "linear y",  "linear z"};
   for (const ArmSolver& arm : st.program.arms) {
     check_acceleration_energies(st, arm);
     // One wrench applied by two Cartesian forces would push twice.
