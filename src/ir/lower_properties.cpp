@@ -135,12 +135,6 @@ std::string advice(std::string_view type, std::string_view property) {
   return "remove it";
 }
 
-std::string article(std::string_view word) {
-  return std::string_view("aeiouAEIOU").find(word.empty() ? 'x' : word[0]) == std::string_view::npos
-             ? "a "
-             : "an ";
-}
-
 }  // namespace
 
 void refuse_unread_properties(State& st) {
