@@ -54,6 +54,7 @@ struct PassInfo {
 
 // Lowering's passes, in order: what each lowers is in its name.
 const PassInfo kPasses[] = {
+    {"properties", &lowering::refuse_unread_properties},
     {"clocks", &lowering::lower_clocks},
     {"arm-solvers", &lowering::lower_arms},
     {"operators", &lowering::lower_operators},

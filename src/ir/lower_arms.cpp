@@ -396,15 +396,70 @@ void lower_arm(State& st, TermId solver) {
   st.add_step(std::move(solve));
 }
 
+namespace {
+
+// The tip's spatial-acceleration components, in ACHD's order, as messages name them.
+constexpr const char* kComponent[6] = {"angular x", "angular y", "angular z",
+                                       "linear x",  "linear y",  "linear z"};
+
+// An acceleration constraint's energy is what a controller asks of one tip
+// direction: it must be an acceleration energy, and a controller of a linear
+// quantity (M, M-PER-SEC) drives a linear direction, one of an angle an
+// angular one. Known once controllers are lowered.
+void check_acceleration_energies(State& st, const ArmSolver& arm) {
+  for (const AccelerationConstraint& ac : arm.acceleration_constraints) {
+    const Data& energy = st.program.data[static_cast<size_t>(ac.energy)];
+    const TermId constraint = st.term(ac.iri);
+    if (!energy.unit.empty() && energy.unit != "N-M2-PER-SEC2") {
+      st.error(constraint, "wrong-unit",
+               "the acceleration constraint '" + ac.iri + "' takes '" + energy.iri +
+                   "' as its acceleration energy, but it is in '" + energy.unit +
+                   "'; an acceleration energy is in N-M2-PER-SEC2 (a controller's output meant "
+                   "for a force is applied through a wrench and a CartesianForceSpecification)");
+      continue;
+    }
+    const auto it = st.producer.find(ac.energy);
+    if (it == st.producer.end()) continue;
+    const Step& controller = st.steps[static_cast<size_t>(it->second)];
+    if (controller.kind != StepKind::Controller || controller.in.empty()) continue;
+    const Data& signal = st.program.data[static_cast<size_t>(controller.in[0])];
+    const bool linear = signal.unit == "M" || signal.unit == "M-PER-SEC";
+    const bool angular = signal.unit == "RAD" || signal.unit == "RAD-PER-SEC";
+    if ((ac.component < 3 && linear) || (ac.component >= 3 && angular)) {
+      st.error(constraint, "subspace-mismatch",
+               "the acceleration constraint '" + ac.iri + "' drives the " +
+                   kComponent[ac.component] + " acceleration of '" + arm.iri +
+                   "', but its energy '" + energy.iri + "' comes from '" + controller.iri +
+                   "', which controls '" + signal.iri + "' (in '" + signal.unit + "', " +
+                   (linear ? "a linear" : "an angular") + " quantity); constrain the " +
+                   (linear ? "linear" : "angular") +
+                   "-acceleration subspace, or feed it a controller of " +
+                   (linear ? "an angular" : "a linear") + " quantity");
+    }
+  }
+}
+
+}  // namespace
+
 // A Cartesian force on the constrained segment whose view writes a component
 // an acceleration constraint also drives: ACHD satisfies the constraint and
 // cancels that component of the force, silently. Known once views are
 // lowered: a wrench assembled by views writes exactly their components (a
 // wrench an operator computes may point anywhere and is not judged here).
 void check_driver_directions(State& st) {
-  static const char* const kComponent[6] = {"angular x", "angular y", "angular z",
-                                            "linear x",  "linear y",  "linear z"};
   for (const ArmSolver& arm : st.program.arms) {
+    check_acceleration_energies(st, arm);
+    // One wrench applied by two Cartesian forces would push twice.
+    std::map<int, const CartesianForce*> applied_by;
+    for (const CartesianForce& cf : arm.cartesian_forces) {
+      auto [it, fresh] = applied_by.emplace(cf.wrench, &cf);
+      if (fresh) continue;
+      st.error(st.term(cf.iri), "driven-twice",
+               "the Cartesian forces '" + it->second->iri + "' (" +
+                   st.place(st.term(it->second->iri)) + ") and '" + cf.iri + "' both apply '" +
+                   st.program.data[static_cast<size_t>(cf.wrench)].iri + "' to '" + arm.iri +
+                   "', so ACHD would push with it twice; apply each wrench once");
+    }
     const int last = arm.chain.size() - 1;
     for (const CartesianForce& cf : arm.cartesian_forces) {
       if (cf.segment != last || !arm.tip_is_last_segment) continue;

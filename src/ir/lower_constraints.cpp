@@ -10,7 +10,11 @@ namespace mospec::ir::lowering {
 void lower_evaluators(State& st) {
   const std::string ch = "task/constraint-handler";
   const std::string cs = "task/constraint";
-  std::vector<TermId> evals = st.instances(vocab(ch, "ErrorEvaluator"));
+  // An evaluator that is also an assignment is lowered once, as an assignment
+  // (its `error` is refused by lower_properties.cpp).
+  std::vector<TermId> evals;
+  for (TermId e : st.instances(vocab(ch, "ErrorEvaluator")))
+    if (!st.has_type(e, vocab(ch, "AssignmentEvaluator"))) evals.push_back(e);
   for (TermId a : st.instances(vocab(ch, "AssignmentEvaluator"))) evals.push_back(a);
   for (TermId e : evals) {
     st.pending_iri = st.str(e);
@@ -199,6 +203,50 @@ void lower_monitors(State& st) {
   }
 }
 
+namespace {
+
+// A pre- or post-condition that cannot do what its place says: an equality
+// (held only at an instant: the tolerance is 0), a less-than on the clock's
+// time as a post-condition (it holds from the start), a constraint that is
+// both a pre- and a post-condition (the motion would end as it starts).
+void check_guard(State& st, TermId motion, const std::string& prop, TermId c,
+                 const Step& evaluate) {
+  const std::string mot = "task/motion-specification";
+  const std::string where =
+      "the motion '" + st.str(motion) + "' lists '" + st.str(c) + "' in `" + prop + "`";
+  const SourceLoc at = st.where(motion, vocab(mot, prop), c);
+  if (evaluate.constraint.kind == runtime::ConstraintKind::Equality) {
+    st.error(at, "invalid-guard",
+             where +
+                 "; an equality holds only while its quantity equals the reference "
+                 "exactly (mospec's tolerance is 0), so the " +
+                 (prop == "when" ? "motion would almost never start" : "motion would not end") +
+                 "; guard with a BilateralConstraint (a band around the reference) or a "
+                 "greater-/less-than constraint");
+    return;
+  }
+  const auto q = st.object(c, vocab("task/constraint", "quantity"));
+  if (prop == "until" && evaluate.constraint.kind == runtime::ConstraintKind::LessThan && q &&
+      st.is_clock_time(*q)) {
+    st.error(at, "invalid-guard",
+             where + "; a less-than constraint on the clock's time '" + st.str(*q) +
+                 "' holds from the first tick (the time starts at 0), so the motion would end as "
+                 "it starts; a timeout is a GreaterThanConstraint (time > threshold)");
+    return;
+  }
+  if (prop == "until") {
+    for (TermId w : st.objects(motion, vocab(mot, "when"))) {
+      if (w != c) continue;
+      st.error(at, "invalid-guard",
+               where +
+                   " and in `when`: the motion would start and end in the same tick and "
+                   "never run; a post-condition is what ends the motion, not what starts it");
+    }
+  }
+}
+
+}  // namespace
+
 void lower_handlers(State& st) {
   // The running flags of the motions whose handlers list each controller and
   // evaluator (in order of term, so the program is a function of the model).
@@ -206,6 +254,7 @@ void lower_handlers(State& st) {
   const std::string ch = "task/constraint-handler";
   const std::string mot = "task/motion-specification";
   std::map<uint32_t, int> active_of_motion;
+  std::set<uint32_t> handled;  // motions some handler names
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     st.pending_iri = st.str(h);
     auto m = st.object(h, vocab(ch, "motion"));
@@ -216,6 +265,7 @@ void lower_handlers(State& st) {
                    "task does; name the motion they serve (`motion`)");
       continue;
     }
+    handled.insert(m->index);
     int active = -1;
     if (auto it = active_of_motion.find(m->index); it != active_of_motion.end()) {
       active = it->second;
@@ -231,7 +281,10 @@ void lower_handlers(State& st) {
                          "`, but no evaluator evaluates it");
             continue;
           }
-          if (prop != "while") flags.push_back(st.steps[static_cast<size_t>(it->second)].out[0]);
+          if (prop == "while") continue;
+          const Step& evaluate = st.steps[static_cast<size_t>(it->second)];
+          check_guard(st, *m, prop, c, evaluate);
+          flags.push_back(evaluate.out[0]);
         }
         return flags;
       };
@@ -256,6 +309,14 @@ void lower_handlers(State& st) {
     }
     for (TermId c : st.objects(h, vocab(ch, "controllers"))) flags_of_controller[c].insert(active);
     for (TermId e : st.objects(h, vocab(ch, "evaluators"))) flags_of_evaluator[e].insert(active);
+  }
+  // A motion no handler handles: nothing evaluates its guards, and it never runs.
+  for (TermId m : st.instances(vocab(mot, "GuardedMotion"))) {
+    if (handled.count(m.index)) continue;
+    st.error(m, "unhandled",
+             "no constraint handler handles the motion '" + st.str(m) +
+                 "', so nothing evaluates its guards and it would never run; add a "
+                 "ConstraintHandler whose `motion` is it, listing its evaluators and controllers");
   }
   // Listed by the handlers of several motions: active while any of them runs.
   const auto any_of = [&](TermId entity, const std::set<int>& flags) {

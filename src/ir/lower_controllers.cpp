@@ -13,12 +13,6 @@ namespace mospec::ir::lowering {
 
 namespace {
 
-std::string article(std::string_view word) {
-  return std::string_view("aeiouAEIOU").find(word.empty() ? 'x' : word[0]) == std::string_view::npos
-             ? "a "
-             : "an ";
-}
-
 // The accepted unit combinations, as messages list them:
 // "measured-velocity M-PER-SEC, maximum-velocity M-PER-SEC, ...; or RAD-PER-SEC, ...".
 std::string accepted_units(const ControllerKind& k) {

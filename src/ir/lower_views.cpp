@@ -6,6 +6,33 @@
 
 namespace mospec::ir::lowering {
 
+namespace {
+
+// The unit of component `index` (0-2 angular, 3-5 linear, along x, y, z) of a
+// pose, twist or wrench, and how messages name it.
+const char* component_unit(DataType super, int index) {
+  const bool angular = index < 3;
+  switch (super) {
+    case DataType::Pose:
+      return angular ? "RAD" : "M";
+    case DataType::Twist:
+      return angular ? "RAD-PER-SEC" : "M-PER-SEC";
+    default:
+      return angular ? "N-M" : "N";
+  }
+}
+std::string component_name(DataType super, int index) {
+  static const char* const kAxis[3] = {"x", "y", "z"};
+  const bool angular = index < 3;
+  const std::string part = super == DataType::Pose ? (angular ? "orientation" : "position")
+                           : super == DataType::Twist
+                               ? (angular ? "angular velocity" : "linear velocity")
+                               : (angular ? "torque" : "force");
+  return part + " along " + kAxis[index % 3];
+}
+
+}  // namespace
+
 void lower_views(State& st) {
   const std::string map = "task/map";
   struct ViewInfo {
@@ -50,6 +77,7 @@ void lower_views(State& st) {
   // Direction: a view reads when its superobject is produced, writes when its
   // subobject is. Writes into one superobject become one step.
   std::vector<char> done(views.size(), 0);
+  std::set<size_t> unit_reported;
   for (bool progress = true; progress;) {
     progress = false;
     std::map<uint32_t, std::vector<size_t>> writes;
@@ -59,6 +87,23 @@ void lower_views(State& st) {
       st.pending_iri = st.str(v.view);
       const int super = st.datum(v.super, v.super_type, v.view, "superobject");
       const int sub = st.datum(v.sub, DataType::Scalar, v.view, "subobject");
+      // A component in another unit is another quantity (a velocity written
+      // as a force, a position read as an angle): the view's subspace or the
+      // quantity is wrong.
+      const std::string& unit = st.program.data[static_cast<size_t>(sub)].unit;
+      const char* expected = component_unit(v.super_type, v.index);
+      const bool unit_checked = st.produced(super) || st.produced(sub);
+      if (unit_checked && !unit.empty() && unit != expected && !unit_reported.count(i)) {
+        unit_reported.insert(i);
+        st.error(
+            v.view, "wrong-unit",
+            "the view '" + st.str(v.view) + "' " +
+                (st.produced(super) ? "reads the " : "writes '" + st.str(v.sub) + "' as the ") +
+                component_name(v.super_type, v.index) + " of '" + st.str(v.super) + "'" +
+                (st.produced(super) ? " into '" + st.str(v.sub) + "'" : "") + ", which is in '" +
+                expected + "', but '" + st.str(v.sub) + "' is in '" + unit +
+                "'; check the view's subspace and axis, or use the quantity it means");
+      }
       if (st.produced(super)) {
         Step s;
         s.kind = StepKind::ViewRead;
@@ -82,7 +127,23 @@ void lower_views(State& st) {
       s.iri = st.str(first.super);
       s.name = "assemble_" + local_name(s.iri);
       s.where = st.where(first.view);
+      std::map<int, size_t> writer_of;  // component -> the view writing it
       for (size_t i : list) {
+        done[i] = 1;
+        // Two views writing one component: the assembled value would keep only one.
+        if (auto [it, fresh] = writer_of.emplace(views[i].index, i); !fresh) {
+          const ViewInfo& first_writer = views[it->second];
+          st.error(views[i].view, "driven-twice",
+                   "the views '" + st.str(first_writer.view) + "' (" + st.place(first_writer.view) +
+                       ") and '" + st.str(views[i].view) + "' both write the " +
+                       component_name(views[i].super_type, views[i].index) + " of '" +
+                       st.str(views[i].super) + "' ('" + st.str(first_writer.sub) + "' and '" +
+                       st.str(views[i].sub) +
+                       "'), and the assembled value would keep only one; write each component "
+                       "once (sum the signals in one controller, or assemble two wrenches and add "
+                       "them with AddWrench)");
+          continue;
+        }
         s.in.push_back(st.datum(views[i].sub, DataType::Scalar, views[i].view, "subobject"));
         s.views.push_back(views[i].index);
         done[i] = 1;

@@ -39,6 +39,13 @@ inline std::string local_name(std::string_view iri) {
   return std::string(k == std::string_view::npos ? iri : iri.substr(k + 1));
 }
 
+// "a " or "an ", as messages put it before `word`.
+inline std::string article(std::string_view word) {
+  return std::string_view("aeiouAEIOU").find(word.empty() ? 'x' : word[0]) == std::string_view::npos
+             ? "a "
+             : "an ";
+}
+
 inline std::string identifier(std::string_view s) {
   std::string out;
   for (char c : s) out.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
@@ -220,6 +227,8 @@ struct State {
 };
 
 // --- the passes, in the order lower.cpp runs them ---------------------------
+// lower_properties.cpp
+void refuse_unread_properties(State& st);
 // lower_arms.cpp
 void lower_clocks(State& st);
 void lower_arms(State& st);

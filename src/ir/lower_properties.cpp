@@ -1,0 +1,194 @@
+// Lowering pass. What the hand-written passes read: for each class of the
+// vocabulary that lower_{arms,base,constraints,views}.cpp lower, the
+// properties they read. A property of that class's vocabulary that lowering
+// does not read would be ignored: it is refused here, located at its
+// statement (`unsupported-property`), before anything is lowered. Operators
+// and controllers refuse theirs through their registries (lower_operators.cpp,
+// lower_controllers.cpp). docs/ir.md ("What lowering does with each
+// property") lists the outcome of every property.
+#include <map>
+
+#include "ir/controllers.hpp"
+#include "ir/lowering.hpp"
+
+namespace mospec::ir::lowering {
+
+namespace {
+
+// One class and the properties of its vocabulary that lowering reads for it.
+struct Role {
+  std::string_view type;  // class (local name)
+  std::string_view what;  // as messages name an instance ("bilateral constraint")
+  std::vector<std::string_view> reads;
+};
+
+// Classes of one vocabulary. Exclusive: lowering gives an instance the first
+// role it has (a constraint that is bilateral and greater-than is lowered as
+// bilateral, so its `threshold` is not read); otherwise every role it has.
+struct Family {
+  std::string_view ns;
+  bool exclusive;
+  std::vector<Role> roles;
+};
+
+const std::vector<Family>& families() {
+  namespace v = mospec::vocab;
+  static const std::vector<Family> table = {
+      // lower_evaluators (the kinds in its order).
+      {v::cstr::ns,
+       true,
+       {{"BilateralConstraint",
+         "bilateral constraint",
+         {"quantity", "lower-threshold", "upper-threshold"}},
+        {"GreaterThanConstraint", "greater-than constraint", {"quantity", "threshold"}},
+        {"LessThanConstraint", "less-than constraint", {"quantity", "threshold"}},
+        {"EqualityConstraint", "equality constraint", {"quantity", "reference-value"}},
+        {"UnilateralConstraint", "unilateral constraint", {"quantity", "threshold"}},
+        {"Constraint", "constraint", {"quantity"}}}},
+      // lower_evaluators: an assignment is lowered as one, whatever else it is.
+      {v::cstr_hdl::ns,
+       true,
+       {{"AssignmentEvaluator", "assignment evaluator", {"constraint"}},
+        {"ErrorEvaluator", "error evaluator", {"constraint", "error"}},
+        {"ConstraintEvaluator", "constraint evaluator", {"constraint"}}}},
+      // lower_monitors: each kind it has.
+      {v::cstr_hdl::ns,
+       false,
+       {{"LevelTriggeredMonitor", "level-triggered monitor", {"error", "flag"}},
+        {"EdgeTriggeredMonitor", "edge-triggered monitor", {"error", "event"}},
+        {"Monitor", "monitor", {"error"}}}},
+      // lower_handlers (`monitors`: every monitor runs at all times, listed or not).
+      {v::cstr_hdl::ns,
+       false,
+       {{"ConstraintHandler",
+         "constraint handler",
+         {"motion", "evaluators", "controllers", "monitors"}}}},
+      // lower_handlers: the guards (`while`: evaluated, realised by the controllers).
+      {v::mot::ns, false, {{"GuardedMotion", "guarded motion", {"when", "while", "until"}}}},
+      // lower_arm, lower_base.
+      {v::slv::ns,
+       false,
+       {{"SolverWithInputAndOutput",
+         "solver",
+         {"solver", "kinematic-chain", "root", "gravity", "output", "motion-drivers"}},
+        {"MotionDrivers",
+         "set of motion drivers",
+         {"acceleration-constraint", "cartesian-force", "joint-force", "prioritization-hierarchy"}},
+        {"PrioritizationLevel", "prioritisation level", {"motion-drivers"}},
+        {"AccelerationConstraintSpecification",
+         "acceleration-constraint specification",
+         {"attached-to", "constraints"}},
+        {"AccelerationConstraint",
+         "acceleration constraint",
+         {"acceleration-energy", "subspace", "axis"}},
+        {"AxisAligned", "acceleration constraint", {"acceleration-energy", "subspace", "axis"}},
+        {"CartesianForceSpecification", "Cartesian force", {"force", "attached-to"}},
+        {"JointForceSpecification", "joint force", {"force", "attached-to"}},
+        {"ForceDistributionSolver", "force-distribution solver", {"configuration", "force"}},
+        {"VelocityCompositionSolver",
+         "velocity-composition solver",
+         {"configuration", "velocity"}}}},
+      // lower_views.
+      {v::map::ns,
+       false,
+       {{"View", "view", {"superobject", "subobject", "subspace", "axis"}},
+        {"PoseCoordinateView", "view", {"superobject", "subobject", "subspace", "axis"}},
+        {"VelocityTwistCoordinateView", "view", {"superobject", "subobject", "subspace", "axis"}},
+        {"WrenchCoordinateView", "view", {"superobject", "subobject", "subspace", "axis"}}}},
+      // lower_clocks.
+      {v::mospec_time::ns, false, {{"Clock", "clock", {"time"}}}},
+  };
+  return table;
+}
+
+// What to do instead, for a property a role does not read.
+std::string advice(std::string_view type, std::string_view property) {
+  if (property == "event-queue")
+    return "mospec emits every event on its one event stream (the run's log); remove "
+           "`event-queue`";
+  if (type == "AssignmentEvaluator" && property == "error")
+    return "an assignment writes its constraint's quantity and computes no error; remove "
+           "`error`, or drop the class AssignmentEvaluator to evaluate the constraint's error";
+  if (type == "LevelTriggeredMonitor" && property == "event")
+    return "a level-triggered monitor raises a flag; for an event make it an "
+           "EdgeTriggeredMonitor";
+  if (type == "EdgeTriggeredMonitor" && property == "flag")
+    return "an edge-triggered monitor emits an event; for a flag make it a "
+           "LevelTriggeredMonitor";
+  if (property.find("priorit") != std::string_view::npos)
+    return "a motion driver's priority is the level of the solver's prioritization-hierarchy "
+           "that lists it (mospec honours one level); remove `" +
+           std::string(property) + "`";
+  if (type == "GuardedMotion")
+    return "a motion starts when its `when` constraints hold and ends when one of its `until` "
+           "constraints does (a timeout is a GreaterThanConstraint on the clock's time in "
+           "`until`); remove `" +
+           std::string(property) + "`";
+  if (type == "EqualityConstraint" && property == "threshold")
+    return "an equality constraint has no tolerance; for a band, make it a BilateralConstraint "
+           "with a lower-threshold and an upper-threshold";
+  if (type.ends_with("Constraint") &&
+      (property == "threshold" || property == "lower-threshold" || property == "upper-threshold" ||
+       property == "reference-value"))
+    return "a constraint has one kind, and only that kind's bounds are evaluated; remove `" +
+           std::string(property) + "`, or state it on a second constraint of the kind that has it";
+  return "remove it";
+}
+
+}  // namespace
+
+void refuse_unread_properties(State& st) {
+  // Entities the controller registry checks (their class's vocabulary is
+  // cstr-hdl too).
+  std::set<uint32_t> controllers;
+  for (const ControllerKind& k : controller_kinds()) {
+    for (TermId c : st.instances(k.class_iri())) controllers.insert(c.index);
+  }
+  // Per vocabulary, per entity (in order of first role, then instance): the
+  // roles it has.
+  struct Entity {
+    TermId term;
+    std::vector<const Role*> roles;
+  };
+  for (std::string_view ns :
+       {mospec::vocab::cstr::ns, mospec::vocab::cstr_hdl::ns, mospec::vocab::mot::ns,
+        mospec::vocab::slv::ns, mospec::vocab::map::ns, mospec::vocab::mospec_time::ns}) {
+    std::vector<Entity> entities;
+    std::map<uint32_t, size_t> index;
+    for (const Family& f : families()) {
+      if (f.ns != ns) continue;
+      std::set<uint32_t> placed;  // exclusive: entities given a role of this family
+      for (const Role& r : f.roles) {
+        for (TermId e : st.instances(std::string(ns).append(r.type))) {
+          if (f.exclusive && !placed.insert(e.index).second) continue;
+          if (ns == mospec::vocab::cstr_hdl::ns && controllers.count(e.index)) continue;
+          auto [it, fresh] = index.emplace(e.index, entities.size());
+          if (fresh) entities.push_back({e, {}});
+          entities[it->second].roles.push_back(&r);
+        }
+      }
+    }
+    for (const Entity& e : entities) {
+      std::set<std::string_view> reads;
+      for (const Role* r : e.roles) reads.insert(r->reads.begin(), r->reads.end());
+      std::set<std::string> seen;
+      for (const Graph::Statement& statement : st.graph.statements(e.term)) {
+        const std::string p = st.str(statement.predicate);
+        if (!p.starts_with(ns)) continue;
+        const std::string_view local = std::string_view(p).substr(ns.size());
+        if (reads.count(local) || !seen.insert(p).second) continue;
+        const Role& role = *e.roles.front();
+        std::string known;
+        for (std::string_view r : reads) known.append(known.empty() ? "" : ", ").append(r);
+        st.error(statement.where.known() ? statement.where : st.where(e.term),
+                 "unsupported-property",
+                 "the " + std::string(role.what) + " '" + st.str(e.term) + "' states `" +
+                     std::string(local) + "`, which mospec does not read for " +
+                     article(role.what) + std::string(role.what) + " (it reads " + known +
+                     "), so it would be ignored; " + advice(role.type, local));
+      }
+    }
+  }
+}
+
+}  // namespace mospec::ir::lowering
