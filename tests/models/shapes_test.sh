@@ -48,10 +48,13 @@ bad direction-cosine geometry/coordinates.ttl 4 \
   '<https://ex.org/b4>: value does not conform to .*ThreeDoubles.*direction-cosine-z'
 
 good units geometry/coordinates.ttl
-bad units geometry/coordinates.ttl 5 \
-  "<https://ex.org/d>: unit fits none of the quantity's kinds" \
-  '<https://ex.org/d>: quantity kind has no unit that fits it' \
-  "<https://ex.org/w>: unit fits none of the quantity's kinds" \
+# A unit that fits none of its quantity's kinds is reported once per kind,
+# each naming the units that kind takes.
+bad units geometry/coordinates.ttl 6 \
+  "<https://ex.org/d>: unit fits none of the quantity's kinds \\(<http://qudt.org/vocab/quantitykind/Distance> takes M\\)" \
+  '<https://ex.org/d>: quantity kind has no unit that fits it \(it takes M\)' \
+  "<https://ex.org/w>: unit fits none of the quantity's kinds \\(<http://qudt.org/vocab/quantitykind/Force> takes N\\)" \
+  "<https://ex.org/w>: unit fits none of the quantity's kinds \\(<http://qudt.org/vocab/quantitykind/Torque> takes N-M\\)" \
   '<https://ex.org/w>: quantity kind has no unit that fits it' \
   '<https://ex.org/v>: quantity kind has no unit that fits it'
 

@@ -273,7 +273,9 @@ TEST_F(Whisker, ADistanceThresholdInMillimetresIsRefused) {
                  "models/sc1/00-misc.json",
                  "models/sc1/03-constraints\\.json:[0-9]+:[0-9]+: error: "
                  "<[^>]*cstr-dist-rightarm-shoulder-ee>: "
-                 "reference value or threshold has a unit the constrained quantity does not have");
+                 "reference value or threshold has a unit the constrained quantity does not have "
+                 "\\(<http://qudt\\.org/vocab/unit/MilliM>; the quantity is in "
+                 "<http://qudt\\.org/vocab/unit/M>: state the value in <http://qudt\\.org/vocab/unit/M>\\)");
 }
 
 }  // namespace
