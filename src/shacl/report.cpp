@@ -258,6 +258,12 @@ std::string to_text(const Report& report, const SourceFiles* data_files,
     out += ": note: the shape that fired: ";
     out += t[r.shape].is_iri() ? rdf::to_ntriples(t, r.shape) : "[]";
     out += "\n";
+    if (std::string v = location(data_files, r.value_loc); !v.empty())
+      out += v + ": note: the value " + rdf::to_ntriples(t, r.value) + " is here\n";
+    for (const Result::Related& x : r.related) {
+      if (std::string at = location(data_files, x.where); !at.empty())
+        out += at + ": note: " + x.name + " " + rdf::to_ntriples(t, x.node) + " is here\n";
+    }
   }
   auto plural = [](size_t n, std::string_view one, std::string_view many) {
     return std::to_string(n) + " " + std::string(n == 1 ? one : many);

@@ -29,6 +29,17 @@ struct Result {
   std::string default_message;  // generated text for results without sh:message
   SourceLoc focus_loc;          // where the focus node is written (data files)
   SourceLoc shape_loc;          // where the shape is written (shapes files)
+  // Where the value node is written, when it is a node of the data other than
+  // the focus (unknown otherwise).
+  SourceLoc value_loc;
+  // SHACL-SPARQL: other data nodes the result's row names (e.g. the upper
+  // threshold a lower one exceeds), each where it is written.
+  struct Related {
+    std::string name;  // the query's variable
+    rdf::TermId node;
+    SourceLoc where;
+  };
+  std::vector<Related> related;
 };
 
 class Report {
@@ -59,8 +70,10 @@ std::string to_turtle(const Report& report);
 // focus node, then a note at the shape that fired,
 //   file:line:col: error|warning|info: <focus>: <message> [<component>, path <P>, value <V>]
 //   shapes.ttl:line:col: note: the shape that fired: <S>|[]
-// then "shacl: N violations, M warnings, K infos" (plus other severities when
-// present). `data_files` names Result::focus_loc, `shape_files` Result::shape_loc.
+// and a note where the value node is written, and where each other data node
+// a SPARQL constraint's row names is (?upper: "note: upper <U> is here"); then "shacl: N
+// violations, M warnings, K infos" (plus other severities when present). `data_files` names
+// Result::focus_loc, `shape_files` Result::shape_loc.
 std::string to_text(const Report& report, const SourceFiles* data_files,
                     const SourceFiles* shape_files = nullptr);
 

@@ -38,6 +38,9 @@ struct RawResult {
   TermId component_node = TermId::any();  // SPARQL-based constraint component (shapes id)
   bool own_messages = false;
   std::vector<std::pair<std::string, std::string>> messages;  // (text, language)
+  // SHACL-SPARQL: the other data nodes the result row projects (?upper), by
+  // variable name, so the report can say where each is written.
+  std::vector<std::pair<std::string, TermId>> related;
 };
 
 // Where a shape's results go: collected for the report, or (conformance
@@ -764,6 +767,14 @@ class Validator {
       } else if (s.is_property) {
         r.path = PathSource::Shape;
       }
+      for (size_t c = 0; c < rows.variables.size(); ++c) {
+        const std::string& name = rows.variables[c];
+        if (name == "this" || name == "value" || name == "path" || name == "message" ||
+            name == "failure" || !bound(static_cast<int>(c), row))
+          continue;
+        const TermId node = from_eval(rows.at(row, c));
+        if (node.index < base_ && !dt_[node].is_literal()) r.related.emplace_back(name, node);
+      }
       if (bound(message_col, row)) {
         const rdf::Term& m = eval_->term(rows.at(row, static_cast<size_t>(message_col)));
         r.messages.emplace_back(std::string(m.value), std::string(m.language));
@@ -945,6 +956,13 @@ class Validator {
         r.component_node = import_shape_term(report, x.component_node);
       if (r.messages.empty()) r.default_message = default_message(x);
       if (x.focus.index < base_) r.focus_loc = locate(x.focus);
+      if (!x.value.is_any() && x.value != x.focus && x.value.index < base_ &&
+          !dt_[x.value].is_literal())
+        r.value_loc = locate(x.value);
+      for (const auto& [name, node] : x.related) {
+        if (SourceLoc at = locate(node); at.known())
+          r.related.push_back({name, import(report, node), at});
+      }
       r.shape_loc = s.where;
       report.results.push_back(std::move(r));
     }

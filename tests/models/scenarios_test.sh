@@ -38,6 +38,11 @@ if [ -f models/sc1.json ]; then
   if [ $? -eq 1 ] && [ "$(grep -c 'lower threshold must be less than the upper threshold (lower 0.68, upper 0.60)' "$work/out")" -eq 2 ]; then
     echo "ok   sc1 with an empty distance tube is rejected"
   else fail "sc1 with lower > upper was not rejected twice"; fi
+  # ... with a note where each threshold is written.
+  if grep -q '^models/sc1/00-misc.json:12:[0-9]*: note: the value <[^>]*dist-rightarm-shoulder-ee-lower> is here$' "$work/out" &&
+     grep -q '^models/sc1/00-misc.json:22:[0-9]*: note: upper <[^>]*dist-rightarm-shoulder-ee-upper> is here$' "$work/out"; then
+    echo "ok   the empty tube's finding names where each threshold is written"
+  else fail "lower > upper: no note at each threshold"; fi
 fi
 
 # SC1's distance and direction operators are checked (the spatial-operators
