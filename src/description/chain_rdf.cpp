@@ -4,6 +4,7 @@
 #include <charconv>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,9 +43,14 @@ std::string geom_ent(std::string_view l) {
   return iri(vocab::geom_ent::ns, l);
 }
 
+// Reads a chain from a dataset: all of it, or (filtered) only the union of
+// some of its graphs as a set of triples, read in place: a triple stated in
+// several of those graphs counts once, at its first statement.
 class Reader {
  public:
   explicit Reader(const rdf::Dataset& g) : g_(g) {}
+  Reader(const rdf::Dataset& g, std::span<const rdf::TermId> graphs)
+      : g_(g), graphs_(graphs.begin(), graphs.end()), filtered_(true) {}
 
   std::string name(rdf::TermId t) const {
     const auto& term = g_.terms()[t];
@@ -56,19 +62,37 @@ class Reader {
     std::vector<rdf::TermId> out;
     const rdf::TermId pid = id(p);
     if (pid.is_any()) return out;
-    for (uint32_t i : g_.match(s, pid, rdf::TermId::any())) out.push_back(g_.quads()[i].object);
+    for (uint32_t i : matches(s, pid, rdf::TermId::any())) {
+      const rdf::Quad& q = g_.quads()[i];
+      if (!filtered_) {
+        out.push_back(q.object);
+      } else if (read(q) && std::find(out.begin(), out.end(), q.object) == out.end()) {
+        out.push_back(q.object);
+      }
+    }
     return out;
   }
   std::vector<rdf::TermId> subjects(const std::string& p, rdf::TermId o) const {
     std::vector<rdf::TermId> out;
     const rdf::TermId pid = id(p);
     if (pid.is_any()) return out;
-    for (uint32_t i : g_.match(rdf::TermId::any(), pid, o)) out.push_back(g_.quads()[i].subject);
+    for (uint32_t i : matches(rdf::TermId::any(), pid, o)) {
+      const rdf::Quad& q = g_.quads()[i];
+      if (!filtered_) {
+        out.push_back(q.subject);
+      } else if (read(q) && std::find(out.begin(), out.end(), q.subject) == out.end()) {
+        out.push_back(q.subject);
+      }
+    }
     return out;
   }
   bool has_type(rdf::TermId s, const std::string& type) const {
     const rdf::TermId p = id(iri(kRdf, "type")), t = id(type);
-    return !p.is_any() && !t.is_any() && g_.count(s, p, t, rdf::TermId::any(), 1) > 0;
+    if (p.is_any() || t.is_any()) return false;
+    if (!filtered_) return g_.count(s, p, t, rdf::TermId::any(), 1) > 0;
+    for (rdf::TermId g : graphs_)
+      if (g_.count(s, p, t, g, 1) > 0) return true;
+    return false;
   }
   rdf::TermId one(rdf::TermId s, const std::string& p) const {
     const auto os = objects(s, p);
@@ -178,6 +202,17 @@ class Reader {
     return I;
   }
 
+  // Whether a quad is in the graphs read.
+  bool read(const rdf::Quad& q) const {
+    return !filtered_ || std::find(graphs_.begin(), graphs_.end(), q.graph) != graphs_.end();
+  }
+  // The quads matching (s, p, o) in the dataset's order.
+  std::vector<uint32_t> matches(rdf::TermId s, rdf::TermId p, rdf::TermId o) const {
+    std::vector<uint32_t> out = g_.match(s, p, o);
+    if (filtered_) std::sort(out.begin(), out.end());
+    return out;
+  }
+
   static std::string local_name(const std::string& iri_text, std::string_view prefix) {
     std::string s = iri_text.substr(iri_text.find_last_of("/#") + 1);
     if (s.rfind(prefix, 0) == 0) s = s.substr(prefix.size());
@@ -186,7 +221,11 @@ class Reader {
 
  private:
   const rdf::Dataset& g_;
+  std::vector<rdf::TermId> graphs_;  // filtered_: the graphs read
+  bool filtered_ = false;
 };
+
+ChainDescription describe(const Reader& r, std::string_view chain_iri);
 
 }  // namespace
 
@@ -195,7 +234,17 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
 }
 
 ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chain_iri) {
-  const Reader r(graph);
+  return describe(Reader(graph), chain_iri);
+}
+
+ChainDescription describe_chain(const rdf::Dataset& dataset, std::span<const rdf::TermId> graphs,
+                                std::string_view chain_iri) {
+  return describe(Reader(dataset, graphs), chain_iri);
+}
+
+namespace {
+
+ChainDescription describe(const Reader& r, std::string_view chain_iri) {
   const rdf::TermId chain_id = r.id(chain_iri);
   if (chain_id.is_any() || !r.has_type(chain_id, kc("KinematicChain"))) {
     throw Error("invalid-robot-model",
@@ -301,5 +350,7 @@ ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chai
   }
   return out;
 }
+
+}  // namespace
 
 }  // namespace mospec::description
