@@ -7,19 +7,19 @@
 namespace mospec::codegen::mustache {
 
 void Data::put(std::string_view key, Data value) {
-  for (size_t i = 0; i < keys_.size(); ++i) {
-    if (keys_[i] == key) {
-      members_[i] = std::move(value);
+  for (Member& m : members_) {
+    if (m.key == key) {
+      m.value = std::move(value);
       return;
     }
   }
-  keys_.emplace_back(key);
-  members_.push_back(std::move(value));
+  if (members_.empty()) members_.reserve(8);  // most objects have a few members
+  members_.push_back(Member{std::string(key), std::move(value)});
 }
 
 const Data* Data::find(std::string_view key) const {
-  for (size_t i = 0; i < keys_.size(); ++i)
-    if (keys_[i] == key) return &members_[i];
+  for (const Member& m : members_)
+    if (m.key == key) return &m.value;
   return nullptr;
 }
 

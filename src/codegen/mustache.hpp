@@ -51,9 +51,14 @@ class Data {
  private:
   Kind kind_ = Kind::Object;
   std::string text_;
-  std::vector<Data> items_;        // a list's items
-  std::vector<std::string> keys_;  // an object's member names ...
-  std::vector<Data> members_;      // ... and values, in insertion order
+  struct Member;
+  std::vector<Data> items_;      // a list's items
+  std::vector<Member> members_;  // an object's members, in insertion order
+};
+
+struct Data::Member {
+  std::string key;
+  Data value;
 };
 
 // Renders `text` with `data` as the outermost context. A malformed template
