@@ -982,8 +982,9 @@ class Builder {
   std::vector<std::string> step_members_;  // by step index: its Model member ("" if none)
 };
 
-// The Mustache spec's "standalone" rule, which kainjow applies only to the
-// sections that render: a line holding nothing but one section tag ({{#x}},
+// The Mustache spec's "standalone" rule, which mustache::render (like kainjow's
+// Mustache before it) applies only to the sections that render: a line holding nothing but one
+// section tag ({{#x}},
 // {{^x}}, {{/x}}) or comment ({{! }}) leaves no trace in the output, neither
 // its indentation nor its line break. Applied to the template text before
 // parsing (the tag joins the start of the next line), so skipped sections
