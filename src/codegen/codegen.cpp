@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <kainjow/mustache.hpp>
 #include <map>
 #include <string_view>
 
 #include "codegen/build.hpp"
+#include "codegen/mustache.hpp"
 #include "codegen/templates.hpp"
 #include "ir/controllers.hpp"
 #include "ir/operators.hpp"
@@ -19,7 +19,6 @@
 
 namespace mospec::codegen {
 
-namespace mus = kainjow::mustache;
 using ir::DataType;
 using ir::StepKind;
 
@@ -262,28 +261,14 @@ bool same_bits(const M& a, const M& b) {
   return std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
-mus::data list() {
-  return mus::data{mus::data::type::list};
+mustache::Data list() {
+  return mustache::Data::list();
 }
-
-// kainjow's set() and push_back() take a const reference and copy the value
-// deeply, and its move constructor is not noexcept, so a growing list copied
-// every element it held: each nested value was copied once per level it was
-// handed up and again whenever a list grew (two fifths of building the data).
-// These move values into place instead.
-void put(mus::data& object, const std::string& key, mus::data value) {
-  object[key] = std::move(value);
+void put(mustache::Data& object, std::string_view key, mustache::Data value) {
+  object.put(key, std::move(value));
 }
-void append(mus::data& list, mus::data value) {
-  // The list owns its elements; list_value() is only a const view of them.
-  auto& items = const_cast<mus::list&>(list.list_value());
-  if (items.size() == items.capacity()) {
-    mus::list grown;
-    grown.reserve(std::max<std::size_t>(8, 2 * items.size()));
-    for (mus::data& item : items) grown.push_back(std::move(item));
-    items.swap(grown);
-  }
-  items.push_back(std::move(value));
+void append(mustache::Data& list, mustache::Data value) {
+  list.append(std::move(value));
 }
 
 // Builds the template data for one Program. Every choice is made here.
@@ -369,8 +354,8 @@ class Builder {
     }
   }
 
-  mus::data build() {
-    mus::data root;
+  mustache::Data build() {
+    mustache::Data root;
     put(root, "app_comment", comment_text(p_.app));
     put(root, "app_literal", cpp_string(p_.app));
     add_slots(root);
@@ -434,8 +419,8 @@ class Builder {
   const ir::ArmSolver& arm(const ir::Step& st) const {
     return p_.arms[static_cast<std::size_t>(st.solver)];
   }
-  void add_slots(mus::data& root) const {
-    mus::data types = list();
+  void add_slots(mustache::Data& root) const {
+    mustache::Data types = list();
     for (int t = 0; t < ir::kDataTypes; ++t) {
       const auto type = static_cast<DataType>(t);
       if (p_.count(type) == 0) continue;
@@ -444,11 +429,11 @@ class Builder {
       for (std::size_t i = 0; i < p_.data.size(); ++i) {
         if (p_.data[i].type == type) by_slot[static_cast<std::size_t>(p_.data[i].slot)] = i;
       }
-      mus::data slots = list();
+      mustache::Data slots = list();
       for (const std::size_t i : by_slot) {
         if (i == p_.data.size()) continue;
         const ir::Data& d = p_.data[i];
-        mus::data s;
+        mustache::Data s;
         put(s, "name", data_names_[i]);
         put(s, "slot", std::to_string(d.slot));
         put(s, "iri", comment_text(d.iri));
@@ -456,7 +441,7 @@ class Builder {
         put(s, "unit", comment_text(d.unit));
         append(slots, std::move(s));
       }
-      mus::data entry;
+      mustache::Data entry;
       put(entry, "type", std::string(type_member(type)));
       put(entry, "count", std::to_string(p_.count(type)));
       put(entry, "slots", std::move(slots));
@@ -465,14 +450,14 @@ class Builder {
     put(root, "slot_types", std::move(types));
   }
 
-  void add_model(mus::data& root) const {
+  void add_model(mustache::Data& root) const {
     std::vector<std::string> inits;
-    mus::data arms = list();
+    mustache::Data arms = list();
     for (std::size_t a = 0; a < p_.arms.size(); ++a) {
       const ir::ArmSolver& s = p_.arms[a];
       const ArmNames& n = arm_names_[a];
       const std::string& member = n.arm;
-      mus::data e;
+      mustache::Data e;
       put(e, "name", comment_text(s.name));
       put(e, "iri", comment_text(s.iri));
       put(e, "chain_iri", comment_text(s.chain_iri));
@@ -496,11 +481,11 @@ class Builder {
       const runtime::Pose X_NT = s.tip_is_last_segment ? runtime::Pose{} : s.chain.X_NT();
       put(e, "X_NT_R", mat3(X_NT.R));
       put(e, "X_NT_p", vec3(X_NT.p));
-      mus::data segments = list();
+      mustache::Data segments = list();
       runtime::Chain rebuilt(s.chain.root());
       for (int i = 0; i < s.chain.size(); ++i) {
         const runtime::Segment& g = s.chain.segment(i);
-        mus::data seg;
+        mustache::Data seg;
         put(seg, "link_literal", cpp_string(g.link));
         put(seg, "joint_literal", cpp_string(g.joint));
         put(seg, "joint_type", g.type == runtime::JointType::Revolute ? "Revolute" : "Prismatic");
@@ -531,9 +516,9 @@ class Builder {
         }
       }
       put(e, "chain_segments", std::move(segments));
-      mus::data alpha = list();
+      mustache::Data alpha = list();
       for (std::size_t k = 0; k < s.acceleration_constraints.size(); ++k) {
-        mus::data c;
+        mustache::Data c;
         put(c, "workspace", n.ws);
         put(c, "component", std::to_string(s.acceleration_constraints[k].component));
         put(c, "column", std::to_string(k));
@@ -566,12 +551,12 @@ class Builder {
       inits.emplace_back("base(base_config())");
     }
 
-    mus::data evaluators = list(), monitors = list();
+    mustache::Data evaluators = list(), monitors = list();
     for (std::size_t i = 0; i < p_.steps.size(); ++i) {
       const ir::Step& st = p_.steps[i];
       if (st.kind != StepKind::Evaluate) continue;
       const runtime::ConstraintSpec& c = st.constraint;
-      mus::data e;
+      mustache::Data e;
       put(e, "member", step_members_[i]);
       put(e, "iri", comment_text(st.iri));
       append(evaluators, std::move(e));
@@ -587,15 +572,15 @@ class Builder {
     }
     // Controllers, kind by kind in the registry's order: each step's runtime
     // model, built from the kind's Spec with the step's parameter values.
-    mus::data controller_kinds = list();
+    mustache::Data controller_kinds = list();
     const auto kinds = ir::controller_kinds();
     for (std::size_t k = 0; k < kinds.size(); ++k) {
       const ir::ControllerKind& kind = kinds[k];
-      mus::data members = list();
+      mustache::Data members = list();
       for (std::size_t i = 0; i < p_.steps.size(); ++i) {
         const ir::Step& st = p_.steps[i];
         if (st.kind != StepKind::Controller || st.controller != static_cast<int>(k)) continue;
-        mus::data e;
+        mustache::Data e;
         put(e, "type", std::string(kind.model_type));
         put(e, "member", step_members_[i]);
         put(e, "iri", comment_text(st.iri));
@@ -617,8 +602,8 @@ class Builder {
         init.append("},\n        ").append(cpp_string(st.name)).append(")");
         inits.push_back(init);
       }
-      if (members.list_value().empty()) continue;
-      mus::data e;
+      if (members.items().empty()) continue;
+      mustache::Data e;
       put(e, "title", std::string(kind.title));
       put(e, "members", std::move(members));
       append(controller_kinds, std::move(e));
@@ -626,25 +611,25 @@ class Builder {
     for (std::size_t i = 0; i < p_.steps.size(); ++i) {
       const ir::Step& st = p_.steps[i];
       if (st.kind != StepKind::LevelMonitor && st.kind != StepKind::EdgeMonitor) continue;
-      mus::data e;
+      mustache::Data e;
       put(e, "member", step_members_[i]);
       put(e, "iri", comment_text(st.iri));
       put(e, "tolerance", cpp_double(st.constraint.tolerance));
       append(monitors, std::move(e));
     }
-    put(root, "has_evaluators", !evaluators.list_value().empty());
+    put(root, "has_evaluators", !evaluators.items().empty());
     put(root, "evaluators", std::move(evaluators));
     put(root, "controller_kinds", std::move(controller_kinds));
-    put(root, "has_monitors", !monitors.list_value().empty());
+    put(root, "has_monitors", !monitors.items().empty());
     put(root, "monitors", std::move(monitors));
     put(root, "has_initializers", !inits.empty());
     put(root, "initializers", initializer_list(inits));
   }
 
-  static mus::data initializer_list(const std::vector<std::string>& inits) {
-    mus::data l = list();
+  static mustache::Data initializer_list(const std::vector<std::string>& inits) {
+    mustache::Data l = list();
     for (std::size_t i = 0; i < inits.size(); ++i) {
-      mus::data e;
+      mustache::Data e;
       put(e, "text", inits[i]);
       put(e, "last", i + 1 == inits.size());
       append(l, std::move(e));
@@ -652,7 +637,7 @@ class Builder {
     return l;
   }
 
-  void add_data(mus::data& root) const {
+  void add_data(mustache::Data& root) const {
     put(root, "n_scalar", std::to_string(p_.count(DataType::Scalar)));
     put(root, "n_vec3", std::to_string(p_.count(DataType::Vector3)));
     put(root, "n_pose", std::to_string(p_.count(DataType::Pose)));
@@ -665,11 +650,11 @@ class Builder {
     put(root, "has_inertia", p_.count(DataType::Inertia) > 0);
     put(root, "n_inertia", std::to_string(p_.count(DataType::Inertia)));
     // Controller state, one array per stateful kind the program uses.
-    mus::data controller_states = list();
+    mustache::Data controller_states = list();
     const auto kinds = ir::controller_kinds();
     for (std::size_t k = 0; k < kinds.size(); ++k) {
       if (!kinds[k].has_state() || !uses_controller(static_cast<int>(k))) continue;
-      mus::data e;
+      mustache::Data e;
       put(e, "type", std::string(kinds[k].state_type));
       put(e, "count", std::to_string(p_.controller_state_count(static_cast<int>(k))));
       put(e, "member", std::string(kinds[k].name));
@@ -693,7 +678,7 @@ class Builder {
 
     // Model constants: values in Model (set by its constructor), copied into
     // their slots by Data's constructor once (as the interpreter does).
-    mus::data constants = list();
+    mustache::Data constants = list();
     for (std::size_t i = 0; i < p_.data.size(); ++i) {
       const ir::Data& d = p_.data[i];
       if (d.value.empty() || d.type == DataType::Event) continue;  // events clear every tick
@@ -730,7 +715,7 @@ class Builder {
                    join_doubles(d.value.data(), 10) + "});";
           break;
       }
-      mus::data c;
+      mustache::Data c;
       put(c, "type", type);
       put(c, "member", member);
       put(c, "assign", assign);
@@ -740,19 +725,19 @@ class Builder {
       put(c, "unit", comment_text(d.unit));
       append(constants, std::move(c));
     }
-    put(root, "has_constants", !constants.list_value().empty());
+    put(root, "has_constants", !constants.items().empty());
     put(root, "constants", std::move(constants));
   }
 
-  void add_steps(mus::data& root) const {
-    mus::data steps = list();
+  void add_steps(mustache::Data& root) const {
+    mustache::Data steps = list();
     for (std::size_t i = 0; i < p_.steps.size(); ++i) append(steps, step(i));
     put(root, "steps", std::move(steps));
   }
 
-  mus::data step(std::size_t index) const {
+  mustache::Data step(std::size_t index) const {
     const ir::Step& st = p_.steps[index];
-    mus::data s;
+    mustache::Data s;
     put(s, "index", std::to_string(index));
     put(s, "kind", std::string(ir::kind_name(st)));
     put(s, "name", comment_text(st.name));
@@ -780,9 +765,9 @@ class Builder {
         put(s, "task", arm_names_[k].task);
         put(s, "workspace", arm_names_[k].ws);
         put(s, "port", std::to_string(a.port));
-        mus::data outputs = list();
+        mustache::Data outputs = list();
         for (const ir::ArmOutput& o : a.outputs) {
-          mus::data e;
+          mustache::Data e;
           put(e, "target", ref(o.data));
           std::string call = "rt::steps::";
           if (o.what == ir::ArmOutput::What::SegmentPose) {
@@ -808,9 +793,9 @@ class Builder {
         break;
       case StepKind::ViewWrite: {
         put(s, "out0", out(st, 0));
-        mus::data components = list();
+        mustache::Data components = list();
         for (std::size_t k = 0; k < st.in.size(); ++k) {
-          mus::data c;
+          mustache::Data c;
           put(c, "out0", out(st, 0));
           put(c, "component", std::to_string(st.views[k]));
           put(c, "source", in(st, k));
@@ -913,9 +898,9 @@ class Builder {
         put(s, "gated", !gates.empty());
         put(s, "gates", gates);
         put(s, "indent", gates.empty() ? "  " : "    ");
-        mus::data forces = list(), joint_forces = list(), betas = list();
+        mustache::Data forces = list(), joint_forces = list(), betas = list();
         for (const ir::CartesianForce& f : a.cartesian_forces) {
-          mus::data e;
+          mustache::Data e;
           put(e, "workspace", arm_names_[k].ws);
           put(e, "segment", std::to_string(f.segment));
           put(e, "source", ref(f.wrench));
@@ -923,7 +908,7 @@ class Builder {
           append(forces, std::move(e));
         }
         for (const ir::JointForce& f : a.joint_forces) {
-          mus::data e;
+          mustache::Data e;
           put(e, "workspace", arm_names_[k].ws);
           put(e, "joint", std::to_string(f.joint));
           put(e, "source", ref(f.force));
@@ -931,7 +916,7 @@ class Builder {
           append(joint_forces, std::move(e));
         }
         for (std::size_t c = 0; c < a.acceleration_constraints.size(); ++c) {
-          mus::data e;
+          mustache::Data e;
           put(e, "workspace", arm_names_[k].ws);
           put(e, "column", std::to_string(c));
           put(e, "source", ref(a.acceleration_constraints[c].energy));
@@ -964,8 +949,8 @@ class Builder {
     return s;
   }
 
-  void add_log(mus::data& root) const {
-    mus::data log = list();
+  void add_log(mustache::Data& root) const {
+    mustache::Data log = list();
     for (std::size_t i = 0; i < p_.log.size(); ++i) {
       const ir::LogColumn& c = p_.log[i];
       const ir::Data& d = datum(c.data);
@@ -990,7 +975,7 @@ class Builder {
           value = "std::numeric_limits<double>::quiet_NaN()";
           break;
       }
-      mus::data e;
+      mustache::Data e;
       put(e, "index", std::to_string(i));
       put(e, "name_literal", cpp_string(c.name));
       put(e, "unit_literal", cpp_string(c.unit));
@@ -1008,8 +993,9 @@ class Builder {
   std::vector<std::string> step_members_;  // by step index: its Model member ("" if none)
 };
 
-// The Mustache spec's "standalone" rule, which kainjow applies only to the
-// sections that render: a line holding nothing but one section tag ({{#x}},
+// The Mustache spec's "standalone" rule, which mustache::render (like kainjow's
+// Mustache before it) applies only to the sections that render: a line holding nothing but one
+// section tag ({{#x}},
 // {{^x}}, {{/x}}) or comment ({{! }}) leaves no trace in the output, neither
 // its indentation nor its line break. Applied to the template text before
 // parsing (the tag joins the start of the next line), so skipped sections
@@ -1088,21 +1074,15 @@ std::vector<GeneratedFile> render(const ir::Program& program, const SourceFiles*
   // The back-end trusts a verified program; one that is not is refused here,
   // every problem located.
   ir::verify(program, files);
-  const mus::data data = Builder(program, files).build();
+  const mustache::Data data = Builder(program, files).build();
   std::vector<GeneratedFile> out;
   for (const Template& t : kTemplates) {
-    mus::mustache tmpl{strip_standalone_tags(t.text)};
-    if (!tmpl.is_valid()) {
+    std::string text;
+    try {
+      text = mustache::render(strip_standalone_tags(t.text), data);
+    } catch (const Error& e) {
       std::string msg = "template ";
-      msg.append(t.file).append(".mustache: ").append(tmpl.error_message());
-      fail(msg);
-    }
-    // C++ and CMake, not HTML: substitute verbatim.
-    tmpl.set_custom_escape([](const std::string& s) { return s; });
-    std::string text = tmpl.render(data);
-    if (!tmpl.is_valid()) {
-      std::string msg = "template ";
-      msg.append(t.file).append(".mustache: ").append(tmpl.error_message());
+      msg.append(t.file).append(".mustache: ").append(e.diagnostic().message);
       fail(msg);
     }
     if (t.file.ends_with(".hpp") || t.file.ends_with(".cpp")) text = tidy_blank_lines(text);

@@ -1,9 +1,11 @@
 #include "description/chain_rdf.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,77 +25,172 @@ constexpr std::string_view kUnit = vocab::qudt_unit::ns;
 std::string iri(std::string_view ns, std::string_view local) {
   return vocab::term(ns, local);
 }
-std::string kc(std::string_view l) {
-  return iri(vocab::kc_ent::ns, l);
-}
-std::string geom_rel(std::string_view l) {
-  return iri(vocab::geom_rel::ns, l);
-}
-std::string geom_coord(std::string_view l) {
-  return iri(vocab::geom_coord::ns, l);
-}
-std::string dyn_ent(std::string_view l) {
-  return iri(vocab::dyn_ent::ns, l);
-}
-std::string dyn_coord(std::string_view l) {
-  return iri(vocab::dyn_coord::ns, l);
-}
-std::string geom_ent(std::string_view l) {
-  return iri(vocab::geom_ent::ns, l);
+
+// The vocabulary terms a chain is read through, each looked up once per
+// Reader (Reader::id) instead of spelled and looked up per statement read.
+enum class V : uint8_t {
+  type,
+  first,
+  rest,
+  nil,
+  unit,  // rdf, qudt
+  KinematicChain,
+  joints,
+  RevoluteJoint,
+  between_attachments,
+  common_axis,  // kc
+  Pose,
+  Position,
+  of,
+  with_respect_to,  // geom-rel
+  x,
+  y,
+  z,
+  direction_cosine_x,
+  direction_cosine_y,
+  direction_cosine_z,  // geom-coord
+  origin,
+  simplices,  // geom-ent
+  RotationalInertia,
+  about,
+  of_body,
+  Mass,  // dyn-ent
+  as_seen_by,
+  ixx,
+  ixy,
+  ixz,
+  iyy,
+  iyz,
+  izz,
+  mass,  // dyn-coord
+  count
+};
+constexpr size_t kVocabSize = static_cast<size_t>(V::count);
+
+const std::string& text(V v) {
+  static const std::array<std::string, kVocabSize> iris = [] {
+    std::array<std::string, kVocabSize> a;
+    const auto set = [&](V k, std::string_view ns, std::string_view local) {
+      a[static_cast<size_t>(k)] = iri(ns, local);
+    };
+    set(V::type, kRdf, "type");
+    set(V::first, kRdf, "first");
+    set(V::rest, kRdf, "rest");
+    set(V::nil, kRdf, "nil");
+    set(V::unit, vocab::qudt::ns, "unit");
+    set(V::KinematicChain, vocab::kc_ent::ns, "KinematicChain");
+    set(V::joints, vocab::kc_ent::ns, "joints");
+    set(V::RevoluteJoint, vocab::kc_ent::ns, "RevoluteJoint");
+    set(V::between_attachments, vocab::kc_ent::ns, "between-attachments");
+    set(V::common_axis, vocab::kc_ent::ns, "common-axis");
+    set(V::Pose, vocab::geom_rel::ns, "Pose");
+    set(V::Position, vocab::geom_rel::ns, "Position");
+    set(V::of, vocab::geom_rel::ns, "of");
+    set(V::with_respect_to, vocab::geom_rel::ns, "with-respect-to");
+    set(V::x, vocab::geom_coord::ns, "x");
+    set(V::y, vocab::geom_coord::ns, "y");
+    set(V::z, vocab::geom_coord::ns, "z");
+    set(V::direction_cosine_x, vocab::geom_coord::ns, "direction-cosine-x");
+    set(V::direction_cosine_y, vocab::geom_coord::ns, "direction-cosine-y");
+    set(V::direction_cosine_z, vocab::geom_coord::ns, "direction-cosine-z");
+    set(V::origin, vocab::geom_ent::ns, "origin");
+    set(V::simplices, vocab::geom_ent::ns, "simplices");
+    set(V::RotationalInertia, vocab::dyn_ent::ns, "RotationalInertia");
+    set(V::about, vocab::dyn_ent::ns, "about");
+    set(V::of_body, vocab::dyn_ent::ns, "of-body");
+    set(V::Mass, vocab::dyn_ent::ns, "Mass");
+    set(V::as_seen_by, vocab::dyn_coord::ns, "as-seen-by");
+    set(V::ixx, vocab::dyn_coord::ns, "ixx");
+    set(V::ixy, vocab::dyn_coord::ns, "ixy");
+    set(V::ixz, vocab::dyn_coord::ns, "ixz");
+    set(V::iyy, vocab::dyn_coord::ns, "iyy");
+    set(V::iyz, vocab::dyn_coord::ns, "iyz");
+    set(V::izz, vocab::dyn_coord::ns, "izz");
+    set(V::mass, vocab::dyn_coord::ns, "mass");
+    return a;
+  }();
+  return iris[static_cast<size_t>(v)];
 }
 
+// Reads a chain from a dataset: all of it, or (filtered) only the union of
+// some of its graphs as a set of triples, read in place: a triple stated in
+// several of those graphs counts once, at its first statement.
 class Reader {
  public:
   explicit Reader(const rdf::Dataset& g) : g_(g) {}
+  Reader(const rdf::Dataset& g, std::span<const rdf::TermId> graphs)
+      : g_(g), graphs_(graphs.begin(), graphs.end()), filtered_(true) {}
 
   std::string name(rdf::TermId t) const {
     const auto& term = g_.terms()[t];
     return term.is_iri() ? std::string(term.value) : "_:" + std::string(term.value);
   }
   rdf::TermId id(std::string_view iri_text) const { return g_.terms().find_iri(iri_text); }
+  rdf::TermId id(V v) const {
+    rdf::TermId& t = ids_[static_cast<size_t>(v)];
+    if (t == kUnknown) t = id(text(v));
+    return t;
+  }
 
-  std::vector<rdf::TermId> objects(rdf::TermId s, const std::string& p) const {
+  std::vector<rdf::TermId> objects(rdf::TermId s, V p) const {
     std::vector<rdf::TermId> out;
     const rdf::TermId pid = id(p);
     if (pid.is_any()) return out;
-    for (uint32_t i : g_.match(s, pid, rdf::TermId::any())) out.push_back(g_.quads()[i].object);
+    for (uint32_t i : matches(s, pid, rdf::TermId::any())) {
+      const rdf::Quad& q = g_.quads()[i];
+      if (!filtered_) {
+        out.push_back(q.object);
+      } else if (read(q) && std::find(out.begin(), out.end(), q.object) == out.end()) {
+        out.push_back(q.object);
+      }
+    }
     return out;
   }
-  std::vector<rdf::TermId> subjects(const std::string& p, rdf::TermId o) const {
+  std::vector<rdf::TermId> subjects(V p, rdf::TermId o) const {
     std::vector<rdf::TermId> out;
     const rdf::TermId pid = id(p);
     if (pid.is_any()) return out;
-    for (uint32_t i : g_.match(rdf::TermId::any(), pid, o)) out.push_back(g_.quads()[i].subject);
+    for (uint32_t i : matches(rdf::TermId::any(), pid, o)) {
+      const rdf::Quad& q = g_.quads()[i];
+      if (!filtered_) {
+        out.push_back(q.subject);
+      } else if (read(q) && std::find(out.begin(), out.end(), q.subject) == out.end()) {
+        out.push_back(q.subject);
+      }
+    }
     return out;
   }
-  bool has_type(rdf::TermId s, const std::string& type) const {
-    const rdf::TermId p = id(iri(kRdf, "type")), t = id(type);
-    return !p.is_any() && !t.is_any() && g_.count(s, p, t, rdf::TermId::any(), 1) > 0;
+  bool has_type(rdf::TermId s, V type) const {
+    const rdf::TermId p = id(V::type), t = id(type);
+    if (p.is_any() || t.is_any()) return false;
+    if (!filtered_) return g_.count(s, p, t, rdf::TermId::any(), 1) > 0;
+    for (rdf::TermId g : graphs_)
+      if (g_.count(s, p, t, g, 1) > 0) return true;
+    return false;
   }
-  rdf::TermId one(rdf::TermId s, const std::string& p) const {
+  rdf::TermId one(rdf::TermId s, V p) const {
     const auto os = objects(s, p);
     if (os.size() != 1) {
-      throw Error("invalid-robot-model", name(s) + ": expected exactly one <" + p + ">, found " +
-                                             std::to_string(os.size()));
+      throw Error("invalid-robot-model", name(s) + ": expected exactly one <" + text(p) +
+                                             ">, found " + std::to_string(os.size()));
     }
     return os.front();
   }
-  double number(rdf::TermId s, const std::string& p) const { return to_double(s, p, one(s, p)); }
-  double to_double(rdf::TermId s, const std::string& p, rdf::TermId o) const {
+  double number(rdf::TermId s, V p) const { return to_double(s, p, one(s, p)); }
+  double to_double(rdf::TermId s, V p, rdf::TermId o) const {
     const auto& term = g_.terms()[o];
     double v = 0.0;
     if (term.is_literal()) {
       const auto r = std::from_chars(term.value.data(), term.value.data() + term.value.size(), v);
       if (r.ec == std::errc() && r.ptr == term.value.data() + term.value.size()) return v;
     }
-    throw Error("invalid-robot-model", name(s) + ": <" + p + "> is not a number");
+    throw Error("invalid-robot-model", name(s) + ": <" + text(p) + "> is not a number");
   }
-  std::vector<double> number_list(rdf::TermId s, const std::string& p) const {
+  std::vector<double> number_list(rdf::TermId s, V p) const {
     std::vector<double> out;
-    const std::string first = iri(kRdf, "first"), rest = iri(kRdf, "rest");
-    const rdf::TermId nil = id(iri(kRdf, "nil"));
-    for (rdf::TermId node = one(s, p); node != nil; node = one(node, rest)) {
-      out.push_back(to_double(s, p, one(node, first)));
+    const rdf::TermId nil = id(V::nil);
+    for (rdf::TermId node = one(s, p); node != nil; node = one(node, V::rest)) {
+      out.push_back(to_double(s, p, one(node, V::first)));
       if (out.size() > 16) break;
     }
     return out;
@@ -101,7 +198,7 @@ class Reader {
   // The QUDT units of `s` must be exactly `want` (a set).
   void require_units(rdf::TermId s, std::vector<std::string_view> want) const {
     std::vector<std::string> got;
-    for (rdf::TermId u : objects(s, std::string(vocab::qudt::unit))) got.push_back(name(u));
+    for (rdf::TermId u : objects(s, V::unit)) got.push_back(name(u));
     std::sort(got.begin(), got.end());
     std::vector<std::string> expected;
     for (auto w : want) expected.push_back(iri(kUnit, w));
@@ -121,22 +218,23 @@ class Reader {
     require_units(p, {"UNITLESS", "M"});
     Pose X;
     const char* keys[] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
+    const V columns[] = {V::direction_cosine_x, V::direction_cosine_y, V::direction_cosine_z};
     for (int c = 0; c < 3; ++c) {
-      const auto col = number_list(p, geom_coord(keys[c]));
+      const auto col = number_list(p, columns[c]);
       if (col.size() != 3) {
         throw Error("invalid-robot-model", name(p) + ": " + keys[c] + " must have 3 entries, got " +
                                                std::to_string(col.size()));
       }
       X.R.col(c) = Vec3(col[0], col[1], col[2]);
     }
-    X.p = Vec3(number(p, geom_coord("x")), number(p, geom_coord("y")), number(p, geom_coord("z")));
+    X.p = Vec3(number(p, V::x), number(p, V::y), number(p, V::z));
     return X;
   }
 
   // The Pose node "of" frame f, if any.
   std::optional<rdf::TermId> pose_of(rdf::TermId f) const {
-    for (rdf::TermId s : subjects(geom_rel("of"), f)) {
-      if (has_type(s, geom_rel("Pose"))) return s;
+    for (rdf::TermId s : subjects(V::of, f)) {
+      if (has_type(s, V::Pose)) return s;
     }
     return std::nullopt;
   }
@@ -146,36 +244,46 @@ class Reader {
   // Mass of the same body. No inertia node: a massless link.
   RigidInertia inertia(rdf::TermId frame) const {
     RigidInertia I;
-    for (rdf::TermId r : subjects(dyn_coord("as-seen-by"), frame)) {
-      if (!has_type(r, dyn_ent("RotationalInertia"))) continue;
+    for (rdf::TermId r : subjects(V::as_seen_by, frame)) {
+      if (!has_type(r, V::RotationalInertia)) continue;
       require_units(r, {"KiloGM-M2"});
-      const auto c = [&](const char* k) { return number(r, dyn_coord(k)); };
-      I.I_Scm_S << c("ixx"), c("ixy"), c("ixz"), c("ixy"), c("iyy"), c("iyz"), c("ixz"), c("iyz"),
-          c("izz");
-      const rdf::TermId com = one(r, dyn_ent("about"));
+      const auto c = [&](V k) { return number(r, k); };
+      I.I_Scm_S << c(V::ixx), c(V::ixy), c(V::ixz), c(V::ixy), c(V::iyy), c(V::iyz), c(V::ixz),
+          c(V::iyz), c(V::izz);
+      const rdf::TermId com = one(r, V::about);
       bool found = false;
-      for (rdf::TermId p : subjects(geom_rel("of"), com)) {
-        if (!has_type(p, geom_rel("Position"))) continue;
+      for (rdf::TermId p : subjects(V::of, com)) {
+        if (!has_type(p, V::Position)) continue;
         require_units(p, {"M"});
-        I.p_SoScm_S = Vec3(number(p, geom_coord("x")), number(p, geom_coord("y")),
-                           number(p, geom_coord("z")));
+        I.p_SoScm_S = Vec3(number(p, V::x), number(p, V::y), number(p, V::z));
         found = true;
       }
       if (!found) {
         throw Error("invalid-robot-model", name(r) + ": no Position of its point " + name(com));
       }
-      const rdf::TermId body = one(r, dyn_ent("of-body"));
+      const rdf::TermId body = one(r, V::of_body);
       found = false;
-      for (rdf::TermId m : subjects(dyn_ent("of-body"), body)) {
-        if (!has_type(m, dyn_ent("Mass"))) continue;
+      for (rdf::TermId m : subjects(V::of_body, body)) {
+        if (!has_type(m, V::Mass)) continue;
         require_units(m, {"KiloGM"});
-        I.mass = number(m, dyn_coord("mass"));
+        I.mass = number(m, V::mass);
         found = true;
       }
       if (!found) throw Error("invalid-robot-model", name(body) + ": has inertia but no Mass");
       return I;
     }
     return I;
+  }
+
+  // Whether a quad is in the graphs read.
+  bool read(const rdf::Quad& q) const {
+    return !filtered_ || std::find(graphs_.begin(), graphs_.end(), q.graph) != graphs_.end();
+  }
+  // The quads matching (s, p, o) in the dataset's order.
+  std::vector<uint32_t> matches(rdf::TermId s, rdf::TermId p, rdf::TermId o) const {
+    std::vector<uint32_t> out = g_.match(s, p, o);
+    if (filtered_) std::sort(out.begin(), out.end());
+    return out;
   }
 
   static std::string local_name(const std::string& iri_text, std::string_view prefix) {
@@ -186,7 +294,18 @@ class Reader {
 
  private:
   const rdf::Dataset& g_;
+  std::vector<rdf::TermId> graphs_;  // filtered_: the graphs read
+  bool filtered_ = false;
+  // id(V): unknown until first asked (any() is "not in the dataset").
+  static constexpr rdf::TermId kUnknown{UINT32_MAX - 1};
+  mutable std::array<rdf::TermId, kVocabSize> ids_ = [] {
+    std::array<rdf::TermId, kVocabSize> a;
+    a.fill(kUnknown);
+    return a;
+  }();
 };
+
+ChainDescription describe(const Reader& r, std::string_view chain_iri);
 
 }  // namespace
 
@@ -195,9 +314,19 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri) {
 }
 
 ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chain_iri) {
-  const Reader r(graph);
+  return describe(Reader(graph), chain_iri);
+}
+
+ChainDescription describe_chain(const rdf::Dataset& dataset, std::span<const rdf::TermId> graphs,
+                                std::string_view chain_iri) {
+  return describe(Reader(dataset, graphs), chain_iri);
+}
+
+namespace {
+
+ChainDescription describe(const Reader& r, std::string_view chain_iri) {
   const rdf::TermId chain_id = r.id(chain_iri);
-  if (chain_id.is_any() || !r.has_type(chain_id, kc("KinematicChain"))) {
+  if (chain_id.is_any() || !r.has_type(chain_id, V::KinematicChain)) {
     throw Error("invalid-robot-model",
                 "no KinematicChain named <" + std::string(chain_iri) + "> in the model");
   }
@@ -206,11 +335,11 @@ ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chai
   };
   std::map<rdf::TermId, JointInfo> by_parent_frame;
   std::map<rdf::TermId, rdf::TermId> child_frames;  // child frame -> joint
-  for (rdf::TermId j : r.objects(chain_id, kc("joints"))) {
-    if (!r.has_type(j, kc("RevoluteJoint"))) {
+  for (rdf::TermId j : r.objects(chain_id, V::joints)) {
+    if (!r.has_type(j, V::RevoluteJoint)) {
       throw Error("invalid-robot-model", r.name(j) + ": only RevoluteJoint is supported");
     }
-    const auto at = r.objects(j, kc("between-attachments"));
+    const auto at = r.objects(j, V::between_attachments);
     if (at.size() != 2) {
       throw Error("invalid-robot-model",
                   r.name(j) + ": expected 2 between-attachments, got " + std::to_string(at.size()));
@@ -222,7 +351,7 @@ ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chai
                   r.name(j) + ": exactly one attachment needs a Pose relative to its parent link");
     }
     JointInfo info{j, p0 ? at[0] : at[1], p0 ? at[1] : at[0], {}, p0 ? *p0 : *p1};
-    info.parent_frame = r.one(info.pose, geom_rel("with-respect-to"));
+    info.parent_frame = r.one(info.pose, V::with_respect_to);
     if (!by_parent_frame.emplace(info.parent_frame, info).second) {
       throw Error("invalid-robot-model",
                   r.name(info.parent_frame) + ": two joints start here; a chain cannot branch");
@@ -250,15 +379,15 @@ ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chai
     return v;
   };
   const auto origin_of = [&](rdf::TermId f) {
-    const auto o = unique(r.objects(f, geom_ent("origin")));
+    const auto o = unique(r.objects(f, V::origin));
     return o.size() == 1 ? r.name(o.front()) : std::string();
   };
   const auto body_of = [&](rdf::TermId f) {
-    const auto complexes = unique(r.subjects(geom_ent("simplices"), f));
+    const auto complexes = unique(r.subjects(V::simplices, f));
     if (complexes.size() == 1) return r.name(complexes.front());
-    for (rdf::TermId i : r.subjects(dyn_coord("as-seen-by"), f)) {
-      if (!r.has_type(i, dyn_ent("RotationalInertia"))) continue;
-      const auto bodies = unique(r.objects(i, dyn_ent("of-body")));
+    for (rdf::TermId i : r.subjects(V::as_seen_by, f)) {
+      if (!r.has_type(i, V::RotationalInertia)) continue;
+      const auto bodies = unique(r.objects(i, V::of_body));
       if (bodies.size() == 1) return r.name(bodies.front());
     }
     return std::string();
@@ -273,9 +402,8 @@ ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chai
     s.link = Reader::local_name(r.name(info.child), "frame-");
     s.type = JointType::Revolute;
     s.X_PJ = r.pose(info.pose);
-    const rdf::TermId axis = r.one(info.joint, kc("common-axis"));
-    s.axis_J = Vec3(r.number(axis, geom_coord("x")), r.number(axis, geom_coord("y")),
-                    r.number(axis, geom_coord("z")));
+    const rdf::TermId axis = r.one(info.joint, V::common_axis);
+    s.axis_J = Vec3(r.number(axis, V::x), r.number(axis, V::y), r.number(axis, V::z));
     s.inertia = r.inertia(info.child);
     chain.add_segment(std::move(s));
     out.frames.segments.push_back({r.name(info.child), origin_of(info.child), body_of(info.child)});
@@ -289,17 +417,19 @@ ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chai
   }
   // The tip: a frame posed relative to the last link's frame, if any.
   std::vector<rdf::TermId> tips;
-  for (rdf::TermId p : r.subjects(geom_rel("with-respect-to"), frame)) {
-    if (r.has_type(p, geom_rel("Pose"))) tips.push_back(p);
+  for (rdf::TermId p : r.subjects(V::with_respect_to, frame)) {
+    if (r.has_type(p, V::Pose)) tips.push_back(p);
   }
   if (tips.size() > 1) {
     throw Error("invalid-robot-model", r.name(frame) + ": more than one tip frame is posed here");
   }
   if (!tips.empty()) {
-    const rdf::TermId tip = r.one(tips.front(), geom_rel("of"));
+    const rdf::TermId tip = r.one(tips.front(), V::of);
     chain.add_fixed(Reader::local_name(r.name(tip), "frame-"), r.pose(tips.front()), {});
   }
   return out;
 }
+
+}  // namespace
 
 }  // namespace mospec::description

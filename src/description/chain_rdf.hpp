@@ -2,6 +2,7 @@
 // that chain_to_jsonld() emits (after JSON-LD loading, e.g. by app::load).
 #pragma once
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,5 +46,9 @@ struct ChainDescription {
 };
 // chain_from_rdf() and the entities of the chain's frames.
 ChainDescription describe_chain(const rdf::Dataset& graph, std::string_view chain_iri);
+// The same read from the union of some graphs of `dataset` (as a set of
+// triples) in place, without copying them into a dataset of their own.
+ChainDescription describe_chain(const rdf::Dataset& dataset, std::span<const rdf::TermId> graphs,
+                                std::string_view chain_iri);
 
 }  // namespace mospec::description

@@ -139,16 +139,21 @@ std::optional<double> Graph::number(TermId s, TermId p) const {
   return o ? number(*o) : std::nullopt;
 }
 
-rdf::Dataset Graph::graphs_describing(TermId subject) const {
-  rdf::Dataset out;
-  if (subject.is_any()) return out;
+std::vector<Graph::TermId> Graph::graphs_of(TermId subject) const {
   std::vector<TermId> graphs;
+  if (subject.is_any()) return graphs;
   dataset_.scan(subject, TermId::any(), TermId::any(), TermId::any(),
                 [&](const rdf::Quad& q, uint32_t) {
                   if (std::find(graphs.begin(), graphs.end(), q.graph) == graphs.end())
                     graphs.push_back(q.graph);
                   return true;
                 });
+  return graphs;
+}
+
+rdf::Dataset Graph::graphs_describing(TermId subject) const {
+  rdf::Dataset out;
+  const std::vector<TermId> graphs = graphs_of(subject);
   // In load order across the graphs, as a filter over all quads would give.
   std::vector<uint32_t> picked;
   for (TermId g : graphs) {

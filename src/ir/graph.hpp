@@ -81,6 +81,9 @@ class Graph {
   // of the file that describes a robot's chain, for runtime::chain_from_rdf,
   // without other files' statements (task poses between the robot's frames).
   rdf::Dataset graphs_describing(TermId subject) const;
+  // The graphs graphs_describing(subject) copies: those with a statement about
+  // `subject`, in the order they first have one.
+  std::vector<TermId> graphs_of(TermId subject) const;
 
  private:
   // Whether quad `i` is the first statement of its triple (in any graph).

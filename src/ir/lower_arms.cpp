@@ -74,8 +74,8 @@ void lower_arm(State& st, TermId solver) {
   arm.chain_iri = st.str(*chain_t);
   description::ChainFrames frames;
   try {
-    description::ChainDescription described =
-        description::describe_chain(st.chain_graph(arm.chain_iri), arm.chain_iri);
+    description::ChainDescription described = description::describe_chain(
+        st.graph.dataset(), st.chain_graphs(arm.chain_iri), arm.chain_iri);
     arm.chain = std::move(described.chain);
     frames = std::move(described.frames);
   } catch (const Error& e) {

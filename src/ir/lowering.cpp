@@ -88,50 +88,76 @@ void State::several_values(TermId s, const std::string& p,
   error(where(s, p, values[1]), "several-values", msg);
 }
 
+const State::DatumTerms& State::datum_terms() const {
+  if (datum_terms_) return *datum_terms_;
+  const std::string gr = "geometry/spatial-relations", gc = "geometry/coordinates",
+                    de = "newtonian-rigid-body-dynamics/structural-entities",
+                    dc = "newtonian-rigid-body-dynamics/coordinates";
+  DatumTerms t;
+  t.pose = term(vocab(gr, "Pose"));
+  t.pose_coordinate = term(vocab(gc, "PoseCoordinate"));
+  t.twist = term(vocab(gr, "VelocityTwist"));
+  t.twist_coordinate = term(vocab(gc, "VelocityTwistCoordinate"));
+  t.wrench = term(vocab(de, "Wrench"));
+  t.wrench_coordinate = term(vocab(dc, "WrenchCoordinate"));
+  t.rigid_body_inertia = term(vocab(de, "RigidBodyInertia"));
+  t.rigid_body_inertia_coordinate = term(vocab(dc, "RigidBodyInertiaCoordinate"));
+  t.of_body = term(vocab(de, "of-body"));
+  t.about = term(vocab(de, "about"));
+  t.direction_coordinate = term(vocab(gc, "DirectionCoordinate"));
+  t.position = term(vocab(gr, "Position"));
+  t.position_coordinate = term(vocab(gc, "PositionCoordinate"));
+  t.quantity = term(kQudt + "Quantity");
+  t.linear_distance = term(vocab(gr, "LinearDistance"));
+  t.has_quantity_kind = term(kQudt + "hasQuantityKind");
+  t.unit = term(kQudt + "unit");
+  t.value = term(kQudt + "value");
+  t.of = term(vocab(gr, "of"));
+  t.with_respect_to = term(vocab(gr, "with-respect-to"));
+  t.reference_point = term(vocab(gr, "reference-point"));
+  t.dyn_reference_point = term(vocab(de, "reference-point"));
+  t.as_seen_by = term(vocab(gc, "as-seen-by"));
+  t.dyn_as_seen_by = term(vocab(dc, "as-seen-by"));
+  t.x = term(vocab(gc, "x"));
+  t.y = term(vocab(gc, "y"));
+  t.z = term(vocab(gc, "z"));
+  t.direction_cosine[0] = term(vocab(gc, "direction-cosine-x"));
+  t.direction_cosine[1] = term(vocab(gc, "direction-cosine-y"));
+  t.direction_cosine[2] = term(vocab(gc, "direction-cosine-z"));
+  return datum_terms_.emplace(t);
+}
+
 std::optional<DataType> State::type_of(TermId e) const {
-  if (has_type(e, vocab("geometry/spatial-relations", "Pose")) ||
-      has_type(e, vocab("geometry/coordinates", "PoseCoordinate")))
-    return DataType::Pose;
-  if (has_type(e, vocab("geometry/spatial-relations", "VelocityTwist")) ||
-      has_type(e, vocab("geometry/coordinates", "VelocityTwistCoordinate")))
-    return DataType::Twist;
-  if (has_type(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "Wrench")) ||
-      has_type(e, vocab("newtonian-rigid-body-dynamics/coordinates", "WrenchCoordinate")))
-    return DataType::Wrench;
-  if (has_type(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "RigidBodyInertia")) ||
-      has_type(e, vocab("newtonian-rigid-body-dynamics/coordinates", "RigidBodyInertiaCoordinate")))
-    return DataType::Inertia;
-  if (has_type(e, vocab("geometry/coordinates", "DirectionCoordinate")) ||
-      has_type(e, vocab("geometry/spatial-relations", "Position")) ||
-      has_type(e, vocab("geometry/coordinates", "PositionCoordinate")))
+  const DatumTerms& t = datum_terms();
+  const auto is = [&](TermId type) { return graph.has_type(e, type); };
+  if (is(t.pose) || is(t.pose_coordinate)) return DataType::Pose;
+  if (is(t.twist) || is(t.twist_coordinate)) return DataType::Twist;
+  if (is(t.wrench) || is(t.wrench_coordinate)) return DataType::Wrench;
+  if (is(t.rigid_body_inertia) || is(t.rigid_body_inertia_coordinate)) return DataType::Inertia;
+  if (is(t.direction_coordinate) || is(t.position) || is(t.position_coordinate))
     return DataType::Vector3;
-  if (has_type(e, kQudt + "Quantity") ||
-      has_type(e, vocab("geometry/spatial-relations", "LinearDistance")) ||
-      !objects(e, kQudt + "hasQuantityKind").empty())
+  if (is(t.quantity) || is(t.linear_distance) || !graph.objects(e, t.has_quantity_kind).empty())
     return DataType::Scalar;
   return std::nullopt;
 }
 
 void State::fill_constant(Data& d, TermId e) {
-  const std::string gc = "geometry/coordinates";
+  const DatumTerms& t = datum_terms();
   switch (d.type) {
     case DataType::Scalar:
-      if (auto v = number(e, kQudt + "value")) d.value = {*v};
+      if (auto v = number(e, t.value)) d.value = {*v};
       break;
     case DataType::Vector3: {
-      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")),
-           z = number(e, vocab(gc, "z"));
+      auto x = number(e, t.x), y = number(e, t.y), z = number(e, t.z);
       if (x && y && z) d.value = {*x, *y, *z};
       break;
     }
     case DataType::Pose: {
-      auto x = number(e, vocab(gc, "x")), y = number(e, vocab(gc, "y")),
-           z = number(e, vocab(gc, "z"));
+      auto x = number(e, t.x), y = number(e, t.y), z = number(e, t.z);
       std::array<std::vector<double>, 3> cols;
       bool ok = x && y && z;
-      const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
       for (int c = 0; c < 3 && ok; ++c) {
-        auto head = object(e, vocab(gc, names[c]));
+        auto head = object(e, t.direction_cosine[c]);
         if (!head) {
           ok = false;
           break;
@@ -284,24 +310,20 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
   } else if (auto t = type_of(e); t && *t != expected) {
     type_mismatch(d.iri, *t);
   }
-  const std::string gr = "geometry/spatial-relations";
-  if (auto o = object(e, vocab(gr, "of"))) d.of = str(*o);
-  if (auto o = object(e, vocab(gr, "with-respect-to"))) d.with_respect_to = str(*o);
-  if (auto o = object(e, vocab(gr, "reference-point"))) d.reference_point = str(*o);
-  if (auto o =
-          object(e, vocab("newtonian-rigid-body-dynamics/structural-entities", "reference-point")))
-    d.reference_point = str(*o);
+  const DatumTerms& t = datum_terms();
+  if (auto o = object(e, t.of)) d.of = str(*o);
+  if (auto o = object(e, t.with_respect_to)) d.with_respect_to = str(*o);
+  if (auto o = object(e, t.reference_point)) d.reference_point = str(*o);
+  if (auto o = object(e, t.dyn_reference_point)) d.reference_point = str(*o);
   if (d.type == DataType::Inertia) {
-    const std::string de = "newtonian-rigid-body-dynamics/structural-entities";
-    if (auto o = object(e, vocab(de, "of-body"))) d.of = str(*o);
-    if (auto o = object(e, vocab(de, "about"))) d.reference_point = str(*o);
+    if (auto o = object(e, t.of_body)) d.of = str(*o);
+    if (auto o = object(e, t.about)) d.reference_point = str(*o);
   }
-  if (auto o = object(e, vocab("geometry/coordinates", "as-seen-by"))) d.as_seen_by = str(*o);
-  if (auto o = object(e, vocab("newtonian-rigid-body-dynamics/coordinates", "as-seen-by")))
-    d.as_seen_by = str(*o);
+  if (auto o = object(e, t.as_seen_by)) d.as_seen_by = str(*o);
+  if (auto o = object(e, t.dyn_as_seen_by)) d.as_seen_by = str(*o);
   std::vector<std::string> kinds, units;
-  for (TermId k : objects(e, kQudt + "hasQuantityKind")) kinds.push_back(local_name(str(k)));
-  for (TermId u : objects(e, kQudt + "unit")) units.push_back(local_name(str(u)));
+  for (TermId k : graph.objects(e, t.has_quantity_kind)) kinds.push_back(local_name(str(k)));
+  for (TermId u : graph.objects(e, t.unit)) units.push_back(local_name(str(u)));
   for (size_t i = 0; i < kinds.size(); ++i) d.quantity_kind.append(i ? "," : "").append(kinds[i]);
   for (size_t i = 0; i < units.size(); ++i) d.unit.append(i ? "," : "").append(units[i]);
   fill_constant(d, e);

@@ -109,10 +109,11 @@ struct State {
     return o ? graph.number(*o) : std::nullopt;
   }
 
-  // The graph of the file that describes a chain: other files' poses between
-  // the robot's frames (task quantities) are not part of its structure.
-  rdf::Dataset chain_graph(const std::string& chain_iri) const {
-    return graph.graphs_describing(term(chain_iri));
+  // The graphs of the file that describes a chain (read in place by
+  // description::describe_chain): other files' poses between the robot's
+  // frames (task quantities) are not part of its structure.
+  std::vector<TermId> chain_graphs(const std::string& chain_iri) const {
+    return graph.graphs_of(term(chain_iri));
   }
 
   // --- diagnostics --------------------------------------------------------
@@ -139,6 +140,30 @@ struct State {
   }
 
   // --- data ---------------------------------------------------------------
+  // The vocabulary terms every datum is read through (type_of, datum,
+  // fill_constant), looked up once per lowering instead of spelled and looked
+  // up per datum; any() for a term the model never uses.
+  struct DatumTerms {
+    TermId pose, pose_coordinate, twist, twist_coordinate, wrench, wrench_coordinate,
+        rigid_body_inertia, rigid_body_inertia_coordinate, direction_coordinate, position,
+        position_coordinate, quantity, linear_distance;
+    TermId of_body, about;  // a rigid-body inertia's body and reference point
+    TermId has_quantity_kind, unit, value;
+    TermId of, with_respect_to, reference_point, dyn_reference_point, as_seen_by, dyn_as_seen_by;
+    TermId x, y, z, direction_cosine[3];
+  };
+  const DatumTerms& datum_terms() const;
+  // object(s, p) for a property given by its id.
+  std::optional<TermId> object(TermId s, TermId p) const {
+    const std::vector<TermId> all = graph.objects(s, p);
+    if (all.empty()) return std::nullopt;
+    if (all.size() > 1) several_values(s, str(p), all);
+    return all.front();
+  }
+  std::optional<double> number(TermId s, TermId p) const {
+    auto o = object(s, p);
+    return o ? graph.number(*o) : std::nullopt;
+  }
   std::optional<DataType> type_of(TermId e) const;
   int datum(TermId e, DataType expected, TermId referenced_by, const std::string& role);
   int synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
@@ -209,6 +234,7 @@ struct State {
   // several values where one is read (once per subject and property).
   mutable std::vector<Diagnostic> errors;
   mutable std::set<std::pair<uint32_t, std::string>> several_reported;
+  mutable std::optional<DatumTerms> datum_terms_;  // datum_terms(), once looked up
   std::set<std::string> data_names, step_names;
   std::unordered_map<uint32_t, int> data_of;  // model entity (term index) -> its datum
   std::map<int, int> producer;                // datum -> the step that writes it

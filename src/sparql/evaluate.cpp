@@ -528,12 +528,18 @@ class Engine {
 
   // With several graphs, the default graph is their union as a set of triples:
   // a triple is reported at its first occurrence only.
+  // Remembered per quad (the dataset does not change under an evaluator, and
+  // SHACL's queries scan the same quads again and again).
   bool duplicate(const rdf::Quad& q, uint32_t index) const {
+    if (duplicate_.size() != data_.size()) duplicate_.assign(data_.size(), kUnknown);
+    uint8_t& known = duplicate_[index];
+    if (known != kUnknown) return known == kDuplicate;
     bool earlier = false;
     data_.scan(q.subject, q.predicate, q.object, TermId::any(), [&](const rdf::Quad&, uint32_t i) {
       earlier = i < index;
       return !earlier;
     });
+    known = earlier ? kDuplicate : kFirst;
     return earlier;
   }
 
@@ -1109,6 +1115,9 @@ class Engine {
   // not change under an evaluator, while SHACL runs hundreds of queries over
   // the same values.
   mutable std::unordered_map<uint32_t, Value> decoded_;
+  // By quad index: whether an earlier quad states the same triple (duplicate()).
+  static constexpr uint8_t kUnknown = 0, kFirst = 1, kDuplicate = 2;
+  mutable std::vector<uint8_t> duplicate_;
   Limits limits_;
 
   // Per evaluation.

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -374,10 +375,46 @@ bool already_read(const rdf::Dataset& file, const rdf::Dataset& already) {
   return any && all;
 }
 
+// Copies `document` (one document read by rdf::read_turtle or read_trig into
+// an empty dataset) into `into` as reading the same text into `into` would:
+// terms are interned in the reader's order (a literal's datatype first, then
+// subject, predicate, object, graph of each statement in turn), and every
+// blank node's label gets `into`'s next fresh prefix in place of the one the
+// reader gave it ("rN_", which ends at the label's first '_'). Quads already
+// in `into` keep their first location, as Dataset::add does.
+void merge_document(const rdf::Dataset& document, rdf::Dataset& into) {
+  const rdf::TermTable& from = document.terms();
+  rdf::TermTable& to = into.terms();
+  const std::string prefix = to.fresh_blank_prefix();
+  std::vector<TermId> mapped(from.size(), TermId::any());
+  std::string label;
+  auto map = [&](TermId t) {
+    TermId& m = mapped[t.index];
+    if (!m.is_any()) return m;
+    const rdf::Term& term = from[t];
+    if (term.is_blank()) {
+      const size_t stem = term.value.find('_');
+      label = prefix;
+      label.append(stem == std::string_view::npos ? term.value : term.value.substr(stem + 1));
+      m = to.blank(label);
+    } else {
+      m = to.import(from, t);
+    }
+    return m;
+  };
+  const std::span<const rdf::Quad> quads = document.quads();
+  for (size_t i = 0; i < quads.size(); ++i) {
+    const rdf::Quad& q = quads[i];
+    const TermId s = map(q.subject), p = map(q.predicate), o = map(q.object), g = map(q.graph);
+    into.add(rdf::Quad{s, p, o, g}, document.location(i));
+  }
+}
+
 }  // namespace
 
 std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Dataset& into,
-                                              DiagnosticSink* diagnostics) {
+                                              DiagnosticSink* diagnostics,
+                                              std::span<const ShapeFile> read_before) {
   std::vector<ShapeFile> out;
   const std::string base(vocab::kMetamodels);
   const std::string manifest = model.loader().resolve(base + "mospec/shape-files.txt");
@@ -397,12 +434,22 @@ std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Data
     f.path = model.loader().resolve(f.iri);
     f.automatic = true;
     if (f.path.empty()) continue;
+    // A file the app lists is in `into` already: no need to read it to see so.
+    if (std::any_of(read_before.begin(), read_before.end(),
+                    [&](const ShapeFile& r) { return r.path == f.path; }))
+      continue;
     rdf::Dataset shapes;
     read_shape_file(f, model.loader(), shapes, diagnostics);
     if (!selects_a_node(shapes, model.dataset()) || already_read(shapes, into)) continue;
-    // Read again into `into` (not merged): its reader gives this document's
-    // blank nodes labels fresh in `into`, where `shapes` could reuse labels.
-    read_shape_file(f, model.loader(), into, diagnostics);
+    // The document's blank nodes need labels fresh in `into`, where `shapes`
+    // could reuse labels: a Turtle or TriG file is copied over with its label
+    // prefix replaced (the dataset `into` gets is the one reading the file
+    // into it would give); any other syntax is read again.
+    const std::string ext = lower_extension(f.path);
+    if (ext == ".ttl" || ext == ".turtle" || ext == ".trig")
+      merge_document(shapes, into);
+    else
+      read_shape_file(f, model.loader(), into, diagnostics);
     out.push_back(std::move(f));
   }
   return out;
@@ -417,7 +464,8 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
   for (const ShapeFile& f : out.files)
     read_shape_file(f, model.loader(), *out.shapes_graph, &out.shape_diagnostics);
   if (options.vocabulary_shapes && options.use_app_constraints) {
-    for (ShapeFile& f : vocabulary_shape_files(model, *out.shapes_graph, &out.shape_diagnostics))
+    for (ShapeFile& f :
+         vocabulary_shape_files(model, *out.shapes_graph, &out.shape_diagnostics, out.files))
       out.files.push_back(std::move(f));
   }
   if (out.files.empty())

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -77,11 +78,13 @@ struct ModelValidation {
 // those listed by <metamodels>/mospec/shape-files.txt, as the model's loader
 // resolves it, whose targets (sh:targetClass, implicit class targets,
 // sh:targetSubjectsOf/ObjectsOf, sh:targetNode) select a node of the model and
-// whose node shapes `already` (the shapes read so far) does not hold. Each is
-// read into `into`. Empty when the vocabulary does not resolve to mospec's
-// metamodels.
+// whose node shapes `into` (the shapes read so far) does not hold. Each is
+// read into `into`. A file whose path is one of `read_before` (the files read
+// into `into` so far) is skipped without being read. Empty when the
+// vocabulary does not resolve to mospec's metamodels.
 std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Dataset& into,
-                                              DiagnosticSink* diagnostics = nullptr);
+                                              DiagnosticSink* diagnostics = nullptr,
+                                              std::span<const ShapeFile> read_before = {});
 
 // The whole pipeline on a loaded model: read shape files, compile (ill-formed
 // shapes throw mospec::Error "shacl-ill-formed", located), validate every graph

@@ -3,13 +3,17 @@
 // copy (what lowering read before the reader existed), on a generated model
 // whose files restate each other's triples with and without locations.
 #include "ir/graph.hpp"
-#include "rdf/xsd.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
+
+#include "app/app.hpp"
+#include "description/chain_rdf.hpp"
+#include "rdf/xsd.hpp"
 
 namespace mospec::ir {
 namespace {
@@ -153,6 +157,78 @@ TEST(IrGraph, GraphsDescribingCopiesOnlyTheSubjectsFiles) {
   EXPECT_EQ(copy.count(s2, TermId::any(), TermId::any()), 5u);  // 3 objects, type, number
   EXPECT_TRUE(copy.terms().find_iri(kEx + "list").is_any());    // file-a's only
   EXPECT_TRUE(g.graphs_describing(g.term(kEx + "absent")).size() == 0);
+}
+
+// Lowering reads a robot's chain from its description's graphs in place
+// (description::describe_chain over Graph::graphs_of) instead of from their
+// copy (graphs_describing): the same chain and frames, bit for bit, also when
+// another graph restates part of the description (a triple counts once) and
+// when a further graph poses a frame relative to the chain's last link (not
+// read: it states nothing about the chain).
+TEST(IrGraph, ChainReadInPlaceEqualsTheCopy) {
+  const std::filesystem::path source = MOSPEC_SOURCE_DIR;
+  app::LoadOptions options;
+  options.root = source.string();
+  const app::LoadedModel model = app::load({(source / "models" / "sc1.json").string()}, options);
+  rdf::Dataset d;
+  d.merge(model.dataset());
+  rdf::TermTable& t = d.terms();
+  const std::string base = "https://mospec.example/robots/kinova-gen3/";
+  const std::string chain = base + "chain";
+  const TermId chain_id = t.find_iri(chain);
+  ASSERT_FALSE(chain_id.is_any());
+  // Restate the chain's joints and one joint's statements in a graph of their own.
+  const TermId restated = t.iri(kEx + "restated"), stray = t.iri(kEx + "stray");
+  std::vector<Quad> extra;
+  for (const Quad& q : d.quads()) {
+    const std::string_view s = t[q.subject].value;
+    if (q.subject == chain_id || s == base + "joint-Actuator1")
+      extra.push_back({q.subject, q.predicate, q.object, restated});
+  }
+  ASSERT_GT(extra.size(), 2u);
+  for (const Quad& q : extra) d.add(q, SourceLoc{1, 1, 1});
+  // Poses of both attachment frames of a joint, in a graph that does not
+  // mention the chain: read, they would make the joint ambiguous (an error).
+  const std::string geom_rel =
+      "https://comp-rob2b.github.io/metamodels/geometry/spatial-relations#";
+  int strays = 0;
+  for (const Quad& q : extra) {
+    if (!t[q.predicate].value.ends_with("between-attachments")) continue;
+    const TermId pose = t.iri(kEx + "stray-pose-" + std::to_string(strays++));
+    d.add({pose, t.iri(kType), t.iri(geom_rel + "Pose"), stray});
+    d.add({pose, t.iri(geom_rel + "of"), q.object, stray});
+  }
+  ASSERT_EQ(strays, 2);
+  const Graph g(d);
+  const std::vector<TermId> graphs = g.graphs_of(g.term(chain));
+  ASSERT_EQ(graphs.size(), 2u);
+  const description::ChainDescription copied =
+      description::describe_chain(g.graphs_describing(g.term(chain)), chain);
+  const description::ChainDescription in_place = description::describe_chain(d, graphs, chain);
+  const runtime::Chain& a = copied.chain;
+  const runtime::Chain& b = in_place.chain;
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 0);
+  for (int i = 0; i < a.size(); ++i) {
+    const runtime::Segment& x = a.segment(i);
+    const runtime::Segment& y = b.segment(i);
+    EXPECT_EQ(x.joint, y.joint);
+    EXPECT_EQ(x.link, y.link);
+    EXPECT_EQ(x.X_PJ.R, y.X_PJ.R);
+    EXPECT_EQ(x.X_PJ.p, y.X_PJ.p);
+    EXPECT_EQ(x.axis_J, y.axis_J);
+    EXPECT_EQ(x.inertia.mass, y.inertia.mass);
+    EXPECT_EQ(x.inertia.I_Scm_S, y.inertia.I_Scm_S);
+    EXPECT_EQ(x.inertia.p_SoScm_S, y.inertia.p_SoScm_S);
+    EXPECT_EQ(x.folded_links, y.folded_links);
+  }
+  const auto same = [](const description::FrameEntities& x, const description::FrameEntities& y) {
+    return x.frame == y.frame && x.origin == y.origin && x.body == y.body;
+  };
+  EXPECT_TRUE(same(copied.frames.root, in_place.frames.root));
+  ASSERT_EQ(copied.frames.segments.size(), in_place.frames.segments.size());
+  for (size_t i = 0; i < copied.frames.segments.size(); ++i)
+    EXPECT_TRUE(same(copied.frames.segments[i], in_place.frames.segments[i])) << i;
 }
 
 }  // namespace

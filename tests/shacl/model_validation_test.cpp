@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 
 #include "app/app.hpp"
 #include "rdf/nquads.hpp"
@@ -226,6 +227,64 @@ TEST(ModelValidation, JsonLdReportReadsBackAsTheReportGraph) {
                         "\"sh:MinCountConstraintComponent\""),
             std::string::npos)
       << jsonld;
+}
+
+// vocabulary_shape_files copies each selected file over from the copy it read
+// to look at its targets instead of reading it a second time: `into` must hold
+// exactly what reading the files into it in turn gives (term ids, blank-node
+// labels, quads and their locations), after shapes already read.
+TEST(ModelValidation, VocabularyShapeFilesLandAsIfReadIntoTheGraph) {
+  const fs::path source = MOSPEC_SOURCE_DIR;
+  app::LoadOptions options;
+  options.root = source.string();
+  app::LoadedModel model = app::load({(source / "models" / "sc1.json").string()}, options);
+  Scratch dir;
+  const validation::ShapeFile first{dir.write("first.ttl", kShapes), "", {}};
+
+  rdf::Dataset got;
+  validation::read_shape_file(first, model.loader(), got);
+  const std::vector<validation::ShapeFile> files = validation::vocabulary_shape_files(model, got);
+  ASSERT_GE(files.size(), 2u);
+
+  rdf::Dataset expected;
+  validation::read_shape_file(first, model.loader(), expected);
+  for (const validation::ShapeFile& f : files)
+    validation::read_shape_file(f, model.loader(), expected);
+
+  ASSERT_EQ(got.terms().size(), expected.terms().size());
+  for (uint32_t i = 0; i < got.terms().size(); ++i) {
+    const rdf::Term& a = got.terms()[rdf::TermId{i}];
+    const rdf::Term& b = expected.terms()[rdf::TermId{i}];
+    ASSERT_EQ(static_cast<int>(a.kind), static_cast<int>(b.kind)) << i;
+    ASSERT_EQ(a.value, b.value) << i;
+    ASSERT_EQ(a.datatype, b.datatype) << i;
+    ASSERT_EQ(a.language, b.language) << i;
+  }
+  ASSERT_EQ(got.size(), expected.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    ASSERT_EQ(got.quads()[i], expected.quads()[i]) << i;
+    const SourceLoc a = got.location(i), b = expected.location(i);
+    ASSERT_EQ(std::tie(a.file, a.line, a.column), std::tie(b.file, b.line, b.column)) << i;
+  }
+}
+
+// A manifest file among `read_before` (the files the app lists, read already)
+// is skipped without being read again.
+TEST(ModelValidation, VocabularyShapeFilesSkipFilesReadBefore) {
+  const fs::path source = MOSPEC_SOURCE_DIR;
+  app::LoadOptions options;
+  options.root = source.string();
+  app::LoadedModel model = app::load({(source / "models" / "sc1.json").string()}, options);
+  rdf::Dataset all;
+  const std::vector<validation::ShapeFile> files = validation::vocabulary_shape_files(model, all);
+  ASSERT_GE(files.size(), 2u);
+  // Claim the first one was read before (it was not: `none` stays without it).
+  rdf::Dataset none;
+  const std::vector<validation::ShapeFile> rest =
+      validation::vocabulary_shape_files(model, none, nullptr, {files.data(), 1});
+  ASSERT_EQ(rest.size(), files.size() - 1);
+  for (size_t i = 0; i < rest.size(); ++i) EXPECT_EQ(rest[i].path, files[i + 1].path);
+  EXPECT_LT(none.size(), all.size());
 }
 
 }  // namespace

@@ -399,6 +399,19 @@ TEST(SparqlEval, DefaultGraphIsTheUnionOfGraphsAsASet) {
   ResultSet rs;
   ev.select(parse_query("SELECT ?x ?y { ?x <http://example.org/p> ?y }"), {}, rs);
   EXPECT_EQ(rs.size(), 2u);
+  // The evaluator remembers which quads restate an earlier one: later queries
+  // over the same quads, entered from either end, still see each triple once.
+  const std::pair<const char*, size_t> queries[] = {
+      {"SELECT ?y { <http://example.org/a> <http://example.org/p> ?y }", 1},
+      {"SELECT ?x { ?x <http://example.org/p> <http://example.org/b> }", 1},
+      {"SELECT ?x ?y { ?x ?p ?y }", 2}};
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const auto& [q, n] : queries) {
+      ResultSet again;
+      ev.select(parse_query(q), {}, again);
+      EXPECT_EQ(again.size(), n) << q;
+    }
+  }
 }
 
 TEST(SparqlEval, ComputedTermsAndConstantsMissingFromTheData) {
