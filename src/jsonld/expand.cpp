@@ -230,6 +230,12 @@ class Expander {
   // IRI, which toRdf drops with its triples; nullopt when `iri` is fine.
   std::optional<Pending> malformed_id(const std::string& iri, const Value& value) const;
 
+  // Options::property_prefix_seen: records a property IRI of the result.
+  void note_property(std::string_view iri) const {
+    if (opts_.property_prefix_seen != nullptr && iri.starts_with(opts_.property_prefix))
+      *opts_.property_prefix_seen = true;
+  }
+
   std::string file_name(SourceLoc loc) const;
   [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
   void flush(ObjectState& st, const Object& result, ActiveProperty ap) const;
@@ -517,9 +523,11 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
                "reverse property \"" + key + "\" cannot take a value or list object",
                item.location());
         }
+        note_property(*expanded_property);
         add_value(rm->as_object(), *expanded_property, std::move(item), key_loc);
       }
     } else {  // 13.14
+      note_property(*expanded_property);
       add_value(result, std::move(*expanded_property), std::move(expanded_value), key_loc);
     }
   }
@@ -858,6 +866,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
           if (Value* existing = io.find(*eik)) {
             values = concat(std::move(values), std::move(*existing));
           }
+          note_property(*eik);
           put(io, std::move(*eik), std::move(values), index_loc);
         }
       } else if (has("@index") && !has_key(item, "@index") && !none) {  // 13.8.3.7.3

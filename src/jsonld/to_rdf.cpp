@@ -378,9 +378,15 @@ class Converter {
       if (it != blank_terms_.end()) return it->second;
       return out_.terms().blank(key.substr(2));
     }
-    auto [it, fresh] = iri_terms_.try_emplace(key, rdf::TermId::any());
-    if (fresh && rdf::is_well_formed_iri(key)) it->second = out_.terms().iri(key);
-    if (it->second.is_any()) return std::nullopt;
+    const rdf::TermId iri = well_formed_iri(key);
+    if (iri.is_any()) return std::nullopt;
+    return iri;
+  }
+
+  // The term of an IRI, TermId::any() when it is not well-formed (memoised).
+  rdf::TermId well_formed_iri(std::string_view iri) {
+    auto [it, fresh] = iri_terms_.try_emplace(iri, rdf::TermId::any());
+    if (fresh && rdf::is_well_formed_iri(iri)) it->second = out_.terms().iri(iri);
     return it->second;
   }
 
@@ -448,7 +454,7 @@ class Converter {
     std::optional<std::string_view> datatype;
     if (type != nullptr) {
       if (!type->is_string()) return std::nullopt;
-      if (type->as_string() != "@json" && !rdf::is_well_formed_iri(type->as_string())) {
+      if (type->as_string() != "@json" && well_formed_iri(type->as_string()).is_any()) {
         return std::nullopt;
       }
       datatype = type->as_string();
