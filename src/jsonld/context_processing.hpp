@@ -23,6 +23,7 @@
 
 #include "jsonld/context.hpp"
 #include "jsonld/loader.hpp"
+#include "rdf/id_hash_set.hpp"
 #include "rdf/iri.hpp"
 
 namespace mospec::jsonld {
@@ -38,7 +39,7 @@ struct HashedKey {
 
 struct StringHash {
   using is_transparent = void;
-  size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+  size_t operator()(std::string_view s) const noexcept { return rdf::detail::hash_text(s); }
   size_t operator()(const HashedKey& k) const noexcept { return k.hash; }
 };
 

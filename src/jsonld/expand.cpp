@@ -129,10 +129,20 @@ Value& put(Object& obj, std::string key, Value v, SourceLoc key_loc) {
 void add_value(Object& obj, std::string key, Value v, SourceLoc key_loc) {
   Value* slot = obj.find(key);
   if (slot == nullptr) {
-    SourceLoc loc = v.location();
-    slot = &put(obj, std::move(key), Value(Array{}), key_loc);
-    slot->set_location(loc);
-  } else if (!slot->is_array()) {
+    // A new key: an array value becomes its array as it is.
+    Value values = std::move(v);
+    if (!values.is_array()) {
+      const SourceLoc loc = values.location();
+      Array a;
+      a.push_back(std::move(values));
+      values = Value(std::move(a));
+      values.set_location(loc);
+    }
+    obj.append_new(std::move(key), std::move(values));
+    obj.set_key_location(obj.size() - 1, key_loc);
+    return;
+  }
+  if (!slot->is_array()) {
     *slot = to_array(std::move(*slot));
   }
   Array& arr = slot->as_array();
@@ -435,6 +445,7 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDe
   }
 
   // 13, 14
+  st.result.reserve(obj.size());
   expand_entries(active, ap, obj, base_url, st);
   return finish_object(ap, st, element.location());
 }
@@ -915,6 +926,7 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
   }
   // 3
   Object result;
+  result.reserve(2);
   result.append_new("@value", value);
   if (type != nullptr && *type && **type != "@id" && **type != "@vocab" && **type != "@none") {
     result.append_new("@type", string_at(**type, value.location()));  // 4

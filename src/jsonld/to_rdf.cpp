@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <functional>
 #include <map>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "jsonld/context.hpp"
 #include "jsonld/expand.hpp"
 #include "jsonld/loader.hpp"
+#include "rdf/id_hash_set.hpp"
 #include "rdf/iri.hpp"
 #include "rdf/term.hpp"
 #include "vocab/w3c.hpp"
@@ -34,7 +36,7 @@ constexpr std::string_view kXsdInteger = vocab::xsd::integer;
 
 struct StringHash {
   using is_transparent = void;
-  size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+  size_t operator()(std::string_view s) const noexcept { return rdf::detail::hash_text(s); }
 };
 
 std::string rdf_iri(std::string_view local) {
@@ -176,11 +178,50 @@ struct Item {
 struct Node {
   SourceLoc where;
   std::vector<std::pair<std::string_view, SourceLoc>> types;
-  std::map<std::string_view, std::vector<Item>> properties;  // ordered by property
+  // In the order first met; emit() visits them ordered by property. A node
+  // has a handful, so a scan finds one faster than a map would.
+  std::vector<std::pair<std::string_view, std::vector<Item>>> properties;
   const json::Value* index = nullptr;
+
+  // The index of `property` in `properties`, added if new.
+  size_t slot(std::string_view property) {
+    for (size_t i = 0; i < properties.size(); ++i) {
+      if (properties[i].first == property) return i;
+    }
+    properties.emplace_back(property, std::vector<Item>());
+    return properties.size() - 1;
+  }
 };
 
-using Graph = std::map<std::string_view, Node>;  // ordered by subject
+// The nodes of one graph by subject, hashed; emit() visits them ordered by
+// subject.
+class Graph {
+ public:
+  bool empty() const { return nodes_.empty(); }
+  // The node of `id` and whether it was created now. Nodes never move.
+  std::pair<Node*, bool> try_emplace(std::string_view id) {
+    auto [it, fresh] = by_id_.try_emplace(id, static_cast<uint32_t>(nodes_.size()));
+    if (fresh) {
+      nodes_.emplace_back();
+      ids_.push_back(id);
+    }
+    return {&nodes_[it->second], fresh};
+  }
+  // Node indexes ordered by subject.
+  std::vector<uint32_t> order() const {
+    std::vector<uint32_t> out(ids_.size());
+    for (uint32_t i = 0; i < out.size(); ++i) out[i] = i;
+    std::sort(out.begin(), out.end(), [this](uint32_t a, uint32_t b) { return ids_[a] < ids_[b]; });
+    return out;
+  }
+  std::string_view id(uint32_t i) const { return ids_[i]; }
+  Node& node(uint32_t i) { return nodes_[i]; }
+
+ private:
+  std::deque<Node> nodes_;
+  std::vector<std::string_view> ids_;
+  std::unordered_map<std::string_view, uint32_t, StringHash> by_id_;
+};
 
 struct Triple {
   rdf::TermId s, p, o;
@@ -202,11 +243,13 @@ class Converter {
   struct Target {
     Node* subject = nullptr;
     std::string_view property;
-    std::vector<Item>* values = nullptr;
+    size_t slot = SIZE_MAX;  // in subject->properties, once created
     explicit operator bool() const { return subject != nullptr; }
     std::vector<Item>& get() {
-      if (values == nullptr) values = &subject->properties[property];
-      return *values;
+      // An index, not a pointer: nested nodes may add properties to the same
+      // subject, which moves its property vector.
+      if (slot == SIZE_MAX) slot = subject->slot(property);
+      return subject->properties[slot].second;
     }
   };
 
@@ -299,15 +342,15 @@ class Converter {
     } else {
       id = relabel({});
     }
-    auto [node_it, created] = graph.try_emplace(id);
-    Node& node = node_it->second;
+    auto [node_ptr, created] = graph.try_emplace(id);
+    Node& node = *node_ptr;
     if (created) node.where = where;
 
     if (reverse_subject != nullptr) {
       if (!reverse_property.empty()) {
         Item ref = *reverse_subject;
         ref.where = where;
-        node.properties[reverse_property].push_back(std::move(ref));
+        node.properties[node.slot(reverse_property)].second.push_back(std::move(ref));
       }
     } else if (list != nullptr) {
       list->push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
@@ -363,7 +406,7 @@ class Converter {
     for (size_t i : order) {
       std::string_view key = members.key(i);
       if (key.starts_with('@') && is_keyword(key)) continue;
-      Target values{&node, is_blank_id(key) ? relabel(key) : key, nullptr};
+      Target values{&node, is_blank_id(key) ? relabel(key) : key};
       generate(members.value(i), graph, nullptr, nullptr, {}, &values, where);
     }
   }
@@ -410,14 +453,17 @@ class Converter {
         if (!g) continue;
         graph_term = *g;
       }
-      for (auto& [subject_key, node] : graph) {
-        std::optional<rdf::TermId> subject = resource(subject_key);
+      for (uint32_t n : graph.order()) {
+        Node& node = graph.node(n);
+        std::optional<rdf::TermId> subject = resource(graph.id(n));
         if (!subject) continue;
         for (const auto& [type, where] : node.types) {
           if (std::optional<rdf::TermId> t = resource(type)) {
             out_.add({*subject, rdf_type, *t, graph_term}, where);
           }
         }
+        std::sort(node.properties.begin(), node.properties.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
         for (const auto& [property, values] : node.properties) {
           if (is_blank_id(property) && !options_.produce_generalized_rdf) continue;
           std::optional<rdf::TermId> predicate = resource(property);
@@ -551,7 +597,7 @@ class Converter {
   const Options& options_;
   std::map<std::string_view, Graph> graphs_;  // ordered by graph name
   // IRI -> its term, TermId::any() when not well-formed.
-  std::unordered_map<std::string_view, rdf::TermId> iri_terms_;
+  std::unordered_map<std::string_view, rdf::TermId, StringHash> iri_terms_;
   // Document label -> key (a view of a blank_terms_ key).
   std::unordered_map<std::string, std::string_view, StringHash, std::equal_to<>> identifiers_;
   // Key -> fresh blank node (node-based: the keys never move).
