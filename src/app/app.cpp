@@ -305,7 +305,11 @@ LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& opti
   LoadedModel model;
   Loader loader(options, model.loader_, model.dataset_, model.files_, model.apps_,
                 model.diagnostics_);
+  // The indexes are folded once, when every file is in.
+  model.dataset_.set_auto_compact(false);
   for (const std::string& input : inputs) loader.load_input(input);
+  model.dataset_.compact();
+  model.dataset_.set_auto_compact(true);
   return model;
 }
 

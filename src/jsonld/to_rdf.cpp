@@ -27,6 +27,8 @@ namespace mospec::jsonld {
 
 namespace {
 
+using namespace std::string_view_literals;
+
 constexpr std::string_view kRdf = vocab::rdf::ns;
 constexpr std::string_view kI18n = vocab::i18n::ns;
 constexpr std::string_view kRdfJson = vocab::rdf::JSON;
@@ -446,7 +448,7 @@ class Converter {
     for (auto& [graph_name, graph] : graphs_) {
       if (graph.empty()) continue;  // nothing was put in it
       rdf::TermId graph_term = rdf::TermId::default_graph();
-      if (graph_name == "@default") {
+      if (graph_name == "@default"sv) {
         if (!options_.default_graph.empty()) graph_term = terms.iri(options_.default_graph);
       } else {
         std::optional<rdf::TermId> g = resource(graph_name);
@@ -500,7 +502,7 @@ class Converter {
     std::optional<std::string_view> datatype;
     if (type != nullptr) {
       if (!type->is_string()) return std::nullopt;
-      if (type->as_string() != "@json" && well_formed_iri(type->as_string()).is_any()) {
+      if (type->as_string() != "@json"sv && well_formed_iri(type->as_string()).is_any()) {
         return std::nullopt;
       }
       datatype = type->as_string();
@@ -512,7 +514,7 @@ class Converter {
 
     std::string lexical_storage;
     std::string_view lexical;
-    if (datatype == "@json") {
+    if (datatype == "@json"sv) {
       try {
         lexical = lexical_storage = json::canonicalize(value);
       } catch (const Error& e) {

@@ -63,7 +63,7 @@ bool Dataset::add(const Quad& q, SourceLoc where) {
     ++index.count[t];
   }
   const size_t tail = quads_.size() - frozen_;
-  if (tail > kMinTail && tail * 2 > frozen_) rebuild_indexes();
+  if (auto_compact_ && tail > kMinTail && tail * 2 > frozen_) rebuild_indexes();
   return true;
 }
 
@@ -115,6 +115,7 @@ size_t Dataset::count(TermId s, TermId p, TermId o, TermId g, size_t limit) cons
 
 Dataset Dataset::flattened_union() const {
   Dataset out;
+  out.set_auto_compact(false);  // folded once at the end
   std::vector<TermId> mapped(terms_.size(), TermId::any());
   auto map = [&](TermId t) {
     TermId& m = mapped[t.index];
@@ -126,6 +127,8 @@ Dataset Dataset::flattened_union() const {
     out.add(Quad{map(q.subject), map(q.predicate), map(q.object), TermId::default_graph()},
             locations_[i]);
   }
+  out.compact();
+  out.set_auto_compact(true);
   return out;
 }
 
