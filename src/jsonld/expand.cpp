@@ -179,6 +179,16 @@ bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_vi
   return def != nullptr && def->iri && *def->iri == keyword;
 }
 
+// The keyword `key` IRI-expands to in `ctx` (itself, or the keyword it is an
+// alias of), or empty: expands_to for every keyword at once.
+std::string_view keyword_of(const ActiveContext& ctx, const std::string& key) {
+  if (is_keyword(key)) return key;
+  if (has_keyword_form(key)) return {};
+  const TermDefinition* def = ctx.find(key);
+  if (def != nullptr && def->iri && is_keyword(*def->iri)) return *def->iri;
+  return {};
+}
+
 // Visiting order of an object's members: insertion order, or code-point order
 // when `sorted`.
 std::vector<size_t> member_order(const Object& o, bool sorted) {
@@ -388,8 +398,9 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDe
     bool has_value = false;
     bool only_id = obj.size() == 1;
     for (size_t i = 0; i < obj.size(); ++i) {
-      if (expands_to(*active, obj.key(i), "@value")) has_value = true;
-      if (only_id && !expands_to(*active, obj.key(i), "@id")) only_id = false;
+      const std::string_view keyword = keyword_of(*active, obj.key(i));
+      if (keyword == "@value"sv) has_value = true;
+      if (keyword != "@id"sv) only_id = false;
     }
     if (!has_value && !only_id) active = active->previous();
   }

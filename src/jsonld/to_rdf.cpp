@@ -274,12 +274,6 @@ class Converter {
     return options_.loader != nullptr ? options_.loader->files().path(loc.file) : std::string();
   }
 
-  static SourceLoc node_location(const json::Value& element) {
-    const json::Value* id = element.get("@id");
-    if (id != nullptr && id->location().known()) return id->location();
-    return element.location();
-  }
-
   static bool same_value(const Item& a, const Item& b) {
     return a.kind == Item::Kind::Value && b.kind == Item::Kind::Value && *a.value == *b.value;
   }
@@ -310,8 +304,40 @@ class Converter {
     }
     if (!element.is_object()) return;  // expansion never leaves free-floating scalars
     const json::Object& members = element.as_object();
+    // One pass over the members: the keywords this algorithm reads, and the
+    // positions of the other keys (the node's properties).
+    const json::Value *value_kw = nullptr, *list_kw = nullptr, *id_kw = nullptr, *type_kw = nullptr,
+                      *index_kw = nullptr, *reverse_kw = nullptr, *graph_kw = nullptr,
+                      *included_kw = nullptr;
+    std::vector<size_t> properties;  // value objects have none: no allocation
+    for (size_t i = 0; i < members.size(); ++i) {
+      const std::string_view key = members.key(i);
+      if (!key.starts_with('@') || !is_keyword(key)) {
+        if (properties.empty()) properties.reserve(members.size() - i);
+        properties.push_back(i);
+        continue;
+      }
+      const json::Value* v = &members.value(i);
+      if (key == "@value"sv) {
+        value_kw = v;
+      } else if (key == "@list"sv) {
+        list_kw = v;
+      } else if (key == "@id"sv) {
+        id_kw = v;
+      } else if (key == "@type"sv) {
+        type_kw = v;
+      } else if (key == "@index"sv) {
+        index_kw = v;
+      } else if (key == "@reverse"sv) {
+        reverse_kw = v;
+      } else if (key == "@graph"sv) {
+        graph_kw = v;
+      } else if (key == "@included"sv) {
+        included_kw = v;
+      }
+    }
 
-    if (members.find("@value") != nullptr) {
+    if (value_kw != nullptr) {
       Item item{Item::Kind::Value, &element, {}, {}, subject_where};
       if (list != nullptr) {
         list->push_back(std::move(item));
@@ -320,7 +346,7 @@ class Converter {
       }
       return;
     }
-    if (const json::Value* list_members = members.find("@list")) {
+    if (const json::Value* list_members = list_kw) {
       Item result{Item::Kind::List, nullptr, {}, {}, subject_where};
       generate(*list_members, graph, &result.list, reverse_subject, reverse_property, target,
                subject_where);
@@ -333,9 +359,10 @@ class Converter {
     }
 
     // A node object.
-    const SourceLoc where = node_location(element);
+    const SourceLoc where =
+        id_kw != nullptr && id_kw->location().known() ? id_kw->location() : element.location();
     std::string_view id;
-    if (const json::Value* v = members.find("@id")) {
+    if (const json::Value* v = id_kw) {
       // A non-string @id (only possible for ignored keyword-like values) stays
       // empty: never well-formed, so its triples are dropped.
       if (v->is_string())
@@ -360,7 +387,7 @@ class Converter {
       target->get().push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
     }
 
-    if (const json::Value* types = members.find("@type")) {
+    if (const json::Value* types = type_kw) {
       auto add_type = [&](const json::Value& t) {
         if (!t.is_string()) return;
         std::string_view type =
@@ -374,7 +401,7 @@ class Converter {
       }
     }
 
-    if (const json::Value* index = members.find("@index")) {
+    if (const json::Value* index = index_kw) {
       if (node.index != nullptr && !(*node.index == *index)) {
         SourceLoc at = index->location();
         throw Error("conflicting indexes",
@@ -385,7 +412,7 @@ class Converter {
       node.index = index;
     }
 
-    if (const json::Value* reverse = members.find("@reverse"); reverse && reverse->is_object()) {
+    if (const json::Value* reverse = reverse_kw; reverse && reverse->is_object()) {
       Item referenced{Item::Kind::Ref, nullptr, id, {}, where};
       const json::Object& map = reverse->as_object();
       for (std::string_view key : map.sorted_keys()) {
@@ -394,20 +421,17 @@ class Converter {
       }
     }
 
-    if (const json::Value* g = members.find("@graph")) {
+    if (const json::Value* g = graph_kw) {
       generate(*g, graphs_[id], nullptr, nullptr, {}, nullptr, where);
     }
-    if (const json::Value* included = members.find("@included")) {
+    if (const json::Value* included = included_kw) {
       generate(*included, graph, nullptr, nullptr, {}, nullptr, where);
     }
 
-    std::vector<size_t> order(members.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
+    std::sort(properties.begin(), properties.end(),
               [&members](size_t a, size_t b) { return members.key(a) < members.key(b); });
-    for (size_t i : order) {
+    for (size_t i : properties) {
       std::string_view key = members.key(i);
-      if (key.starts_with('@') && is_keyword(key)) continue;
       Target values{&node, is_blank_id(key) ? relabel(key) : key};
       generate(members.value(i), graph, nullptr, nullptr, {}, &values, where);
     }
