@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <functional>
 #include <map>
@@ -96,7 +97,60 @@ std::string integer_lexical(double d) {
 // (keeping one). Rounding to 15 digits rather than printing the shortest
 // round-trip form is what other processors do: 0.0922959556 becomes
 // "9.229595559999999E-2", and the upstream corpus expects exactly that.
+std::string double_lexical_exact(double d);
+
 std::string double_lexical(double d) {
+  if (!std::isfinite(d) || d == 0) return double_lexical_exact(d);
+  // 17 correctly rounded significant digits ("d.dddddddddddddddde±XX"). Unless
+  // the 17th is a 5 (a possible tie, left to double_lexical_exact), rounding
+  // them to 16 gives what rounding the exact value to 16 digits gives: every
+  // 16-digit rounding boundary is a 17-digit number ending in 5, and correct
+  // rounding to 17 digits keeps the value on the same side of it.
+  char buf[48];
+  const auto written =
+      std::to_chars(buf, buf + sizeof buf, std::fabs(d), std::chars_format::scientific, 16);
+  if (written.ec != std::errc() || written.ptr - buf < 20 || buf[1] != '.' || buf[18] != 'e' ||
+      buf[17] == '5') {
+    return double_lexical_exact(d);
+  }
+  char digits[16];
+  digits[0] = buf[0];
+  std::memcpy(digits + 1, buf + 2, 15);
+  int exponent = 0;
+  {
+    const char* p = buf + 19;
+    const bool negative_exponent = *p == '-';
+    if (*p == '-' || *p == '+') ++p;
+    for (; p < written.ptr; ++p) exponent = exponent * 10 + (*p - '0');
+    if (negative_exponent) exponent = -exponent;
+  }
+  if (buf[17] > '5') {
+    int i = 15;
+    while (i >= 0 && digits[i] == '9') digits[i--] = '0';
+    if (i < 0) {
+      digits[0] = '1';  // 9.99..9 rounds up to 1.00..0E(x+1)
+      ++exponent;
+    } else {
+      ++digits[i];
+    }
+  }
+  int last = 15;
+  while (last > 1 && digits[last] == '0') --last;  // keep one fractional digit
+  std::string out;
+  out.reserve(24);
+  if (d < 0) out += '-';
+  out += digits[0];
+  out += '.';
+  out.append(digits + 1, static_cast<size_t>(last));
+  out += 'E';
+  char exp_buf[8];
+  const auto exp_end = std::to_chars(exp_buf, exp_buf + sizeof exp_buf, exponent).ptr;
+  out.append(exp_buf, exp_end);
+  return out;
+}
+
+// The same, from the exact value in every case (ties included).
+std::string double_lexical_exact(double d) {
   if (std::isnan(d)) return "NaN";
   if (std::isinf(d)) return d > 0 ? "INF" : "-INF";
   if (d == 0) return "0.0E0";
