@@ -48,7 +48,9 @@ bool Dataset::add(const Quad& q, SourceLoc where) {
     PostingIndex& index = index_[pos];
     const uint32_t t = at(q, pos).index;
     if (t >= index.first.size()) {
-      const size_t n = std::max<size_t>(terms_.size(), t + 1);
+      // Doubling: terms are interned one by one between adds, and growing
+      // to each new term id in turn would cost three resizes per add.
+      const size_t n = std::max<size_t>({terms_.size(), t + 1, 2 * index.first.size()});
       index.first.resize(n, PostingIndex::kNone);
       index.last.resize(n, PostingIndex::kNone);
       index.count.resize(n, 0);
