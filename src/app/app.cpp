@@ -43,22 +43,6 @@ std::string join_root(const LoadOptions& options, const std::string& path) {
   return (fs::path(*options.root) / path).generic_string();
 }
 
-// Whether an expanded document has a property in the application namespace
-// (only such a document can hold the app:import quads that make it an app).
-bool mentions_app_property(const json::Value& v) {
-  if (v.is_array()) {
-    for (const json::Value& item : v.as_array()) {
-      if (mentions_app_property(item)) return true;
-    }
-  } else if (v.is_object()) {
-    const json::Object& o = v.as_object();
-    for (size_t i = 0; i < o.size(); ++i) {
-      if (o.key(i).starts_with(kAppNs) || mentions_app_property(o.value(i))) return true;
-    }
-  }
-  return false;
-}
-
 class Loader {
  public:
   Loader(const LoadOptions& options, jsonld::MappedDocumentLoader& docs, rdf::Dataset& dataset,
@@ -104,9 +88,14 @@ class Loader {
     opts.loader = &docs_;
     opts.diagnostics = &diagnostics_;
     opts.context_cache = context_cache_;  // remote contexts are processed once per load
+    // Only a document with a property in the application namespace can hold
+    // the app:import quads that make it an app.
+    bool mentions_app_property = false;
+    opts.property_prefix = kAppNs;
+    opts.property_prefix_seen = &mentions_app_property;
     const json::Value expanded = jsonld::expand(*doc.document, opts);
     ModelFile file{doc.document_url, path, doc.file_id, false, imported_at};
-    if (!mentions_app_property(expanded)) {
+    if (!mentions_app_property) {
       // No app:* property, so not an app: its quads go straight into the
       // model's dataset, default graph renamed to the file's graph (what
       // copy_into_file_graph does, without a dataset per file).
@@ -316,7 +305,11 @@ LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& opti
   LoadedModel model;
   Loader loader(options, model.loader_, model.dataset_, model.files_, model.apps_,
                 model.diagnostics_);
+  // The indexes are folded once, when every file is in.
+  model.dataset_.set_auto_compact(false);
   for (const std::string& input : inputs) loader.load_input(input);
+  model.dataset_.compact();
+  model.dataset_.set_auto_compact(true);
   return model;
 }
 

@@ -10,7 +10,28 @@ using namespace internal;
 
 bool is_keyword(std::string_view s) {
   if (s.size() < 3 || s[0] != '@') return false;
-  return std::find(kKeywords.begin(), kKeywords.end(), s) != kKeywords.end();
+  // By length, so that a key is compared with at most four keywords.
+  switch (s.size()) {
+    case 3:
+      return s == "@id";
+    case 4:
+      return s == "@set";
+    case 5:
+      return s == "@type" || s == "@list" || s == "@none" || s == "@base" || s == "@json" ||
+             s == "@nest";
+    case 6:
+      return s == "@value" || s == "@graph" || s == "@index" || s == "@vocab";
+    case 7:
+      return s == "@import" || s == "@prefix";
+    case 8:
+      return s == "@context" || s == "@reverse" || s == "@version";
+    case 9:
+      return s == "@language" || s == "@included";
+    case 10:
+      return s == "@container" || s == "@direction" || s == "@propagate" || s == "@protected";
+    default:
+      return false;
+  }
 }
 
 bool has_keyword_form(std::string_view s) {

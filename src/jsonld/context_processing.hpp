@@ -23,6 +23,7 @@
 
 #include "jsonld/context.hpp"
 #include "jsonld/loader.hpp"
+#include "rdf/id_hash_set.hpp"
 #include "rdf/iri.hpp"
 
 namespace mospec::jsonld {
@@ -38,7 +39,7 @@ struct HashedKey {
 
 struct StringHash {
   using is_transparent = void;
-  size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+  size_t operator()(std::string_view s) const noexcept { return rdf::detail::hash_text(s); }
   size_t operator()(const HashedKey& k) const noexcept { return k.hash; }
 };
 
@@ -64,10 +65,24 @@ struct TermLayer {
   TermMap defs;
   uint32_t depth = 1;
   size_t protected_count = 0;  // protected terms visible through this layer
+  // One bit per term of `defs` (bloom_bit of its hash): a lookup skips a
+  // layer whose filter lacks the term's bit without probing its map, which
+  // matters because most lookups pass the few terms of the scoped-context
+  // layers on their way to the remote context's layer below.
+  uint64_t bloom = 0;
+
+  static uint64_t bloom_bit(size_t hash) { return uint64_t{1} << (hash >> 58); }
+  // Sets `bloom` from `defs` (after defs is filled).
+  void index_bloom() {
+    bloom = 0;
+    for (const auto& kv : defs) bloom |= bloom_bit(StringHash{}(std::string_view(kv.first)));
+  }
 
   const TermPtr* lookup(std::string_view term) const {
     const HashedKey key{term, StringHash{}(term)};
+    const uint64_t bit = bloom_bit(key.hash);
     for (const TermLayer* l = this; l != nullptr; l = l->parent.get()) {
+      if ((l->bloom & bit) == 0) continue;
       auto it = l->defs.find(key);
       if (it != l->defs.end()) return &it->second;
     }
@@ -407,6 +422,7 @@ struct Builder {
       l->parent = layer;
       l->depth = layer ? layer->depth + 1 : 1;
     }
+    l->index_bloom();
     layer = std::move(l);
   }
 

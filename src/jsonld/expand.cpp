@@ -18,6 +18,8 @@
 namespace mospec::jsonld {
 namespace {
 
+using namespace std::string_view_literals;
+
 using json::Array;
 using json::Object;
 using json::Value;
@@ -64,7 +66,7 @@ bool is_graph_object(const Value& v) {
   const Object& o = v.as_object();
   for (size_t i = 0; i < o.size(); ++i) {
     const std::string& k = o.key(i);
-    if (k != "@graph" && k != "@id" && k != "@index") return false;
+    if (k != "@graph"sv && k != "@id"sv && k != "@index"sv) return false;
   }
   return true;
 }
@@ -129,10 +131,20 @@ Value& put(Object& obj, std::string key, Value v, SourceLoc key_loc) {
 void add_value(Object& obj, std::string key, Value v, SourceLoc key_loc) {
   Value* slot = obj.find(key);
   if (slot == nullptr) {
-    SourceLoc loc = v.location();
-    slot = &put(obj, std::move(key), Value(Array{}), key_loc);
-    slot->set_location(loc);
-  } else if (!slot->is_array()) {
+    // A new key: an array value becomes its array as it is.
+    Value values = std::move(v);
+    if (!values.is_array()) {
+      const SourceLoc loc = values.location();
+      Array a;
+      a.push_back(std::move(values));
+      values = Value(std::move(a));
+      values.set_location(loc);
+    }
+    obj.append_new(std::move(key), std::move(values));
+    obj.set_key_location(obj.size() - 1, key_loc);
+    return;
+  }
+  if (!slot->is_array()) {
     *slot = to_array(std::move(*slot));
   }
   Array& arr = slot->as_array();
@@ -167,6 +179,16 @@ bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_vi
   return def != nullptr && def->iri && *def->iri == keyword;
 }
 
+// The keyword `key` IRI-expands to in `ctx` (itself, or the keyword it is an
+// alias of), or empty: expands_to for every keyword at once.
+std::string_view keyword_of(const ActiveContext& ctx, const std::string& key) {
+  if (is_keyword(key)) return key;
+  if (has_keyword_form(key)) return {};
+  const TermDefinition* def = ctx.find(key);
+  if (def != nullptr && def->iri && is_keyword(*def->iri)) return *def->iri;
+  return {};
+}
+
 // Visiting order of an object's members: insertion order, or code-point order
 // when `sorted`.
 std::vector<size_t> member_order(const Object& o, bool sorted) {
@@ -184,9 +206,17 @@ class Expander {
 
   // The Expansion Algorithm (5.1.2).
   Value expand(ContextPtr active, ActiveProperty ap, const Value& element,
-               const std::string& base_url, bool from_map);
+               const std::string& base_url, bool from_map) {
+    const TermDefinition* ap_def = ap ? active->find(*ap) : nullptr;
+    return expand(std::move(active), ap, ap_def, element, base_url, from_map);
+  }
 
  private:
+  // The same, given `ap_def`: the term definition of `ap` in `active` (step 3),
+  // which the caller has looked up already.
+  Value expand(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
+               const Value& element, const std::string& base_url, bool from_map);
+
   // A finding reported after the node's @id is known.
   struct Pending {
     SourceLoc loc;
@@ -229,6 +259,12 @@ class Expander {
   // The warning for an @id (or @id-coerced value) that expands to a malformed
   // IRI, which toRdf drops with its triples; nullopt when `iri` is fine.
   std::optional<Pending> malformed_id(const std::string& iri, const Value& value) const;
+
+  // Options::property_prefix_seen: records a property IRI of the result.
+  void note_property(std::string_view iri) const {
+    if (opts_.property_prefix_seen != nullptr && iri.starts_with(opts_.property_prefix))
+      *opts_.property_prefix_seen = true;
+  }
 
   std::string file_name(SourceLoc loc) const;
   [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
@@ -307,12 +343,11 @@ void Expander::flush(ObjectState& st, const Object& result, ActiveProperty ap) c
   st.pending.clear();
 }
 
-Value Expander::expand(ContextPtr active, ActiveProperty ap, const Value& element,
-                       const std::string& base_url, bool from_map) {
+Value Expander::expand(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
+                       const Value& element, const std::string& base_url, bool from_map) {
   // 1
   if (element.is_null()) return Value();
-  // 3 (2 concerns frame expansion only)
-  const TermDefinition* ap_def = ap ? active->find(*ap) : nullptr;
+  // 3 (2 concerns frame expansion only): ap_def
   // 4
   if (element.is_scalar()) {
     if (!ap || *ap == kGraph) return Value();  // 4.1 free-floating scalar
@@ -330,8 +365,8 @@ Value Expander::expand(ContextPtr active, ActiveProperty ap, const Value& elemen
     Array& result = out.as_array();
     result.reserve(element.as_array().size());
     for (const Value& item : element.as_array()) {
-      Value expanded = expand(active, ap, item, base_url, from_map);  // 5.2.1
-      if (list_container && expanded.is_array()) {                    // 5.2.2
+      Value expanded = expand(active, ap, ap_def, item, base_url, from_map);  // 5.2.1
+      if (list_container && expanded.is_array()) {                            // 5.2.2
         SourceLoc loc = expanded.location();
         Object list;
         list.append_new("@list", std::move(expanded));
@@ -363,8 +398,9 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDe
     bool has_value = false;
     bool only_id = obj.size() == 1;
     for (size_t i = 0; i < obj.size(); ++i) {
-      if (expands_to(*active, obj.key(i), "@value")) has_value = true;
-      if (only_id && !expands_to(*active, obj.key(i), "@id")) only_id = false;
+      const std::string_view keyword = keyword_of(*active, obj.key(i));
+      if (keyword == "@value"sv) has_value = true;
+      if (keyword != "@id"sv) only_id = false;
     }
     if (!has_value && !only_id) active = active->previous();
   }
@@ -429,6 +465,7 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDe
   }
 
   // 13, 14
+  st.result.reserve(obj.size());
   expand_entries(active, ap, obj, base_url, st);
   return finish_object(ap, st, element.location());
 }
@@ -446,7 +483,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     const std::string& key = element.key(i);
     const Value& value = element.value(i);
     const SourceLoc key_loc = element.key_location(i);
-    if (key == "@context") continue;  // 13.1
+    if (key == "@context"sv) continue;  // 13.1
     // 13.2, sharing the term lookup with 13.5: for a defined term, IRI
     // Expansion (vocab true) returns its IRI mapping (steps 4 and 5).
     const TermDefinition* def = nullptr;
@@ -470,9 +507,11 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     // 13.5
     static const std::set<std::string> kNoContainer;
     const std::set<std::string>& container = def != nullptr ? def->container : kNoContainer;
-    auto has = [&container](const char* c) { return container.count(c) != 0; };
+    auto has = [&container](std::string_view c) {
+      return !container.empty() && container.count(std::string(c)) != 0;
+    };
     Value expanded_value;
-    if (def != nullptr && def->type && *def->type == "@json") {  // 13.6
+    if (def != nullptr && def->type && *def->type == "@json"sv) {  // 13.6
       Object lit;
       lit.append_new("@value", value);
       lit.append_new("@type", Value("@json"));
@@ -483,7 +522,8 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     } else if ((has("@index") || has("@type") || has("@id")) && value.is_object()) {  // 13.8
       expanded_value = expand_index_map(active, key, *def, value, base_url, st);
     } else {  // 13.9
-      expanded_value = expand(active, std::string_view(key), value, base_url, false);
+      // `def` is what step 3 looks up: key's definition in `active`.
+      expanded_value = expand(active, std::string_view(key), def, value, base_url, false);
     }
     // 13.10
     if (expanded_value.is_null()) continue;
@@ -517,9 +557,11 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
                "reverse property \"" + key + "\" cannot take a value or list object",
                item.location());
         }
+        note_property(*expanded_property);
         add_value(rm->as_object(), *expanded_property, std::move(item), key_loc);
       }
     } else {  // 13.14
+      note_property(*expanded_property);
       add_value(result, std::move(*expanded_property), std::move(expanded_value), key_loc);
     }
   }
@@ -577,12 +619,12 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
          "keyword \"" + key + "\" (" + ep + ") is not allowed inside @reverse", key_loc);
   }
   // 13.4.2
-  if (result.contains(ep) && ep != "@included" && (ep != "@type" || v10)) {
+  if (result.contains(ep) && ep != "@included"sv && (ep != "@type"sv || v10)) {
     fail("colliding keywords", "key \"" + key + "\" expands to " + ep + ", which is already set",
          key_loc);
   }
   Value expanded_value;
-  if (ep == "@id") {  // 13.4.3
+  if (ep == "@id"sv) {  // 13.4.3
     if (!value.is_string()) {
       fail("invalid @id value",
            "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
@@ -605,7 +647,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
     }
     if (auto warning = malformed_id(*iri, value)) st.pending.push_back(std::move(*warning));
     expanded_value = string_at(std::move(*iri), value.location());
-  } else if (ep == "@type") {  // 13.4.4
+  } else if (ep == "@type"sv) {  // 13.4.4
     bool ok = value.is_string();
     if (value.is_array()) {
       ok = std::all_of(value.as_array().begin(), value.as_array().end(),
@@ -634,9 +676,9 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
     if (Value* existing = result.find("@type")) {  // 13.4.4.5
       expanded_value = concat(std::move(*existing), std::move(expanded_value));
     }
-  } else if (ep == "@graph") {  // 13.4.5
+  } else if (ep == "@graph"sv) {  // 13.4.5
     expanded_value = to_array(expand(active, kGraph, value, base_url, false));
-  } else if (ep == "@included") {  // 13.4.6
+  } else if (ep == "@included"sv) {  // 13.4.6
     if (v10) return;
     // The spec passes null as active property, which would silently drop
     // free-floating values before the node-object check below; the suite
@@ -654,7 +696,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
     if (Value* existing = result.find("@included")) {
       expanded_value = concat(std::move(*existing), std::move(expanded_value));
     }
-  } else if (ep == "@value") {  // 13.4.7
+  } else if (ep == "@value"sv) {  // 13.4.7
     if (st.input_type_json) {
       if (v10) {
         fail("invalid value object value", "@json literals need processing mode json-ld-1.1",
@@ -673,14 +715,14 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
       put(result, "@value", std::move(expanded_value), key_loc);
       return;
     }
-  } else if (ep == "@language") {  // 13.4.8
+  } else if (ep == "@language"sv) {  // 13.4.8
     if (!value.is_string()) {
       fail("invalid language-tagged string",
            "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
            value.location());
     }
     expanded_value = value;
-  } else if (ep == "@direction") {  // 13.4.9
+  } else if (ep == "@direction"sv) {  // 13.4.9
     if (v10) return;
     if (!value.is_string() || (value.as_string() != "ltr" && value.as_string() != "rtl")) {
       fail(
@@ -690,19 +732,19 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
           value.location());
     }
     expanded_value = value;
-  } else if (ep == "@index") {  // 13.4.10
+  } else if (ep == "@index"sv) {  // 13.4.10
     if (!value.is_string()) {
       fail("invalid @index value",
            "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
            value.location());
     }
     expanded_value = value;
-  } else if (ep == "@list") {          // 13.4.11
+  } else if (ep == "@list"sv) {        // 13.4.11
     if (!ap || *ap == kGraph) return;  // free-floating list
     expanded_value = to_array(expand(active, ap, value, base_url, false));
-  } else if (ep == "@set") {  // 13.4.12
+  } else if (ep == "@set"sv) {  // 13.4.12
     expanded_value = expand(active, ap, value, base_url, false);
-  } else if (ep == "@reverse") {  // 13.4.13
+  } else if (ep == "@reverse"sv) {  // 13.4.13
     if (!value.is_object()) {
       fail("invalid @reverse value",
            "\"" + key + "\" must be an object, found " + std::string(kind_name(value)),
@@ -720,12 +762,12 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
     }
     // 13.4.13.4
     bool has_other = false;
-    for (size_t i = 0; i < eo.size(); ++i) has_other = has_other || eo.key(i) != "@reverse";
+    for (size_t i = 0; i < eo.size(); ++i) has_other = has_other || eo.key(i) != "@reverse"sv;
     if (has_other) {
       Value* rm = result.find("@reverse");
       if (rm == nullptr) rm = &put(result, "@reverse", Value(Object{}), key_loc);
       for (size_t i = 0; i < eo.size(); ++i) {
-        if (eo.key(i) == "@reverse") continue;
+        if (eo.key(i) == "@reverse"sv) continue;
         Value items = to_array(std::move(eo.value(i)));
         for (Value& item : items.as_array()) {
           if (is_value_object(item) || is_list_object(item)) {
@@ -737,8 +779,8 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
         }
       }
     }
-    return;                    // 13.4.13.5
-  } else if (ep == "@nest") {  // 13.4.14
+    return;                      // 13.4.13.5
+  } else if (ep == "@nest"sv) {  // 13.4.14
     if (std::none_of(nests.begin(), nests.end(),
                      [&key](const auto& n) { return n.first == key; })) {
       nests.emplace_back(key, key_loc);
@@ -776,10 +818,10 @@ Value Expander::expand_language_map(const ActiveContext& active, const TermDefin
     } else {
       items.push_back(&lv);
     }
-    bool none = language == "@none";
+    bool none = language == "@none"sv;
     if (!none) {
       std::optional<std::string> e = expand_iri(active, language);
-      none = e && *e == "@none";
+      none = e && *e == "@none"sv;
     }
     for (const Value* item : items) {
       if (item->is_null()) continue;  // 13.7.4.2.1
@@ -829,7 +871,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
     }
     // 13.8.3.4
     std::optional<std::string> expanded_index = expand_iri(*active, index);
-    const bool none = expanded_index && *expanded_index == "@none";
+    const bool none = expanded_index && *expanded_index == "@none"sv;
     // 13.8.3.5, 13.8.3.6
     Value items =
         to_array(expand(map_context, std::string_view(key), to_array(index_value), base_url, true));
@@ -841,7 +883,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
         item = Value(std::move(g));
         item.set_location(loc);
       }
-      if (has("@index") && index_key != "@index" && !none) {  // 13.8.3.7.2
+      if (has("@index") && index_key != "@index"sv && !none) {  // 13.8.3.7.2
         Value reexpanded =
             expand_value(*active, std::string_view(index_key), string_at(index, index_loc));
         if (is_value_object(item)) {
@@ -858,6 +900,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
           if (Value* existing = io.find(*eik)) {
             values = concat(std::move(values), std::move(*existing));
           }
+          note_property(*eik);
           put(io, std::move(*eik), std::move(values), index_loc);
         }
       } else if (has("@index") && !has_key(item, "@index") && !none) {  // 13.8.3.7.3
@@ -887,9 +930,9 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
   const std::optional<std::string>* type = def != nullptr ? &def->type : nullptr;
   if (type != nullptr && *type && value.is_string()) {
     // 1, 2
-    if (**type == "@id" || **type == "@vocab") {
+    if (**type == "@id"sv || **type == "@vocab"sv) {
       std::optional<std::string> iri =
-          expand_iri(active, value.as_string(), true, **type == "@vocab");
+          expand_iri(active, value.as_string(), true, **type == "@vocab"sv);
       if (iri) {
         if (auto w = malformed_id(*iri, value)) {
           opts_.diagnostics->report(Diagnostic{Severity::Warning, file_name(w->loc), w->loc.line,
@@ -906,8 +949,10 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
   }
   // 3
   Object result;
+  result.reserve(2);
   result.append_new("@value", value);
-  if (type != nullptr && *type && **type != "@id" && **type != "@vocab" && **type != "@none") {
+  if (type != nullptr && *type && **type != "@id"sv && **type != "@vocab"sv &&
+      **type != "@none"sv) {
     result.append_new("@type", string_at(**type, value.location()));  // 4
   } else if (value.is_string()) {                                     // 5
     // 5.1, 5.2: a term's own mapping (even null) wins over the defaults.
@@ -946,7 +991,8 @@ Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc elem
     const bool lang_or_dir = result.contains("@language") || result.contains("@direction");
     for (size_t i = 0; i < result.size(); ++i) {
       const std::string& k = result.key(i);
-      if (k != "@direction" && k != "@index" && k != "@language" && k != "@type" && k != "@value") {
+      if (k != "@direction"sv && k != "@index"sv && k != "@language"sv && k != "@type"sv &&
+          k != "@value"sv) {
         fail("invalid value object", "value object must not contain \"" + k + "\"",
              result.key_location(i).known() ? result.key_location(i) : element_loc);
       }
@@ -956,7 +1002,8 @@ Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc elem
            "value object must not have both @type and @language or @direction",
            type->location().known() ? type->location() : element_loc);
     }
-    const bool json_literal = type != nullptr && type->is_string() && type->as_string() == "@json";
+    const bool json_literal =
+        type != nullptr && type->is_string() && type->as_string() == "@json"sv;
     if (json_literal) {
       // 15.2: any JSON value is a JSON literal.
     } else if (v->is_null() || (v->is_array() && v->as_array().empty())) {  // 15.3

@@ -41,15 +41,21 @@ std::optional<std::string> Processor::expand(Builder& active, std::string_view v
     // IE 6.4
     const TermDefinition* pdef = active.find(prefix);
     if (pdef != nullptr && pdef->iri && pdef->prefix) {
-      std::string out = *pdef->iri;
-      out += suffix;
+      std::string out;
+      out.reserve(pdef->iri->size() + suffix.size());
+      out.append(*pdef->iri).append(suffix);
       return out;
     }
     // IE 6.5
     if (rdf::is_absolute_iri(value)) return std::string(value);
   }
   // IE 7
-  if (vocab && active.vocab) return *active.vocab + std::string(value);
+  if (vocab && active.vocab) {
+    std::string out;
+    out.reserve(active.vocab->size() + value.size());
+    out.append(*active.vocab).append(value);
+    return out;
+  }
   // IE 8
   if (document_relative) return rdf::resolve_iri(active.base_iri(), value);
   // IE 9
@@ -85,14 +91,20 @@ std::optional<std::string> expand_iri(const ActiveContext& active, std::string_v
     if (prefix == "_" || suffix.starts_with("//")) return std::string(value);
     const TermDefinition* pdef = active.find(prefix);
     if (pdef != nullptr && pdef->iri && pdef->prefix) {
-      std::string out = *pdef->iri;
-      out += suffix;
+      std::string out;
+      out.reserve(pdef->iri->size() + suffix.size());
+      out.append(*pdef->iri).append(suffix);
       return out;
     }
     if (rdf::is_absolute_iri(value)) return std::string(value);
   }
   // IE 7
-  if (vocab && active.vocab()) return *active.vocab() + std::string(value);
+  if (vocab && active.vocab()) {
+    std::string out;
+    out.reserve(active.vocab()->size() + value.size());
+    out.append(*active.vocab()).append(value);
+    return out;
+  }
   // IE 8
   if (document_relative) return rdf::resolve_iri(active.base(), value);
   return std::string(value);

@@ -35,6 +35,12 @@ struct Options {
   // loader across the documents of a run so that remote and scoped contexts are
   // processed once; nullptr: every process_context call starts from scratch.
   std::shared_ptr<ContextCache> context_cache;
+  // Expansion: with `property_prefix_seen` set, *property_prefix_seen becomes
+  // true when a property of the result expands to an IRI starting with
+  // `property_prefix` (so the app loader learns whether a document uses the
+  // app vocabulary without walking the expanded document again).
+  std::string property_prefix;
+  bool* property_prefix_seen = nullptr;
 };
 
 }  // namespace mospec::jsonld

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <deque>
 #include <functional>
 #include <map>
 #include <optional>
@@ -17,6 +19,7 @@
 #include "jsonld/context.hpp"
 #include "jsonld/expand.hpp"
 #include "jsonld/loader.hpp"
+#include "rdf/id_hash_set.hpp"
 #include "rdf/iri.hpp"
 #include "rdf/term.hpp"
 #include "vocab/w3c.hpp"
@@ -24,6 +27,8 @@
 namespace mospec::jsonld {
 
 namespace {
+
+using namespace std::string_view_literals;
 
 constexpr std::string_view kRdf = vocab::rdf::ns;
 constexpr std::string_view kI18n = vocab::i18n::ns;
@@ -34,7 +39,7 @@ constexpr std::string_view kXsdInteger = vocab::xsd::integer;
 
 struct StringHash {
   using is_transparent = void;
-  size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+  size_t operator()(std::string_view s) const noexcept { return rdf::detail::hash_text(s); }
 };
 
 std::string rdf_iri(std::string_view local) {
@@ -92,7 +97,60 @@ std::string integer_lexical(double d) {
 // (keeping one). Rounding to 15 digits rather than printing the shortest
 // round-trip form is what other processors do: 0.0922959556 becomes
 // "9.229595559999999E-2", and the upstream corpus expects exactly that.
+std::string double_lexical_exact(double d);
+
 std::string double_lexical(double d) {
+  if (!std::isfinite(d) || d == 0) return double_lexical_exact(d);
+  // 17 correctly rounded significant digits ("d.dddddddddddddddde±XX"). Unless
+  // the 17th is a 5 (a possible tie, left to double_lexical_exact), rounding
+  // them to 16 gives what rounding the exact value to 16 digits gives: every
+  // 16-digit rounding boundary is a 17-digit number ending in 5, and correct
+  // rounding to 17 digits keeps the value on the same side of it.
+  char buf[48];
+  const auto written =
+      std::to_chars(buf, buf + sizeof buf, std::fabs(d), std::chars_format::scientific, 16);
+  if (written.ec != std::errc() || written.ptr - buf < 20 || buf[1] != '.' || buf[18] != 'e' ||
+      buf[17] == '5') {
+    return double_lexical_exact(d);
+  }
+  char digits[16];
+  digits[0] = buf[0];
+  std::memcpy(digits + 1, buf + 2, 15);
+  int exponent = 0;
+  {
+    const char* p = buf + 19;
+    const bool negative_exponent = *p == '-';
+    if (*p == '-' || *p == '+') ++p;
+    for (; p < written.ptr; ++p) exponent = exponent * 10 + (*p - '0');
+    if (negative_exponent) exponent = -exponent;
+  }
+  if (buf[17] > '5') {
+    int i = 15;
+    while (i >= 0 && digits[i] == '9') digits[i--] = '0';
+    if (i < 0) {
+      digits[0] = '1';  // 9.99..9 rounds up to 1.00..0E(x+1)
+      ++exponent;
+    } else {
+      ++digits[i];
+    }
+  }
+  int last = 15;
+  while (last > 1 && digits[last] == '0') --last;  // keep one fractional digit
+  std::string out;
+  out.reserve(24);
+  if (d < 0) out += '-';
+  out += digits[0];
+  out += '.';
+  out.append(digits + 1, static_cast<size_t>(last));
+  out += 'E';
+  char exp_buf[8];
+  const auto exp_end = std::to_chars(exp_buf, exp_buf + sizeof exp_buf, exponent).ptr;
+  out.append(exp_buf, exp_end);
+  return out;
+}
+
+// The same, from the exact value in every case (ties included).
+std::string double_lexical_exact(double d) {
   if (std::isnan(d)) return "NaN";
   if (std::isinf(d)) return d > 0 ? "INF" : "-INF";
   if (d == 0) return "0.0E0";
@@ -176,11 +234,50 @@ struct Item {
 struct Node {
   SourceLoc where;
   std::vector<std::pair<std::string_view, SourceLoc>> types;
-  std::map<std::string_view, std::vector<Item>> properties;  // ordered by property
+  // In the order first met; emit() visits them ordered by property. A node
+  // has a handful, so a scan finds one faster than a map would.
+  std::vector<std::pair<std::string_view, std::vector<Item>>> properties;
   const json::Value* index = nullptr;
+
+  // The index of `property` in `properties`, added if new.
+  size_t slot(std::string_view property) {
+    for (size_t i = 0; i < properties.size(); ++i) {
+      if (properties[i].first == property) return i;
+    }
+    properties.emplace_back(property, std::vector<Item>());
+    return properties.size() - 1;
+  }
 };
 
-using Graph = std::map<std::string_view, Node>;  // ordered by subject
+// The nodes of one graph by subject, hashed; emit() visits them ordered by
+// subject.
+class Graph {
+ public:
+  bool empty() const { return nodes_.empty(); }
+  // The node of `id` and whether it was created now. Nodes never move.
+  std::pair<Node*, bool> try_emplace(std::string_view id) {
+    auto [it, fresh] = by_id_.try_emplace(id, static_cast<uint32_t>(nodes_.size()));
+    if (fresh) {
+      nodes_.emplace_back();
+      ids_.push_back(id);
+    }
+    return {&nodes_[it->second], fresh};
+  }
+  // Node indexes ordered by subject.
+  std::vector<uint32_t> order() const {
+    std::vector<uint32_t> out(ids_.size());
+    for (uint32_t i = 0; i < out.size(); ++i) out[i] = i;
+    std::sort(out.begin(), out.end(), [this](uint32_t a, uint32_t b) { return ids_[a] < ids_[b]; });
+    return out;
+  }
+  std::string_view id(uint32_t i) const { return ids_[i]; }
+  Node& node(uint32_t i) { return nodes_[i]; }
+
+ private:
+  std::deque<Node> nodes_;
+  std::vector<std::string_view> ids_;
+  std::unordered_map<std::string_view, uint32_t, StringHash> by_id_;
+};
 
 struct Triple {
   rdf::TermId s, p, o;
@@ -202,11 +299,13 @@ class Converter {
   struct Target {
     Node* subject = nullptr;
     std::string_view property;
-    std::vector<Item>* values = nullptr;
+    size_t slot = SIZE_MAX;  // in subject->properties, once created
     explicit operator bool() const { return subject != nullptr; }
     std::vector<Item>& get() {
-      if (values == nullptr) values = &subject->properties[property];
-      return *values;
+      // An index, not a pointer: nested nodes may add properties to the same
+      // subject, which moves its property vector.
+      if (slot == SIZE_MAX) slot = subject->slot(property);
+      return subject->properties[slot].second;
     }
   };
 
@@ -227,12 +326,6 @@ class Converter {
 
   std::string file_of(SourceLoc loc) const {
     return options_.loader != nullptr ? options_.loader->files().path(loc.file) : std::string();
-  }
-
-  static SourceLoc node_location(const json::Value& element) {
-    const json::Value* id = element.get("@id");
-    if (id != nullptr && id->location().known()) return id->location();
-    return element.location();
   }
 
   static bool same_value(const Item& a, const Item& b) {
@@ -265,8 +358,40 @@ class Converter {
     }
     if (!element.is_object()) return;  // expansion never leaves free-floating scalars
     const json::Object& members = element.as_object();
+    // One pass over the members: the keywords this algorithm reads, and the
+    // positions of the other keys (the node's properties).
+    const json::Value *value_kw = nullptr, *list_kw = nullptr, *id_kw = nullptr, *type_kw = nullptr,
+                      *index_kw = nullptr, *reverse_kw = nullptr, *graph_kw = nullptr,
+                      *included_kw = nullptr;
+    std::vector<size_t> properties;  // value objects have none: no allocation
+    for (size_t i = 0; i < members.size(); ++i) {
+      const std::string_view key = members.key(i);
+      if (!key.starts_with('@') || !is_keyword(key)) {
+        if (properties.empty()) properties.reserve(members.size() - i);
+        properties.push_back(i);
+        continue;
+      }
+      const json::Value* v = &members.value(i);
+      if (key == "@value"sv) {
+        value_kw = v;
+      } else if (key == "@list"sv) {
+        list_kw = v;
+      } else if (key == "@id"sv) {
+        id_kw = v;
+      } else if (key == "@type"sv) {
+        type_kw = v;
+      } else if (key == "@index"sv) {
+        index_kw = v;
+      } else if (key == "@reverse"sv) {
+        reverse_kw = v;
+      } else if (key == "@graph"sv) {
+        graph_kw = v;
+      } else if (key == "@included"sv) {
+        included_kw = v;
+      }
+    }
 
-    if (members.find("@value") != nullptr) {
+    if (value_kw != nullptr) {
       Item item{Item::Kind::Value, &element, {}, {}, subject_where};
       if (list != nullptr) {
         list->push_back(std::move(item));
@@ -275,7 +400,7 @@ class Converter {
       }
       return;
     }
-    if (const json::Value* list_members = members.find("@list")) {
+    if (const json::Value* list_members = list_kw) {
       Item result{Item::Kind::List, nullptr, {}, {}, subject_where};
       generate(*list_members, graph, &result.list, reverse_subject, reverse_property, target,
                subject_where);
@@ -288,9 +413,10 @@ class Converter {
     }
 
     // A node object.
-    const SourceLoc where = node_location(element);
+    const SourceLoc where =
+        id_kw != nullptr && id_kw->location().known() ? id_kw->location() : element.location();
     std::string_view id;
-    if (const json::Value* v = members.find("@id")) {
+    if (const json::Value* v = id_kw) {
       // A non-string @id (only possible for ignored keyword-like values) stays
       // empty: never well-formed, so its triples are dropped.
       if (v->is_string())
@@ -299,15 +425,15 @@ class Converter {
     } else {
       id = relabel({});
     }
-    auto [node_it, created] = graph.try_emplace(id);
-    Node& node = node_it->second;
+    auto [node_ptr, created] = graph.try_emplace(id);
+    Node& node = *node_ptr;
     if (created) node.where = where;
 
     if (reverse_subject != nullptr) {
       if (!reverse_property.empty()) {
         Item ref = *reverse_subject;
         ref.where = where;
-        node.properties[reverse_property].push_back(std::move(ref));
+        node.properties[node.slot(reverse_property)].second.push_back(std::move(ref));
       }
     } else if (list != nullptr) {
       list->push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
@@ -315,7 +441,7 @@ class Converter {
       target->get().push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
     }
 
-    if (const json::Value* types = members.find("@type")) {
+    if (const json::Value* types = type_kw) {
       auto add_type = [&](const json::Value& t) {
         if (!t.is_string()) return;
         std::string_view type =
@@ -329,7 +455,7 @@ class Converter {
       }
     }
 
-    if (const json::Value* index = members.find("@index")) {
+    if (const json::Value* index = index_kw) {
       if (node.index != nullptr && !(*node.index == *index)) {
         SourceLoc at = index->location();
         throw Error("conflicting indexes",
@@ -340,7 +466,7 @@ class Converter {
       node.index = index;
     }
 
-    if (const json::Value* reverse = members.find("@reverse"); reverse && reverse->is_object()) {
+    if (const json::Value* reverse = reverse_kw; reverse && reverse->is_object()) {
       Item referenced{Item::Kind::Ref, nullptr, id, {}, where};
       const json::Object& map = reverse->as_object();
       for (std::string_view key : map.sorted_keys()) {
@@ -349,21 +475,18 @@ class Converter {
       }
     }
 
-    if (const json::Value* g = members.find("@graph")) {
+    if (const json::Value* g = graph_kw) {
       generate(*g, graphs_[id], nullptr, nullptr, {}, nullptr, where);
     }
-    if (const json::Value* included = members.find("@included")) {
+    if (const json::Value* included = included_kw) {
       generate(*included, graph, nullptr, nullptr, {}, nullptr, where);
     }
 
-    std::vector<size_t> order(members.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
+    std::sort(properties.begin(), properties.end(),
               [&members](size_t a, size_t b) { return members.key(a) < members.key(b); });
-    for (size_t i : order) {
+    for (size_t i : properties) {
       std::string_view key = members.key(i);
-      if (key.starts_with('@') && is_keyword(key)) continue;
-      Target values{&node, is_blank_id(key) ? relabel(key) : key, nullptr};
+      Target values{&node, is_blank_id(key) ? relabel(key) : key};
       generate(members.value(i), graph, nullptr, nullptr, {}, &values, where);
     }
   }
@@ -378,9 +501,15 @@ class Converter {
       if (it != blank_terms_.end()) return it->second;
       return out_.terms().blank(key.substr(2));
     }
-    auto [it, fresh] = iri_terms_.try_emplace(key, rdf::TermId::any());
-    if (fresh && rdf::is_well_formed_iri(key)) it->second = out_.terms().iri(key);
-    if (it->second.is_any()) return std::nullopt;
+    const rdf::TermId iri = well_formed_iri(key);
+    if (iri.is_any()) return std::nullopt;
+    return iri;
+  }
+
+  // The term of an IRI, TermId::any() when it is not well-formed (memoised).
+  rdf::TermId well_formed_iri(std::string_view iri) {
+    auto [it, fresh] = iri_terms_.try_emplace(iri, rdf::TermId::any());
+    if (fresh && rdf::is_well_formed_iri(iri)) it->second = out_.terms().iri(iri);
     return it->second;
   }
 
@@ -397,21 +526,24 @@ class Converter {
     for (auto& [graph_name, graph] : graphs_) {
       if (graph.empty()) continue;  // nothing was put in it
       rdf::TermId graph_term = rdf::TermId::default_graph();
-      if (graph_name == "@default") {
+      if (graph_name == "@default"sv) {
         if (!options_.default_graph.empty()) graph_term = terms.iri(options_.default_graph);
       } else {
         std::optional<rdf::TermId> g = resource(graph_name);
         if (!g) continue;
         graph_term = *g;
       }
-      for (auto& [subject_key, node] : graph) {
-        std::optional<rdf::TermId> subject = resource(subject_key);
+      for (uint32_t n : graph.order()) {
+        Node& node = graph.node(n);
+        std::optional<rdf::TermId> subject = resource(graph.id(n));
         if (!subject) continue;
         for (const auto& [type, where] : node.types) {
           if (std::optional<rdf::TermId> t = resource(type)) {
             out_.add({*subject, rdf_type, *t, graph_term}, where);
           }
         }
+        std::sort(node.properties.begin(), node.properties.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
         for (const auto& [property, values] : node.properties) {
           if (is_blank_id(property) && !options_.produce_generalized_rdf) continue;
           std::optional<rdf::TermId> predicate = resource(property);
@@ -448,7 +580,7 @@ class Converter {
     std::optional<std::string_view> datatype;
     if (type != nullptr) {
       if (!type->is_string()) return std::nullopt;
-      if (type->as_string() != "@json" && !rdf::is_well_formed_iri(type->as_string())) {
+      if (type->as_string() != "@json"sv && well_formed_iri(type->as_string()).is_any()) {
         return std::nullopt;
       }
       datatype = type->as_string();
@@ -460,7 +592,7 @@ class Converter {
 
     std::string lexical_storage;
     std::string_view lexical;
-    if (datatype == "@json") {
+    if (datatype == "@json"sv) {
       try {
         lexical = lexical_storage = json::canonicalize(value);
       } catch (const Error& e) {
@@ -545,7 +677,7 @@ class Converter {
   const Options& options_;
   std::map<std::string_view, Graph> graphs_;  // ordered by graph name
   // IRI -> its term, TermId::any() when not well-formed.
-  std::unordered_map<std::string_view, rdf::TermId> iri_terms_;
+  std::unordered_map<std::string_view, rdf::TermId, StringHash> iri_terms_;
   // Document label -> key (a view of a blank_terms_ key).
   std::unordered_map<std::string, std::string_view, StringHash, std::equal_to<>> identifiers_;
   // Key -> fresh blank node (node-based: the keys never move).

@@ -48,7 +48,9 @@ bool Dataset::add(const Quad& q, SourceLoc where) {
     PostingIndex& index = index_[pos];
     const uint32_t t = at(q, pos).index;
     if (t >= index.first.size()) {
-      const size_t n = std::max<size_t>(terms_.size(), t + 1);
+      // Doubling: terms are interned one by one between adds, and growing
+      // to each new term id in turn would cost three resizes per add.
+      const size_t n = std::max<size_t>({terms_.size(), t + 1, 2 * index.first.size()});
       index.first.resize(n, PostingIndex::kNone);
       index.last.resize(n, PostingIndex::kNone);
       index.count.resize(n, 0);
@@ -63,7 +65,7 @@ bool Dataset::add(const Quad& q, SourceLoc where) {
     ++index.count[t];
   }
   const size_t tail = quads_.size() - frozen_;
-  if (tail > kMinTail && tail * 2 > frozen_) rebuild_indexes();
+  if (auto_compact_ && tail > kMinTail && tail * 2 > frozen_) rebuild_indexes();
   return true;
 }
 
@@ -115,6 +117,7 @@ size_t Dataset::count(TermId s, TermId p, TermId o, TermId g, size_t limit) cons
 
 Dataset Dataset::flattened_union() const {
   Dataset out;
+  out.set_auto_compact(false);  // folded once at the end
   std::vector<TermId> mapped(terms_.size(), TermId::any());
   auto map = [&](TermId t) {
     TermId& m = mapped[t.index];
@@ -126,6 +129,8 @@ Dataset Dataset::flattened_union() const {
     out.add(Quad{map(q.subject), map(q.predicate), map(q.object), TermId::default_graph()},
             locations_[i]);
   }
+  out.compact();
+  out.set_auto_compact(true);
   return out;
 }
 

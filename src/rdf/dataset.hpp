@@ -83,6 +83,10 @@ class Dataset {
 
   // Folds every recently added quad into the compact indexes now.
   void compact();
+  // While off, add() never folds (the chained tail keeps answering lookups):
+  // a loader that adds thousands of quads and then compacts once saves the
+  // folds in between. Turning it back on does not fold by itself.
+  void set_auto_compact(bool on) { auto_compact_ = on; }
   // Approximate heap use (terms, quads, locations, indexes).
   size_t memory_bytes() const;
 
@@ -131,6 +135,7 @@ class Dataset {
   detail::IdHashSet position_;  // quad -> index, for deduplication and contains()
   std::array<PostingIndex, 4> index_;
   uint32_t frozen_ = 0;  // quads below this index are in the compact arrays
+  bool auto_compact_ = true;
 };
 
 template <class Visit>

@@ -5,6 +5,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <string_view>
 #include <vector>
 
 namespace mospec::rdf::detail {
@@ -77,6 +79,27 @@ inline uint64_t mix64(uint64_t x) {
 
 inline uint64_t combine(uint64_t seed, uint64_t value) {
   return mix64(seed ^ mix64(value));
+}
+
+// A hash of text for in-memory tables (term tables, JSON-LD term maps): eight
+// bytes per step, inlined, about a third of the cost of std::hash on the
+// short strings (terms, IRIs) these tables hold. Not randomised, like std::hash.
+inline uint64_t hash_text(std::string_view s) {
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  size_t n = s.size();
+  uint64_t h = 0x9e3779b97f4a7c15ULL ^ (n * 0xff51afd7ed558ccdULL);
+  while (n >= 8) {
+    uint64_t w;
+    std::memcpy(&w, p, 8);
+    h = (h ^ w) * 0xbf58476d1ce4e5b9ULL;
+    h ^= h >> 31;
+    p += 8;
+    n -= 8;
+  }
+  uint64_t tail = 0;
+  for (size_t i = 0; i < n; ++i) tail |= static_cast<uint64_t>(p[i]) << (8 * i);
+  h = (h ^ tail) * 0x94d049bb133111ebULL;
+  return h ^ (h >> 29);
 }
 
 }  // namespace mospec::rdf::detail

@@ -9,9 +9,7 @@ namespace {
 
 constexpr size_t kBlockSize = 64 * 1024;
 
-uint64_t hash_text(std::string_view s) {
-  return std::hash<std::string_view>{}(s);
-}
+using detail::hash_text;
 
 uint64_t hash_term(const Term& t) {
   uint64_t h = detail::mix64(static_cast<uint64_t>(t.kind));

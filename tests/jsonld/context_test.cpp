@@ -446,3 +446,30 @@ TEST_F(ContextTest, DeltaCacheAppliesOnlyWhereTheStateAnswersAlike) {
 
 }  // namespace
 }  // namespace mospec::jsonld
+
+namespace mospec::jsonld {
+namespace {
+
+// The JSON-LD 1.1 keywords, each recognised, and near misses not.
+TEST(Keywords, EveryKeywordAndNoNearMiss) {
+  const std::vector<std::string> keywords = {
+      "@base",   "@container", "@context", "@direction", "@graph",     "@id",
+      "@import", "@included",  "@index",   "@json",      "@language",  "@list",
+      "@nest",   "@none",      "@prefix",  "@propagate", "@protected", "@reverse",
+      "@set",    "@type",      "@value",   "@version",   "@vocab"};
+  for (const std::string& k : keywords) {
+    EXPECT_TRUE(is_keyword(k)) << k;
+    EXPECT_FALSE(is_keyword(k + "s")) << k;
+    EXPECT_FALSE(is_keyword(k.substr(0, k.size() - 1))) << k;
+    EXPECT_FALSE(is_keyword(k.substr(1))) << k;
+    std::string upper = k;
+    upper[1] = static_cast<char>(upper[1] - 'a' + 'A');
+    EXPECT_FALSE(is_keyword(upper)) << k;
+  }
+  EXPECT_FALSE(is_keyword(""));
+  EXPECT_FALSE(is_keyword("@"));
+  EXPECT_FALSE(is_keyword("@ignoreMe"));
+}
+
+}  // namespace
+}  // namespace mospec::jsonld

@@ -470,6 +470,29 @@ TEST_F(Expand, NoSinkNoReports) {
                                   "@type": ["http://example.org/T"]}])"));
 }
 
+// Options::property_prefix_seen: set for a property of the result in the
+// watched namespace wherever it is (nested node, @reverse, property-valued
+// index), never for one only mentioned as a value or a type.
+TEST_F(Expand, PropertyPrefixSeenOnlyForPropertiesInTheNamespace) {
+  auto seen = [this](std::string_view text) {
+    bool flag = false;
+    opts_.property_prefix = "http://app/";
+    opts_.property_prefix_seen = &flag;
+    run(text);
+    return flag;
+  };
+  EXPECT_FALSE(seen(R"({"@id": "http://app/x", "@type": "http://app/T",
+                        "http://ex/p": {"@id": "http://app/y"}})"));
+  EXPECT_TRUE(seen(R"({"http://ex/p": {"http://ex/q": {"http://app/import": "m"}}})"));
+  EXPECT_TRUE(seen(R"({"@id": "http://ex/a", "@reverse": {"http://app/import": {"@id": "b"}}})"));
+  EXPECT_TRUE(seen(R"({"@context": {"r": {"@reverse": "http://app/import"}},
+                       "@id": "http://ex/a", "r": {"@id": "http://ex/b"}})"));
+  EXPECT_TRUE(seen(R"({"@context": {"@version": 1.1,
+                         "m": {"@id": "http://ex/m", "@container": "@index",
+                               "@index": "http://app/k"}},
+                       "m": {"i": {"@id": "http://ex/n"}}})"));
+}
+
 // ---------------------------------------------------------------------------
 // The paper authors' models
 

@@ -78,6 +78,11 @@ TEST(ToRdf, NativeNumbers) {
       {"943.3567736415966", "9.433567736415966E2", xsd("double")},
       {"215.48195374356305", "2.154819537435631E2", xsd("double")},
       {"289.30587844175875", "2.893058784417588E2", xsd("double")},
+      // 17 significant digits 9.9999999999999997E-305 (sixteen nines and a
+      // 7): the carry runs through all of them into the exponent.
+      {"1e-304", "1.0E-304", xsd("double")},
+      {"-1e-304", "-1.0E-304", xsd("double")},
+      {"0.9999999999999999", "9.999999999999999E-1", xsd("double")},
       {"5", "5", xsd("integer")},
       {"-0", "0", xsd("integer")},
       {"1e20", "100000000000000000000", xsd("integer")},

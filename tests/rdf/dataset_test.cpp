@@ -128,6 +128,23 @@ TEST(Dataset, EveryPatternMatchesBruteForceAcrossCompaction) {
   check_all_patterns(d, pools, rng);
 }
 
+// Without automatic compaction the whole dataset is one chained tail (a bulk
+// loader's state until it compacts); it answers every pattern, before and
+// after compact(), and keeps doing so once automatic compaction is back.
+TEST(Dataset, EveryPatternMatchesBruteForceWithoutAutoCompaction) {
+  Dataset d;
+  d.set_auto_compact(false);
+  Pools pools = make_pools(d.terms());
+  std::mt19937 rng(13);
+  add_random(d, pools, rng, 3000);
+  check_all_patterns(d, pools, rng);
+  d.compact();
+  check_all_patterns(d, pools, rng);
+  d.set_auto_compact(true);
+  add_random(d, pools, rng, 3000);
+  check_all_patterns(d, pools, rng);
+}
+
 TEST(Dataset, UnknownTermsMatchNothing) {
   Dataset d;
   TermTable& t = d.terms();

@@ -116,6 +116,20 @@ TEST(ResolveIri, OneSegmentReferenceAgainstEveryBaseShape) {
   expect_resolves("mailto:x", {{"g", "mailto:g"}});
 }
 
+// resolve_iri remembers the last base's prefix for one-segment references:
+// switching bases (and back) must never reuse another base's prefix.
+TEST(ResolveIri, AlternatingBasesResolveAgainstTheirOwn) {
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_EQ(resolve_iri("http://a/b/c", "g"), "http://a/b/g");
+    EXPECT_EQ(resolve_iri("http://a/b/c/", "g"), "http://a/b/c/g");
+    EXPECT_EQ(resolve_iri("http://a/b/./c", "g"), "http://a/b/g");
+    EXPECT_EQ(resolve_iri("urn:x", "g"), "urn:g");
+    EXPECT_EQ(resolve_iri("http://a/b/c", "g/h"), "http://a/b/g/h");
+    EXPECT_EQ(resolve_iri("http://x/", "g"), "http://x/g");
+    EXPECT_EQ(resolve_iri("http://y/z/", "g"), "http://y/z/g");
+  }
+}
+
 TEST(ResolveIri, EmptyBaseReturnsReference) {
   EXPECT_EQ(resolve_iri("", "a/../b"), "a/../b");
   EXPECT_EQ(resolve_iri("", "http://x/./y"), "http://x/./y");

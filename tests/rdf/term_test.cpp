@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
 
 #include "test_util.hpp"
@@ -186,6 +187,33 @@ TEST(ToNTriples, EscapesLiteralsCanonically) {
   EXPECT_EQ(to_ntriples(t, t.literal(all)),
             "\"q\\\" b\\\\ n\\n r\\r t\\u0009 bs\\u0008 ff\\u000C nul\\u0000 us\\u001F "
             "del\\u007F \xc3\xa9 '\"");
+}
+
+}  // namespace
+}  // namespace mospec::rdf
+
+namespace mospec::rdf {
+namespace {
+
+// hash_text reads every byte: strings that differ in any one byte, at any
+// position of any length up to three words (the tail bytes included), and
+// strings that differ only in length hash differently.
+TEST(HashText, EveryByteAndTheLengthCount) {
+  std::set<uint64_t> hashes;
+  size_t strings = 0;
+  for (size_t n = 0; n <= 24; ++n) {
+    const std::string base(n, 'a');
+    hashes.insert(detail::hash_text(base));
+    ++strings;
+    for (size_t i = 0; i < n; ++i) {
+      std::string s = base;
+      s[i] = 'b';
+      hashes.insert(detail::hash_text(s));
+      ++strings;
+    }
+  }
+  EXPECT_EQ(hashes.size(), strings);
+  EXPECT_EQ(detail::hash_text("http://example.org/a"), detail::hash_text("http://example.org/a"));
 }
 
 }  // namespace
