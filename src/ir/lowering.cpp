@@ -5,28 +5,11 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "support/spelling.hpp"
+
 namespace mospec::ir::lowering {
 
 namespace {
-
-// Levenshtein distance, or limit + 1 once it is certainly above `limit`.
-size_t edit_distance(std::string_view a, std::string_view b, size_t limit) {
-  if (a.size() > b.size() + limit || b.size() > a.size() + limit) return limit + 1;
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    size_t best = row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-      best = std::min(best, row[j]);
-    }
-    if (best > limit) return limit + 1;
-  }
-  return row[b.size()];
-}
 
 std::string_view namespace_of(std::string_view iri) {
   const size_t k = iri.find_last_of("#/");
@@ -38,26 +21,20 @@ std::string_view namespace_of(std::string_view iri) {
 std::string State::did_you_mean(TermId e) const {
   const std::string_view iri = graph.str(e);
   const std::string_view ns = namespace_of(iri);
-  const std::string_view local = iri.substr(ns.size());
-  // At most a third of the name wrong (and at least two edits allowed).
-  const size_t limit = std::max<size_t>(2, local.size() / 3);
-  std::string_view nearest;
-  size_t best = limit + 1;
+  Nearest nearest(iri.substr(ns.size()));
+  std::string_view best;
   const rdf::TermTable& terms = graph.terms();
   for (uint32_t k = 0; k < terms.size(); ++k) {
     const TermId t{k};
     if (!terms[t].is_iri() || t == e) continue;
     const std::string_view candidate = terms[t].value;
     if (namespace_of(candidate) != ns || !graph.defined(t)) continue;
-    const size_t d = edit_distance(local, candidate.substr(ns.size()), limit);
-    if (d < best || (d == best && candidate < nearest)) {
-      best = d;
-      nearest = candidate;
-    }
+    nearest.offer(candidate.substr(ns.size()));
+    if (nearest.best().data() == candidate.data() + ns.size()) best = candidate;
   }
-  if (nearest.empty()) return "";
+  if (best.empty()) return "";
   std::string out = "; did you mean '";
-  out.append(nearest).append("'?");
+  out.append(best).append("'?");
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "jsonld/context.hpp"
 #include "jsonld/loader.hpp"
 #include "rdf/iri.hpp"
+#include "support/spelling.hpp"
 
 namespace mospec::jsonld {
 namespace {
@@ -255,7 +256,9 @@ class Expander {
 
   std::optional<std::string> expand_type_iri(const ActiveContext& type_scoped, const Value& v,
                                              ObjectState& st);
-  void note_dropped_key(const std::string& key, SourceLoc loc, ObjectState& st);
+  void note_dropped_key(const ActiveContext& active, const std::string& key, SourceLoc loc,
+                        ObjectState& st);
+  static std::string did_you_mean(const ActiveContext& active, const std::string& word);
   // The warning for an @id (or @id-coerced value) that expands to a malformed
   // IRI, which toRdf drops with its triples; nullopt when `iri` is fine.
   std::optional<Pending> malformed_id(const std::string& iri, const Value& value) const;
@@ -286,10 +289,22 @@ void Expander::fail(std::string code, std::string message, SourceLoc loc) const 
   throw Error(std::move(code), std::move(message), file_name(loc), loc.line, loc.column);
 }
 
-void Expander::note_dropped_key(const std::string& key, SourceLoc loc, ObjectState& st) {
+void Expander::note_dropped_key(const ActiveContext& active, const std::string& key, SourceLoc loc,
+                                ObjectState& st) {
   if (opts_.diagnostics == nullptr) return;
   st.pending.push_back(
-      {loc, "dropped-key", "key \"" + key + "\" expands to no IRI and is dropped"});
+      {loc, "dropped-key",
+       "key \"" + key + "\" expands to no IRI and is dropped" + did_you_mean(active, key)});
+}
+
+// "; did you mean \"term\"?" naming the active context's term nearest to a
+// word that is none of them (a typo of a property or type), or "".
+std::string Expander::did_you_mean(const ActiveContext& active, const std::string& word) {
+  const std::vector<std::string> terms = active.terms();
+  Nearest nearest(word);
+  for (const std::string& term : terms) nearest.offer(term);
+  if (nearest.best().empty()) return "";
+  return "; did you mean \"" + std::string(nearest.best()) + "\"?";
 }
 
 std::optional<Expander::Pending> Expander::malformed_id(const std::string& iri,
@@ -316,7 +331,7 @@ std::optional<std::string> Expander::expand_type_iri(const ActiveContext& type_s
     st.pending.push_back({v.location(), "undefined-type",
                           "@type value \"" + s +
                               "\" is not a defined term and resolves against the base to <" + *iri +
-                              ">"});
+                              ">" + did_you_mean(type_scoped, s)});
   }
   return iri;
 }
@@ -496,7 +511,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     // 13.3
     if (!expanded_property ||
         (expanded_property->find(':') == std::string::npos && !is_keyword(*expanded_property))) {
-      note_dropped_key(key, key_loc, st);
+      note_dropped_key(*active, key, key_loc, st);
       continue;
     }
     // 13.4

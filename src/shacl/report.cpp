@@ -144,20 +144,6 @@ std::string_view diagnostic_level(Level level) {
   return "error";
 }
 
-std::string_view level_name(Level level) {
-  switch (level) {
-    case Level::Info:
-      return "info";
-    case Level::Warning:
-      return "warning";
-    case Level::Violation:
-      return "violation";
-    case Level::Other:
-      return "other";
-  }
-  return "violation";
-}
-
 size_t Report::count(Level level) const {
   return static_cast<size_t>(std::count_if(results.begin(), results.end(),
                                            [&](const Result& r) { return r.level == level; }));

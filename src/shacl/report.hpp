@@ -54,7 +54,6 @@ class Report {
   void sort();
 };
 
-std::string_view level_name(Level);  // "violation", "warning", "info", "other"
 // As the text report writes it, in the project's diagnostic shape
 // (file:line:col: error: ...): "error", "warning", "info", "other".
 std::string_view diagnostic_level(Level);

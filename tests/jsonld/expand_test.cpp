@@ -333,6 +333,32 @@ TEST_F(Expand, DroppedKeyIsReportedAtTheKey) {
                                   "http://ex/name": [{"@value": "c"}]}])"));
 }
 
+// A misspelt property or type: the warning names the nearest defined term.
+TEST_F(Expand, ADroppedKeyOrUndefinedTypeSuggestsTheNearestTerm) {
+  run(R"({
+  "@context": {"@base": "https://example.org/models/", "lower-threshold": "http://ex/lower",
+               "Constraint": "http://ex/Constraint"},
+  "@id": "c",
+  "@type": "Constriant",
+  "lower-treshold": 0.6,
+  "gain": 2
+})");
+  ASSERT_EQ(sink_.diagnostics().size(), 3u);
+  std::vector<std::string> messages;
+  for (const Diagnostic& d : sink_.diagnostics()) messages.push_back(d.message);
+  std::sort(messages.begin(), messages.end());
+  EXPECT_EQ(messages[0],
+            "@type value \"Constriant\" is not a defined term and resolves against the base to "
+            "<https://example.org/models/Constriant>; did you mean \"Constraint\"? "
+            "(node <https://example.org/models/c>)");
+  // Nothing defined is near "gain": no suggestion.
+  EXPECT_EQ(messages[1],
+            "key \"gain\" expands to no IRI and is dropped (node <https://example.org/models/c>)");
+  EXPECT_EQ(messages[2],
+            "key \"lower-treshold\" expands to no IRI and is dropped; did you mean "
+            "\"lower-threshold\"? (node <https://example.org/models/c>)");
+}
+
 TEST_F(Expand, DroppedKeysInNestedAndAnonymousNodes) {
   run(R"({"http://ex/p": {"oops": 1}, "@id": "http://ex/a", "@bogus": 2})");
   ASSERT_EQ(sink_.diagnostics().size(), 2u);

@@ -43,6 +43,12 @@ stdout_has() {
   grep -Eq -- "$2" "$work/stdout.txt" || { fail "$1: stdout does not match /$2/"; sed 's/^/  stdout: /' "$work/stdout.txt" | head -20; }
 }
 
+# validates_clean APP: `mospec validate --strict APP` exits 0 with no finding at all.
+validates_clean() {
+  expect "validates with zero findings" 0 "" -- "$mospec" validate "$1" --strict
+  stdout_has "validates with zero findings" '^shacl: 0 violations, 0 warnings, 0 infos'
+}
+
 # finish SUITE: the closing summary line; exit status 0 only without failures.
 finish() {
   echo "$1: $passed passed, $failures failed"
