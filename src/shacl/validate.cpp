@@ -956,9 +956,15 @@ class Validator {
         r.component_node = import_shape_term(report, x.component_node);
       if (r.messages.empty()) r.default_message = default_message(x);
       if (x.focus.index < base_) r.focus_loc = locate(x.focus);
+      // Where the value is written, unless that is only where the focus uses
+      // it (a node nothing describes is located at its first use).
       if (!x.value.is_any() && x.value != x.focus && x.value.index < base_ &&
-          !dt_[x.value].is_literal())
-        r.value_loc = locate(x.value);
+          !dt_[x.value].is_literal()) {
+        const SourceLoc at = locate(x.value);
+        if (!(at.file == r.focus_loc.file && at.line == r.focus_loc.line &&
+              at.column == r.focus_loc.column))
+          r.value_loc = at;
+      }
       for (const auto& [name, node] : x.related) {
         if (SourceLoc at = locate(node); at.known())
           r.related.push_back({name, import(report, node), at});
