@@ -68,7 +68,8 @@ struct ModelValidation {
   std::unique_ptr<shacl::Shapes> shapes;
   shacl::Report report;
   // Under `strict`: shapes whose targets select no node ("shape-unused"),
-  // rdf:type values that nothing defines ("undefined-type"), as warnings.
+  // rdf:type values that nothing defines ("undefined-type"), classes of
+  // mospec's metamodels that no shape covers ("unshaped-term"), as warnings.
   std::vector<Diagnostic> strict_findings;
   // Loader-style warnings raised while reading JSON-LD shape files.
   DiagnosticSink shape_diagnostics;
