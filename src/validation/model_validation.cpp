@@ -292,6 +292,80 @@ std::vector<std::string> read_unshaped_terms(const std::string& path) {
 
 namespace {
 
+// Every predicate IRI a path names (inverse and negated ones included).
+void path_predicates(const sparql::Path& path, const rdf::TermTable& terms,
+                     std::unordered_set<std::string>& out) {
+  if (path.kind == sparql::Path::Kind::Predicate && terms[path.predicate].is_iri())
+    out.emplace(terms[path.predicate].value);
+  for (const std::vector<TermId>* set : {&path.negated, &path.negated_inverse})
+    for (TermId p : *set)
+      if (terms[p].is_iri()) out.emplace(terms[p].value);
+  for (const sparql::PathPtr& item : path.items)
+    if (item) path_predicates(*item, terms, out);
+}
+
+// unshaped-term for properties: predicates of mospec's metamodels (the apps'
+// own application/ terms aside) that the model uses and that no shape's
+// sh:path names, unless `exempt` lists them.
+template <typename Located>
+void unpathed_properties(app::LoadedModel& model, const Shapes& shapes,
+                         const std::unordered_set<std::string>& exempt,
+                         std::vector<Diagnostic>& out, const Located& located) {
+  const std::string base(vocab::kMetamodels);
+  const std::string app_ns(app::kAppNs);
+  std::unordered_set<std::string> pathed;
+  for (const Shape& s : shapes.shapes())
+    if (s.path) path_predicates(*s.path, shapes.graph().terms(), pathed);
+  const rdf::Dataset& data = model.dataset();
+  const rdf::TermTable& dt = data.terms();
+  struct Use {
+    SourceLoc first;
+    TermId node = TermId::any();
+    size_t count = 0;
+  };
+  std::unordered_map<uint32_t, bool> verdict;  // predicate -> reported
+  std::unordered_map<uint32_t, Use> uses;
+  std::vector<TermId> order;
+  for (size_t i = 0; i < data.size(); ++i) {
+    const rdf::Quad& q = data.quads()[i];
+    auto [v, fresh] = verdict.try_emplace(q.predicate.index, false);
+    if (fresh) {
+      const std::string_view p = dt[q.predicate].value;
+      v->second = dt[q.predicate].is_iri() && p.substr(0, base.size()) == base &&
+                  p.substr(0, app_ns.size()) != app_ns && exempt.count(std::string(p)) == 0 &&
+                  pathed.count(std::string(p)) == 0;
+    }
+    if (!v->second) continue;
+    auto [it, first_use] = uses.try_emplace(q.predicate.index);
+    if (first_use) order.push_back(q.predicate);
+    ++it->second.count;
+    const SourceLoc loc = data.location(i);
+    SourceLoc& first = it->second.first;
+    if (it->second.node.is_any() ||
+        (loc.known() && (!first.known() || std::tie(loc.file, loc.line, loc.column) <
+                                               std::tie(first.file, first.line, first.column)))) {
+      first = loc;
+      it->second.node = q.subject;
+    }
+  }
+  for (TermId t : order) {
+    const Use& u = uses[t.index];
+    const rdf::Term& n = dt[u.node];
+    std::string message = "property <";
+    message.append(dt[t].value).append("> of ");
+    if (n.is_iri())
+      message.append("<").append(n.value).append(">");
+    else
+      message.append("a blank node");
+    message.append(" is constrained by no shape's sh:path (").append(std::to_string(u.count));
+    message.append(u.count == 1 ? " use" : " uses");
+    message.append(
+        "): add a shape whose path names it, or list it as structural in "
+        "metamodels/mospec/unshaped-terms.txt");
+    out.push_back(located(u.first, "unshaped-term", std::move(message)));
+  }
+}
+
 // unshaped-term: classes of mospec's metamodels that type a node of the model
 // and that no shape covers, unless metamodels/mospec/unshaped-terms.txt lists
 // them. Only when the vocabulary resolves to mospec's metamodels.
@@ -307,6 +381,7 @@ void unshaped_terms(app::LoadedModel& model, const Shapes& shapes, std::vector<D
   const std::string list = loader.resolve(base + "mospec/unshaped-terms.txt");
   if (!list.empty() && fs::is_regular_file(list, ec))
     for (std::string& iri : read_unshaped_terms(list)) exempt.insert(std::move(iri));
+  unpathed_properties(model, shapes, exempt, out, located);
 
   // Target classes of the active shapes, and rdfs:subClassOf from the data and
   // the shapes graphs (a node of a subclass is selected by its superclass's

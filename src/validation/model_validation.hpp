@@ -108,7 +108,9 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
 //    sh:targetClass or implicit class target is the class or, through
 //    rdfs:subClassOf in the data or shapes graph, a superclass of it; and
 //    <metamodels>/mospec/unshaped-terms.txt does not list it. Reported once
-//    per class, at the first node's rdf:type statement.
+//    per class, at the first node's rdf:type statement. Likewise a predicate
+//    of theirs (the application/ terms aside) that the model uses and that
+//    no shape's sh:path names, once per predicate at its first statement.
 // Shapes of `files` marked automatic are not reported as shape-unused.
 std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const shacl::Shapes& shapes,
                                       const std::vector<ShapeFile>& files = {});

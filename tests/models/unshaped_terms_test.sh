@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `validate --strict` reports a class of mospec's metamodels that types a node
-# and that no shape covers ("unshaped-term"), unless
-# metamodels/mospec/unshaped-terms.txt lists it; every class that list names is
+# and that no shape covers, or a property of theirs that the model uses and no
+# shape's sh:path names ("unshaped-term"), unless
+# metamodels/mospec/unshaped-terms.txt lists it; every term that list names is
 # defined by some context of the metamodels (no stale entries).
 # Usage: unshaped_terms_test.sh MOSPEC_BINARY SOURCE_DIR
 source "$(dirname "$0")/../support/cli_lib.sh"
@@ -23,6 +24,15 @@ expect "Frame unlisted: --strict exit 1, located at the first node's @type" 1 \
   "^robots/kinova-gen3.jsonld:[0-9]+:[0-9]+: warning: type <${mm}geometry/structural-entities#Frame> of <https://mospec.example/robots/kinova-gen3/frame-base_link> is covered by no shape \([0-9]+ nodes typed so\): add a shape that targets it, or list it as structural in metamodels/mospec/unshaped-terms.txt" -- \
   "$mospec" validate --strict models/sc0a.json
 check "... once" test "$(grep -c unshaped-term "$work/stderr.txt")" -eq 1
+cp "$src/$list" "$list"
+
+# A property taken off the list: its first statement is the finding's place.
+grep -q '^slv:solver ' "$list" || fail "slv:solver is not listed any more; adapt this test"
+sed -i '/^slv:solver /d' "$list"
+expect "slv:solver unlisted: --strict exit 1, located at its statement" 1 \
+  "^models/[^:]+:[0-9]+:[0-9]+: warning: property <${mm}task/solver-specification#solver> of <https://mospec.example/models/[^>]+> is constrained by no shape's sh:path \([0-9]+ uses?\): add a shape whose path names it, or list it as structural in metamodels/mospec/unshaped-terms.txt" -- \
+  "$mospec" validate --strict models/sc0a.json
+expect "... without --strict exit 0" 0 "" -- "$mospec" validate models/sc0a.json
 cp "$src/$list" "$list"
 
 # A kind tag taken off the list is reported; declared a subclass of a shaped
@@ -56,8 +66,8 @@ expect "undeclared prefix in the list: located error" 2 \
   "$mospec" validate --strict models/sc0a.json
 cp "$src/$list" "$list"
 
-# No stale entries: a model typing one node with each listed class (as a full
-# IRI), whose files use every context of the metamodels, has no undefined-type
+# No stale entries: a model typing one node with each listed term (as a full
+# IRI; "defined" is by IRI, so properties are checked too), whose files use every context of the metamodels, has no undefined-type
 # finding. A misspelt entry is caught.
 iris() {
   awk '{ sub(/(^|[ \t])#.*/, "") } NF == 0 { next }
