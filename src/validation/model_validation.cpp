@@ -227,6 +227,253 @@ std::vector<std::string> context_term_iris(app::LoadedModel& model) {
   return out;
 }
 
+std::vector<std::string> read_unshaped_terms(const std::string& path) {
+  const std::string text = read_file(path);
+  std::vector<std::string> out;
+  std::unordered_map<std::string, std::string> prefixes;
+  size_t start = 0;
+  uint32_t line_no = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    start = end + 1;
+    ++line_no;
+    // A comment starts at a '#' that begins the line or follows a blank (an
+    // IRI's fragment '#' does neither).
+    for (size_t k = 0; k < line.size(); ++k) {
+      if (line[k] == '#' && (k == 0 || line[k - 1] == ' ' || line[k - 1] == '\t')) {
+        line.erase(k);
+        break;
+      }
+    }
+    const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+    while (!line.empty() && blank(line.back())) line.pop_back();
+    size_t first = 0;
+    while (first < line.size() && blank(line[first])) ++first;
+    line.erase(0, first);
+    if (line.empty()) continue;
+    const auto bad = [&](const std::string& why) {
+      throw Error("unshaped-terms", why, path, line_no, static_cast<uint32_t>(first + 1));
+    };
+    if (line.rfind("@prefix ", 0) == 0) {
+      // @prefix NAME: <IRI> .
+      const size_t colon = line.find(':'), open = line.find('<'), close = line.find('>');
+      if (colon == std::string::npos || open == std::string::npos || close == std::string::npos ||
+          !(colon < open && open < close) ||
+          line.substr(close + 1).find_first_not_of(" .") != std::string::npos)
+        bad("expected '@prefix NAME: <IRI> .', got '" + line + "'");
+      std::string name = line.substr(8, colon - 8);
+      while (!name.empty() && name.front() == ' ') name.erase(0, 1);
+      prefixes[name] = line.substr(open + 1, close - open - 1);
+      continue;
+    }
+    if (line.find_first_of(" \t") != std::string::npos)
+      bad("one class IRI or CURIE per line (a reason goes after '#'), got '" + line + "'");
+    if (line.front() == '<' && line.back() == '>') {
+      out.push_back(line.substr(1, line.size() - 2));
+      continue;
+    }
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos)
+      bad("'" + line + "' is neither an IRI nor a CURIE (NAME:local, NAME declared by @prefix)");
+    auto it = prefixes.find(line.substr(0, colon));
+    if (line.compare(colon, 3, "://") == 0) {
+      out.push_back(line);
+    } else if (it == prefixes.end()) {
+      bad("prefix '" + line.substr(0, colon) + "' of '" + line +
+          "' is not declared (add '@prefix " + line.substr(0, colon) + ": <IRI> .' above it)");
+    } else {
+      out.push_back(it->second + line.substr(colon + 1));
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// Every predicate IRI a path names (inverse and negated ones included).
+void path_predicates(const sparql::Path& path, const rdf::TermTable& terms,
+                     std::unordered_set<std::string>& out) {
+  if (path.kind == sparql::Path::Kind::Predicate && terms[path.predicate].is_iri())
+    out.emplace(terms[path.predicate].value);
+  for (const std::vector<TermId>* set : {&path.negated, &path.negated_inverse})
+    for (TermId p : *set)
+      if (terms[p].is_iri()) out.emplace(terms[p].value);
+  for (const sparql::PathPtr& item : path.items)
+    if (item) path_predicates(*item, terms, out);
+}
+
+// unshaped-term for properties: predicates of mospec's metamodels (the apps'
+// own application/ terms aside) that the model uses and that no shape's
+// sh:path names, unless `exempt` lists them.
+template <typename Located>
+void unpathed_properties(app::LoadedModel& model, const Shapes& shapes,
+                         const std::unordered_set<std::string>& exempt,
+                         std::vector<Diagnostic>& out, const Located& located) {
+  const std::string base(vocab::kMetamodels);
+  const std::string app_ns(app::kAppNs);
+  std::unordered_set<std::string> pathed;
+  for (const Shape& s : shapes.shapes())
+    if (s.path) path_predicates(*s.path, shapes.graph().terms(), pathed);
+  const rdf::Dataset& data = model.dataset();
+  const rdf::TermTable& dt = data.terms();
+  struct Use {
+    SourceLoc first;
+    TermId node = TermId::any();
+    size_t count = 0;
+  };
+  std::unordered_map<uint32_t, bool> verdict;  // predicate -> reported
+  std::unordered_map<uint32_t, Use> uses;
+  std::vector<TermId> order;
+  for (size_t i = 0; i < data.size(); ++i) {
+    const rdf::Quad& q = data.quads()[i];
+    auto [v, fresh] = verdict.try_emplace(q.predicate.index, false);
+    if (fresh) {
+      const std::string_view p = dt[q.predicate].value;
+      v->second = dt[q.predicate].is_iri() && p.substr(0, base.size()) == base &&
+                  p.substr(0, app_ns.size()) != app_ns && exempt.count(std::string(p)) == 0 &&
+                  pathed.count(std::string(p)) == 0;
+    }
+    if (!v->second) continue;
+    auto [it, first_use] = uses.try_emplace(q.predicate.index);
+    if (first_use) order.push_back(q.predicate);
+    ++it->second.count;
+    const SourceLoc loc = data.location(i);
+    SourceLoc& first = it->second.first;
+    if (it->second.node.is_any() ||
+        (loc.known() && (!first.known() || std::tie(loc.file, loc.line, loc.column) <
+                                               std::tie(first.file, first.line, first.column)))) {
+      first = loc;
+      it->second.node = q.subject;
+    }
+  }
+  for (TermId t : order) {
+    const Use& u = uses[t.index];
+    const rdf::Term& n = dt[u.node];
+    std::string message = "property <";
+    message.append(dt[t].value).append("> of ");
+    if (n.is_iri())
+      message.append("<").append(n.value).append(">");
+    else
+      message.append("a blank node");
+    message.append(" is constrained by no shape's sh:path (").append(std::to_string(u.count));
+    message.append(u.count == 1 ? " use" : " uses");
+    message.append(
+        "): add a shape whose path names it, or list it as structural in "
+        "metamodels/mospec/unshaped-terms.txt");
+    out.push_back(located(u.first, "unshaped-term", std::move(message)));
+  }
+}
+
+// unshaped-term: classes of mospec's metamodels that type a node of the model
+// and that no shape covers, unless metamodels/mospec/unshaped-terms.txt lists
+// them. Only when the vocabulary resolves to mospec's metamodels.
+template <typename Located>
+void unshaped_terms(app::LoadedModel& model, const Shapes& shapes, std::vector<Diagnostic>& out,
+                    const Located& located) {
+  const std::string base(vocab::kMetamodels);
+  jsonld::MappedDocumentLoader& loader = model.loader();
+  const std::string manifest = loader.resolve(base + "mospec/shape-files.txt");
+  std::error_code ec;
+  if (manifest.empty() || !fs::is_regular_file(manifest, ec)) return;
+  std::unordered_set<std::string> exempt;
+  const std::string list = loader.resolve(base + "mospec/unshaped-terms.txt");
+  if (!list.empty() && fs::is_regular_file(list, ec))
+    for (std::string& iri : read_unshaped_terms(list)) exempt.insert(std::move(iri));
+  unpathed_properties(model, shapes, exempt, out, located);
+
+  // Target classes of the active shapes, and rdfs:subClassOf from the data and
+  // the shapes graphs (a node of a subclass is selected by its superclass's
+  // target).
+  std::unordered_set<std::string> targets;
+  const rdf::Dataset& sg = shapes.graph();
+  const rdf::TermTable& st = sg.terms();
+  for (const Shape& s : shapes.shapes()) {
+    if (s.deactivated) continue;
+    for (TermId c : s.target_classes)
+      if (st[c].is_iri()) targets.insert(std::string(st[c].value));
+  }
+  std::unordered_map<std::string, std::vector<std::string>> supers;
+  const rdf::Dataset& data_graph = model.dataset();
+  for (const rdf::Dataset* g : {&data_graph, &sg}) {
+    const TermId sub = g->terms().find_iri(vocab::rdfs::subClassOf);
+    if (sub.is_any()) continue;
+    g->scan(TermId::any(), sub, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      const rdf::Term &s = g->terms()[q.subject], &o = g->terms()[q.object];
+      if (s.is_iri() && o.is_iri()) supers[std::string(s.value)].emplace_back(o.value);
+      return true;
+    });
+  }
+  const auto covered = [&](const std::string& cls) {
+    std::vector<std::string> todo{cls};
+    std::unordered_set<std::string> seen{cls};
+    while (!todo.empty()) {
+      std::string c = std::move(todo.back());
+      todo.pop_back();
+      if (targets.count(c) != 0) return true;
+      if (auto it = supers.find(c); it != supers.end())
+        for (const std::string& s : it->second)
+          if (seen.insert(s).second) todo.push_back(s);
+    }
+    return false;
+  };
+
+  const rdf::Dataset& data = model.dataset();
+  const rdf::TermTable& dt = data.terms();
+  const TermId type = dt.find_iri(vocab::rdf::type);
+  if (type.is_any()) return;
+  struct Use {
+    SourceLoc first;
+    TermId node = TermId::any();
+    size_t nodes = 0;
+  };
+  std::unordered_map<uint32_t, bool> verdict;  // class -> reported
+  std::unordered_map<uint32_t, Use> uses;
+  std::unordered_map<uint32_t, std::unordered_set<uint32_t>> nodes;
+  std::vector<TermId> order;
+  data.scan(TermId::any(), type, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
+    const rdf::Term& o = dt[q.object];
+    if (!o.is_iri() || o.value.substr(0, base.size()) != base) return true;
+    auto [v, fresh] = verdict.try_emplace(q.object.index, false);
+    if (fresh) {
+      const std::string cls(o.value);
+      v->second = exempt.count(cls) == 0 && !covered(cls);
+    }
+    if (!v->second) return true;
+    auto [it, first_use] = uses.try_emplace(q.object.index);
+    if (first_use) order.push_back(q.object);
+    if (nodes[q.object.index].insert(q.subject.index).second) ++it->second.nodes;
+    const SourceLoc loc = data.location(i);
+    SourceLoc& first = it->second.first;
+    if (it->second.node.is_any() ||
+        (loc.known() && (!first.known() || std::tie(loc.file, loc.line, loc.column) <
+                                               std::tie(first.file, first.line, first.column)))) {
+      first = loc;
+      it->second.node = q.subject;
+    }
+    return true;
+  });
+  for (TermId t : order) {
+    const Use& u = uses[t.index];
+    const rdf::Term& n = dt[u.node];
+    std::string message = "type <";
+    message.append(dt[t].value).append("> of ");
+    if (n.is_iri())
+      message.append("<").append(n.value).append(">");
+    else
+      message.append("a blank node");
+    message.append(" is covered by no shape (").append(std::to_string(u.nodes));
+    message.append(u.nodes == 1 ? " node" : " nodes");
+    message.append(
+        " typed so): add a shape that targets it, or list it as structural in "
+        "metamodels/mospec/unshaped-terms.txt");
+    out.push_back(located(u.first, "unshaped-term", std::move(message)));
+  }
+}
+
+}  // namespace
+
 std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& shapes,
                                       const std::vector<ShapeFile>& automatic) {
   std::vector<Diagnostic> out;
@@ -308,6 +555,7 @@ std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& sha
       out.push_back(located(u.first, "undefined-type", std::move(message)));
     }
   }
+  unshaped_terms(model, shapes, out, located);
   std::stable_sort(out.begin(), out.end(), [&](const Diagnostic& a, const Diagnostic& b) {
     return std::tie(a.file, a.line, a.column, a.message) <
            std::tie(b.file, b.line, b.column, b.message);

@@ -68,7 +68,8 @@ struct ModelValidation {
   std::unique_ptr<shacl::Shapes> shapes;
   shacl::Report report;
   // Under `strict`: shapes whose targets select no node ("shape-unused"),
-  // rdf:type values that nothing defines ("undefined-type"), as warnings.
+  // rdf:type values that nothing defines ("undefined-type"), classes of
+  // mospec's metamodels that no shape covers ("unshaped-term"), as warnings.
   std::vector<Diagnostic> strict_findings;
   // Loader-style warnings raised while reading JSON-LD shape files.
   DiagnosticSink shape_diagnostics;
@@ -101,9 +102,25 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
 //    contexts those load, and the scoped contexts inside their term
 //    definitions) maps to exactly that IRI; or the shapes graph mentions it
 //    as a subject or as the object of sh:targetClass or sh:class.
+//  * unshaped-term: when the vocabulary resolves to mospec's metamodels (as
+//    for vocabulary_shape_files), a class in their namespace that types a
+//    node of the model and that no shape covers: no active shape's
+//    sh:targetClass or implicit class target is the class or, through
+//    rdfs:subClassOf in the data or shapes graph, a superclass of it; and
+//    <metamodels>/mospec/unshaped-terms.txt does not list it. Reported once
+//    per class, at the first node's rdf:type statement. Likewise a predicate
+//    of theirs (the application/ terms aside) that the model uses and that
+//    no shape's sh:path names, once per predicate at its first statement.
 // Shapes of `files` marked automatic are not reported as shape-unused.
 std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const shacl::Shapes& shapes,
                                       const std::vector<ShapeFile>& files = {});
+
+// The class IRIs listed by an unshaped-terms file (metamodels/mospec/
+// unshaped-terms.txt): one IRI (<...> or bare absolute) or CURIE per line,
+// CURIE prefixes declared by earlier '@prefix NAME: <IRI> .' lines; '#'
+// starts a comment (the reason). A malformed line throws mospec::Error
+// "unshaped-terms" located at it.
+std::vector<std::string> read_unshaped_terms(const std::string& path);
 
 // Every IRI that a term of the model files' JSON-LD contexts maps to.
 std::vector<std::string> context_term_iris(app::LoadedModel& model);
