@@ -99,6 +99,14 @@ std::vector<std::string> ActiveContext::terms() const {
   return out;
 }
 
+void ActiveContext::for_each_term(const std::function<void(std::string_view)>& visit) const {
+  for (const TermLayer* l = impl_->terms.get(); l != nullptr; l = l->parent.get()) {
+    for (const auto& [k, v] : l->defs) {
+      if (v && find(k) != nullptr) visit(k);
+    }
+  }
+}
+
 bool ActiveContext::has_protected_terms() const {
   return impl_->terms && impl_->terms->protected_count != 0;
 }

@@ -8,6 +8,7 @@
 // behind find()/terms().
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -62,6 +63,9 @@ class ActiveContext {
   const TermDefinition* find(std::string_view term) const;
   // All defined terms (for IRI compaction checks / debugging); order unspecified.
   std::vector<std::string> terms() const;
+  // Calls `visit` with each defined term's name, without copying any (a term
+  // redefined in a nested context may come twice); order unspecified.
+  void for_each_term(const std::function<void(std::string_view)>& visit) const;
   bool has_protected_terms() const;
 
   struct Impl;

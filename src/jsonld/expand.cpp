@@ -300,9 +300,8 @@ void Expander::note_dropped_key(const ActiveContext& active, const std::string& 
 // "; did you mean \"term\"?" naming the active context's term nearest to a
 // word that is none of them (a typo of a property or type), or "".
 std::string Expander::did_you_mean(const ActiveContext& active, const std::string& word) {
-  const std::vector<std::string> terms = active.terms();
   Nearest nearest(word);
-  for (const std::string& term : terms) nearest.offer(term);
+  active.for_each_term([&](std::string_view term) { nearest.offer(term); });
   if (nearest.best().empty()) return "";
   return "; did you mean \"" + std::string(nearest.best()) + "\"?";
 }

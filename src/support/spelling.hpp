@@ -12,11 +12,14 @@ namespace mospec {
 size_t edit_distance(std::string_view a, std::string_view b, size_t limit);
 
 // How many edits a name of this length may be away from a candidate and still
-// be taken for a typo of it: a third of the name, at least two.
+// be taken for a typo of it: a fifth of the name, at least one (compound
+// names share long parts: "AngleConstraint" is no typo of "ForceConstraint");
+// none for names shorter than four letters.
 size_t typo_limit(std::string_view name);
 
 // Keeps the nearest candidate offered to it (ties: the lexically smallest), so
-// the answer does not depend on the order candidates come in.
+// the answer does not depend on the order candidates come in. A candidate
+// whose first letter differs in case (a class for a property) is not offered.
 class Nearest {
  public:
   explicit Nearest(std::string_view name) : name_(name), limit_(typo_limit(name)) {}

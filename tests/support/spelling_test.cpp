@@ -30,10 +30,19 @@ TEST(Spelling, NearestIsWithinATypoAndIndependentOfOrder) {
   Nearest far("gain");
   for (const std::string& t : terms) far.offer(t);
   EXPECT_EQ(far.best(), "");  // nothing is a plausible typo of it
-  Nearest tie("ab");
-  tie.offer("cb");
-  tie.offer("ac");
-  EXPECT_EQ(tie.best(), "ac");  // equally near: the lexically smaller
+  Nearest tie("abcd");
+  tie.offer("xbcd");
+  tie.offer("abcx");
+  EXPECT_EQ(tie.best(), "abcx");  // equally near: the lexically smaller
+  Nearest short_name("to");
+  short_name.offer("tp");
+  EXPECT_EQ(short_name.best(), "");  // too short to guess
+  Nearest compound("AngleConstraint");
+  compound.offer("ForceConstraint");
+  EXPECT_EQ(compound.best(), "");  // four edits in fifteen letters: another word
+  Nearest property("pose");
+  property.offer("Pose");
+  EXPECT_EQ(property.best(), "");  // a class is no typo of a property
   Nearest itself("quantity");
   itself.offer("quantity");
   EXPECT_EQ(itself.best(), "");  // a name is no suggestion for itself
