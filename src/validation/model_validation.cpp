@@ -304,6 +304,41 @@ void path_predicates(const sparql::Path& path, const rdf::TermTable& terms,
     if (item) path_predicates(*item, terms, out);
 }
 
+// Where an unshaped term is first used, and how often: the finding is located
+// at its earliest located use and names the node there.
+struct TermUse {
+  SourceLoc first;
+  TermId node = TermId::any();
+  size_t count = 0;
+
+  void saw(SourceLoc loc, TermId subject) {
+    if (node.is_any() ||
+        (loc.known() && (!first.known() || std::tie(loc.file, loc.line, loc.column) <
+                                               std::tie(first.file, first.line, first.column)))) {
+      first = loc;
+      node = subject;
+    }
+  }
+  // "<what> <T> of <node> <problem> (N <unit>s<qualifier>): <fix>, or list it
+  // as structural in metamodels/mospec/unshaped-terms.txt".
+  std::string message(const rdf::TermTable& dt, std::string_view what, TermId term,
+                      std::string_view problem, std::string_view unit, std::string_view qualifier,
+                      std::string_view fix) const {
+    std::string m(what);
+    m.append(" <").append(dt[term].value).append("> of ");
+    if (dt[node].is_iri())
+      m.append("<").append(dt[node].value).append(">");
+    else
+      m.append("a blank node");
+    m.append(" ").append(problem).append(" (").append(std::to_string(count)).append(" ");
+    m.append(unit).append(count == 1 ? "" : "s").append(qualifier);
+    m.append("): ").append(fix).append(
+        ", or list it as structural in "
+        "metamodels/mospec/unshaped-terms.txt");
+    return m;
+  }
+};
+
 // unshaped-term for properties: predicates of mospec's metamodels (the apps'
 // own application/ terms aside) that the model uses and that no shape's
 // sh:path names, unless `exempt` lists them.
@@ -318,13 +353,8 @@ void unpathed_properties(app::LoadedModel& model, const Shapes& shapes,
     if (s.path) path_predicates(*s.path, shapes.graph().terms(), pathed);
   const rdf::Dataset& data = model.dataset();
   const rdf::TermTable& dt = data.terms();
-  struct Use {
-    SourceLoc first;
-    TermId node = TermId::any();
-    size_t count = 0;
-  };
   std::unordered_map<uint32_t, bool> verdict;  // predicate -> reported
-  std::unordered_map<uint32_t, Use> uses;
+  std::unordered_map<uint32_t, TermUse> uses;
   std::vector<TermId> order;
   for (size_t i = 0; i < data.size(); ++i) {
     const rdf::Quad& q = data.quads()[i];
@@ -339,30 +369,13 @@ void unpathed_properties(app::LoadedModel& model, const Shapes& shapes,
     auto [it, first_use] = uses.try_emplace(q.predicate.index);
     if (first_use) order.push_back(q.predicate);
     ++it->second.count;
-    const SourceLoc loc = data.location(i);
-    SourceLoc& first = it->second.first;
-    if (it->second.node.is_any() ||
-        (loc.known() && (!first.known() || std::tie(loc.file, loc.line, loc.column) <
-                                               std::tie(first.file, first.line, first.column)))) {
-      first = loc;
-      it->second.node = q.subject;
-    }
+    it->second.saw(data.location(i), q.subject);
   }
   for (TermId t : order) {
-    const Use& u = uses[t.index];
-    const rdf::Term& n = dt[u.node];
-    std::string message = "property <";
-    message.append(dt[t].value).append("> of ");
-    if (n.is_iri())
-      message.append("<").append(n.value).append(">");
-    else
-      message.append("a blank node");
-    message.append(" is constrained by no shape's sh:path (").append(std::to_string(u.count));
-    message.append(u.count == 1 ? " use" : " uses");
-    message.append(
-        "): add a shape whose path names it, or list it as structural in "
-        "metamodels/mospec/unshaped-terms.txt");
-    out.push_back(located(u.first, "unshaped-term", std::move(message)));
+    const TermUse& u = uses[t.index];
+    out.push_back(located(u.first, "unshaped-term",
+                          u.message(dt, "property", t, "is constrained by no shape's sh:path",
+                                    "use", "", "add a shape whose path names it")));
   }
 }
 
@@ -423,13 +436,8 @@ void unshaped_terms(app::LoadedModel& model, const Shapes& shapes, std::vector<D
   const rdf::TermTable& dt = data.terms();
   const TermId type = dt.find_iri(vocab::rdf::type);
   if (type.is_any()) return;
-  struct Use {
-    SourceLoc first;
-    TermId node = TermId::any();
-    size_t nodes = 0;
-  };
   std::unordered_map<uint32_t, bool> verdict;  // class -> reported
-  std::unordered_map<uint32_t, Use> uses;
+  std::unordered_map<uint32_t, TermUse> uses;
   std::unordered_map<uint32_t, std::unordered_set<uint32_t>> nodes;
   std::vector<TermId> order;
   data.scan(TermId::any(), type, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
@@ -443,32 +451,15 @@ void unshaped_terms(app::LoadedModel& model, const Shapes& shapes, std::vector<D
     if (!v->second) return true;
     auto [it, first_use] = uses.try_emplace(q.object.index);
     if (first_use) order.push_back(q.object);
-    if (nodes[q.object.index].insert(q.subject.index).second) ++it->second.nodes;
-    const SourceLoc loc = data.location(i);
-    SourceLoc& first = it->second.first;
-    if (it->second.node.is_any() ||
-        (loc.known() && (!first.known() || std::tie(loc.file, loc.line, loc.column) <
-                                               std::tie(first.file, first.line, first.column)))) {
-      first = loc;
-      it->second.node = q.subject;
-    }
+    if (nodes[q.object.index].insert(q.subject.index).second) ++it->second.count;
+    it->second.saw(data.location(i), q.subject);
     return true;
   });
   for (TermId t : order) {
-    const Use& u = uses[t.index];
-    const rdf::Term& n = dt[u.node];
-    std::string message = "type <";
-    message.append(dt[t].value).append("> of ");
-    if (n.is_iri())
-      message.append("<").append(n.value).append(">");
-    else
-      message.append("a blank node");
-    message.append(" is covered by no shape (").append(std::to_string(u.nodes));
-    message.append(u.nodes == 1 ? " node" : " nodes");
-    message.append(
-        " typed so): add a shape that targets it, or list it as structural in "
-        "metamodels/mospec/unshaped-terms.txt");
-    out.push_back(located(u.first, "unshaped-term", std::move(message)));
+    const TermUse& u = uses[t.index];
+    out.push_back(located(u.first, "unshaped-term",
+                          u.message(dt, "type", t, "is covered by no shape", "node", " typed so",
+                                    "add a shape that targets it")));
   }
 }
 
