@@ -27,6 +27,19 @@ using rdf::TermId;
 
 namespace {
 
+// Calls f(line number, line) for each line of a text file (without its '\n').
+template <class F>
+void for_each_line(const std::string& text, F&& f) {
+  size_t start = 0;
+  uint32_t line_no = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    f(++line_no, text.substr(start, end - start));
+    start = end + 1;
+  }
+}
+
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -231,14 +244,7 @@ std::vector<std::string> read_unshaped_terms(const std::string& path) {
   const std::string text = read_file(path);
   std::vector<std::string> out;
   std::unordered_map<std::string, std::string> prefixes;
-  size_t start = 0;
-  uint32_t line_no = 0;
-  while (start < text.size()) {
-    size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(start, end - start);
-    start = end + 1;
-    ++line_no;
+  for_each_line(text, [&](uint32_t line_no, std::string line) {
     // A comment starts at a '#' that begins the line or follows a blank (an
     // IRI's fragment '#' does neither).
     for (size_t k = 0; k < line.size(); ++k) {
@@ -252,7 +258,7 @@ std::vector<std::string> read_unshaped_terms(const std::string& path) {
     size_t first = 0;
     while (first < line.size() && blank(line[first])) ++first;
     line.erase(0, first);
-    if (line.empty()) continue;
+    if (line.empty()) return;
     const auto bad = [&](const std::string& why) {
       throw Error("unshaped-terms", why, path, line_no, static_cast<uint32_t>(first + 1));
     };
@@ -266,13 +272,13 @@ std::vector<std::string> read_unshaped_terms(const std::string& path) {
       std::string name = line.substr(8, colon - 8);
       while (!name.empty() && name.front() == ' ') name.erase(0, 1);
       prefixes[name] = line.substr(open + 1, close - open - 1);
-      continue;
+      return;
     }
     if (line.find_first_of(" \t") != std::string::npos)
       bad("one class IRI or CURIE per line (a reason goes after '#'), got '" + line + "'");
     if (line.front() == '<' && line.back() == '>') {
       out.push_back(line.substr(1, line.size() - 2));
-      continue;
+      return;
     }
     const size_t colon = line.find(':');
     if (colon == std::string::npos)
@@ -286,7 +292,7 @@ std::vector<std::string> read_unshaped_terms(const std::string& path) {
     } else {
       out.push_back(it->second + line.substr(colon + 1));
     }
-  }
+  });
   return out;
 }
 
@@ -659,15 +665,12 @@ std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Data
   const std::string manifest = model.loader().resolve(base + "mospec/shape-files.txt");
   std::error_code ec;
   if (manifest.empty() || !fs::is_regular_file(manifest, ec)) return out;
-  const std::string text = read_file(manifest);
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(start, end - start);
-    start = end + 1;
+  std::vector<std::string> listed;
+  for_each_line(read_file(manifest), [&](uint32_t, std::string line) {
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
+    if (!line.empty() && line[0] != '#') listed.push_back(std::move(line));
+  });
+  for (const std::string& line : listed) {
     ShapeFile f;
     f.iri = base + line;
     f.path = model.loader().resolve(f.iri);
