@@ -832,6 +832,7 @@ class Builder {
         put(s, "state_slot", std::to_string(st.state));
         put(s, "in0", in(st, 0));
         put(s, "tolerance", step_members_[index]);
+        put(s, "running", gate());
         put(s, "out0", out(st, 0));
         break;
       case StepKind::GuardedMotion: {

@@ -65,8 +65,8 @@ enum class StepKind : uint8_t {
   ViewWrite,      // ins: [scalar...]; out: [twist|wrench] (others zero); views
   Operator,       // a pure computation: Step::op indexes operator_kinds() (operators.hpp)
   Evaluate,       // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
-  LevelMonitor,   // in: [error]; out: [flag]
-  EdgeMonitor,    // in: [error]; out: [event]
+  LevelMonitor,   // ins: [error, (running flag)]; out: [flag]
+  EdgeMonitor,    // ins: [error, (running flag)]; out: [event]
   GuardedMotion,  // ins: [when flags..., until flags...]; out: [active flag]
   AnyOf,          // ins: [flags...] (2 or more); out: [flag] = any of them
   Controller,     // ins: [signals..., (active flag)]; out: [control signal]; Step::controller

@@ -105,14 +105,27 @@ inline void evaluate(const ConstraintEvaluator& evaluator, double measured, bool
 // ---------------------------------------------------------------------------
 // Monitors watch an error signal: the watched constraint is satisfied while
 // the error is within `tolerance` of 0 (exactly 0 for inequalities inside their
-// feasible set).
-inline bool level_monitor(MonitorState& state, double error, double tolerance) noexcept {
-  return LevelMonitor::update(state, std::abs(error) <= tolerance);
+// feasible set). A monitor that constraint handlers list reports for their
+// motions: `running` is whether one of them runs after this tick, and the
+// monitor reports in every tick one of them runs, the tick it ends included
+// (a post-condition's event is seen). It watches the constraint in every tick,
+// so an edge is a change of the constraint, never the motion starting. A
+// monitor no handler lists always reports (`running` is true).
+inline bool monitor_reports(MonitorState& state, bool running) noexcept {
+  const bool reports = running || state.was_running;
+  state.was_running = running;
+  return reports;
 }
-inline bool edge_monitor(MonitorState& state, double error, double tolerance) noexcept {
+inline bool level_monitor(MonitorState& state, double error, double tolerance,
+                          bool running) noexcept {
+  const bool satisfied = LevelMonitor::update(state, std::abs(error) <= tolerance);
+  return monitor_reports(state, running) && satisfied;
+}
+inline bool edge_monitor(MonitorState& state, double error, double tolerance,
+                         bool running) noexcept {
   const bool before = state.satisfied;
   LevelMonitor::update(state, std::abs(error) <= tolerance);
-  return !before && state.satisfied;  // the constraint became satisfied
+  return monitor_reports(state, running) && !before && state.satisfied;  // became satisfied
 }
 
 // ---------------------------------------------------------------------------
