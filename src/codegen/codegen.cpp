@@ -473,6 +473,9 @@ class Builder {
       put(e, "X_RB_fn", n.X_RB_fn);
       put(e, "constraints", std::to_string(s.acceleration_constraints.size()));
       put(e, "gravity", join_doubles(s.gravity.data(), 3));
+      put(e, "task_gravity",
+          s.gravity_compensated ? "none (GravityCompensated: free directions keep their velocity)"
+                                : "the same (free directions fall)");
       put(e, "X_RB_R", mat3(s.X_RB.R));
       put(e, "X_RB_p", vec3(s.X_RB.p));
       put(e, "has_mount", !s.mount_pose_iri.empty());
@@ -528,10 +531,12 @@ class Builder {
       put(e, "alpha", std::move(alpha));
       append(arms, std::move(e));
       // The physical model (the solver's gravity: kinematics and the torque
-      // command), the task model (no gravity: the ACHD solve), the mount.
-      inits.push_back(member + "(" + n.model_fn + "(rt::Vec3(" + join_doubles(s.gravity.data(), 3) +
-                      ")))");
-      inits.push_back(n.task + "(" + n.model_fn + "(rt::Vec3::Zero()))");
+      // command), the task model (the ACHD solve: no gravity when the solver
+      // is GravityCompensated), the mount.
+      const std::string gravity = "rt::Vec3(" + join_doubles(s.gravity.data(), 3) + ")";
+      inits.push_back(member + "(" + n.model_fn + "(" + gravity + "))");
+      inits.push_back(n.task + "(" + n.model_fn + "(" +
+                      (s.gravity_compensated ? std::string("rt::Vec3::Zero()") : gravity) + "))");
       inits.push_back(n.X_BR + "(" + n.X_RB_fn + "().inverse())");
     }
     put(root, "arms", std::move(arms));
@@ -898,6 +903,10 @@ class Builder {
         }
         put(s, "gated", !gates.empty());
         put(s, "gates", gates);
+        put(s, "idle_time_constant",
+            a.idle == ir::ArmSolver::Idle::BrakeAndHold
+                ? cpp_double(a.idle_time_constant)
+                : std::string("rt::steps::kFloatTimeConstant"));
         put(s, "indent", gates.empty() ? "  " : "    ");
         mustache::Data forces = list(), joint_forces = list(), betas = list();
         for (const ir::CartesianForce& f : a.cartesian_forces) {

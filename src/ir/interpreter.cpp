@@ -24,7 +24,7 @@ struct Interpreter::Arm {
     }
   }
   runtime::AchdModel model;       // with gravity: kinematics and the command
-  runtime::AchdModel task_model;  // without: the ACHD solve
+  runtime::AchdModel task_model;  // the ACHD solve's (no gravity when compensated)
   runtime::AchdData data;
   runtime::Pose X_BR;  // the chain's root in the solver's root (mount inverse)
   runtime::steps::ArmWorkspace ws;
@@ -224,7 +224,7 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       bool driven = st.in.size() == st.drivers();  // no gates: always
       for (size_t k = st.drivers(); k < st.in.size(); ++k) driven = driven || s_.flags[in(k)] != 0;
       if (!driven) {
-        steps::arm_hold(arm.model, arm.data, arm.ws,
+        steps::arm_hold(arm.model, arm.data, arm.ws, idle_time_constant(solver),
                         command.arm_tau[static_cast<size_t>(solver.port)]);
         break;
       }

@@ -5,6 +5,7 @@
 
 #include "ir/controllers.hpp"
 #include "ir/operators.hpp"
+#include "runtime/steps.hpp"
 
 namespace mospec::ir {
 
@@ -49,11 +50,17 @@ std::string_view kind_name(const Step& step) {
 }
 
 runtime::AchdModel achd_model(const ArmSolver& arm, bool physical) {
-  const runtime::Vec3 g = physical ? runtime::Vec3(arm.gravity[0], arm.gravity[1], arm.gravity[2])
-                                   : runtime::Vec3::Zero();
+  const runtime::Vec3 g = physical || !arm.gravity_compensated
+                              ? runtime::Vec3(arm.gravity[0], arm.gravity[1], arm.gravity[2])
+                              : runtime::Vec3::Zero();
   runtime::AchdModel model(arm.chain, g);
   if (arm.tip_is_last_segment) model.X_NT = runtime::Pose{};
   return model;
+}
+
+double idle_time_constant(const ArmSolver& arm) {
+  return arm.idle == ArmSolver::Idle::BrakeAndHold ? arm.idle_time_constant
+                                                   : runtime::steps::kFloatTimeConstant;
 }
 
 runtime::KeloConfig kelo_config(const BaseSolver& base) {
@@ -563,6 +570,13 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     }
     e["port"] = a.port;
     e["gravity"] = a.gravity;
+    e["gravity-compensated"] = a.gravity_compensated;
+    if (a.idle != ArmSolver::Idle::Unstated) {
+      Json idle;
+      idle["kind"] = a.idle == ArmSolver::Idle::BrakeAndHold ? "brake-and-hold" : "float";
+      if (a.idle == ArmSolver::Idle::BrakeAndHold) idle["time-constant"] = a.idle_time_constant;
+      e["when-idle"] = std::move(idle);
+    }
     e["tip-is-last-segment"] = a.tip_is_last_segment;
     Json segs = Json::array();
     for (int i = 0; i < a.chain.size(); ++i) {

@@ -174,6 +174,17 @@ struct ArmSolver {
   runtime::Chain chain{""};
   bool tip_is_last_segment = true;  // constraints act on the last segment's origin
   std::array<double, 3> gravity{};  // in the root frame [m/s^2]
+  // mos-slv:GravityCompensated: the ACHD solve runs without gravity, so the
+  // directions no driver controls keep their velocity; otherwise (the paper's
+  // reading) they fall under `gravity`. The command realises the solved motion
+  // under real gravity either way.
+  bool gravity_compensated = false;
+  // mos-slv:when-idle: what the arm does in the ticks no motion that drives it
+  // runs. Unstated is allowed only for an arm no motion gates.
+  enum class Idle : uint8_t { Unstated, BrakeAndHold, Float };
+  Idle idle = Idle::Unstated;
+  double idle_time_constant = 0.0;  // BrakeAndHold: every joint's velocity decays with it [s]
+  SourceLoc idle_where;             // the when-idle statement, for messages
   std::vector<ArmOutput> outputs;
   std::vector<AccelerationConstraint> acceleration_constraints;  // column order
   std::vector<CartesianForce> cartesian_forces;
@@ -236,12 +247,16 @@ struct Program {
 inline constexpr int kMaxGuards = 16;
 
 // Setup-time constants every back-end builds the same way:
-// the arm's ACHD model: the chain with the solver's gravity (`physical`) or
-// without (the task model, see runtime::steps::arm_solve); when the motion
+// the arm's ACHD model: the chain with the solver's gravity (`physical`), or
+// the task model of the ACHD solve (runtime::steps::arm_solve): the same,
+// without gravity when the solver is GravityCompensated; when the motion
 // drivers act on the last segment (tip_is_last_segment), its tip frame is that
 // segment's frame (X_NT = identity), so acceleration constraints act at its
 // origin.
 runtime::AchdModel achd_model(const ArmSolver& arm, bool physical);
+// The time constant of the arm's idle behaviour (runtime::steps::arm_hold):
+// BrakeAndHold's, or kFloatTimeConstant for Float.
+double idle_time_constant(const ArmSolver& arm);
 // The base's KELO configuration: the geometry with unit weights.
 runtime::KeloConfig kelo_config(const BaseSolver& base);
 // A constant pose from Data::value (R row-major, then p).

@@ -49,6 +49,56 @@ void lower_arms(State& st) {
   }
 }
 
+namespace {
+
+// mospec/solver: whether the task solve compensates gravity, and what the arm
+// does while no motion drives it (checked against the gates in
+// gate_arm_solves).
+void lower_arm_behaviour(State& st, TermId solver, ArmSolver& arm) {
+  namespace ms = mospec::vocab::mospec_solver;
+  arm.gravity_compensated = st.has_type(solver, mospec::vocab::term(ms::ns, "GravityCompensated"));
+  const std::string when_idle = mospec::vocab::term(ms::ns, "when-idle");
+  const auto idle = st.object(solver, when_idle);
+  if (!idle) return;
+  arm.idle_where = st.where(solver, when_idle, *idle);
+  const std::string what = "the idle behaviour '" + st.str(*idle) + "' of '" + arm.iri + "'";
+  if (st.has_type(*idle, mospec::vocab::term(ms::ns, "Float"))) {
+    arm.idle = ArmSolver::Idle::Float;
+    return;
+  }
+  if (!st.has_type(*idle, mospec::vocab::term(ms::ns, "BrakeAndHold"))) {
+    st.error(arm.idle_where, "unsupported-idle",
+             what +
+                 " is neither a BrakeAndHold nor a Float (mospec/solver), the two an arm "
+                 "can do while no motion drives it");
+    return;
+  }
+  const std::string tc_prop = mospec::vocab::term(ms::ns, "time-constant");
+  const auto tc = st.object(*idle, tc_prop);
+  if (!tc) {
+    st.error(*idle, "missing-property",
+             what + " names no `time-constant` (a quantity in SEC: how fast the joints stop)");
+    return;
+  }
+  std::string unit;
+  if (auto u = st.object(*tc, kQudt + "unit")) unit = local_name(st.str(*u));
+  const auto value = st.number(*tc, kQudt + "value");
+  if (unit != "SEC") {
+    st.error(*tc, "wrong-unit",
+             "the time constant '" + st.str(*tc) + "' of " + what + " must be in SEC, not '" +
+                 unit + "'");
+  } else if (!value || !(*value > 0.0)) {
+    st.error(*tc, "invalid-number",
+             "the time constant '" + st.str(*tc) + "' of " + what +
+                 " must be a number of seconds > 0 (the joints' velocities decay with it)");
+  } else {
+    arm.idle = ArmSolver::Idle::BrakeAndHold;
+    arm.idle_time_constant = *value;
+  }
+}
+
+}  // namespace
+
 void lower_arm(State& st, TermId solver) {
   const std::string slv = "task/solver-specification";
   st.pending_iri = st.str(solver);
@@ -176,6 +226,7 @@ void lower_arm(State& st, TermId solver) {
   } else {
     st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no gravity");
   }
+  lower_arm_behaviour(st, solver, arm);
   const int arm_index = static_cast<int>(st.program.arms.size());
   // The arm's two steps, named and located by its solver.
   const auto arm_step = [&](StepKind kind, const char* suffix) {
@@ -518,6 +569,17 @@ void gate_arm_solves(State& st) {
       }
     }
     solve.in.insert(solve.in.end(), gates.begin(), gates.end());
+    // An arm some motion gates is idle while none of them runs: the model
+    // says what it does then.
+    if (solve.kind == StepKind::ArmSolve && !gates.empty()) {
+      const ArmSolver& arm = st.program.arms[static_cast<size_t>(solve.solver)];
+      if (arm.idle == ArmSolver::Idle::Unstated && !arm.idle_where.known())  // else refused there
+        st.error(arm.where, "unstated-idle",
+                 "the solver '" + arm.iri +
+                     "' drives its arm only while its motions run; say what the arm does "
+                     "before and after them: `when-idle` (mospec/solver) naming a BrakeAndHold "
+                     "with a `time-constant`, or a Float");
+    }
   }
 }
 

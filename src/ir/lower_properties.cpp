@@ -97,6 +97,11 @@ const std::vector<Family>& families() {
         {"WrenchCoordinateView", "view", {"superobject", "subobject", "subspace", "axis"}}}},
       // lower_clocks.
       {v::mospec_time::ns, false, {{"Clock", "clock", {"time"}}}},
+      // lower_arm (the solver's `when-idle`).
+      {v::mospec_solver::ns,
+       false,
+       {{"BrakeAndHold", "brake-and-hold idle behaviour", {"time-constant"}},
+        {"Float", "float idle behaviour", {}}}},
   };
   return table;
 }
@@ -124,6 +129,8 @@ std::string advice(std::string_view type, std::string_view property) {
            "constraints does (a timeout is a GreaterThanConstraint on the clock's time in "
            "`until`); remove `" +
            std::string(property) + "`";
+  if (type == "Float" && property == "time-constant")
+    return "a Float does not brake; for braking, make it a BrakeAndHold";
   if (type == "EqualityConstraint" && property == "threshold")
     return "an equality constraint has no tolerance; for a band, make it a BilateralConstraint "
            "with a lower-threshold and an upper-threshold";
@@ -152,7 +159,8 @@ void refuse_unread_properties(State& st) {
   };
   for (std::string_view ns :
        {mospec::vocab::cstr::ns, mospec::vocab::cstr_hdl::ns, mospec::vocab::mot::ns,
-        mospec::vocab::slv::ns, mospec::vocab::map::ns, mospec::vocab::mospec_time::ns}) {
+        mospec::vocab::slv::ns, mospec::vocab::map::ns, mospec::vocab::mospec_time::ns,
+        mospec::vocab::mospec_solver::ns}) {
     std::vector<Entity> entities;
     std::map<uint32_t, size_t> index;
     for (const Family& f : families()) {
@@ -184,7 +192,8 @@ void refuse_unread_properties(State& st) {
                  "unsupported-property",
                  "the " + std::string(role.what) + " '" + st.str(e.term) + "' states `" +
                      std::string(local) + "`, which mospec does not read for " +
-                     article(role.what) + std::string(role.what) + " (it reads " + known +
+                     article(role.what) + std::string(role.what) + " (it reads " +
+                     (known.empty() ? std::string("nothing") : known) +
                      "), so it would be ignored; " + advice(role.type, local));
       }
     }

@@ -51,7 +51,7 @@ void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, Ach
   const AchdModel& model = task_model;
   const auto n = static_cast<std::size_t>(model.nq);
   if (ws.input_fault) {
-    arm_hold(physical_model, data, ws, tau_out);
+    arm_hold(physical_model, data, ws, kFaultHoldTimeConstant, tau_out);
     return;
   }
   bool finite = ws.tau_ff.allFinite() && ws.beta.allFinite();
@@ -74,13 +74,13 @@ void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, Ach
 }
 
 void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
-              std::span<double> tau_out) noexcept {
+              double time_constant, std::span<double> tau_out) noexcept {
   const auto n = static_cast<std::size_t>(physical_model.nq);
   ws.status = Status::Ok;
   if (!ws.any_valid) {
     ws.tau_command.setZero();
   } else {
-    data.qdd = -ws.qd / kHoldTimeConstant;
+    data.qdd = -ws.qd / time_constant;
     const JointIn qdd(data.qdd);
     impl::rne_into(physical_model, data, ws.q, ws.qd, &qdd, {}, ws.tau_command);
     if (!ws.tau_command.allFinite()) ws.tau_command.setZero();

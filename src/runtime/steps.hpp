@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 
 #include "runtime/achd.hpp"
@@ -70,13 +71,21 @@ inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
 void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, AchdData& data,
                ArmWorkspace& ws, std::span<double> tau_out) noexcept;
 
-// The arm when no motion drives it: it brakes to a stop and then holds,
-// gravity-compensated: tau = rne(q, qd, -qd / kHoldTimeConstant) with the
-// solver's gravity (every joint's velocity decays with that time constant on
-// the model). Zero torque before the first complete finite sample.
-inline constexpr double kHoldTimeConstant = 0.1;  // [s]
+// The arm when no motion drives it (the model's mos-slv:when-idle): it brakes
+// to a stop and then holds, gravity-compensated: tau = rne(q, qd, -qd /
+// time_constant) with the solver's gravity (every joint's velocity decays with
+// that time constant on the model). An infinite time constant is the Float
+// behaviour: gravity compensation alone, the joints keep their velocity. Zero
+// torque before the first complete finite sample.
 void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
-              std::span<double> tau_out) noexcept;
+              double time_constant, std::span<double> tau_out) noexcept;
+// How arm_solve reacts to a sensor fault (a non-finite q or qd): the hold
+// above with this time constant, whatever the model's idle behaviour, since
+// the task's quantities cannot be computed. A safety reaction of the runtime,
+// not a task behaviour.
+inline constexpr double kFaultHoldTimeConstant = 0.1;  // [s]
+// The Float behaviour's time constant.
+inline constexpr double kFloatTimeConstant = std::numeric_limits<double>::infinity();
 
 // ---------------------------------------------------------------------------
 // Views (1D <-> 3D).

@@ -144,6 +144,16 @@ bad time mospec/time.ttl 9 \
   "<https://ex.org/c4>: a clock's time is a quantity \\(qudt:Quantity\\)" \
   "<https://ex.org/c5>: a clock's time is in seconds: exactly one unit, SEC"
 
+good arm-behaviour mospec/solver.ttl
+bad arm-behaviour mospec/solver.ttl 11 \
+  '<https://ex.org/not-a-solver>: GravityCompensated is a kind of arm solver' \
+  '<https://ex.org/two-idles>: an arm solver has one idle behaviour' \
+  '<https://ex.org/limp>: an idle behaviour \(when-idle\) is a BrakeAndHold or a Float' \
+  '<https://ex.org/brake-ms>: a BrakeAndHold.s time-constant is in seconds' \
+  '<https://ex.org/brake-zero>: a BrakeAndHold.s time-constant is a number of seconds > 0' \
+  '<https://ex.org/brake-none>: a BrakeAndHold has exactly one time-constant' \
+  '<https://ex.org/float>: a Float does not brake'
+
 good monitors task/monitors.ttl
 bad monitors task/monitors.ttl 9 \
   '<https://ex.org/b1>: a monitor watches exactly one error signal' \

@@ -1,0 +1,112 @@
+// The arm steps the IR runs (runtime/steps.hpp) on the toy arm: what the
+// command is when the task solve has gravity (the paper's least-constrained
+// motion: directions no driver controls fall) and when it is gravity
+// compensated, and the idle behaviours of mos-slv:when-idle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "description/urdf_import.hpp"
+#include "runtime/rne.hpp"
+#include "runtime/steps.hpp"
+#include "test_robots.hpp"
+
+namespace mospec::runtime {
+namespace {
+
+const Vec3 kGravity(0.0, 0.0, -9.81);
+
+struct Arm {
+  Arm() : chain(description::chain_from_urdf(testing::kToyUrdf, "world", "tool")) {}
+  Chain chain;
+};
+
+// The torque rne computes for (q, qd, qdd) with gravity, no external wrenches.
+JointVector inverse_dynamics(const AchdModel& model, const JointVector& q, const JointVector& qd,
+                             const JointVector& qdd) {
+  AchdData data(model);
+  JointVector tau(model.nq);
+  const JointIn qdd_in(qdd);
+  impl::rne_into(model, data, q, qd, &qdd_in, {}, tau);
+  return tau;
+}
+
+// A state of the toy arm after its first valid sample.
+steps::ArmWorkspace sampled(const AchdModel& model, AchdData& data, std::mt19937& rng) {
+  steps::ArmWorkspace ws(model, 0);
+  const testing::RandomState s = testing::random_state(rng, model.nq);
+  std::vector<double> q(s.q.data(), s.q.data() + model.nq), qd(s.qd.data(), s.qd.data() + model.nq);
+  steps::arm_kinematics(model, data, ws, q, qd);
+  return ws;
+}
+
+TEST(ArmSteps, WithoutDriversATaskSolvedUnderGravityCommandsNothing) {
+  // Gauss' least constraint with no driver is free fall: the command that
+  // realises it on the real arm (same gravity) is zero torque.
+  const Arm arm;
+  const AchdModel physical(arm.chain, kGravity);
+  AchdData data(physical);
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    steps::ArmWorkspace ws = sampled(physical, data, rng);
+    std::vector<double> tau(static_cast<size_t>(physical.nq));
+    steps::arm_solve(physical, physical, data, ws, tau);
+    for (double t : tau) EXPECT_NEAR(t, 0.0, 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(ArmSteps, AGravityCompensatedTaskHoldsUndrivenDirectionsAgainstGravity) {
+  // Without gravity in the task, an arm at rest with no driver stays at rest:
+  // the command is exactly the gravity torque.
+  const Arm arm;
+  const AchdModel physical(arm.chain, kGravity), task(arm.chain, Vec3::Zero());
+  AchdData data(physical);
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    steps::ArmWorkspace ws = sampled(physical, data, rng);
+    ws.qd.setZero();
+    std::vector<double> tau(static_cast<size_t>(physical.nq));
+    steps::arm_solve(task, physical, data, ws, tau);
+    const JointVector zero = JointVector::Zero(physical.nq);
+    const JointVector gravity = inverse_dynamics(physical, ws.q, zero, zero);
+    ASSERT_GT(gravity.norm(), 1.0);
+    for (int i = 0; i < physical.nq; ++i)
+      EXPECT_NEAR(tau[static_cast<size_t>(i)], gravity[i], 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(ArmSteps, BrakeAndHoldDecaysEveryJointVelocityWithTheModelsTimeConstant) {
+  const Arm arm;
+  const AchdModel physical(arm.chain, kGravity);
+  AchdData data(physical);
+  std::mt19937 rng(3);
+  for (const double time_constant : {0.1, 0.25, 2.0}) {
+    steps::ArmWorkspace ws = sampled(physical, data, rng);
+    std::vector<double> tau(static_cast<size_t>(physical.nq));
+    steps::arm_hold(physical, data, ws, time_constant, tau);
+    const JointVector expected =
+        inverse_dynamics(physical, ws.q, ws.qd, JointVector(-ws.qd / time_constant));
+    for (int i = 0; i < physical.nq; ++i)
+      EXPECT_DOUBLE_EQ(tau[static_cast<size_t>(i)], expected[i])
+          << "time constant " << time_constant;
+  }
+}
+
+TEST(ArmSteps, FloatIsGravityCompensationAlone) {
+  const Arm arm;
+  const AchdModel physical(arm.chain, kGravity);
+  AchdData data(physical);
+  std::mt19937 rng(5);
+  steps::ArmWorkspace ws = sampled(physical, data, rng);
+  std::vector<double> tau(static_cast<size_t>(physical.nq));
+  steps::arm_hold(physical, data, ws, steps::kFloatTimeConstant, tau);
+  const JointVector expected =
+      inverse_dynamics(physical, ws.q, ws.qd, JointVector::Zero(physical.nq));
+  for (int i = 0; i < physical.nq; ++i)
+    EXPECT_NEAR(tau[static_cast<size_t>(i)], expected[i], 1e-12);
+}
+
+}  // namespace
+}  // namespace mospec::runtime
