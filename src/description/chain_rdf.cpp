@@ -136,28 +136,28 @@ class Reader {
     std::vector<rdf::TermId> out;
     const rdf::TermId pid = id(p);
     if (pid.is_any()) return out;
-    for (uint32_t i : matches(s, pid, rdf::TermId::any())) {
-      const rdf::Quad& q = g_.quads()[i];
+    g_.scan(s, pid, rdf::TermId::any(), rdf::TermId::any(), [&](const rdf::Quad& q, uint32_t) {
       if (!filtered_) {
         out.push_back(q.object);
       } else if (read(q) && std::find(out.begin(), out.end(), q.object) == out.end()) {
         out.push_back(q.object);
       }
-    }
+      return true;
+    });
     return out;
   }
   std::vector<rdf::TermId> subjects(V p, rdf::TermId o) const {
     std::vector<rdf::TermId> out;
     const rdf::TermId pid = id(p);
     if (pid.is_any()) return out;
-    for (uint32_t i : matches(rdf::TermId::any(), pid, o)) {
-      const rdf::Quad& q = g_.quads()[i];
+    g_.scan(rdf::TermId::any(), pid, o, rdf::TermId::any(), [&](const rdf::Quad& q, uint32_t) {
       if (!filtered_) {
         out.push_back(q.subject);
       } else if (read(q) && std::find(out.begin(), out.end(), q.subject) == out.end()) {
         out.push_back(q.subject);
       }
-    }
+      return true;
+    });
     return out;
   }
   bool has_type(rdf::TermId s, V type) const {
@@ -278,12 +278,6 @@ class Reader {
   // Whether a quad is in the graphs read.
   bool read(const rdf::Quad& q) const {
     return !filtered_ || std::find(graphs_.begin(), graphs_.end(), q.graph) != graphs_.end();
-  }
-  // The quads matching (s, p, o) in the dataset's order.
-  std::vector<uint32_t> matches(rdf::TermId s, rdf::TermId p, rdf::TermId o) const {
-    std::vector<uint32_t> out = g_.match(s, p, o);
-    if (filtered_) std::sort(out.begin(), out.end());
-    return out;
   }
 
   static std::string local_name(const std::string& iri_text, std::string_view prefix) {

@@ -179,11 +179,11 @@ void refuse_unread_properties(State& st) {
     for (const Entity& e : entities) {
       std::set<std::string_view> reads;
       for (const Role* r : e.roles) reads.insert(r->reads.begin(), r->reads.end());
-      std::set<std::string> seen;
+      std::set<std::string_view> seen;  // views of the term table's IRIs
       for (const Graph::Statement& statement : st.graph.statements(e.term)) {
-        const std::string p = st.str(statement.predicate);
+        const std::string_view p = st.graph.str(statement.predicate);
         if (!p.starts_with(ns)) continue;
-        const std::string_view local = std::string_view(p).substr(ns.size());
+        const std::string_view local = p.substr(ns.size());
         if (reads.count(local) || !seen.insert(p).second) continue;
         const Role& role = *e.roles.front();
         std::string known;

@@ -141,7 +141,9 @@ Value& Object::set(std::string key, Value v) {
 }
 
 Value& Object::append_new(std::string key, Value v) {
-  members_.push_back(Member{std::move(key), std::move(v), SourceLoc{}});
+  // Built in place: a temporary Member would cost a move and a destruction of
+  // its key and value.
+  members_.emplace_back(std::move(key), std::move(v), SourceLoc{});
   if (!index_.p && members_.size() > KeyIndex::kScanLimit) index_.p = std::make_unique<KeyIndex>();
   if (index_.p) index_.p->added(members_);
   return members_.back().value;
@@ -389,7 +391,7 @@ class Parser {
         members[same].value = std::move(v);
         members[same].key_loc = key_loc;
       } else {
-        members.push_back(Object::Member{std::move(key), std::move(v), key_loc});
+        members.emplace_back(std::move(key), std::move(v), key_loc);
         index.added(members);
       }
       skip_ws();

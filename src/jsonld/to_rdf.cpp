@@ -427,7 +427,10 @@ class Converter {
     }
     auto [node_ptr, created] = graph.try_emplace(id);
     Node& node = *node_ptr;
-    if (created) node.where = where;
+    if (created) {
+      node.where = where;
+      node.properties.reserve(properties.size());  // each property key is one slot
+    }
 
     if (reverse_subject != nullptr) {
       if (!reverse_property.empty()) {
