@@ -133,7 +133,7 @@ KeloDriveVector kkt_solution(const KeloModel& model, const KeloComposition& G, c
 
 TEST(KeloDistribution, SolvesTheWeightedLeastSquaresProblem) {
   Random rnd(3);
-  KeloConfig config;
+  KeloConfig config = ::mospec::testing::paper_base();
   config.drive_weight = {1.0, 0.25, 3.0, 0.5};
   config.rescale_reference = false;  // α = 1: exactly Eq. (2)'s minimiser
   const KeloModel model(config);
@@ -150,7 +150,7 @@ TEST(KeloDistribution, SolvesTheWeightedLeastSquaresProblem) {
 TEST(KeloDistribution, ZeroWeightDisablesADrive) {
   Random rnd(4);
   for (int off = 0; off < kKeloDrives; ++off) {
-    KeloConfig config;
+    KeloConfig config = ::mospec::testing::paper_base();
     config.drive_weight[off] = 0.0;
     const KeloModel model(config);
     KeloData data(model);
@@ -167,7 +167,7 @@ TEST(KeloDistribution, ZeroWeightDisablesADrive) {
     }
   }
   // Two diagonal drives suffice.
-  KeloConfig two;
+  KeloConfig two = ::mospec::testing::paper_base();
   two.drive_weight = {1.0, 0.0, 1.0, 0.0};
   const KeloModel model(two);
   KeloData data(model);
@@ -258,7 +258,7 @@ TEST(KeloPower, PlatformPowerEqualsWheelPower) {
   // For a consistent motion (wheel rates of a platform twist) and the drive
   // forces distributed from a platform wrench: xd_p · F_p = Σ τ ω.
   Random rnd(7);
-  KeloConfig config;
+  KeloConfig config = ::mospec::testing::paper_base();
   config.drive_weight = {1.0, 2.0, 0.5, 1.5};
   const KeloModel model(config);
   KeloData data(model);
@@ -292,7 +292,7 @@ TEST(KeloVelocity, PivotRatesFollowTheDriveTurn) {
 }
 
 TEST(KeloAlignment, ReferenceTurnsDrivesTowardsTheTasks) {
-  KeloConfig config;
+  KeloConfig config = ::mospec::testing::paper_base();
   config.align_moment_weight = {0, 0, 0, 0};  // force task only
   const KeloModel force_only(config);
   KeloData data(force_only);

@@ -11,6 +11,7 @@ namespace {
 
 using testing::mounts;
 using testing::run;
+using testing::test_world;
 
 TEST(World, CompilesForEveryBase) {
   NEED_GEN3();

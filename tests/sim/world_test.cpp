@@ -15,6 +15,7 @@ namespace {
 
 using testing::mounts;
 using testing::run;
+using testing::test_world;
 
 WorldConfig arm_only() {
   WorldConfig c = test_world();
