@@ -57,11 +57,13 @@ void lower_base(State& st) {
     const SourceLoc named_at = st.where(configured_by, vocab(slv, "configuration"), *configuration);
     for (const description::BaseProblem& p : reading.problems) {
       const bool located = !p.entity.is_any() && st.defined(p.entity);
+      // The configuration itself undefined: say who names it, and the
+      // nearest defined entity.
+      const bool unnamed = p.code == "undefined-configuration" && p.entity == *configuration;
       st.error(located ? st.where(p.entity) : named_at, p.code,
-               p.message + (p.code == "undefined-configuration"
-                                ? "; named by '" + st.str(configured_by) + "'" +
-                                      st.did_you_mean(*configuration)
-                                : ""));
+               p.message + (unnamed ? "; named by '" + st.str(configured_by) + "'" +
+                                          st.did_you_mean(*configuration)
+                                    : ""));
     }
     base.config = reading.config;
   }
