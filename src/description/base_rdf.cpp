@@ -57,8 +57,8 @@ class Reader {
     return !d_.match(s, p, type).empty();
   }
 
-  void problem(std::string code, TermId entity, std::string message) {
-    out_.problems.push_back({std::move(code), entity, std::move(message)});
+  void problem(BaseProblemKind kind, TermId entity, std::string message) {
+    out_.problems.push_back({kind, entity, std::move(message)});
   }
 
   std::optional<double> literal_number(TermId lit) const {
@@ -75,7 +75,7 @@ class Reader {
     std::optional<double> v;
     if (all.size() == 1) v = literal_number(all.front());
     if (!v) {
-      problem("missing-base-number", s,
+      problem(BaseProblemKind::MissingNumber, s,
               cat({"the castor drive '", name(s), "' needs exactly one ", local,
                    ", a number >= 0 (it has ",
                    all.empty()      ? "none"
@@ -91,7 +91,7 @@ class Reader {
   std::optional<double> length(TermId s, std::string_view local, std::string_view what) {
     const auto qs = objects(s, base(local));
     if (qs.size() != 1) {
-      problem("missing-base-number", s,
+      problem(BaseProblemKind::MissingNumber, s,
               cat({"'", name(s), "' needs exactly one ", local, " (", what,
                    "), a quantity in M; it has ",
                    qs.empty() ? std::string("none") : std::to_string(qs.size())}));
@@ -104,7 +104,7 @@ class Reader {
     if (!unit_ok) {
       std::string got;
       for (TermId u : units) got += (got.empty() ? "" : ", ") + name(u);
-      problem("base-unit", q,
+      problem(BaseProblemKind::Unit, q,
               cat({"the ", local, " of '", name(s), "' ('", name(q),
                    "') must be in metres: exactly one unit, M (", metre, "); it has ",
                    got.empty() ? std::string("none") : got}));
@@ -113,7 +113,7 @@ class Reader {
     std::optional<double> v;
     if (values.size() == 1) v = literal_number(values.front());
     if (!v) {
-      problem("missing-base-number", q,
+      problem(BaseProblemKind::MissingNumber, q,
               cat({"the ", local, " of '", name(s), "' ('", name(q),
                    "') needs exactly one numeric value [m]"}));
     }
@@ -143,19 +143,35 @@ class Reader {
 
 }  // namespace
 
+std::string_view to_string(BaseProblemKind kind) {
+  switch (kind) {
+    case BaseProblemKind::Undefined:
+      return "undefined-configuration";
+    case BaseProblemKind::MissingNumber:
+      return "missing-base-number";
+    case BaseProblemKind::Unit:
+      return "base-unit";
+    case BaseProblemKind::DriveCount:
+      return "unsupported-drive-count";
+    case BaseProblemKind::Degenerate:
+      return "degenerate-base";
+  }
+  return "invalid-base";
+}
+
 BaseReading read_base(const rdf::Dataset& dataset, std::string_view base_iri) {
   BaseReading out;
   Reader r(dataset, out);
   const TermId b = r.id(base_iri);
   if (!r.defined(b)) {
-    r.problem("undefined-configuration", b,
+    r.problem(BaseProblemKind::Undefined, b,
               cat({"the base configuration '", base_iri,
                    "' is defined by no loaded file: import the robot description that defines "
                    "it (the paper's base: https://mospec.example/robots/kelo-base.jsonld)"}));
     return out;
   }
   if (!r.has_type(b, r.base("CastorDriveBase"))) {
-    r.problem("undefined-configuration", b,
+    r.problem(BaseProblemKind::Undefined, b,
               cat({"'", base_iri, "' is not a base configuration: give it the type ",
                    vocab::term(vocab::mospec_base::ns, "CastorDriveBase")}));
     return out;
@@ -171,14 +187,14 @@ BaseReading read_base(const rdf::Dataset& dataset, std::string_view base_iri) {
 
   const auto heads = r.objects(b, r.base("drives"));
   if (heads.size() != 1) {
-    r.problem("missing-base-number", b,
+    r.problem(BaseProblemKind::MissingNumber, b,
               cat({"the base '", base_iri, "' needs exactly one list of drives; it has ",
                    std::to_string(heads.size())}));
     return out;
   }
   const std::vector<TermId> drives = r.list(heads.front());
   if (drives.size() != static_cast<size_t>(runtime::kKeloDrives)) {
-    r.problem("unsupported-drive-count", b,
+    r.problem(BaseProblemKind::DriveCount, b,
               cat({"the base '", base_iri, "' has ", std::to_string(drives.size()),
                    " drive(s), but mospec's robot interface has exactly ",
                    std::to_string(runtime::kKeloDrives),
@@ -189,7 +205,7 @@ BaseReading read_base(const rdf::Dataset& dataset, std::string_view base_iri) {
   for (size_t i = 0; i < drives.size(); ++i) {
     const TermId d = drives[i];
     if (!r.has_type(d, r.base("CastorDrive"))) {
-      r.problem("undefined-configuration", d,
+      r.problem(BaseProblemKind::Undefined, d,
                 cat({"drive ", std::to_string(i), " of the base '", base_iri, "', '", r.name(d),
                      "', is ", r.defined(d) ? "not a CastorDrive" : "defined by no loaded file"}));
       continue;
@@ -206,7 +222,7 @@ BaseReading read_base(const rdf::Dataset& dataset, std::string_view base_iri) {
     const runtime::KeloModel check(c);
     (void)check;
   } catch (const Error& e) {
-    r.problem("degenerate-base", b,
+    r.problem(BaseProblemKind::Degenerate, b,
               cat({"the base '", base_iri, "' cannot distribute every platform wrench (Eq. 2-3): ",
                    e.diagnostic().message}));
   }
@@ -221,7 +237,7 @@ runtime::KeloConfig load_base(const std::string& model_file, const std::string& 
   BaseReading reading = read_base(model.dataset(), base_iri);
   if (!reading.problems.empty()) {
     const BaseProblem& p = reading.problems.front();
-    throw Error(p.code, cat({model_file, ": ", p.message}));
+    throw Error(std::string(to_string(p.kind)), cat({model_file, ": ", p.message}));
   }
   return reading.config;
 }

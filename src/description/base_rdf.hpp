@@ -17,18 +17,26 @@
 
 namespace mospec::description {
 
-// One problem with a base description: a stable code, the entity it is about
-// (a term of the dataset read, for the caller to locate), and a message that
-// names the entity and the fix. Codes:
-//   undefined-configuration  the base is defined by no statement, or is not a CastorDriveBase
-//   missing-base-number      a length, position or weight is absent or not a number
-//   base-unit                a length or position is not in exactly one unit, M
-//   unsupported-drive-count  not as many drives as the robot has drive ports (kKeloDrives)
-//   degenerate-base          Eq. 2-3 are not well posed (runtime::KeloModel refuses the
-//                            numbers: a length <= 0, a negative weight, fewer than two
-//                            enabled drives at distinct pivots, ...)
+// One problem with a base description: what kind, the entity it is about (a
+// term of the dataset read, for the caller to locate), and a message that
+// names the entity and the fix. Lowering reports each kind under its own code
+// (src/ir/lower_base.cpp); load_base() throws with to_string(kind).
+enum class BaseProblemKind : unsigned char {
+  Undefined,      // the base is defined by no statement, or is not a CastorDriveBase
+                  // (a drive: not a CastorDrive)
+  MissingNumber,  // a length, position or weight is absent or not a number
+  Unit,           // a length or position is not in exactly one unit, M
+  DriveCount,     // not as many drives as the robot has drive ports (kKeloDrives)
+  Degenerate,     // Eq. 2-3 are not well posed (runtime::KeloModel refuses the
+                  // numbers: a length <= 0, a negative weight, fewer than two
+                  // enabled drives at distinct pivots, ...)
+};
+// "undefined-configuration", "missing-base-number", "base-unit",
+// "unsupported-drive-count", "degenerate-base".
+std::string_view to_string(BaseProblemKind kind);
+
 struct BaseProblem {
-  std::string code;
+  BaseProblemKind kind;
   rdf::TermId entity;
   std::string message;
 };

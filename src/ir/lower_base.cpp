@@ -55,15 +55,32 @@ void lower_base(State& st) {
     const description::BaseReading reading =
         description::read_base(st.graph.dataset(), base.configuration);
     const SourceLoc named_at = st.where(configured_by, vocab(slv, "configuration"), *configuration);
+    using Kind = description::BaseProblemKind;
     for (const description::BaseProblem& p : reading.problems) {
-      const bool located = !p.entity.is_any() && st.defined(p.entity);
-      // The configuration itself undefined: say who names it, and the
-      // nearest defined entity.
-      const bool unnamed = p.code == "undefined-configuration" && p.entity == *configuration;
-      st.error(located ? st.where(p.entity) : named_at, p.code,
-               p.message + (unnamed ? "; named by '" + st.str(configured_by) + "'" +
-                                          st.did_you_mean(*configuration)
-                                    : ""));
+      const SourceLoc at =
+          !p.entity.is_any() && st.defined(p.entity) ? st.where(p.entity) : named_at;
+      switch (p.kind) {
+        case Kind::Undefined:
+          // The configuration itself undefined: say who names it, and the
+          // nearest defined entity.
+          st.error(at, "undefined-configuration",
+                   p.entity == *configuration ? p.message + "; named by '" + st.str(configured_by) +
+                                                    "'" + st.did_you_mean(*configuration)
+                                              : p.message);
+          break;
+        case Kind::MissingNumber:
+          st.error(at, "missing-base-number", p.message);
+          break;
+        case Kind::Unit:
+          st.error(at, "base-unit", p.message);
+          break;
+        case Kind::DriveCount:
+          st.error(at, "unsupported-drive-count", p.message);
+          break;
+        case Kind::Degenerate:
+          st.error(at, "degenerate-base", p.message);
+          break;
+      }
     }
     base.config = reading.config;
   }

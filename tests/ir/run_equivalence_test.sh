@@ -27,6 +27,8 @@ check "no rebuild on the second run" bash -c "! grep -q 'generated and built' '$
 
 # SC1's task on another base (tests/ir/data/diamond-base): both controllers
 # and the simulated base run with the numbers lowering read from the model.
+expect "diamond base: validates under --strict" 0 "" -- "$mospec" validate --strict \
+  tests/ir/data/diamond-base/app.json
 expect "diamond base, generated" 0 "" -- "$mospec" run tests/ir/data/diamond-base/app.json --sim \
   --duration 1 --log "$work/diamond-gen.csv" --cache "$cache"
 expect "diamond base, interpreted" 0 "" -- "$mospec" run tests/ir/data/diamond-base/app.json \
