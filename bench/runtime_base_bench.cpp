@@ -12,6 +12,7 @@
 
 #include "base_cycle.hpp"
 #include "description/urdf_import.hpp"
+#include "kelo_base.hpp"
 #include "runtime/controllers.hpp"
 #include "runtime/kelo.hpp"
 #include "two_arm_base_cycle.hpp"
@@ -23,7 +24,7 @@ using namespace mospec::runtime;
 // Pivot angles and platform wrenches that change every iteration, so nothing
 // is hoisted out of the loop.
 void BM_KeloDistribution(benchmark::State& state) {
-  const KeloModel model;
+  const KeloModel model(mospec::testing::paper_base());
   KeloData data(model);
   double t = 0.0;
   for (auto _ : state) {
@@ -35,7 +36,7 @@ void BM_KeloDistribution(benchmark::State& state) {
 }
 
 void BM_KeloPlatformTwist(benchmark::State& state) {
-  const KeloModel model;
+  const KeloModel model(mospec::testing::paper_base());
   KeloData data(model);
   KeloDriveVector w = KeloDriveVector::Constant(3.0);
   double t = 0.0;

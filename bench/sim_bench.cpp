@@ -8,6 +8,7 @@
 
 #include <filesystem>
 
+#include "description/base_rdf.hpp"
 #include "description/robot_model.hpp"
 #include "sim/drivers.hpp"
 #include "sim/world.hpp"
@@ -27,6 +28,7 @@ void BM_SimStep(benchmark::State& st, sim::BaseFidelity base) {
   c.base = base;
   const runtime::Chain arm =
       description::load_chain(c.robot.model, c.robot.chain_iri, c.robot.maps);
+  c.drives = description::load_base(c.base_model.model, c.base_model.configuration);
   sim::World world(c, arm);
   sim::GravityCompensation arms(arm, {c.arms[0].X_PB, c.arms[1].X_PB});
   arms.f_E_P = {runtime::Vec3(10, 0, 0), runtime::Vec3(10, 0, 0)};

@@ -13,6 +13,7 @@
 #include "cli/pipeline.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
+#include "description/base_rdf.hpp"
 #include "description/robot_model.hpp"
 #include "ir/interpreter.hpp"
 #include "sim/config.hpp"
@@ -180,6 +181,12 @@ Action add_run_command(CLI::App& app) {
                           static_cast<std::uint64_t>(flags->log_every));
     const runtime::Chain arm =
         description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
+    // The simulated base is the program's (the numbers lowering read from the
+    // configuration its platform solvers name); a program without a base
+    // drives none, and the world's base is the default robot description's.
+    config.drives = program->base ? ir::kelo_config(*program->base)
+                                  : description::load_base(config.base_model.model,
+                                                           config.base_model.configuration);
     sim::RunOptions options;
     options.duration = flags->duration;
     options.log_every = flags->log_every;

@@ -9,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "cli/faults.hpp"
 #include "cli/numbers.hpp"
+#include "description/base_rdf.hpp"
 #include "description/robot_model.hpp"
 #include "sim/config.hpp"
 #include "sim/drivers.hpp"
@@ -62,6 +63,8 @@ Action add_sim_command(CLI::App& app) {
     if (flags->mount) config.mount.active = true;
     const runtime::Chain arm =
         description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
+    config.drives =
+        description::load_base(config.base_model.model, config.base_model.configuration);
     sim::World world(config, arm);
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
     sim::GravityCompensation gravity(arm, {config.arms[0].X_PB, config.arms[1].X_PB});

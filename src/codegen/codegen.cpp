@@ -546,13 +546,23 @@ class Builder {
       const ir::BaseSolver& b = *p_.base;
       put(root, "base_name", comment_text(b.name));
       put(root, "base_iri", comment_text(b.iri));
-      for (int i = 0; i < runtime::kKeloDrives; ++i) {
-        put(root, "pivot" + std::to_string(i),
-            join_doubles(b.geometry.p_PoAi_P[static_cast<std::size_t>(i)].data(), 2));
+      put(root, "base_configuration", comment_text(b.configuration));
+      const runtime::KeloConfig& c = b.config;
+      mustache::Data drives = list();
+      for (std::size_t i = 0; i < c.geometry.p_PoAi_P.size(); ++i) {
+        mustache::Data d;
+        put(d, "index", std::to_string(i));
+        put(d, "pivot", join_doubles(c.geometry.p_PoAi_P[i].data(), 2));
+        put(d, "drive_weight", cpp_double(c.drive_weight[i]));
+        put(d, "align_force_weight", cpp_double(c.align_force_weight[i]));
+        put(d, "align_moment_weight", cpp_double(c.align_moment_weight[i]));
+        drives.append(std::move(d));
       }
-      put(root, "wheel_diameter", cpp_double(b.geometry.wheel_diameter));
-      put(root, "wheel_distance", cpp_double(b.geometry.wheel_distance));
-      put(root, "castor_offset", cpp_double(b.geometry.castor_offset));
+      put(root, "drives", std::move(drives));
+      put(root, "wheel_radius", cpp_double(c.geometry.wheel_radius));
+      put(root, "wheel_distance", cpp_double(c.geometry.wheel_distance));
+      put(root, "castor_offset", cpp_double(c.geometry.castor_offset));
+      put(root, "rescale_reference", c.rescale_reference ? "true" : "false");
       inits.emplace_back("base(base_config())");
     }
 

@@ -64,9 +64,7 @@ double idle_time_constant(const ArmSolver& arm) {
 }
 
 runtime::KeloConfig kelo_config(const BaseSolver& base) {
-  runtime::KeloConfig c;
-  c.geometry = base.geometry;
-  return c;
+  return base.config;
 }
 
 runtime::Pose constant_pose(const std::vector<double>& v) {
@@ -630,12 +628,22 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     Json b;
     b["name"] = p.base->name;
     b["iri"] = p.base->iri;
+    b["configuration"] = p.base->configuration;
+    const runtime::KeloConfig& c = p.base->config;
     Json drives = Json::array();
-    for (const auto& d : p.base->geometry.p_PoAi_P) drives.push_back({d.x(), d.y()});
-    b["drive-positions"] = std::move(drives);
-    b["wheel-diameter"] = p.base->geometry.wheel_diameter;
-    b["wheel-distance"] = p.base->geometry.wheel_distance;
-    b["castor-offset"] = p.base->geometry.castor_offset;
+    for (size_t i = 0; i < c.geometry.p_PoAi_P.size(); ++i) {
+      const auto& d = c.geometry.p_PoAi_P[i];
+      Json e;
+      e["pivot"] = {d.x(), d.y()};
+      e["drive-weight"] = c.drive_weight[i];
+      e["force-alignment-weight"] = c.align_force_weight[i];
+      e["moment-alignment-weight"] = c.align_moment_weight[i];
+      drives.push_back(std::move(e));
+    }
+    b["drives"] = std::move(drives);
+    b["wheel-radius"] = c.geometry.wheel_radius;
+    b["wheel-distance"] = c.geometry.wheel_distance;
+    b["castor-offset"] = c.geometry.castor_offset;
     b["wrench"] = p.base->wrench;
     b["twist"] = p.base->twist;
     b["where"] = location(p.base->where, files);

@@ -198,7 +198,10 @@ struct ArmSolver {
 // measures); one geometry for both.
 struct BaseSolver {
   std::string iri, name;  // the first of the two solvers the model has
-  runtime::KeloGeometry geometry;
+  // The CastorDriveBase both solvers name (`configuration`) and its numbers:
+  // geometry, drive weights and alignment weights (description::read_base).
+  std::string configuration;
+  runtime::KeloConfig config;
   int wrench = -1;  // platform wrench: at the platform origin, as seen by the platform
   int twist = -1;   // platform twist w.r.t. the floor, at the platform origin, seen by it
   SourceLoc where;
@@ -257,7 +260,7 @@ runtime::AchdModel achd_model(const ArmSolver& arm, bool physical);
 // The time constant of the arm's idle behaviour (runtime::steps::arm_hold):
 // BrakeAndHold's, or kFloatTimeConstant for Float.
 double idle_time_constant(const ArmSolver& arm);
-// The base's KELO configuration: the geometry with unit weights.
+// The base's KELO configuration: the numbers the model's configuration gives.
 runtime::KeloConfig kelo_config(const BaseSolver& base);
 // A constant pose from Data::value (R row-major, then p).
 runtime::Pose constant_pose(const std::vector<double>& value);

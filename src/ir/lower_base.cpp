@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "description/base_rdf.hpp"
 #include "ir/lowering.hpp"
 
 namespace mospec::ir::lowering {
@@ -24,7 +25,65 @@ void lower_base(State& st) {
   base.iri = st.str(first);
   base.name = identifier(local_name(base.iri));
   base.where = st.where(first);
-  base.geometry = runtime::KeloGeometry::paper();
+  // The base's numbers: the CastorDriveBase the solvers' `configuration`
+  // names (mospec/mobile-base), one entity for both solvers.
+  std::optional<TermId> configuration;
+  TermId configured_by = first;
+  for (TermId solver : {forces.empty() ? TermId::any() : forces.front(),
+                        velocities.empty() ? TermId::any() : velocities.front()}) {
+    if (solver.is_any()) continue;
+    auto c = st.object(solver, vocab(slv, "configuration"));
+    if (!c) {
+      st.error(solver, "missing-property",
+               "the solver '" + st.str(solver) +
+                   "' names no configuration: name the base it drives (a CastorDriveBase, e.g. "
+                   "https://mospec.example/robots/kelo-base/base)");
+    } else if (!configuration) {
+      configuration = *c;
+      configured_by = solver;
+    } else if (*c != *configuration) {
+      st.error(st.where(solver, vocab(slv, "configuration"), *c), "base-configuration-mismatch",
+               "the solver '" + st.str(solver) + "' names the configuration '" + st.str(*c) +
+                   "', but '" + st.str(configured_by) + "' (" + st.place(configured_by) +
+                   ") names '" + st.str(*configuration) +
+                   "': mospec's robot has one base, so both platform solvers must name the same "
+                   "configuration");
+    }
+  }
+  if (configuration) {
+    base.configuration = st.str(*configuration);
+    const description::BaseReading reading =
+        description::read_base(st.graph.dataset(), base.configuration);
+    const SourceLoc named_at = st.where(configured_by, vocab(slv, "configuration"), *configuration);
+    using Kind = description::BaseProblemKind;
+    for (const description::BaseProblem& p : reading.problems) {
+      const SourceLoc at =
+          !p.entity.is_any() && st.defined(p.entity) ? st.where(p.entity) : named_at;
+      switch (p.kind) {
+        case Kind::Undefined:
+          // The configuration itself undefined: say who names it, and the
+          // nearest defined entity.
+          st.error(at, "undefined-configuration",
+                   p.entity == *configuration ? p.message + "; named by '" + st.str(configured_by) +
+                                                    "'" + st.did_you_mean(*configuration)
+                                              : p.message);
+          break;
+        case Kind::MissingNumber:
+          st.error(at, "missing-base-number", p.message);
+          break;
+        case Kind::Unit:
+          st.error(at, "base-unit", p.message);
+          break;
+        case Kind::DriveCount:
+          st.error(at, "unsupported-drive-count", p.message);
+          break;
+        case Kind::Degenerate:
+          st.error(at, "degenerate-base", p.message);
+          break;
+      }
+    }
+    base.config = reading.config;
+  }
   // A platform quantity must be at the origin of the frame it is seen by.
   const auto at_frame_origin = [&](const Data& q) {
     std::string origin;

@@ -32,10 +32,10 @@ void require_weight(const char* field, int i, double v) {
 
 KeloModel::KeloModel(const KeloConfig& c) : config(c) {
   const KeloGeometry& g = c.geometry;
-  require_positive("wheel diameter", g.wheel_diameter);
+  require_positive("wheel radius", g.wheel_radius);
   require_positive("wheel distance", g.wheel_distance);
   require_positive("castor offset", g.castor_offset);
-  wheel_radius = 0.5 * g.wheel_diameter;
+  wheel_radius = g.wheel_radius;
   lateral_ratio = g.wheel_distance / (2.0 * g.castor_offset);
   int first = -1;
   bool two_distinct = false;

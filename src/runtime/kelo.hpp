@@ -102,30 +102,16 @@ using KeloProjector = Eigen::Matrix<double, 2 * kKeloDrives, 2 * kKeloDrives>;  
 
 struct KeloGeometry {
   std::array<Vec2, kKeloDrives> p_PoAi_P{};  // pivot axis of drive i, seen by P [m]
-  double wheel_diameter = 0.0;               // [m]
+  double wheel_radius = 0.0;                 // r [m]
   double wheel_distance = 0.0;               // d: between the two wheels of a drive [m]
   double castor_offset = 0.0;                // s: pivot axis to wheel axle [m]
-
-  // The paper's robot; all its numbers are here and nowhere else. Source: the
-  // KELO base of "From Composable Models to Correct-by-Construction Software
-  // for Contact-Rich Robotic Mobile-Manipulation Tasks" (Sec. III-C), with the
-  // values issue #4 gives for it — the paper's text does not print them:
-  // drives at (±0.195, ±0.21) m from the platform centre, wheel diameter
-  // 0.115 m, wheel distance 0.0775 m, castor offset 0.01 m (hddc2b's example
-  // has the same wheel numbers). Drives are numbered counter-clockwise from
-  // the front-left: 0 front-left, 1 rear-left, 2 rear-right, 3 front-right.
-  static KeloGeometry paper() {
-    KeloGeometry g;
-    g.p_PoAi_P = {Vec2(0.195, 0.21), Vec2(-0.195, 0.21), Vec2(-0.195, -0.21), Vec2(0.195, -0.21)};
-    g.wheel_diameter = 0.115;
-    g.wheel_distance = 0.0775;
-    g.castor_offset = 0.01;
-    return g;
-  }
+  // No numbers here: a base's geometry and weights are model data, read from
+  // the robot description a platform solver's `configuration` names
+  // (description/base_rdf.hpp; the paper's base is robots/kelo-base.jsonld).
 };
 
 struct KeloConfig {
-  KeloGeometry geometry = KeloGeometry::paper();
+  KeloGeometry geometry;
   // Diagonal of W^{-1} per drive (>= 0; 0 disables the drive). At least two
   // drives at distinct pivot positions must be enabled.
   std::array<double, kKeloDrives> drive_weight{1.0, 1.0, 1.0, 1.0};
@@ -139,13 +125,13 @@ struct KeloConfig {
 class KeloModel {
  public:
   // Throws mospec::Error("invalid-kelo") naming the offending drive/field:
-  // non-finite positions, wheel diameter/distance/castor offset <= 0, negative
+  // non-finite positions, wheel radius/distance/castor offset <= 0, negative
   // or non-finite weights, fewer than two enabled drives at distinct
   // positions, or a moment-alignment weight on a drive at the platform centre.
-  explicit KeloModel(const KeloConfig& config = KeloConfig{});
+  explicit KeloModel(const KeloConfig& config);
 
   KeloConfig config;
-  double wheel_radius = 0.0;   // wheel_diameter / 2
+  double wheel_radius = 0.0;   // r
   double lateral_ratio = 0.0;  // d / (2 s): f_y = lateral_ratio (f_r - f_l)
   KeloDriveVector w_inv;       // diagonal of W^{-1} (each weight twice)
   std::array<bool, kKeloDrives> enabled{};

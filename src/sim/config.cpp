@@ -12,6 +12,9 @@
 #include "support/paths.hpp"
 #include "vocab/metamodels.hpp"
 
+#ifndef MOSPEC_DEFAULT_BASE_MODEL
+#define MOSPEC_DEFAULT_BASE_MODEL "robots/kelo-base.jsonld"
+#endif
 #ifndef MOSPEC_DEFAULT_ROBOT_MODEL
 #define MOSPEC_DEFAULT_ROBOT_MODEL "robots/kinova-gen3.jsonld"
 #endif
@@ -58,6 +61,8 @@ WorldConfig default_world() {
   WorldConfig c;
   c.robot.model = MOSPEC_DEFAULT_ROBOT_MODEL;
   c.robot.chain_iri = vocab::robots::kinova_gen3_chain;
+  c.base_model.model = MOSPEC_DEFAULT_BASE_MODEL;
+  c.base_model.configuration = vocab::robots::kelo_base;
   // The description's contexts (under vocab::kMetamodels)
   // resolve to mospec's own metamodels unless the world file maps them.
 

@@ -126,6 +126,13 @@ struct RobotModelSource {
   std::vector<std::pair<std::string, std::string>> maps;  // IRI prefix -> directory
 };
 
+// Where the mobile base comes from when no controller program gives it: a
+// CastorDriveBase (mospec/mobile-base) in a JSON-LD robot description.
+struct BaseModelSource {
+  std::string model;          // path of the JSON-LD file
+  std::string configuration;  // the CastorDriveBase node to read
+};
+
 struct WorldConfig {
   BaseFidelity base = BaseFidelity::Wheeled;
   double control_period = 0.001;  // one control tick [s]
@@ -138,7 +145,13 @@ struct WorldConfig {
   ArmActuation actuation;
   EndEffectorParameters end_effector;
   PlatformParameters platform;
-  runtime::KeloGeometry drives = runtime::KeloGeometry::paper();
+  // The mobile base's drives: geometry and the weights of Eq. 2-3. Not a
+  // default: the caller reads them from the robot description (`base_model`,
+  // description::load_base) or takes the controller program's base
+  // (ir::kelo_config), so the simulated base and the controller's are the
+  // same numbers by construction.
+  runtime::KeloConfig drives;
+  BaseModelSource base_model;
   TableParameters table;
   MountParameters mount;
   InitialConditions initial;

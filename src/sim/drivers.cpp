@@ -16,12 +16,6 @@ runtime::AchdModel gravity_model(const runtime::Chain& arm, const runtime::Pose&
   return runtime::AchdModel(arm, X_PB.R.transpose() * runtime::Vec3(0, 0, -kGravity));
 }
 
-runtime::KeloConfig kelo_config(const runtime::KeloGeometry& g) {
-  runtime::KeloConfig c;
-  c.geometry = g;
-  return c;
-}
-
 }  // namespace
 
 GravityCompensation::GravityCompensation(const runtime::Chain& arm,
@@ -66,8 +60,8 @@ void GravityCompensation::compute(const robot::MeasuredState& state,
   }
 }
 
-PlatformWrenchDriver::PlatformWrenchDriver(const runtime::KeloGeometry& geometry)
-    : model_(kelo_config(geometry)), data_(model_) {}
+PlatformWrenchDriver::PlatformWrenchDriver(const runtime::KeloConfig& config)
+    : model_(config), data_(model_) {}
 
 void PlatformWrenchDriver::compute(const robot::MeasuredState& state,
                                    robot::Command& command) noexcept {

@@ -44,7 +44,7 @@ class GravityCompensation {
 // measured pivot angles. Sets command.wheel_tau.
 class PlatformWrenchDriver {
  public:
-  explicit PlatformWrenchDriver(const runtime::KeloGeometry& geometry);
+  explicit PlatformWrenchDriver(const runtime::KeloConfig& config);
 
   void compute(const robot::MeasuredState& state, robot::Command& command) noexcept;
 

@@ -118,8 +118,8 @@ void arm_bodies(std::string& x, const WorldConfig& c, const runtime::Chain& chai
 // The wheeled base's four castor drives (inside the platform body).
 void drive_bodies(std::string& x, const WorldConfig& c) {
   const PlatformParameters& p = c.platform;
-  const runtime::KeloGeometry& g = c.drives;
-  const double r = g.wheel_diameter / 2, s = g.castor_offset, d = g.wheel_distance;
+  const runtime::KeloGeometry& g = c.drives.geometry;
+  const double r = g.wheel_radius, s = g.castor_offset, d = g.wheel_distance;
   const double hz = p.drive_mass * 0.1 * 0.1 / 6;  // a 10 cm cube
   const Vec3 wheel_I(p.wheel_mass * r * r / 4, p.wheel_mass * r * r / 2, p.wheel_mass * r * r / 4);
   for (int i = 0; i < runtime::kKeloDrives; ++i) {
@@ -249,12 +249,12 @@ std::string world_mjcf(const WorldConfig& c, const runtime::Chain& arm, const Wo
     // fidelities carry the same mass and yaw inertia.
     const double md = p.drive_mass + 2 * p.wheel_mass;
     const double mt = p.mass + runtime::kKeloDrives * md;
-    const double zd = c.drives.wheel_diameter / 2 - p.deck_height;
+    const double zd = c.drives.geometry.wheel_radius - p.deck_height;
     const Vec3 com = (p.mass * chassis_com + runtime::kKeloDrives * md * Vec3(0, 0, zd)) / mt;
     Vec3 I = box_inertia(p.mass, p.size);
     const double dzc = chassis_com.z() - com.z();
     I += p.mass * Vec3(dzc * dzc, dzc * dzc, 0);
-    for (const auto& a : c.drives.p_PoAi_P) {
+    for (const auto& a : c.drives.geometry.p_PoAi_P) {
       const double dz = zd - com.z();
       I += md *
            Vec3(a.y() * a.y() + dz * dz, a.x() * a.x() + dz * dz, a.x() * a.x() + a.y() * a.y());

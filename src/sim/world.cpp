@@ -57,8 +57,7 @@ World::World(const WorldConfig& config, const runtime::Chain& arm)
     : config_(config),
       layout_(layout_world(config, arm)),
       mjcf_(world_mjcf(config, arm, layout_)),
-      kelo_(runtime::KeloConfig{
-          config.drives, {1.0, 1.0, 1.0, 1.0}, {1.0, 1.0, 1.0, 1.0}, {1.0, 1.0, 1.0, 1.0}, true}),
+      kelo_(config.drives),
       kelo_data_(kelo_) {
   // Compile the generated text from memory: one virtual file.
   auto vfs = std::make_unique<mjVFS>();
@@ -106,7 +105,7 @@ robot::CommandLimits World::command_limits() const {
       std::sqrt(m_->opt.gravity[0] * m_->opt.gravity[0] + m_->opt.gravity[1] * m_->opt.gravity[1] +
                 m_->opt.gravity[2] * m_->opt.gravity[2]);
   l.platform_force = config_.platform.wheel_friction * robot_mass() * g;
-  const runtime::KeloGeometry& geo = config_.drives;
+  const runtime::KeloGeometry& geo = config_.drives.geometry;
   const double contact = std::hypot(geo.castor_offset, geo.wheel_distance / 2);
   double reach = 0.0;
   for (const runtime::Vec2& p : geo.p_PoAi_P) reach = std::max(reach, p.norm() + contact);

@@ -58,6 +58,7 @@ MOSPEC_VOCAB_NS(slv, "task/solver-specification")
 MOSPEC_VOCAB_NS(map, "task/map")
 // mospec's own additions (metamodels/mospec/).
 MOSPEC_VOCAB_NS(mospec_time, "mospec/time")
+MOSPEC_VOCAB_NS(mospec_base, "mospec/mobile-base")
 MOSPEC_VOCAB_NS(mospec_solver, "mospec/solver")
 MOSPEC_VOCAB_NS(mospec_shapes, "mospec/shapes")
 
@@ -87,6 +88,8 @@ inline constexpr std::string_view kinova_gen3_chain =
     "https://mospec.example/robots/kinova-gen3/chain";
 inline constexpr std::string_view kinova_gen3_left_chain =
     "https://mospec.example/robots/kinova-gen3-left/chain";
+// The paper's mobile base (robots/kelo-base.jsonld): its CastorDriveBase.
+inline constexpr std::string_view kelo_base = "https://mospec.example/robots/kelo-base/base";
 // The default base of a description written by `mospec import-urdf`.
 inline constexpr std::string_view imported_base = "https://mospec.example/robots/robot/";
 }  // namespace robots

@@ -29,6 +29,7 @@
 #include "ir/controllers.hpp"
 #include "ir/ir.hpp"
 #include "ir/operators.hpp"
+#include "kelo_base.hpp"
 #include "robot/interface.hpp"
 
 namespace mospec::codegen::testing {
@@ -212,7 +213,8 @@ inline ir::Program small_program(SourceFiles& files) {
   ir::BaseSolver base;
   base.iri = "https://mospec.example/tests/codegen/base";
   base.name = "kelo";
-  base.geometry = runtime::KeloGeometry::paper();
+  base.configuration = std::string(vocab::robots::kelo_base);
+  base.config = ::mospec::testing::paper_base();
   base.wrench = F_P;
   const int V_P = b.datum("V_P", T::Twist);
   base.twist = V_P;

@@ -238,7 +238,7 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
   limits.platform_force = 1000.0;
   limits.platform_moment = 300.0;
   robot::CommandLimiter limiter(limits);
-  const runtime::KeloModel kelo(runtime::KeloConfig{world.drives});
+  const runtime::KeloModel kelo(::mospec::testing::paper_base());
   long allocations = 0;
   for (int k = 0; k < 10000; ++k) {
     advance(state, k);

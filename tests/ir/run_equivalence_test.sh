@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `mospec run --sim`: the generated controller (generated, built, loaded) and
 # the interpreter write byte-identical logs for the same model and seed — on a
-# small synthetic model and on sc0a. The second run of a model reuses the
+# small synthetic model, on sc0a and on SC1's task on another base. The second run of a model reuses the
 # cached build.
 SRC="$2"
 source "$SRC/tests/support/cli_lib.sh"
@@ -24,5 +24,17 @@ check "sc0a: identical logs" cmp -s "$work/sc0a-gen.csv" "$work/sc0a-int.csv"
 expect "sc0a again: the cached build is reused" 0 "" -- "$mospec" run models/sc0a.json --sim \
   --duration 0.1 --log "$work/sc0a-again.csv" --cache "$cache"
 check "no rebuild on the second run" bash -c "! grep -q 'generated and built' '$work/stderr.txt'"
+
+# SC1's task on another base (tests/ir/data/diamond-base): both controllers
+# and the simulated base run with the numbers lowering read from the model.
+expect "diamond base: validates under --strict" 0 "" -- "$mospec" validate --strict \
+  tests/ir/data/diamond-base/app.json
+expect "diamond base, generated" 0 "" -- "$mospec" run tests/ir/data/diamond-base/app.json --sim \
+  --duration 1 --log "$work/diamond-gen.csv" --cache "$cache"
+expect "diamond base, interpreted" 0 "" -- "$mospec" run tests/ir/data/diamond-base/app.json \
+  --sim --duration 1 --log "$work/diamond-int.csv" --interpret
+check "diamond base: identical logs" cmp -s "$work/diamond-gen.csv" "$work/diamond-int.csv"
+check "diamond base: the log differs from SC1's on the paper's base" bash -c \
+  "'$mospec' run models/sc1.json --sim --duration 1 --interpret --log '$work/sc1-int.csv' 2>/dev/null && ! cmp -s '$work/sc1-int.csv' '$work/diamond-int.csv'"
 
 finish run-equivalence

@@ -132,6 +132,17 @@ bad unilateral task/unilateral-constraint.ttl 8 \
   '<https://ex.org/u7>: a unilateral constraint is exactly one of a greater-than and a less-than constraint' \
   '<https://ex.org/u8>: a threshold is a quantity with exactly one value and one unit'
 
+good mobile-base mospec/mobile-base.ttl
+bad mobile-base mospec/mobile-base.ttl 8 \
+  '<https://ex.org/b1>: a castor-drive base lists at least two drives \(CastorDrive\)' \
+  '<https://ex.org/b1>: a castor-drive base has exactly one castor offset' \
+  "<https://ex.org/b2>: a castor-drive base's lengths are in metres: exactly one unit, M" \
+  "<https://ex.org/b2>: a castor-drive base's wheel radius, wheel distance and castor offset are numbers > 0" \
+  '<https://ex.org/b2>: a castor-drive base lists at least two drives \(CastorDrive\)' \
+  "<https://ex.org/d1>: a castor drive's pivot position is in metres: exactly one unit, M" \
+  '<https://ex.org/d1>: a castor drive has exactly one drive weight, a number >= 0' \
+  '<https://ex.org/d2>: a castor drive has exactly one moment-alignment weight, a number >= 0'
+
 good time mospec/time.ttl
 bad time mospec/time.ttl 9 \
   '<https://ex.org/timeout-negative>: a timeout \(a threshold on a clock.s time\) must be a number of seconds > 0' \
@@ -284,16 +295,19 @@ if [ -d "$upstream/models" ]; then
   # Against mospec's metamodels only (contexts and shapes, through --map): the
   # findings docs/upstream-findings.md explains, and nothing else.
   # (sc0b constrains two angles and references only sc1 defines, F9: each is
-  # named as defined by no loaded file, mospec/references.ttl.)
-  for app in sc0a-right-arm:3:0:1:0 sc0b-dual-arm:11:0:2:4 sc1:5:4:2:0 sc2:5:4:2:0; do
-    IFS=: read -r name nv nw ng nu <<< "$app"
+  # named as defined by no loaded file, mospec/references.ttl; so is every
+  # app's platform configuration, F10: hddc2b_example_vel, and in sc1 and sc2
+  # also hddc2b_example_frc_sc1 or _sc2.)
+  for app in sc0a-right-arm:4:0:1:0:1 sc0b-dual-arm:12:0:2:4:1 sc1:7:4:2:0:2 sc2:7:4:2:0:2; do
+    IFS=: read -r name nv nw ng nu nb <<< "$app"
     "$mospec" validate "models/$name.json" --map "https://comp-rob2b.github.io/metamodels/=$mm" > "$out" 2>/dev/null
     rot=$(grep -c "error: <https://secorolab.github.io/models/demo/rot-platform-to-rightarm-ee>: the rotated" "$out")
     scope=$(grep -c 'warning: .*the handler evaluates a constraint that is not part of its motion' "$out")
     grav=$(grep -c 'error: .*gravity is an acceleration: its unit must be M-PER-SEC2' "$out")
     undefined=$(grep -c 'error: <[^>]*cstr-ang-[a-z]*-shoulder-ee-vertical>: names <[^>]*>, which no loaded file defines' "$out")
+    base=$(grep -c 'error: <https://secorolab.github.io/models/demo/base-[fi][vf]k>: names <https://secorolab.github.io/models/demo/hddc2b_example_[a-z0-9_]*>, which no loaded file defines' "$out")
     if grep -q "^shacl: $nv violations, $nw warnings, 0 infos" "$out" && [ "$rot" -eq 2 ] && [ "$grav" -eq "$ng" ] \
-       && [ "$scope" -eq "$nw" ] && [ "$undefined" -eq "$nu" ]; then
+       && [ "$scope" -eq "$nw" ] && [ "$undefined" -eq "$nu" ] && [ "$base" -eq "$nb" ]; then
       echo "ok   upstream $name with mospec's metamodels: $nv violation(s), $nw warning(s) as documented"
     else
       fail "upstream $name with mospec's metamodels: expected $nv violations and $nw warnings"

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base_cycle.hpp"
+#include "kelo_base.hpp"
 // Defines the replacement allocator: this translation unit only, and last.
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order)
 
@@ -50,7 +51,7 @@ TEST_F(BaseNoAllocation, ComposedCycleOf10000Ticks) {
 }
 
 TEST_F(BaseNoAllocation, EveryBlockOnItsOwn) {
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   const Pid pid({.kp = 1, .ki = 1, .kd = 1, .decay_rate = 0.5, .output_min = -1, .output_max = 1});
   PidState s;

@@ -13,6 +13,7 @@
 
 #include <cmath>
 
+#include "kelo_base.hpp"
 #include "runtime/controllers.hpp"
 #include "runtime/evaluators.hpp"
 #include "runtime/kelo.hpp"
@@ -58,6 +59,7 @@ class BaseCycle {
                     .tracking_rate = 10.0},
                    "ctrl-ang"),
         add_({"platform-origin", "platform"}, {"platform-origin", "platform"}),
+        kelo_(::mospec::testing::paper_base()),
         kelo_data_(kelo_) {
     right_.X_PS = {Mat3::Identity(), Vec3(0.2, -0.15, 0.6)};
     left_.X_PS = {Mat3::Identity(), Vec3(0.2, 0.15, 0.6)};

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <random>
 
+#include "kelo_base.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::runtime {
@@ -41,22 +42,25 @@ class Random {
   std::mt19937 rng_;
 };
 
+// robots/kelo-base.jsonld, read by description::load_base, is the paper's
+// robot with the numbers mospec's C++ had before they were model data (the
+// same doubles: the radius is exactly half the former 0.115 m diameter).
 TEST(KeloGeometry, PaperRobot) {
-  const KeloGeometry g = KeloGeometry::paper();
+  const KeloGeometry g = ::mospec::testing::paper_base().geometry;
   EXPECT_EQ(g.p_PoAi_P[0], Vec2(0.195, 0.21));   // front-left
   EXPECT_EQ(g.p_PoAi_P[1], Vec2(-0.195, 0.21));  // rear-left
   EXPECT_EQ(g.p_PoAi_P[2], Vec2(-0.195, -0.21));
   EXPECT_EQ(g.p_PoAi_P[3], Vec2(0.195, -0.21));
-  EXPECT_EQ(g.wheel_diameter, 0.115);
+  EXPECT_EQ(g.wheel_radius, 0.5 * 0.115);
   EXPECT_EQ(g.wheel_distance, 0.0775);
   EXPECT_EQ(g.castor_offset, 0.01);
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   EXPECT_EQ(model.wheel_radius, 0.0575);
   EXPECT_DOUBLE_EQ(model.lateral_ratio, 0.0775 / 0.02);
 }
 
 TEST(KeloComposition, ClosedFormColumns) {
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   kelo_set_pivots(model, data, Vec4(0, kPi / 2, 0, 0));
   // Drive 0 at (0.195, 0.21), aligned with x: a longitudinal force f gives
@@ -70,7 +74,7 @@ TEST(KeloComposition, ClosedFormColumns) {
 
 TEST(KeloDistribution, ReproducesThePlatformWrench) {
   Random rnd(1);
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   for (int k = 0; k < 500; ++k) {
     const Vec4 q = rnd.pivots();
@@ -88,7 +92,7 @@ TEST(KeloDistribution, ReproducesThePlatformWrench) {
 
 TEST(KeloDistribution, NullspaceProjectorProperties) {
   Random rnd(2);
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   for (int k = 0; k < 200; ++k) {
     kelo_set_pivots(model, data, rnd.pivots());
@@ -129,7 +133,7 @@ KeloDriveVector kkt_solution(const KeloModel& model, const KeloComposition& G, c
 
 TEST(KeloDistribution, SolvesTheWeightedLeastSquaresProblem) {
   Random rnd(3);
-  KeloConfig config;
+  KeloConfig config = ::mospec::testing::paper_base();
   config.drive_weight = {1.0, 0.25, 3.0, 0.5};
   config.rescale_reference = false;  // α = 1: exactly Eq. (2)'s minimiser
   const KeloModel model(config);
@@ -146,7 +150,7 @@ TEST(KeloDistribution, SolvesTheWeightedLeastSquaresProblem) {
 TEST(KeloDistribution, ZeroWeightDisablesADrive) {
   Random rnd(4);
   for (int off = 0; off < kKeloDrives; ++off) {
-    KeloConfig config;
+    KeloConfig config = ::mospec::testing::paper_base();
     config.drive_weight[off] = 0.0;
     const KeloModel model(config);
     KeloData data(model);
@@ -163,7 +167,7 @@ TEST(KeloDistribution, ZeroWeightDisablesADrive) {
     }
   }
   // Two diagonal drives suffice.
-  KeloConfig two;
+  KeloConfig two = ::mospec::testing::paper_base();
   two.drive_weight = {1.0, 0.0, 1.0, 0.0};
   const KeloModel model(two);
   KeloData data(model);
@@ -173,7 +177,7 @@ TEST(KeloDistribution, ZeroWeightDisablesADrive) {
 
 TEST(KeloDistribution, AlphaRecoversTheGreatestReferenceForce) {
   Random rnd(5);
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   for (int k = 0; k < 200; ++k) {
     kelo_set_pivots(model, data, rnd.pivots());
@@ -196,7 +200,7 @@ TEST(KeloDistribution, AlphaRecoversTheGreatestReferenceForce) {
 }
 
 TEST(KeloHubTorques, ClosedForms) {
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   const double r = 0.0575, s = 0.01, d = 0.0775;
   data.F_d.setZero();
@@ -213,7 +217,7 @@ TEST(KeloHubTorques, ClosedForms) {
 }
 
 TEST(KeloVelocity, ClosedFormStraightAndTurningOnTheSpot) {
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   const double r = 0.0575;
   kelo_set_pivots(model, data, Vec4::Zero());
@@ -234,7 +238,7 @@ TEST(KeloVelocity, ClosedFormStraightAndTurningOnTheSpot) {
 
 TEST(KeloVelocity, WheelRatesRoundTripAndLeastSquares) {
   Random rnd(6);
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   for (int k = 0; k < 200; ++k) {
     kelo_set_pivots(model, data, rnd.pivots());
@@ -254,7 +258,7 @@ TEST(KeloPower, PlatformPowerEqualsWheelPower) {
   // For a consistent motion (wheel rates of a platform twist) and the drive
   // forces distributed from a platform wrench: xd_p · F_p = Σ τ ω.
   Random rnd(7);
-  KeloConfig config;
+  KeloConfig config = ::mospec::testing::paper_base();
   config.drive_weight = {1.0, 2.0, 0.5, 1.5};
   const KeloModel model(config);
   KeloData data(model);
@@ -278,7 +282,7 @@ TEST(KeloPower, PlatformPowerEqualsWheelPower) {
 TEST(KeloVelocity, PivotRatesFollowTheDriveTurn) {
   // A drive aligned with a pure forward platform motion does not turn; a
   // lateral pivot velocity turns the drive at u_y / s.
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   kelo_set_pivots(model, data, Vec4::Zero());
   kelo_wheel_rates(model, data, Vec3(0.5, 0, 0));
@@ -288,7 +292,7 @@ TEST(KeloVelocity, PivotRatesFollowTheDriveTurn) {
 }
 
 TEST(KeloAlignment, ReferenceTurnsDrivesTowardsTheTasks) {
-  KeloConfig config;
+  KeloConfig config = ::mospec::testing::paper_base();
   config.align_moment_weight = {0, 0, 0, 0};  // force task only
   const KeloModel force_only(config);
   KeloData data(force_only);
@@ -329,7 +333,7 @@ TEST(KeloAlignment, ReferenceTurnsDrivesTowardsTheTasks) {
 
 TEST(KeloAlignment, NullspaceReferenceLeavesThePlatformWrenchAlone) {
   // The aligning reference changes the drive forces but not their sum.
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   const Vec4 q(0.0, kPi / 2, kPi / 3, -kPi / 4);
   const Vec3 F_p(50, 20, 5);
@@ -341,7 +345,7 @@ TEST(KeloAlignment, NullspaceReferenceLeavesThePlatformWrenchAlone) {
 }
 
 TEST(KeloForceStep, NonFiniteInputCommandsZeroAndFlagsIt) {
-  const KeloModel model;
+  const KeloModel model(::mospec::testing::paper_base());
   KeloData data(model);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   kelo_force_step(model, data, Vec4::Zero(), Vec3(10, 0, 0));
@@ -383,22 +387,22 @@ std::string error_of(const KeloConfig& config) {
 }
 
 TEST(KeloModel, SetupChecks) {
-  KeloConfig c;
+  KeloConfig c = ::mospec::testing::paper_base();
   c.geometry.castor_offset = 0.0;
   EXPECT_EQ(error_of(c), "KELO base: castor offset must be finite and > 0, got 0");
-  c = {};
-  c.geometry.wheel_diameter = -0.1;
+  c = ::mospec::testing::paper_base();
+  c.geometry.wheel_radius = -0.1;
   EXPECT_EQ(error_of(c),
-            "KELO base: wheel diameter must be finite and > 0, got -0.10000000000000001");
-  c = {};
+            "KELO base: wheel radius must be finite and > 0, got -0.10000000000000001");
+  c = ::mospec::testing::paper_base();
   c.drive_weight = {1, 0, 0, 0};
   EXPECT_EQ(error_of(c),
             "KELO base: at least two enabled drives (drive weight > 0) at distinct pivot "
             "positions are needed to produce every platform wrench");
-  c = {};
+  c = ::mospec::testing::paper_base();
   c.drive_weight[2] = -1;
   EXPECT_EQ(error_of(c), "KELO base: drive weight of drive 2 must be finite and >= 0, got -1");
-  c = {};
+  c = ::mospec::testing::paper_base();
   c.geometry.p_PoAi_P[1] = Vec2::Zero();
   EXPECT_EQ(error_of(c),
             "KELO base: drive 1 is at the platform centre, so it cannot align with the moment; "

@@ -20,7 +20,7 @@ TEST(Allocation, TheControlTickAllocatesNothing) {
 #endif
   NEED_GEN3();
   for (BaseFidelity b : {BaseFidelity::Wheeled, BaseFidelity::Planar}) {
-    WorldConfig c = default_world();
+    WorldConfig c = testing::test_world();
     c.base = b;
     c.mount.active = b == BaseFidelity::Planar;
     World w(c, arm_chain);

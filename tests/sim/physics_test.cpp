@@ -11,11 +11,12 @@ namespace {
 
 using testing::mounts;
 using testing::run;
+using testing::test_world;
 
 TEST(World, CompilesForEveryBase) {
   NEED_GEN3();
   for (BaseFidelity b : {BaseFidelity::Wheeled, BaseFidelity::Planar, BaseFidelity::Fixed}) {
-    WorldConfig c = default_world();
+    WorldConfig c = test_world();
     c.base = b;
     World w(c, arm_chain);
     const mjModel* m = w.mj_model();
@@ -33,7 +34,7 @@ TEST(World, CompilesForEveryBase) {
 
 TEST(World, TableEdgeIsAtEndEffectorHeightAndTouching) {
   NEED_GEN3();
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.base = BaseFidelity::Fixed;
   World w(c, arm_chain);
   for (int k = 0; k < robot::kArms; ++k) {
@@ -48,7 +49,7 @@ TEST(World, TableEdgeIsAtEndEffectorHeightAndTouching) {
 TEST(Physics, GravityCompensationHoldsThePose) {
   NEED_GEN3();
   for (BaseFidelity b : {BaseFidelity::Fixed, BaseFidelity::Planar, BaseFidelity::Wheeled}) {
-    WorldConfig c = default_world();
+    WorldConfig c = test_world();
     c.base = b;
     c.table.present = false;
     World w(c, arm_chain);
@@ -74,7 +75,7 @@ TEST(Physics, GravityCompensationHoldsThePose) {
 
 TEST(Physics, WithoutCompensationTheArmsFall) {
   NEED_GEN3();
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.base = BaseFidelity::Fixed;
   c.table.present = false;
   World w(c, arm_chain);
@@ -128,7 +129,7 @@ TEST_P(PlatformWrench, ReachesTheBase) {
   // only the planar model (no castor dynamics) is held to it.
   if (base == BaseFidelity::Planar) wrenches.emplace_back(25, 15, 3);
   for (const runtime::Vec3& F_p : wrenches) {
-    WorldConfig c = default_world();
+    WorldConfig c = test_world();
     c.base = base;
     c.table.present = false;
     c.initial.base_x = 0.0;
@@ -187,7 +188,7 @@ INSTANTIATE_TEST_SUITE_P(Bases, PlatformWrench,
 // The end-effector pushed with 20 N against the table's edge sees 20 N (±5%).
 TEST(Physics, PushOnTableGivesTheContactForce) {
   NEED_GEN3();
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.base = BaseFidelity::Fixed;
   World w(c, arm_chain);
   GravityCompensation g(arm_chain, mounts(c));
@@ -207,7 +208,7 @@ TEST(Physics, PushOnTableGivesTheContactForce) {
 // the mount carries the force.
 TEST(Physics, MountHoldsUnderTwentyNewtons) {
   NEED_GEN3();
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.base = BaseFidelity::Fixed;
   c.initial.contact_gap = 0.01;  // clear of the face: only the mount acts
   c.mount.active = true;
@@ -234,7 +235,7 @@ TEST(Physics, MountHoldsUnderTwentyNewtons) {
 TEST(Physics, PushingOnTheMountMovesAPassiveBaseBack) {
   NEED_GEN3();
   for (BaseFidelity b : {BaseFidelity::Planar, BaseFidelity::Wheeled}) {
-    WorldConfig c = default_world();
+    WorldConfig c = test_world();
     c.base = b;
     c.initial.contact_gap = 0.01;
     c.mount.active = true;
@@ -250,7 +251,7 @@ TEST(Physics, PushingOnTheMountMovesAPassiveBaseBack) {
 
 TEST(Physics, MountCanBeReleased) {
   NEED_GEN3();
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.base = BaseFidelity::Fixed;
   c.initial.contact_gap = 0.01;
   c.mount.active = true;

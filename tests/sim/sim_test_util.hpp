@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "description/robot_model.hpp"
+#include "kelo_base.hpp"
 #include "sim/config.hpp"
 #include "sim/drivers.hpp"
 #include "sim/world.hpp"
@@ -27,6 +28,14 @@ inline const runtime::Chain* gen3() {
         description::load_chain(c.robot.model, c.robot.chain_iri, c.robot.maps));
   }();
   return chain.get();
+}
+
+// The default world with the paper's base (robots/kelo-base.jsonld): what
+// `mospec sim` builds.
+inline WorldConfig test_world() {
+  WorldConfig c = default_world();
+  c.drives = ::mospec::testing::paper_base();
+  return c;
 }
 
 #define NEED_GEN3()                                                            \

@@ -15,9 +15,10 @@ namespace {
 
 using testing::mounts;
 using testing::run;
+using testing::test_world;
 
 WorldConfig arm_only() {
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.base = BaseFidelity::Fixed;
   c.table.present = false;
   return c;
@@ -90,7 +91,7 @@ TEST(World, CommandsBeyondTheLimitsAreClampedAndCounted) {
 // hub_wrench (what the limiter bounds) is kelo.hpp's composition G(q) F_d of
 // the drive forces the hub torques make.
 TEST(World, HubWrenchIsTheKeloComposition) {
-  const runtime::KeloModel kelo(runtime::KeloConfig{});
+  const runtime::KeloModel kelo(::mospec::testing::paper_base());
   runtime::KeloData data(kelo);
   const robot::DriveVector q{0.7, -1.2, 2.0, 0.3};
   const robot::WheelVector tau{1.0, -2.0, 0.5, 3.0, -1.5, 2.5, 0.25, -0.75};
@@ -111,7 +112,7 @@ TEST(World, HubWrenchIsTheKeloComposition) {
 // traction limit μ m g, and all of it is reported.
 TEST(World, APlatformForceBeyondTractionIsClampedAndReported) {
   NEED_GEN3();
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.base = BaseFidelity::Planar;
   c.table.present = false;
   World w(c, arm_chain);
@@ -216,7 +217,7 @@ TEST(World, NonFiniteCommandsAreRejected) {
 }
 
 WorldConfig perturbed(std::uint64_t seed) {
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.seed = seed;
   c.perturbation = {0.05, 0.02, 0.05, 0.5};
   return c;
@@ -253,7 +254,7 @@ TEST(World, SameSeedSameBytes) {
 TEST(World, SeedsPerturbTheInitialConditions) {
   NEED_GEN3();
   robot::MeasuredState nominal, s1, s2;
-  World(default_world(), arm_chain).read(nominal);
+  World(test_world(), arm_chain).read(nominal);
   World(perturbed(1), arm_chain).read(s1);
   World(perturbed(2), arm_chain).read(s2);
   EXPECT_NE(s1.arm[0].q, nominal.arm[0].q);
@@ -266,7 +267,7 @@ TEST(World, SeedsPerturbTheInitialConditions) {
   EXPECT_LE(std::abs(s1.truth.p_WoPo_W[0] - nominal.truth.p_WoPo_W[0]), 0.02);
   EXPECT_LE(std::abs(s1.truth.yaw - nominal.truth.yaw), 0.05);
   // Zero amplitudes: the seed changes nothing.
-  WorldConfig c = default_world();
+  WorldConfig c = test_world();
   c.seed = 99;
   robot::MeasuredState s;
   World(c, arm_chain).read(s);
@@ -275,7 +276,7 @@ TEST(World, SeedsPerturbTheInitialConditions) {
 
 TEST(CsvLog, HeaderAndRowsHaveTheSameColumns) {
   NEED_GEN3();
-  const std::string text = run_logged(arm_chain, default_world(), 3);
+  const std::string text = run_logged(arm_chain, test_world(), 3);
   size_t lines = 0, start = 0;
   long columns = -1;
   while (start < text.size()) {
@@ -311,7 +312,7 @@ TEST(WorldFile, OverridesTheDefaults) {
   EXPECT_EQ(*c.initial.base_x, -1.5);
   EXPECT_EQ(c.initial.pivot_q[3], 0.3);
   EXPECT_EQ(c.arms[robot::kLeftArm].q0[6], 7.0);
-  EXPECT_EQ(c.arms[robot::kRightArm].q0, default_world().arms[robot::kRightArm].q0);
+  EXPECT_EQ(c.arms[robot::kRightArm].q0, test_world().arms[robot::kRightArm].q0);
   EXPECT_EQ(c.perturbation.arm_q, 0.01);
   EXPECT_FALSE(c.table.present);
   EXPECT_TRUE(c.mount.active);
@@ -382,7 +383,7 @@ TEST(WorldFile, RobotFilesStayInsideTheWorldFilesTree) {
 TEST(World, RejectsAChainThatIsNotAGen3) {
   const runtime::Chain empty("base");
   try {
-    World w(default_world(), empty);
+    World w(test_world(), empty);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
