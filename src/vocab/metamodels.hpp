@@ -58,6 +58,7 @@ MOSPEC_VOCAB_NS(slv, "task/solver-specification")
 MOSPEC_VOCAB_NS(map, "task/map")
 // mospec's own additions (metamodels/mospec/).
 MOSPEC_VOCAB_NS(mospec_time, "mospec/time")
+MOSPEC_VOCAB_NS(mospec_guards, "mospec/guards")
 MOSPEC_VOCAB_NS(mospec_shapes, "mospec/shapes")
 
 #undef MOSPEC_VOCAB_NS
