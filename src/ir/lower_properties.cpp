@@ -63,7 +63,7 @@ const std::vector<Family>& families() {
        {{"ConstraintHandler",
          "constraint handler",
          {"motion", "evaluators", "controllers", "monitors"}}}},
-      // lower_handlers: the guards (`while`: evaluated, realised by the controllers).
+      // lower_handlers: the guards (`while`: enforced by the controllers or checked).
       {v::mot::ns, false, {{"GuardedMotion", "guarded motion", {"when", "while", "until"}}}},
       // lower_arm, lower_base.
       {v::slv::ns,
