@@ -836,6 +836,7 @@ class Builder {
             std::string(st.edges == runtime::Edges::Rising    ? "Rising"
                         : st.edges == runtime::Edges::Falling ? "Falling"
                                                               : "Both"));
+        put(s, "running", gate());
         put(s, "out0", out(st, 0));
         break;
       case StepKind::GuardedMotion: {

@@ -180,14 +180,18 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       break;
     }
     case StepKind::LevelMonitor:
-      s_.flags[out(0)] = steps::level_monitor(monitor_states_[static_cast<size_t>(st.state)],
-                                              s_.scalars[in(0)], st.constraint.tolerance);
+    case StepKind::EdgeMonitor: {
+      // Gated by the running flag after the error, if a handler lists it.
+      const bool running = st.in.size() < 2 || s_.flags[in(1)] != 0;
+      runtime::MonitorState& m = monitor_states_[static_cast<size_t>(st.state)];
+      if (st.kind == StepKind::LevelMonitor)
+        s_.flags[out(0)] =
+            steps::level_monitor(m, s_.scalars[in(0)], st.constraint.tolerance, running);
+      else
+        s_.events[out(0)] = static_cast<char>(
+            steps::edge_monitor(m, s_.scalars[in(0)], st.constraint.tolerance, st.edges, running));
       break;
-    case StepKind::EdgeMonitor:
-      s_.events[out(0)] = static_cast<char>(
-          steps::edge_monitor(monitor_states_[static_cast<size_t>(st.state)], s_.scalars[in(0)],
-                              st.constraint.tolerance, st.edges));
-      break;
+    }
     case StepKind::GuardedMotion: {
       std::array<bool, kMaxGuards> when{}, whiles{}, until{};
       const auto n_when = static_cast<size_t>(st.n_when);

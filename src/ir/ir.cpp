@@ -171,13 +171,15 @@ const KindEntry kStepKinds[] = {
        return {{T::Scalar}, {T::Flag, T::Scalar}};
      }},
     {{StepKind::LevelMonitor, "level-monitor", StateKind::Monitor, "cstr-hdl:LevelTriggeredMonitor",
-      "in: [error]; out: [flag]"},
-     [](const Step&, const Program&) -> Signature {
+      "ins: [error, (running flag)]; out: [flag]"},
+     [](const Step& st, const Program&) -> Signature {
+       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag}};
        return {{T::Scalar}, {T::Flag}};
      }},
     {{StepKind::EdgeMonitor, "edge-monitor", StateKind::Monitor, "cstr-hdl:EdgeTriggeredMonitor",
-      "in: [error]; out: [event: 1 rising, 2 falling, as its edges say]"},
-     [](const Step&, const Program&) -> Signature {
+      "ins: [error, (running flag)]; out: [event: 1 rising, 2 falling, as its edges say]"},
+     [](const Step& st, const Program&) -> Signature {
+       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Event}};
        return {{T::Scalar}, {T::Event}};
      }},
     {{StepKind::GuardedMotion, "guarded-motion", StateKind::Motion, "mot:GuardedMotion",

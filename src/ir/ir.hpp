@@ -67,8 +67,8 @@ enum class StepKind : uint8_t {
   ViewWrite,      // ins: [scalar...]; out: [twist|wrench] (others zero); views
   Operator,       // a pure computation: Step::op indexes operator_kinds() (operators.hpp)
   Evaluate,       // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
-  LevelMonitor,   // in: [error]; out: [flag]
-  EdgeMonitor,    // in: [error]; out: [event]; edges
+  LevelMonitor,   // ins: [error, (running flag)]; out: [flag]
+  EdgeMonitor,    // ins: [error, (running flag)]; out: [event]; edges
   GuardedMotion,  // ins: [when..., while..., until... flags]; outs: [running flag, ended event]
   AnyOf,          // ins: [flags...] (2 or more); out: [flag] = any of them
   Controller,     // ins: [signals..., (active flag)]; out: [control signal]; Step::controller

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
 
 namespace mospec::ir::lowering {
@@ -274,6 +275,7 @@ void lower_monitors(State& st) {
       st.data_of[out->index] = d;
       s.out = {d};
       s.state = st.program.states[static_cast<int>(StateKind::Monitor)]++;
+      st.monitor_step_of_monitor[m.index] = static_cast<int>(st.steps.size());
       st.add_step(std::move(s));
     }
   }
@@ -362,7 +364,7 @@ std::map<uint32_t, std::set<int>> acted_on(State& st) {
 void lower_handlers(State& st) {
   // The running flags of the motions whose handlers list each controller and
   // evaluator (in order of term, so the program is a function of the model).
-  std::map<TermId, std::set<int>> flags_of_controller, flags_of_evaluator;
+  std::map<TermId, std::set<int>> flags_of_controller, flags_of_evaluator, flags_of_monitor;
   const std::string ch = "task/constraint-handler";
   const std::string mot = "task/motion-specification";
   std::map<uint32_t, int> active_of_motion;
@@ -389,6 +391,8 @@ void lower_handlers(State& st) {
         for (TermId c : st.objects(*m, vocab(mot, prop))) {
           auto it = st.evaluator_of_constraint.find(c.index);
           if (it == st.evaluator_of_constraint.end()) {
+            // An evaluator that names it was refused: reported there already.
+            if (!st.graph.subjects(st.term(vocab(ch, "constraint")), c).empty()) continue;
             st.error(st.where(*m, vocab(mot, prop), c), "unevaluated-constraint",
                      "the motion '" + st.str(*m) + "' lists '" + st.str(c) + "' in `" + prop +
                          "`, but no evaluator evaluates it");
@@ -449,6 +453,7 @@ void lower_handlers(State& st) {
     }
     for (TermId c : st.objects(h, vocab(ch, "controllers"))) flags_of_controller[c].insert(active);
     for (TermId e : st.objects(h, vocab(ch, "evaluators"))) flags_of_evaluator[e].insert(active);
+    for (TermId e : st.objects(h, vocab(ch, "monitors"))) flags_of_monitor[e].insert(active);
   }
   // A motion no handler handles: nothing evaluates its guards, and it never runs.
   for (TermId m : st.instances(vocab(mot, "GuardedMotion"))) {
@@ -483,6 +488,32 @@ void lower_handlers(State& st) {
     const int active = any_of(e, flags);  // may grow st.steps
     st.steps[static_cast<size_t>(it->second)].in.push_back(active);
   }
+
+  // Monitors report while their motion runs (or one of their motions); one no
+  // handler lists watches the whole run.
+  for (const auto& [mon, flags] : flags_of_monitor) {
+    const auto it = st.monitor_step_of_monitor.find(mon.index);
+    if (it == st.monitor_step_of_monitor.end()) continue;
+    const int active = any_of(mon, flags);  // may grow st.steps
+    st.steps[static_cast<size_t>(it->second)].in.push_back(active);
+  }
+
+  // A controller or an assignment no handler lists would act on the robot
+  // whatever the task does: refused, as the motion it serves is unknown.
+  const auto unhandled = [&](TermId entity, const std::string& what) {
+    st.error(entity, "unhandled",
+             "no constraint handler lists the " + what + " '" + st.str(entity) +
+                 "', so no motion says when it acts; list it in the `" +
+                 (what == "controller" ? "controllers" : "evaluators") +
+                 "` of the handler of each motion it serves");
+  };
+  std::set<uint32_t> controllers;
+  for (const ControllerKind& kind : controller_kinds())
+    for (TermId c : st.instances(kind.class_iri())) controllers.insert(c.index);
+  for (uint32_t c : controllers)
+    if (!flags_of_controller.count(TermId{c})) unhandled(TermId{c}, "controller");
+  for (TermId e : st.instances(vocab(ch, "AssignmentEvaluator")))
+    if (!flags_of_evaluator.count(e)) unhandled(e, "assignment evaluator");
 }
 
 }  // namespace mospec::ir::lowering

@@ -57,7 +57,7 @@ const std::vector<Family>& families() {
        {{"LevelTriggeredMonitor", "level-triggered monitor", {"error", "flag"}},
         {"EdgeTriggeredMonitor", "edge-triggered monitor", {"error", "event"}},
         {"Monitor", "monitor", {"error"}}}},
-      // lower_handlers (`monitors`: every monitor runs at all times, listed or not).
+      // lower_handlers (`monitors`: a monitor reports while a motion whose handler lists it runs).
       {v::cstr_hdl::ns,
        false,
        {{"ConstraintHandler",

@@ -245,6 +245,8 @@ struct State {
   std::map<uint32_t, int> evaluator_of_constraint;
   // evaluators -> monitors, handlers: an evaluator's Evaluate step.
   std::map<uint32_t, int> evaluate_step_of_evaluator;
+  // monitors -> handlers: a monitor's step.
+  std::map<uint32_t, int> monitor_step_of_monitor;
   // handlers -> controllers: the flag that activates a controller.
   std::map<uint32_t, int> active_of_controller;
   // evaluators -> log: a bilateral constraint's satisfied flag -> its lower

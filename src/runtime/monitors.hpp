@@ -36,8 +36,9 @@ struct MonitorThresholds {
 };
 
 struct MonitorState {
-  bool satisfied = false;  // the level before the first sample (default: not satisfied)
-  bool fault = false;      // the last sample was NaN
+  bool satisfied = false;    // the level before the first sample (default: not satisfied)
+  bool fault = false;        // the last sample was NaN
+  bool was_running = false;  // steps::monitor_reports: a motion it reports for ran last tick
 };
 
 // Which transitions an edge-triggered monitor reports.

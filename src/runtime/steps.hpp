@@ -105,20 +105,34 @@ inline void evaluate(const ConstraintEvaluator& evaluator, double measured, bool
 // ---------------------------------------------------------------------------
 // Monitors watch an error signal: the watched constraint is satisfied while
 // the error is within `tolerance` of 0 (exactly 0 for inequalities inside their
-// feasible set; an equality's tolerance is the model's, mos-grd:tolerance).
-inline bool level_monitor(MonitorState& state, double error, double tolerance) noexcept {
-  return LevelMonitor::update(state, std::abs(error) <= tolerance);
+// feasible set; an equality's tolerance is the model's, mos-grd:tolerance). A
+// monitor that constraint handlers list reports for their motions: `running`
+// is whether one of them runs after this tick, and the monitor reports in
+// every tick one of them runs, the tick it ends included (a post-condition's
+// event, or the violated per-condition's, is seen). It watches the constraint
+// in every tick, so an edge is a change of the constraint, never the motion
+// starting. A monitor no handler lists always reports (`running` is true).
+inline bool monitor_reports(MonitorState& state, bool running) noexcept {
+  const bool reports = running || state.was_running;
+  state.was_running = running;
+  return reports;
+}
+inline bool level_monitor(MonitorState& state, double error, double tolerance,
+                          bool running) noexcept {
+  const bool satisfied = LevelMonitor::update(state, std::abs(error) <= tolerance);
+  return monitor_reports(state, running) && satisfied;
 }
 // An edge-triggered monitor: the edge of the watched constraint's
 // satisfaction in this tick, as an event code (Event: 0 none, 1 the constraint
 // became satisfied, 2 it stopped being satisfied), or 0 when the monitor does
-// not report that edge (`edges`). Before the first tick the constraint counts
-// as not satisfied: one satisfied at the first tick is a rising edge.
-inline std::uint8_t edge_monitor(MonitorState& state, double error, double tolerance,
-                                 Edges edges) noexcept {
+// not report that edge (`edges`) or does not report in this tick. Before the
+// first tick the constraint counts as not satisfied: one satisfied at the
+// first tick is a rising edge.
+inline std::uint8_t edge_monitor(MonitorState& state, double error, double tolerance, Edges edges,
+                                 bool running) noexcept {
   const bool before = state.satisfied;
   const bool after = LevelMonitor::update(state, std::abs(error) <= tolerance);
-  if (before == after) return 0;
+  if (!monitor_reports(state, running) || before == after) return 0;
   const auto e = static_cast<std::uint8_t>(after ? Event::Rising : Event::Falling);
   return (static_cast<std::uint8_t>(edges) & e) != 0 ? e : 0;
 }

@@ -74,14 +74,19 @@ TEST(Interpreter, GuardedMotionRunsBetweenItsWhenAndUntil) {
     if (should_run && t > 0.6 && t < 0.9) {
       ASSERT_GT(values[static_cast<size_t>(effort)], 0.0) << "error 1 - t > 0 pushes up; t = " << t;
     }
-    events += values[static_cast<size_t>(started)] == 1.0;
+    if (values[static_cast<size_t>(started)] == 1.0) {
+      ++events;
+      EXPECT_NEAR(t, 0.5, 1e-9) << "the listed edge monitor fires in the motion's first tick";
+    }
+    // No handler lists mon-done: it watches the whole run, motion or not.
     ASSERT_EQ(values[static_cast<size_t>(done)] == 1.0, t >= 2.0 - 1e-12) << "t = " << t;
   }
   EXPECT_EQ(events, 1) << "the edge monitor fires once, when the start condition becomes true";
 }
 
 // tests/ir/data/controllers: a damping controller and an impedance controller
-// gated by a motion (0.5 s <= t < 2 s), and an angular damper that always runs.
+// gated by a motion (0.5 s <= t < 2 s), and an angular damper gated by a
+// motion that runs from the start for 10^6 s.
 TEST(Interpreter, DampingAndImpedanceControllersFromAModel) {
   const std::string dir = std::string(MOSPEC_SOURCE_DIR) + "/tests/ir/data";
   Interpreter in(lower_app(dir + "/controllers.json", dir));

@@ -28,15 +28,17 @@ check "sc1's force distribution is gated by both whisker motions" \
 D="$SRC/tests/ir/data"
 expect "tiny lowers" 0 "" -- "$mospec" ir --root "$D" "$D/tiny.json" -o "$work/tiny.json"
 order=$(grep -o '"kind": "[a-z-]*"' "$work/tiny.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
-check "tiny schedule: clock, evaluators, monitors, motion, controller" \
-  test "$order" = "read-clock evaluate evaluate evaluate level-monitor edge-monitor guarded-motion pid "
+# The edge monitor the handler lists reports while the motion runs: it follows
+# the motion's step; the level monitor no handler lists does not wait for it.
+check "tiny schedule: clock, evaluators, monitor, motion, its monitor, controller" \
+  test "$order" = "read-clock evaluate evaluate evaluate level-monitor guarded-motion edge-monitor pid "
 
 # The damping and impedance controllers of the published vocabulary lower to
 # steps of their registry kinds, with the parameters the model states.
 expect "controllers lower" 0 "" -- "$mospec" ir --root "$D" "$D/controllers.json" -o "$work/controllers.json"
 order=$(grep -o '"kind": "[a-z-]*"' "$work/controllers.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
-check "controllers schedule: clock, evaluators, motion, two dampers, an impedance" \
-  test "$order" = "read-clock evaluate evaluate evaluate guarded-motion damping damping impedance "
+check "controllers schedule: clock, evaluators, two motions, two dampers, an impedance" \
+  test "$order" = "read-clock evaluate evaluate evaluate evaluate guarded-motion guarded-motion damping damping impedance "
 check "... the damper's limits and the spring's stiffness and damping in the IR" \
   grep -Pzq '"damping": \{\n *"maximum-velocity": 0.2,\n *"maximum-force": 10.0\n *\}(.|\n)*"impedance": \{\n *"stiffness": 300.0,\n *"damping": 20.0' "$work/controllers.json"
 
@@ -50,7 +52,7 @@ expect "a controller shared by two motions lowers" 0 "" -- \
   "$mospec" ir --root "$work/shared" "$work/shared/controllers.json" -o "$work/shared.json"
 order=$(grep -o '"kind": "[a-z-]*"' "$work/shared.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
 check "... two motions, one any-of, then the damper it gates (got: $order)" \
-  test "$order" = "read-clock evaluate evaluate evaluate guarded-motion guarded-motion any-of damping damping impedance "
+  test "$order" = "read-clock evaluate evaluate evaluate evaluate guarded-motion guarded-motion guarded-motion any-of damping damping impedance "
 
 variant() {  # NAME SED-EXPRESSION: a copy of the tiny model with one edit
   rm -rf "$work/$1"; mkdir -p "$work/$1/tiny"; cp "$D/tiny.json" "$work/$1/"

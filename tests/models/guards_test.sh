@@ -59,7 +59,9 @@ check "phase 2 no longer runs" eq "$(at motion-rightarm-phase2.running 6.0061)" 
 check "the falling edge at 6.006 s is in the log (code 2)" eq "$(at mon-deadline.event 6.0061)" 2
 check "the deadline's falling edge is its only event" eq "$(rows mon-deadline.event)" 1
 
-# The summary lists every event with its tick.
+# The summary lists every event with its tick (in one tick, in column order:
+# a motion's columns come before those of the monitors its handler lists,
+# which report in the tick it ends).
 events() {
   python3 -c '
 import json, sys
@@ -68,10 +70,10 @@ for e in json.load(open(sys.argv[1]))["events"]:
 }
 events "$work/run.json" > "$work/events.txt"
 cat > "$work/expected.txt" <<'END'
-3003 mon-phase-switch.event rising
 3003 motion-rightarm-phase1.ended until
-6006 mon-deadline.event falling
+3003 mon-phase-switch.event rising
 6006 motion-rightarm-phase2.ended while-violated
+6006 mon-deadline.event falling
 END
 check "the summary lists the four events with their ticks" cmp -s "$work/events.txt" "$work/expected.txt"
 if ! cmp -s "$work/events.txt" "$work/expected.txt"; then sed 's/^/  got: /' "$work/events.txt"; fi

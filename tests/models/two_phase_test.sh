@@ -55,6 +55,35 @@ check "phase 2 starts when the clock passes 5 s (at t = $switch)" within "$switc
 check "a shared controller is not reset at the switch ($before -> $after)" \
   awk -v a="$before" -v b="$after" 'BEGIN{d=a-b; if(d<0)d=-d; exit !(a!=0 && b!=0 && d<1)}'
 
+# Monitors report for the motions whose handlers list them, the tick a motion
+# ends included; one no handler lists watches the whole run. Every tick logged
+# (--log-every 1), so the one-tick flag of phase 1's monitor is in the log.
+# All three watch "the clock passed 5 s", phase 1's post-condition.
+expect "runs 6 s, every tick logged" 0 "" -- "$mospec" run "$app" --sim --interpret --duration 6 \
+  --log-every 1 --log "$work/ticks.csv"
+monitors() {
+  awk -F, '
+    NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    { p1 = $c["motion-rightarm-phase1.running"]; whole = $c["mon-past-switch.flag"]
+      listed = $c["mon-phase1-past-switch.flag"]; e = $c["mon-phase-switch.event"] }
+    p1 == 0 && was_p1 == 1 { end = $c["t"] }
+    whole == 1 && !first_whole { first_whole = $c["t"] }
+    whole == 1 { n_whole++ }
+    listed == 1 { n_listed++; t_listed = $c["t"] }
+    e == 1 { n_events++; t_event = $c["t"] }
+    { was_p1 = p1 }
+    END { print end, first_whole, n_whole + 0, n_listed + 0, t_listed, n_events + 0, t_event }
+  ' "$work/ticks.csv"
+}
+read -r end first_whole n_whole n_listed t_listed n_events t_event <<< "$(monitors)"
+check "phase 1 ends at 5 s (tick at t = $end)" within "$end" 4.99 5.01
+check "the unlisted monitor's flag rises when the clock passes 5 s and stays up ($first_whole, $n_whole rows)" \
+  test "$first_whole" = "$end" -a "$n_whole" -ge 990
+check "phase 1's monitor raises its flag only in the tick phase 1 ends ($n_listed rows, at $t_listed)" \
+  test "$n_listed" -eq 1 -a "$t_listed" = "$end"
+check "phase 1's edge monitor emits its one event in that tick ($n_events, at $t_event)" \
+  test "$n_events" -eq 1 -a "$t_event" = "$end"
+
 # The generated controller does exactly what the interpreter does.
 expect "runs (generated)" 0 "" -- "$mospec" run "$app" --sim --duration 10 --log "$work/gen.csv" \
   --cache "$work/cache"

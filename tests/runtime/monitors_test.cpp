@@ -146,7 +146,7 @@ TEST(EdgeMonitorStep, ReportsItsEdgesAsCodes) {
   const auto codes = [&](Edges edges) {
     MonitorState s;
     std::vector<int> out;
-    for (double e : errors) out.push_back(steps::edge_monitor(s, e, 0.01, edges));
+    for (double e : errors) out.push_back(steps::edge_monitor(s, e, 0.01, edges, true));
     return out;
   };
   EXPECT_EQ(codes(Edges::Rising), (std::vector<int>{0, 1, 0, 0, 1, 0}));
@@ -154,7 +154,13 @@ TEST(EdgeMonitorStep, ReportsItsEdgesAsCodes) {
   EXPECT_EQ(codes(Edges::Both), (std::vector<int>{0, 1, 0, 2, 1, 2}));
   // Satisfied at the first sample: a rising edge (never a falling one).
   MonitorState s;
-  EXPECT_EQ(steps::edge_monitor(s, 0.0, 0.0, Edges::Both), 1);
+  EXPECT_EQ(steps::edge_monitor(s, 0.0, 0.0, Edges::Both, true), 1);
+  // Listed by a handler: it reports while the motion runs and in the tick it
+  // ends (a falling edge there is seen), then no more.
+  MonitorState g;
+  EXPECT_EQ(steps::edge_monitor(g, 0.0, 0.0, Edges::Falling, true), 0);
+  EXPECT_EQ(steps::edge_monitor(g, 1.0, 0.0, Edges::Falling, false), 2);
+  EXPECT_EQ(steps::edge_monitor(g, 0.0, 0.0, Edges::Both, false), 0);
 }
 
 // A guarded motion: starts when its `when` holds, ends through an `until`
