@@ -107,6 +107,24 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
     tubes.push_back(std::move(t));
   }
   j["bilateral"] = std::move(tubes);
+  // Every event, with its tick (sim::RunResult::events): monitors' edges and
+  // how motions ended.
+  nlohmann::ordered_json events = nlohmann::ordered_json::array();
+  for (const sim::RunEvent& e : r.events) {
+    const std::string& column = r.columns[e.column];
+    const bool motion = column.ends_with(".ended");
+    const char* what = e.code == 1   ? (motion ? "until" : "rising")
+                       : e.code == 2 ? (motion ? "while-violated" : "falling")
+                                     : "both";
+    nlohmann::ordered_json x;
+    x["tick"] = e.tick;
+    x["time"] = e.time;
+    x["event"] = column;
+    x[motion ? "reason" : "edge"] = what;
+    events.push_back(std::move(x));
+  }
+  j["events"] = std::move(events);
+  j["events_not_listed"] = r.events_dropped;
   // The table's edge runs along y of the world: the platform is aligned with
   // it at yaw 0.
   const double yaw = sim::last_value(r, "base_yaw");

@@ -847,23 +847,31 @@ class Builder {
         put(s, "state_slot", std::to_string(st.state));
         put(s, "in0", in(st, 0));
         put(s, "tolerance", step_members_[index]);
+        put(s, "edges",
+            std::string(st.edges == runtime::Edges::Rising    ? "Rising"
+                        : st.edges == runtime::Edges::Falling ? "Falling"
+                                                              : "Both"));
         put(s, "running", gate());
         put(s, "out0", out(st, 0));
         break;
       case StepKind::GuardedMotion: {
         const auto n_when = static_cast<std::size_t>(st.n_when);
-        std::string when, until;
+        const auto n_while = static_cast<std::size_t>(st.n_while);
+        std::string when, whiles, until;
         for (std::size_t k = 0; k < st.in.size(); ++k) {
-          std::string& list_text = k < n_when ? when : until;
+          std::string& list_text = k < n_when ? when : k < n_when + n_while ? whiles : until;
           if (!list_text.empty()) list_text.append(", ");
           list_text.append(in(st, k));
         }
         put(s, "n_when", std::to_string(n_when));
-        put(s, "n_until", std::to_string(st.in.size() - n_when));
+        put(s, "n_while", std::to_string(n_while));
+        put(s, "n_until", std::to_string(st.in.size() - n_when - n_while));
         put(s, "when", when);
+        put(s, "whiles", whiles);
         put(s, "until", until);
         put(s, "state_slot", std::to_string(st.state));
         put(s, "out0", out(st, 0));
+        put(s, "out1", out(st, 1));
         break;
       }
       case StepKind::AnyOf: {
@@ -988,8 +996,10 @@ class Builder {
           value = ref(c.data);
           break;
         case DataType::Flag:
-        case DataType::Event:
           value = "(" + ref(c.data) + " ? 1.0 : 0.0)";
+          break;
+        case DataType::Event:
+          value = "static_cast<double>(" + ref(c.data) + ")";
           break;
         default:
           value = "std::numeric_limits<double>::quiet_NaN()";
@@ -999,6 +1009,10 @@ class Builder {
       put(e, "index", std::to_string(i));
       put(e, "name_literal", cpp_string(c.name));
       put(e, "unit_literal", cpp_string(c.unit));
+      put(e, "kind",
+          std::string(c.kind == robot::LogColumnKind::Flag    ? "Flag"
+                      : c.kind == robot::LogColumnKind::Event ? "Event"
+                                                              : "Value"));
       put(e, "value", value);
       append(log, std::move(e));
     }

@@ -107,7 +107,7 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
     column_units_.push_back(c.unit);
   }
   for (size_t i = 0; i < column_names_.size(); ++i) {
-    columns_.push_back({column_names_[i].c_str(), column_units_[i].c_str()});
+    columns_.push_back({column_names_[i].c_str(), column_units_[i].c_str(), program_.log[i].kind});
   }
 }
 
@@ -188,18 +188,24 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
         s_.flags[out(0)] =
             steps::level_monitor(m, s_.scalars[in(0)], st.constraint.tolerance, running);
       else
-        s_.events[out(0)] =
-            steps::edge_monitor(m, s_.scalars[in(0)], st.constraint.tolerance, running);
+        s_.events[out(0)] = static_cast<char>(
+            steps::edge_monitor(m, s_.scalars[in(0)], st.constraint.tolerance, st.edges, running));
       break;
     }
     case StepKind::GuardedMotion: {
-      std::array<bool, kMaxGuards> when{}, until{};
+      std::array<bool, kMaxGuards> when{}, whiles{}, until{};
       const auto n_when = static_cast<size_t>(st.n_when);
+      const auto n_while = static_cast<size_t>(st.n_while);
+      const size_t n_until = st.in.size() - n_when - n_while;
       for (size_t k = 0; k < n_when; ++k) when[k] = s_.flags[in(k)] != 0;
-      for (size_t k = n_when; k < st.in.size(); ++k) until[k - n_when] = s_.flags[in(k)] != 0;
-      s_.flags[out(0)] = steps::guarded_motion(
-          motion_states_[static_cast<size_t>(st.state)], std::span<const bool>(when.data(), n_when),
-          std::span<const bool>(until.data(), st.in.size() - n_when));
+      for (size_t k = 0; k < n_while; ++k) whiles[k] = s_.flags[in(n_when + k)] != 0;
+      for (size_t k = 0; k < n_until; ++k) until[k] = s_.flags[in(n_when + n_while + k)] != 0;
+      std::uint8_t ended = 0;
+      s_.flags[out(0)] = steps::guarded_motion(motion_states_[static_cast<size_t>(st.state)],
+                                               std::span<const bool>(when.data(), n_when),
+                                               std::span<const bool>(whiles.data(), n_while),
+                                               std::span<const bool>(until.data(), n_until), ended);
+      s_.events[out(1)] = static_cast<char>(ended);
       break;
     }
     case StepKind::AnyOf: {
@@ -271,7 +277,7 @@ double Interpreter::value(int data) const noexcept {
     case DataType::Flag:
       return s_.flags[s] ? 1.0 : 0.0;
     case DataType::Event:
-      return s_.events[s] ? 1.0 : 0.0;
+      return static_cast<double>(static_cast<unsigned char>(s_.events[s]));
     default:
       return std::nan("");
   }

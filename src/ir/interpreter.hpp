@@ -32,8 +32,8 @@ class Interpreter final : public robot::Controller {
   void log_values(std::span<double> out) const noexcept override;
 
   const Program& program() const { return program_; }
-  // The current value of a scalar, flag or event datum (flags and events as
-  // 0/1; NaN for other types).
+  // The current value of a scalar, flag or event datum (flags as 0/1, events
+  // as their code; NaN for other types).
   double value(int data) const noexcept;
 
  private:

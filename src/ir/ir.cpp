@@ -182,15 +182,16 @@ const KindEntry kStepKinds[] = {
        return {{T::Scalar}, {T::Flag}};
      }},
     {{StepKind::EdgeMonitor, "edge-monitor", StateKind::Monitor, "cstr-hdl:EdgeTriggeredMonitor",
-      "ins: [error, (running flag)]; out: [event]"},
+      "ins: [error, (running flag)]; out: [event: 1 rising, 2 falling, as its edges say]"},
      [](const Step& st, const Program&) -> Signature {
        if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Event}};
        return {{T::Scalar}, {T::Event}};
      }},
     {{StepKind::GuardedMotion, "guarded-motion", StateKind::Motion, "mot:GuardedMotion",
-      "ins: [when flags..., until flags...]; out: [running flag]"},
+      "ins: [when flags..., checked while flags..., until flags...]; outs: [running flag, "
+      "ended event: 1 an until held, 2 a while was violated]"},
      [](const Step& st, const Program&) -> Signature {
-       return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
+       return {std::vector<T>(st.in.size(), T::Flag), {T::Flag, T::Event}};
      }},
     {{StepKind::AnyOf, "any-of", std::nullopt,
       "cstr-hdl:ConstraintHandler (a controller or evaluator several motions' handlers list)",
@@ -389,13 +390,20 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
         f.step(st, "view component " + std::to_string(v) + " is out of range; expected 0..5");
     }
     if (st.kind == StepKind::GuardedMotion) {
-      const int n_until = static_cast<int>(st.in.size()) - st.n_when;
-      if (st.n_when < 0 || n_until < 0)
-        f.step(st, std::to_string(st.n_when) + " when-guards of " + std::to_string(st.in.size()) +
-                       " inputs");
-      if (st.n_when > kMaxGuards || n_until > kMaxGuards)
-        f.step(st, "has " + std::to_string(st.n_when) + " when- and " + std::to_string(n_until) +
-                       " until-guards; at most " + std::to_string(kMaxGuards) + " each");
+      const int n_until = static_cast<int>(st.in.size()) - st.n_when - st.n_while;
+      if (st.n_when < 0 || st.n_while < 0 || n_until < 0)
+        f.step(st, std::to_string(st.n_when) + " when- and " + std::to_string(st.n_while) +
+                       " while-guards of " + std::to_string(st.in.size()) + " inputs");
+      if (st.n_when > kMaxGuards || st.n_while > kMaxGuards || n_until > kMaxGuards)
+        f.step(st, "has " + std::to_string(st.n_when) + " when-, " + std::to_string(st.n_while) +
+                       " while- and " + std::to_string(n_until) + " until-guards; at most " +
+                       std::to_string(kMaxGuards) + " each");
+    }
+    if (st.kind == StepKind::EdgeMonitor) {
+      const auto e = static_cast<int>(st.edges);
+      if (e < 1 || e > 3)
+        f.step(st,
+               "reports edges " + std::to_string(e) + "; expected 1 (rising), 2 (falling) or 3");
     }
     if (const auto sk =
             static_cast<size_t>(st.kind) < kStepKindCount ? info(st.kind).state : std::nullopt) {
@@ -485,6 +493,15 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
       f.add(p.data[static_cast<size_t>(c.data)].where,
             "log column '" + c.name + "' reads component " + std::to_string(c.component) + " of " +
                 f.describe(c.data) + "; components are of a twist or wrench, 0..5");
+    // Every event is latched (a decimated log would lose it); a latched flag is a flag.
+    if ((t == DataType::Event) != (c.kind == robot::LogColumnKind::Event) ||
+        (c.kind == robot::LogColumnKind::Flag && t != DataType::Flag))
+      f.add(p.data[static_cast<size_t>(c.data)].where,
+            "log column '" + c.name + "' of " + f.describe(c.data) + " is latched as " +
+                (c.kind == robot::LogColumnKind::Event  ? "an event"
+                 : c.kind == robot::LogColumnKind::Flag ? "a flag"
+                                                        : "nothing") +
+                "; an event column is latched as an event, a flag column as a flag or not at all");
   }
   return f.take();
 }
@@ -676,7 +693,14 @@ std::string to_json(const Program& p, const SourceFiles* files) {
       c["tolerance"] = st.constraint.tolerance;
       e["constraint"] = std::move(c);
     }
-    if (st.kind == StepKind::GuardedMotion) e["when"] = st.n_when;
+    if (st.kind == StepKind::GuardedMotion) {
+      e["when"] = st.n_when;
+      e["while"] = st.n_while;
+    }
+    if (st.kind == StepKind::EdgeMonitor) {
+      static constexpr const char* kEdges[] = {"", "rising", "falling", "both"};
+      e["edges"] = kEdges[static_cast<int>(st.edges) & 3];
+    }
     if (st.kind == StepKind::Controller && st.controller >= 0 &&
         static_cast<size_t>(st.controller) < controller_kinds().size()) {
       // The parameters the model states, by their JSON keys, under the kind's name.
@@ -697,6 +721,8 @@ std::string to_json(const Program& p, const SourceFiles* files) {
   for (const LogColumn& c : p.log) {
     Json e = {{"name", c.name}, {"unit", c.unit}, {"data", c.data}};
     if (c.component >= 0) e["component"] = c.component;
+    if (c.kind == robot::LogColumnKind::Flag) e["latched"] = "flag";
+    if (c.kind == robot::LogColumnKind::Event) e["latched"] = "event";
     log.push_back(std::move(e));
   }
   j["log"] = std::move(log);

@@ -28,10 +28,12 @@
 #include <string>
 #include <vector>
 
+#include "robot/controller.hpp"
 #include "runtime/chain.hpp"
 #include "runtime/evaluators.hpp"
 #include "runtime/kelo.hpp"
 #include "runtime/model.hpp"
+#include "runtime/monitors.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::ir {
@@ -66,8 +68,8 @@ enum class StepKind : uint8_t {
   Operator,       // a pure computation: Step::op indexes operator_kinds() (operators.hpp)
   Evaluate,       // ins: [quantity, (active flag)]; outs: [satisfied flag, error|output scalar]
   LevelMonitor,   // ins: [error, (running flag)]; out: [flag]
-  EdgeMonitor,    // ins: [error, (running flag)]; out: [event]
-  GuardedMotion,  // ins: [when flags..., until flags...]; out: [active flag]
+  EdgeMonitor,    // ins: [error, (running flag)]; out: [event]; edges
+  GuardedMotion,  // ins: [when..., while..., until... flags]; outs: [running flag, ended event]
   AnyOf,          // ins: [flags...] (2 or more); out: [flag] = any of them
   Controller,     // ins: [signals..., (active flag)]; out: [control signal]; Step::controller
                   // indexes controller_kinds() (controllers.hpp)
@@ -120,10 +122,13 @@ struct Step {
   std::vector<int> views;              // ViewRead: 1 component; ViewWrite: one per input
   runtime::ConstraintSpec constraint;  // Evaluate
   bool has_error_output = false;       // Evaluate: out[1] is the error (else none/output)
-  int n_when = 0;                      // GuardedMotion: ins[0, n_when) are `when`
-  int controller = -1;                 // Controller: index into controller_kinds()
-  std::vector<double> parameters;      // Controller: one value per parameter of its kind
-  int state = -1;                      // stateful controllers, monitors, motions: their state slot
+  int n_when = 0;                      // GuardedMotion: ins[0, n_when) are `when`,
+  int n_while = 0;                     // then n_while `while` (checked per-conditions),
+                                       // then the `until`
+  runtime::Edges edges = runtime::Edges::Rising;  // EdgeMonitor: the edges it reports
+  int controller = -1;                            // Controller: index into controller_kinds()
+  std::vector<double> parameters;                 // Controller: one value per parameter of its kind
+  int state = -1;  // stateful controllers, monitors, motions: their state slot
   // ArmSolve: in[0, n_drivers) are the drivers' data; in[n_drivers, ...) the
   // running flags of the motions whose controllers drive this arm. With such
   // gates and none of them running, the arm holds (steps::arm_hold).
@@ -217,6 +222,9 @@ struct LogColumn {
   std::string unit;  // QUDT local name, "" for flags
   int data = 0;
   int component = -1;  // for a twist or wrench: which of its 6 entries (angular first)
+  // How a decimated log keeps it (robot::LogColumnKind): a monitor's flag and
+  // every event are latched into the next logged row.
+  robot::LogColumnKind kind = robot::LogColumnKind::Value;
 };
 
 struct Program;
@@ -246,7 +254,7 @@ struct Program {
   }
 };
 
-// Most `when` or `until` guards one guarded motion may have.
+// Most `when`, checked `while` or `until` guards one guarded motion may have.
 inline constexpr int kMaxGuards = 16;
 
 // Setup-time constants every back-end builds the same way:

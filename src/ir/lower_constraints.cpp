@@ -8,6 +8,23 @@
 
 namespace mospec::ir::lowering {
 
+namespace {
+
+// mospec's extension for guards and monitors (metamodels/mospec/guards.json).
+const std::string kGuards = "mospec/guards";
+
+// An Evaluate step of an equality constraint that states no tolerance: it
+// holds only at the instants its quantity equals the reference exactly, which
+// a guard or a monitor would almost never see. The constraint, or nothing.
+std::optional<TermId> equality_without_tolerance(const State& st, const Step& evaluate) {
+  if (evaluate.constraint.kind != runtime::ConstraintKind::Equality) return std::nullopt;
+  const auto c = st.object(st.term(evaluate.iri), vocab("task/constraint-handler", "constraint"));
+  if (!c || st.object(*c, vocab(kGuards, "tolerance"))) return std::nullopt;
+  return c;
+}
+
+}  // namespace
+
 void lower_evaluators(State& st) {
   const std::string ch = "task/constraint-handler";
   const std::string cs = "task/constraint";
@@ -40,8 +57,10 @@ void lower_evaluators(State& st) {
     const int quantity = st.datum(*q, DataType::Scalar, *c, "quantity");
     const std::string unit = st.program.data[static_cast<size_t>(quantity)].unit;
     // A threshold/reference: a constant with the quantity's unit.
-    const auto constant = [&](const std::string& prop) -> std::optional<double> {
-      auto t = st.object(*c, vocab(cs, prop));
+    const auto constant = [&](const std::string& prop,
+                              const std::string& domain =
+                                  "task/constraint") -> std::optional<double> {
+      auto t = st.object(*c, vocab(domain, prop));
       if (!t) return std::nullopt;
       const int d = st.datum(*t, DataType::Scalar, *c, prop);
       const Data& dd = st.program.data[static_cast<size_t>(d)];
@@ -124,6 +143,28 @@ void lower_evaluators(State& st) {
       spec.reference = *r;
       if (auto t = st.object(*c, vocab(cs, "reference-value")))
         reference_datum = st.data_of.at(t->index);
+      // The model's tolerance (mos-grd:tolerance): satisfied while |error| <= it.
+      if (auto tol = st.object(*c, vocab(kGuards, "tolerance"))) {
+        if (assignment) {
+          st.error(st.where(*c, vocab(kGuards, "tolerance"), *tol), "unsupported-property",
+                   "the equality constraint '" + st.str(*c) +
+                       "' states `tolerance`, but the "
+                       "assignment evaluator '" +
+                       st.str(e) +
+                       "' imposes its reference-value and "
+                       "never checks it, so the tolerance would be ignored; remove `tolerance`");
+          continue;
+        }
+        const auto t = constant("tolerance", kGuards);
+        if (!t) continue;
+        if (!(*t >= 0.0)) {
+          st.error(*tol, "invalid-constraint",
+                   "the tolerance '" + st.str(*tol) + "' of '" + st.str(*c) + "' is " +
+                       exact_number(*t) + "; a tolerance is a bound on |error|, >= 0");
+          continue;
+        }
+        spec.tolerance = *t;
+      }
     } else {
       st.error(*c, "unsupported-constraint",
                "'" + st.str(*c) +
@@ -190,9 +231,44 @@ void lower_monitors(State& st) {
       s.where = st.where(m);
       s.in = {st.datum(*err, DataType::Scalar, m, "error")};
       // The watched constraint's tolerance (via the evaluator producing the error).
+      bool refused = false;
       for (const auto& [eval_term, step] : st.evaluate_step_of_evaluator) {
         const Step& ev = st.steps[static_cast<size_t>(step)];
-        if (ev.out.size() > 1 && ev.out[1] == s.in[0]) s.constraint = ev.constraint;
+        if (ev.out.size() < 2 || ev.out[1] != s.in[0]) continue;
+        s.constraint = ev.constraint;
+        if (const auto c = equality_without_tolerance(st, ev)) {
+          st.error(st.where(m, vocab(ch, "error"), *err), "missing-tolerance",
+                   "the monitor '" + st.str(m) +
+                       "' watches the error of the equality constraint '" + st.str(*c) +
+                       "', which states no tolerance: it would be satisfied only "
+                       "while its quantity equals the reference exactly, so the monitor would "
+                       "almost never " +
+                       (edge ? "fire" : "raise its flag") +
+                       "; state the constraint's `tolerance` (mos-grd:tolerance, a quantity in "
+                       "its unit: satisfied while |error| <= it)");
+          refused = true;
+        }
+      }
+      if (refused) continue;
+      if (edge) {
+        // The edges it reports (mos-grd:edge; rising when the model says none).
+        if (auto e = st.object(m, vocab(kGuards, "edge"))) {
+          const std::string edge_iri = st.str(*e);
+          if (edge_iri == vocab(kGuards, "rising")) {
+            s.edges = runtime::Edges::Rising;
+          } else if (edge_iri == vocab(kGuards, "falling")) {
+            s.edges = runtime::Edges::Falling;
+          } else if (edge_iri == vocab(kGuards, "both")) {
+            s.edges = runtime::Edges::Both;
+          } else {
+            st.error(st.where(m, vocab(kGuards, "edge"), *e), "invalid-monitor",
+                     "the edge-triggered monitor '" + st.str(m) + "' reports the edge '" +
+                         edge_iri +
+                         "'; an edge is rising, falling or both (mos-grd:rising, "
+                         "mos-grd:falling, mos-grd:both)");
+            continue;
+          }
+        }
       }
       const int d = st.synthetic(st.str(*out), local_name(st.str(*out)),
                                  edge ? DataType::Event : DataType::Flag, st.where(*out));
@@ -208,7 +284,7 @@ void lower_monitors(State& st) {
 namespace {
 
 // A pre- or post-condition that cannot do what its place says: an equality
-// (held only at an instant: the tolerance is 0), a less-than on the clock's
+// without a tolerance (held only at an instant), a less-than on the clock's
 // time as a post-condition (it holds from the start), a constraint that is
 // both a pre- and a post-condition (the motion would end as it starts).
 void check_guard(State& st, TermId motion, const std::string& prop, TermId c,
@@ -217,13 +293,14 @@ void check_guard(State& st, TermId motion, const std::string& prop, TermId c,
   const std::string where =
       "the motion '" + st.str(motion) + "' lists '" + st.str(c) + "' in `" + prop + "`";
   const SourceLoc at = st.where(motion, vocab(mot, prop), c);
-  if (evaluate.constraint.kind == runtime::ConstraintKind::Equality) {
-    st.error(at, "invalid-guard",
+  if (equality_without_tolerance(st, evaluate)) {
+    st.error(at, "missing-tolerance",
              where +
-                 "; an equality holds only while its quantity equals the reference "
-                 "exactly (mospec's tolerance is 0), so the " +
+                 "; an equality without a tolerance holds only while its quantity equals the "
+                 "reference exactly, so the " +
                  (prop == "when" ? "motion would almost never start" : "motion would not end") +
-                 "; guard with a BilateralConstraint (a band around the reference) or a "
+                 "; state the constraint's `tolerance` (mos-grd:tolerance, a quantity in its "
+                 "unit: satisfied while |error| <= it), or guard with a BilateralConstraint or a "
                  "greater-/less-than constraint");
     return;
   }
@@ -247,6 +324,41 @@ void check_guard(State& st, TermId motion, const std::string& prop, TermId c,
   }
 }
 
+// The quantities each motion acts on (motion term -> data): those the
+// assignments of its handlers impose, and those of the constraints whose
+// errors its handlers' controllers read.
+std::map<uint32_t, std::set<int>> acted_on(State& st) {
+  const std::string ch = "task/constraint-handler";
+  // An error signal -> the quantity its evaluator's constraint constrains.
+  std::map<int, int> quantity_of_error;
+  for (const auto& [evaluator, step] : st.evaluate_step_of_evaluator) {
+    const Step& ev = st.steps[static_cast<size_t>(step)];
+    if (ev.constraint.kind != runtime::ConstraintKind::Assignment && ev.out.size() > 1)
+      quantity_of_error[ev.out[1]] = ev.in[0];
+  }
+  std::map<uint32_t, std::set<int>> acted;
+  for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
+    const auto m = st.graph.object(h, st.term(vocab(ch, "motion")));
+    if (!m) continue;
+    std::set<int>& quantities = acted[m->index];
+    for (TermId e : st.objects(h, vocab(ch, "evaluators"))) {
+      const auto it = st.evaluate_step_of_evaluator.find(e.index);
+      if (it == st.evaluate_step_of_evaluator.end()) continue;
+      const Step& ev = st.steps[static_cast<size_t>(it->second)];
+      if (ev.constraint.kind == runtime::ConstraintKind::Assignment) quantities.insert(ev.out[1]);
+    }
+    for (TermId k : st.objects(h, vocab(ch, "controllers"))) {
+      for (const Graph::Statement& s : st.graph.statements(k)) {
+        const auto d = st.data_of.find(s.object.index);
+        if (d == st.data_of.end()) continue;
+        if (const auto q = quantity_of_error.find(d->second); q != quantity_of_error.end())
+          quantities.insert(q->second);
+      }
+    }
+  }
+  return acted;
+}
+
 }  // namespace
 
 void lower_handlers(State& st) {
@@ -257,6 +369,7 @@ void lower_handlers(State& st) {
   const std::string mot = "task/motion-specification";
   std::map<uint32_t, int> active_of_motion;
   std::set<uint32_t> handled;  // motions some handler names
+  const std::map<uint32_t, std::set<int>> acted = acted_on(st);
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     st.pending_iri = st.str(h);
     auto m = st.object(h, vocab(ch, "motion"));
@@ -285,28 +398,55 @@ void lower_handlers(State& st) {
                          "`, but no evaluator evaluates it");
             continue;
           }
-          if (prop == "while") continue;
           const Step& evaluate = st.steps[static_cast<size_t>(it->second)];
-          check_guard(st, *m, prop, c, evaluate);
+          if (prop == "while") {
+            // A per-condition on a quantity the motion acts on is what the
+            // motion enforces (its goal: sc1's tube, outside at the start);
+            // any other is an invariant, checked every tick.
+            const bool assignment = evaluate.constraint.kind == runtime::ConstraintKind::Assignment;
+            const int quantity = assignment ? evaluate.out[1] : evaluate.in[0];
+            if (const auto a = acted.find(m->index); a != acted.end() && a->second.count(quantity))
+              continue;
+            if (equality_without_tolerance(st, evaluate)) {
+              st.error(st.where(*m, vocab(mot, prop), c), "missing-tolerance",
+                       "the motion '" + st.str(*m) + "' lists '" + st.str(c) +
+                           "' in `while`; no controller or assignment of the motion acts on its "
+                           "quantity, so it is checked every tick, and an equality without a "
+                           "tolerance holds only while its quantity equals the reference "
+                           "exactly: the motion would be aborted at once; state the "
+                           "constraint's `tolerance` (mos-grd:tolerance, a quantity in its unit: "
+                           "satisfied while |error| <= it)");
+              continue;
+            }
+          } else {
+            check_guard(st, *m, prop, c, evaluate);
+          }
           flags.push_back(evaluate.out[0]);
         }
         return flags;
       };
       const std::vector<int> when = guards("when");
-      guards("while");
+      const std::vector<int> whiles = guards("while");
       const std::vector<int> until = guards("until");
       s.in = when;
+      s.in.insert(s.in.end(), whiles.begin(), whiles.end());
       s.in.insert(s.in.end(), until.begin(), until.end());
       s.n_when = static_cast<int>(when.size());
+      s.n_while = static_cast<int>(whiles.size());
       if (when.size() > static_cast<size_t>(kMaxGuards) ||
+          whiles.size() > static_cast<size_t>(kMaxGuards) ||
           until.size() > static_cast<size_t>(kMaxGuards)) {
-        st.error(*m, "too-many-guards",
-                 "the motion '" + st.str(*m) + "' has more than 16 when or until guards");
+        st.error(
+            *m, "too-many-guards",
+            "the motion '" + st.str(*m) + "' has more than 16 when, checked while or until guards");
         continue;
       }
       active = st.synthetic(st.str(*m) + "#running", local_name(st.str(*m)) + "_running",
                             DataType::Flag, st.where(*m));
-      s.out = {active};
+      // How it ended, in the tick it ends (runtime::steps::MotionEnd).
+      const int ended = st.synthetic(st.str(*m) + "#ended", local_name(st.str(*m)) + "_ended",
+                                     DataType::Event, st.where(*m));
+      s.out = {active, ended};
       s.state = st.program.states[static_cast<int>(StateKind::Motion)]++;
       st.add_step(std::move(s));
       active_of_motion[m->index] = active;

@@ -63,7 +63,7 @@ const std::vector<Family>& families() {
        {{"ConstraintHandler",
          "constraint handler",
          {"motion", "evaluators", "controllers", "monitors"}}}},
-      // lower_handlers: the guards (`while`: evaluated, realised by the controllers).
+      // lower_handlers: the guards (`while`: enforced by the controllers or checked).
       {v::mot::ns, false, {{"GuardedMotion", "guarded motion", {"when", "while", "until"}}}},
       // lower_arm, lower_base.
       {v::slv::ns,
@@ -132,7 +132,8 @@ std::string advice(std::string_view type, std::string_view property) {
   if (type == "Float" && property == "time-constant")
     return "a Float does not brake; for braking, make it a BrakeAndHold";
   if (type == "EqualityConstraint" && property == "threshold")
-    return "an equality constraint has no tolerance; for a band, make it a BilateralConstraint "
+    return "an equality constraint's tolerance is `tolerance` (mos-grd:tolerance, "
+           "metamodels/mospec/guards.json); for a band, make it a BilateralConstraint "
            "with a lower-threshold and an upper-threshold";
   if (type.ends_with("Constraint") &&
       (property == "threshold" || property == "lower-threshold" || property == "upper-threshold" ||
@@ -140,6 +141,53 @@ std::string advice(std::string_view type, std::string_view property) {
     return "a constraint has one kind, and only that kind's bounds are evaluated; remove `" +
            std::string(property) + "`, or state it on a second constraint of the kind that has it";
   return "remove it";
+}
+
+// mospec's guard extension (metamodels/mospec/guards.json): lower_evaluators
+// reads `tolerance` on an equality constraint, lower_monitors `edge` on an
+// edge-triggered monitor. On any other constraint or monitor, or any other
+// term of the extension, it would be ignored: refused.
+void refuse_misplaced_guard_terms(State& st) {
+  namespace v = mospec::vocab;
+  const std::string ns(v::mospec_guards::ns);
+  const std::string cstr(v::cstr::ns), hdl(v::cstr_hdl::ns);
+  std::set<uint32_t> seen;
+  for (const std::string& type :
+       {cstr + "Constraint", cstr + "EqualityConstraint", cstr + "BilateralConstraint",
+        cstr + "UnilateralConstraint", cstr + "GreaterThanConstraint", cstr + "LessThanConstraint",
+        hdl + "Monitor", hdl + "LevelTriggeredMonitor", hdl + "EdgeTriggeredMonitor"}) {
+    for (TermId e : st.instances(type)) {
+      if (!seen.insert(e.index).second) continue;
+      std::set<std::string> reported;
+      for (const Graph::Statement& statement : st.graph.statements(e)) {
+        const std::string p = st.str(statement.predicate);
+        if (!p.starts_with(ns) || !reported.insert(p).second) continue;
+        const std::string local = p.substr(ns.size());
+        const bool equality = st.has_type(e, cstr + "EqualityConstraint");
+        const bool edge = st.has_type(e, hdl + "EdgeTriggeredMonitor");
+        if ((local == "tolerance" && equality) || (local == "edge" && edge)) continue;
+        std::string why;
+        if (local == "tolerance")
+          why =
+              "a tolerance widens an equality constraint; an inequality or a band is satisfied "
+              "inside its bounds, and a monitor uses its constraint's tolerance";
+        else if (local == "edge")
+          why =
+              "only an edge-triggered monitor reports edges (a level-triggered one raises a "
+              "flag while its constraint holds)";
+        else
+          why =
+              "mospec's guard extension has `tolerance` (equality constraints) and `edge` "
+              "(edge-triggered monitors)";
+        std::string message = "'";
+        message.append(st.str(e)).append("' states `").append(local).append("` (mos-grd:");
+        message.append(local).append("), which mospec does not read for it, so it would be ");
+        message.append("ignored; ").append(why).append("; remove it");
+        st.error(statement.where.known() ? statement.where : st.where(e), "unsupported-property",
+                 std::move(message));
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -198,6 +246,7 @@ void refuse_unread_properties(State& st) {
       }
     }
   }
+  refuse_misplaced_guard_terms(st);
 }
 
 }  // namespace mospec::ir::lowering

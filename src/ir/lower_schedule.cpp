@@ -65,11 +65,12 @@ void schedule(State& st) {
 
 void build_log(State& st) {
   for (const Step& s : st.program.steps) {
-    const auto add = [&](const std::string& suffix, int d) {
+    const auto add = [&](const std::string& suffix, int d,
+                         robot::LogColumnKind kind = robot::LogColumnKind::Value) {
       const Data& dd = st.program.data[static_cast<size_t>(d)];
       std::string name = local_name(s.iri);
       if (s.kind == StepKind::Evaluate) name = local_name(dd.iri.substr(0, dd.iri.find('#')));
-      st.program.log.push_back({name + suffix, dd.unit, d});
+      st.program.log.push_back({name + suffix, dd.unit, d, -1, kind});
     };
     switch (s.kind) {
       case StepKind::Evaluate: {
@@ -104,14 +105,17 @@ void build_log(State& st) {
         st.program.log.push_back({base + ".mz", "N-M", s.in[0], 2});
         break;
       }
+      // What monitors and motions signal is latched: a log that keeps every
+      // N-th tick shows it in the next row it keeps.
       case StepKind::LevelMonitor:
-        add(".flag", s.out[0]);
+        add(".flag", s.out[0], robot::LogColumnKind::Flag);
         break;
       case StepKind::EdgeMonitor:
-        add(".event", s.out[0]);
+        add(".event", s.out[0], robot::LogColumnKind::Event);
         break;
       case StepKind::GuardedMotion:
         add(".running", s.out[0]);
+        add(".ended", s.out[1], robot::LogColumnKind::Event);
         break;
       case StepKind::Controller:
         add(".output", s.out[0]);

@@ -18,12 +18,23 @@
 
 namespace mospec::robot {
 
-inline constexpr int kControllerAbiVersion = 1;
+// 2: LogColumnInfo::kind.
+inline constexpr int kControllerAbiVersion = 2;
 inline constexpr const char* kControllerFactorySymbol = "mospec_create_controller";
+
+// How a log that keeps only every N-th tick (sim::RunOptions::log_every)
+// keeps a column, so that nothing a monitor or a motion signals is lost.
+enum class LogColumnKind : std::uint8_t {
+  Value,  // as it is at the logged tick
+  Flag,   // a monitor's flag (0/1): 1 when it was raised at any tick since the previous row
+  Event,  // an event code (0: none): the bitwise OR of its codes since the previous row;
+          // every tick it fires at is also reported (sim::RunResult::events)
+};
 
 struct LogColumnInfo {
   const char* name;  // "cstr-dist-rightarm-shoulder-ee.error"
   const char* unit;  // QUDT local name; "" for flags and events
+  LogColumnKind kind = LogColumnKind::Value;
 };
 
 class Controller {

@@ -114,12 +114,13 @@ inline void evaluate(const ConstraintEvaluator& evaluator, double measured, bool
 // ---------------------------------------------------------------------------
 // Monitors watch an error signal: the watched constraint is satisfied while
 // the error is within `tolerance` of 0 (exactly 0 for inequalities inside their
-// feasible set). A monitor that constraint handlers list reports for their
-// motions: `running` is whether one of them runs after this tick, and the
-// monitor reports in every tick one of them runs, the tick it ends included
-// (a post-condition's event is seen). It watches the constraint in every tick,
-// so an edge is a change of the constraint, never the motion starting. A
-// monitor no handler lists always reports (`running` is true).
+// feasible set; an equality's tolerance is the model's, mos-grd:tolerance). A
+// monitor that constraint handlers list reports for their motions: `running`
+// is whether one of them runs after this tick, and the monitor reports in
+// every tick one of them runs, the tick it ends included (a post-condition's
+// event, or the violated per-condition's, is seen). It watches the constraint
+// in every tick, so an edge is a change of the constraint, never the motion
+// starting. A monitor no handler lists always reports (`running` is true).
 inline bool monitor_reports(MonitorState& state, bool running) noexcept {
   const bool reports = running || state.was_running;
   state.was_running = running;
@@ -130,34 +131,57 @@ inline bool level_monitor(MonitorState& state, double error, double tolerance,
   const bool satisfied = LevelMonitor::update(state, std::abs(error) <= tolerance);
   return monitor_reports(state, running) && satisfied;
 }
-inline bool edge_monitor(MonitorState& state, double error, double tolerance,
-                         bool running) noexcept {
+// An edge-triggered monitor: the edge of the watched constraint's
+// satisfaction in this tick, as an event code (Event: 0 none, 1 the constraint
+// became satisfied, 2 it stopped being satisfied), or 0 when the monitor does
+// not report that edge (`edges`) or does not report in this tick. Before the
+// first tick the constraint counts as not satisfied: one satisfied at the
+// first tick is a rising edge.
+inline std::uint8_t edge_monitor(MonitorState& state, double error, double tolerance, Edges edges,
+                                 bool running) noexcept {
   const bool before = state.satisfied;
-  LevelMonitor::update(state, std::abs(error) <= tolerance);
-  return monitor_reports(state, running) && !before && state.satisfied;  // became satisfied
+  const bool after = LevelMonitor::update(state, std::abs(error) <= tolerance);
+  if (!monitor_reports(state, running) || before == after) return 0;
+  const auto e = static_cast<std::uint8_t>(after ? Event::Rising : Event::Falling);
+  return (static_cast<std::uint8_t>(edges) & e) != 0 ? e : 0;
 }
 
 // ---------------------------------------------------------------------------
-// Guarded motions: Idle -> Running when every `when` holds (at once when there
-// is none); Running -> Done as soon as any `until` holds (checked in the same
-// tick it starts). Returns whether it is running after this tick.
-enum class MotionState : uint8_t { Idle = 0, Running = 1, Done = 2 };
+// Guarded motions (paper Sec. II-D): Idle -> Running when every `when` holds
+// (at once when there is none). While Running, every tick (the one it starts
+// in included):
+//   - Running -> Done as soon as any `until` holds (the motion ends normally);
+//   - else Running -> Aborted when any checked per-condition (`while`) does
+//     not hold.
+// `ended` is the motion's end event: a MotionEnd code in the tick it ends, 0
+// in every other. Returns whether the motion is running after this tick.
+enum class MotionState : uint8_t { Idle = 0, Running = 1, Done = 2, Aborted = 3 };
+enum class MotionEnd : uint8_t { None = 0, Until = 1, WhileViolated = 2 };
 inline bool guarded_motion(MotionState& state, std::span<const bool> when,
-                           std::span<const bool> until) noexcept {
+                           std::span<const bool> whiles, std::span<const bool> until,
+                           std::uint8_t& ended) noexcept {
+  ended = static_cast<std::uint8_t>(MotionEnd::None);
   if (state == MotionState::Idle) {
     bool all = true;
     for (bool w : when) all = all && w;
     if (all) state = MotionState::Running;
   }
-  if (state == MotionState::Running) {
-    for (bool u : until) {
-      if (u) {
-        state = MotionState::Done;
-        break;
-      }
+  if (state != MotionState::Running) return false;
+  for (bool u : until) {
+    if (u) {
+      state = MotionState::Done;
+      ended = static_cast<std::uint8_t>(MotionEnd::Until);
+      return false;
     }
   }
-  return state == MotionState::Running;
+  for (bool w : whiles) {
+    if (!w) {
+      state = MotionState::Aborted;
+      ended = static_cast<std::uint8_t>(MotionEnd::WhileViolated);
+      return false;
+    }
+  }
+  return true;
 }
 
 // ---------------------------------------------------------------------------

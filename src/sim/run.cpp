@@ -85,6 +85,12 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   r.csv.push_back('\n');
   std::vector<double> values(columns.size(), 0.0);
   std::vector<double> row(r.columns.size(), 0.0);
+  // Latched columns (flags and events): what they signalled since the last row.
+  std::vector<size_t> latched;
+  for (size_t i = 0; i < columns.size(); ++i) {
+    if (columns[i].kind != robot::LogColumnKind::Value) latched.push_back(i);
+  }
+  std::vector<unsigned> latch(columns.size(), 0);
   robot::MeasuredState state;
   robot::Command command, idle_command;
   std::unique_ptr<GravityCompensation> hold;
@@ -105,6 +111,22 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
       }
     }
     controller.tick(state, command);
+    if (!latched.empty()) {
+      controller.log_values(values);
+      for (size_t i : latched) {
+        const double v = values[i];
+        if (!(v != 0.0)) continue;  // 0 (NaN never: flags and events are codes)
+        const bool event = columns[i].kind == robot::LogColumnKind::Event;
+        const auto code = event && v > 0.0 && v < 256.0 ? static_cast<unsigned>(v) : 1u;
+        latch[i] |= code;
+        if (!event) continue;
+        if (r.events.size() < kMaxRunEvents) {
+          r.events.push_back({k, state.clock.t, i + 1, static_cast<int>(code)});
+        } else {
+          ++r.events_dropped;
+        }
+      }
+    }
     if (any_idle) {
       hold->compute(state, idle_command);
       for (size_t a = 0; a < command.arm_tau.size(); ++a) {
@@ -124,6 +146,10 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     world.step();
     if (k % every != 0 && k + 1 != ticks) continue;
     controller.log_values(values);
+    for (size_t i : latched) {
+      values[i] = static_cast<double>(latch[i]);
+      latch[i] = 0;
+    }
     size_t c = 0;
     row[c++] = world.time();
     bool finite_row = true;

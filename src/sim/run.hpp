@@ -43,6 +43,19 @@ struct RunOptions {
   const runtime::Chain* arm = nullptr;
 };
 
+// One event a controller signalled: a column of kind robot::LogColumnKind::Event
+// that was not 0 after a tick.
+struct RunEvent {
+  std::uint64_t tick = 0;  // the control tick (0-based)
+  double time = 0.0;       // the controller's clock at that tick [s]
+  std::size_t column = 0;  // index into RunResult::columns
+  int code = 0;            // the column's value: an edge (1 rising, 2 falling) or how a
+                           // motion ended (1 an `until` held, 2 a `while` was violated)
+};
+// At most this many events are kept (a monitor chattering every tick of a long
+// run); RunResult::events_dropped counts the rest.
+inline constexpr std::size_t kMaxRunEvents = 100'000;
+
 struct RunResult {
   std::uint64_t ticks = 0;
   double simulated = 0.0;  // [s]
@@ -50,6 +63,11 @@ struct RunResult {
   std::string csv;         // header + rows; numbers in shortest round-trip form
   std::vector<std::string> columns;
   std::vector<double> last_row;  // the final logged values, by column
+  // Every event, in tick order, then column order. In the log, a flag or event
+  // column (robot::LogColumnKind) is latched: a row holds what was signalled at
+  // any tick since the previous row, so decimation loses nothing.
+  std::vector<RunEvent> events;
+  std::uint64_t events_dropped = 0;
   // Safety summary over the whole run.
   bool non_finite = false;              // a command was NaN/inf (never sent: the world zeroes it)
   std::uint64_t non_finite_values = 0;  // logged rows with a NaN/inf value (e.g. from a NaN sensor)
@@ -66,7 +84,7 @@ struct RunResult {
 };
 
 // Runs `controller` against `world` from its current state. The per-tick path
-// allocates nothing except the log text. Throws as tick_count() for a bad
+// allocates nothing except the log text and the events. Throws as tick_count() for a bad
 // duration or log interval (before the first tick).
 RunResult run(World& world, robot::Controller& controller, const RunOptions& options);
 

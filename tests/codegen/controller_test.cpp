@@ -8,7 +8,9 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <set>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "codegen/build.hpp"
@@ -150,27 +152,48 @@ TEST(GeneratedController, LogColumnsAreTheProgramsNamedColumns) {
   if (path.empty()) GTEST_SKIP() << "MOSPEC_SMALL_CONTROLLER is not set (run by build_test.sh)";
   const std::unique_ptr<robot::Controller> generated = load_controller(path);
   const auto columns = generated->log_columns();
-  ASSERT_EQ(columns.size(), 23u);
+  ASSERT_EQ(columns.size(), 25u);
   EXPECT_STREQ(columns[0].name, "time");
   EXPECT_STREQ(columns[0].unit, "SEC");
-  EXPECT_STREQ(columns[17].name, "push_ok");
-  EXPECT_STREQ(columns[17].unit, "");
-  EXPECT_STREQ(columns[18].name, "F_P.f_x");
-  EXPECT_STREQ(columns[18].unit, "N");
-  EXPECT_STREQ(columns[21].name, "V_P.v_x");
-  EXPECT_STREQ(columns[21].unit, "M-PER-SEC");
-  // Flags and events log as exactly 0 or 1.
+  EXPECT_STREQ(columns[18].name, "push_ok");
+  EXPECT_STREQ(columns[18].unit, "");
+  EXPECT_STREQ(columns[19].name, "timeout");
+  EXPECT_STREQ(columns[20].name, "F_P.f_x");
+  EXPECT_STREQ(columns[20].unit, "N");
+  EXPECT_STREQ(columns[23].name, "V_P.v_x");
+  EXPECT_STREQ(columns[23].unit, "M-PER-SEC");
+  // How a decimated log keeps them: events and a monitor's flag are latched.
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    const std::string name = columns[i].name;
+    const robot::LogColumnKind kind =
+        name == "timeout" ? robot::LogColumnKind::Flag
+        : name == "timeout_event" || name == "height_lost" || name == "approach_ended"
+            ? robot::LogColumnKind::Event
+            : robot::LogColumnKind::Value;
+    EXPECT_EQ(columns[i].kind, kind) << name;
+  }
+  // Flags log as exactly 0 or 1, events as their codes (1 rising / until, 2
+  // falling / while-violated); each of the three events fires.
   std::vector<double> v(columns.size());
+  std::set<std::pair<std::string, double>> fired;
   for (std::uint64_t k = 0; k < 100; ++k) {
     robot::Command c;
     generated->tick(testing::measurement(k), c);
     generated->log_values(v);
-    for (std::size_t i = 12; i < 18; ++i)
-      EXPECT_TRUE(v[i] == 0.0 || v[i] == 1.0) << columns[i].name;
+    for (std::size_t i = 12; i < 20; ++i) {
+      EXPECT_TRUE(v[i] == 0.0 || v[i] == 1.0 ||
+                  (columns[i].kind == robot::LogColumnKind::Event && v[i] == 2.0))
+          << columns[i].name;
+      if (columns[i].kind == robot::LogColumnKind::Event && v[i] != 0.0)
+        fired.emplace(columns[i].name, v[i]);
+    }
     if (k > 0) {
-      EXPECT_NE(v[21], 0.0) << "the platform twist composed from the turning wheels";
+      EXPECT_NE(v[23], 0.0) << "the platform twist composed from the turning wheels";
     }
   }
+  EXPECT_TRUE(fired.count({"approach_ended", 2.0}))
+      << "the motion is aborted when its per-condition time <= 0.03 s fails";
+  EXPECT_TRUE(fired.count({"timeout_event", 1.0})) << "the timeout's rising edge";
 }
 
 }  // namespace

@@ -104,8 +104,14 @@ class ProgramBuilder {
     return s;
   }
 
-  void log(const std::string& name, int data, const std::string& unit = "") {
-    p.log.push_back({name, unit, data});
+  // A monitor's flag (level_flag) and every event are latched, as lowering does.
+  void log(const std::string& name, int data, const std::string& unit = "",
+           bool level_flag = false) {
+    const bool event = p.data[static_cast<std::size_t>(data)].type == ir::DataType::Event;
+    p.log.push_back({name, unit, data, -1,
+                     event        ? robot::LogColumnKind::Event
+                     : level_flag ? robot::LogColumnKind::Flag
+                                  : robot::LogColumnKind::Value});
   }
 
   ir::Program p;
@@ -174,10 +180,26 @@ inline ir::Program small_program(SourceFiles& files) {
   const int timeout_event = b.datum("timeout_event", T::Event);
   ir::Step& em = b.step(K::EdgeMonitor, "mon_timeout_edge", {late_err}, {timeout_event});
   em.constraint.tolerance = 0.0;
+  em.edges = runtime::Edges::Both;
   em.state = b.state(ir::StateKind::Monitor);
+  // height == 0.5 within 1 cm stops holding: a falling edge.
+  const int height_lost = b.datum("height_lost", T::Event);
+  ir::Step& fm = b.step(K::EdgeMonitor, "mon_height_fall", {height_err}, {height_lost});
+  fm.constraint.tolerance = 0.01;
+  fm.edges = runtime::Edges::Falling;
+  fm.state = b.state(ir::StateKind::Monitor);
+  // time <= 0.03 s: the motion's checked per-condition.
+  const int early = b.datum("early", T::Flag);
+  const int early_err = b.datum("early_err", T::Scalar, {}, "SEC");
+  ir::Step& lt = b.step(K::Evaluate, "cstr_early", {time}, {early, early_err});
+  lt.constraint = {runtime::ConstraintKind::LessThan, 0.0, 0.03, 0.0, 0.0, 0.0};
+  lt.has_error_output = true;
   const int approach = b.datum("approach", T::Flag);
-  ir::Step& gm = b.step(K::GuardedMotion, "motion_approach", {height_ok, timeout}, {approach});
-  gm.n_when = 0;  // starts at once; height_ok is a second until guard
+  const int approach_ended = b.datum("approach_ended", T::Event);
+  ir::Step& gm = b.step(K::GuardedMotion, "motion_approach", {early, height_ok, timeout},
+                        {approach, approach_ended});
+  gm.n_when = 0;   // starts at once
+  gm.n_while = 1;  // early is checked; height_ok is a second until guard
   gm.state = b.state(ir::StateKind::Motion);
   const int force = b.datum("force", T::Scalar, {}, "N");
   b.controller("pid", "pid_height", {height_err, approach}, {force},
@@ -228,9 +250,10 @@ inline ir::Program small_program(SourceFiles& files) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d,
           b.p.data[static_cast<std::size_t>(d)].unit);
   }
-  for (int d : {height_ok, late, timeout, timeout_event, approach, push_ok}) {
+  for (int d : {height_ok, late, timeout_event, height_lost, approach, approach_ended, push_ok}) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d);
   }
+  b.log("timeout", timeout, "", true);
   // Components of a wrench and a twist.
   b.p.log.push_back({"F_P.f_x", "N", F_P, 3});
   b.p.log.push_back({"F_P.m_z", "N-M", F_P, 2});
@@ -319,7 +342,8 @@ inline ir::Program arm_program(SourceFiles& files) {
   ir::Step& gt = b.step(K::Evaluate, "cstr_time", {time}, {late, late_err});
   gt.constraint = {runtime::ConstraintKind::GreaterThan, 0.0, 1.0, 0.0, 0.0, 0.0};
   const int reach = b.datum("reach", T::Flag);
-  ir::Step& gm = b.step(K::GuardedMotion, "motion_reach", {late}, {reach});
+  const int reach_ended = b.datum("reach_ended", T::Event);
+  ir::Step& gm = b.step(K::GuardedMotion, "motion_reach", {late}, {reach, reach_ended});
   gm.n_when = 0;
   gm.state = b.state(ir::StateKind::Motion);
 
@@ -406,7 +430,7 @@ inline ir::Program hostile_program(SourceFiles& files) {
   b.log("*/", capital, "M");
   b.log("class", keyword, "M");
   b.log("assert", ok);
-  b.log("unix", level);
+  b.log("unix", level, "", true);
   b.log("linux", edge);
   return b.p;
 }

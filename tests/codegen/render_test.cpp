@@ -83,7 +83,7 @@ TEST(Codegen, EveryStepIsACommentedBlockInScheduleOrder) {
             std::string::npos);
   const std::string hpp = file(render(p, &files), "controller.hpp");
   EXPECT_NE(hpp.find("inline constexpr std::size_t v_height_err = "), std::string::npos);
-  EXPECT_NE(hpp.find("std::array<double, 13> scalar{};"), std::string::npos);
+  EXPECT_NE(hpp.find("std::array<double, 14> scalar{};"), std::string::npos);
 }
 
 TEST(Codegen, TheArmIsRebuiltFromItsSegmentConstants) {

@@ -165,6 +165,21 @@ bad arm-behaviour mospec/solver.ttl 11 \
   '<https://ex.org/brake-none>: a BrakeAndHold has exactly one time-constant' \
   '<https://ex.org/float>: a Float does not brake'
 
+good guards mospec/guards.ttl
+bad guards mospec/guards.ttl 12 \
+  '<https://ex.org/motion-while>: <https://ex.org/exact> is a per-condition on a quantity no controller or assignment of the motion acts on' \
+  '<https://ex.org/band>: only an equality constraint has a tolerance' \
+  '<https://ex.org/negative>: a tolerance is a number >= 0' \
+  "<https://ex.org/seconds>: a tolerance is in the constrained quantity's unit" \
+  '<https://ex.org/twice>: an equality constraint has at most one tolerance' \
+  '<https://ex.org/twice>: a tolerance has exactly one value' \
+  '<https://ex.org/motion>: <https://ex.org/exact> is an equality constraint without a tolerance.*motion-specification#until' \
+  '<https://ex.org/motion>: <https://ex.org/exact> is an equality constraint without a tolerance.*motion-specification#when' \
+  '<https://ex.org/mon-exact>: only an edge-triggered monitor reports edges' \
+  '<https://ex.org/mon-exact>: the monitor watches the error of <https://ex.org/exact>, an equality constraint without a tolerance' \
+  '<https://ex.org/mon-sideways>: the monitor watches the error of <https://ex.org/exact>' \
+  '<https://ex.org/mon-sideways>: an edge-triggered monitor reports one edge: rising, falling or both'
+
 good monitors task/monitors.ttl
 bad monitors task/monitors.ttl 9 \
   '<https://ex.org/b1>: a monitor watches exactly one error signal' \

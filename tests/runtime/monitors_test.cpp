@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <limits>
 #include <vector>
 
+#include "runtime/steps.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::runtime {
@@ -134,6 +136,70 @@ TEST(Monitors, SetupChecks) {
   EXPECT_EQ(message({.enter = kNaN, .leave = 1}),
             "mon-contact: thresholds must not be NaN (enter nan, leave 1)");
   EXPECT_EQ(message({.enter = 1, .leave = 1}), "(no error)");
+}
+
+// The IR's kernels (steps.hpp): an edge monitor's event codes on an error
+// signal, within a tolerance, for each configuration of edges.
+TEST(EdgeMonitorStep, ReportsItsEdgesAsCodes) {
+  const std::vector<double> errors = {0.5, 0.009, -0.01, 0.02, 0.0, 0.3};
+  //                       satisfied:  no   yes    yes    no    yes  no
+  const auto codes = [&](Edges edges) {
+    MonitorState s;
+    std::vector<int> out;
+    for (double e : errors) out.push_back(steps::edge_monitor(s, e, 0.01, edges, true));
+    return out;
+  };
+  EXPECT_EQ(codes(Edges::Rising), (std::vector<int>{0, 1, 0, 0, 1, 0}));
+  EXPECT_EQ(codes(Edges::Falling), (std::vector<int>{0, 0, 0, 2, 0, 2}));
+  EXPECT_EQ(codes(Edges::Both), (std::vector<int>{0, 1, 0, 2, 1, 2}));
+  // Satisfied at the first sample: a rising edge (never a falling one).
+  MonitorState s;
+  EXPECT_EQ(steps::edge_monitor(s, 0.0, 0.0, Edges::Both, true), 1);
+  // Listed by a handler: it reports while the motion runs and in the tick it
+  // ends (a falling edge there is seen), then no more.
+  MonitorState g;
+  EXPECT_EQ(steps::edge_monitor(g, 0.0, 0.0, Edges::Falling, true), 0);
+  EXPECT_EQ(steps::edge_monitor(g, 1.0, 0.0, Edges::Falling, false), 2);
+  EXPECT_EQ(steps::edge_monitor(g, 0.0, 0.0, Edges::Both, false), 0);
+}
+
+// A guarded motion: starts when its `when` holds, ends through an `until`
+// (code 1) or, while running, through a violated `while` (code 2); the until
+// wins in the tick both happen; a violated while before the start is not
+// checked.
+TEST(GuardedMotionStep, EndsThroughUntilOrAViolatedWhile) {
+  using steps::MotionState;
+  struct Tick {
+    bool when, whiles, until;
+  };
+  const auto run = [](const std::vector<Tick>& ticks) {
+    MotionState state = MotionState::Idle;
+    std::vector<std::pair<bool, int>> out;
+    for (const Tick& t : ticks) {
+      const std::array<bool, 1> when{t.when}, whiles{t.whiles}, until{t.until};
+      std::uint8_t ended = 9;
+      const bool running = steps::guarded_motion(state, when, whiles, until, ended);
+      out.emplace_back(running, ended);
+    }
+    return std::make_pair(out, state);
+  };
+  using R = std::vector<std::pair<bool, int>>;
+  // Not started while `when` fails, although its while is violated.
+  auto [a, sa] = run({{false, false, false},
+                      {true, true, false},
+                      {true, true, false},
+                      {false, false, false},
+                      {true, true, false}});
+  EXPECT_EQ(a, (R{{false, 0}, {true, 0}, {true, 0}, {false, 2}, {false, 0}}));
+  EXPECT_EQ(sa, MotionState::Aborted);
+  // An until ends it normally, even in a tick its while is violated.
+  auto [b, sb] = run({{true, true, false}, {true, false, true}, {true, true, false}});
+  EXPECT_EQ(b, (R{{true, 0}, {false, 1}, {false, 0}}));
+  EXPECT_EQ(sb, MotionState::Done);
+  // A while violated in the tick the motion starts aborts it at once.
+  auto [c, sc] = run({{true, false, false}});
+  EXPECT_EQ(c, (R{{false, 2}}));
+  EXPECT_EQ(sc, MotionState::Aborted);
 }
 
 }  // namespace
