@@ -142,8 +142,11 @@ Value& Object::set(std::string key, Value v) {
 
 Value& Object::append_new(std::string key, Value v) {
   // Built in place: a temporary Member would cost a move and a destruction of
-  // its key and value.
-  members_.emplace_back(std::move(key), std::move(v), SourceLoc{});
+  // its key and value. (Default-constructed, then filled: clang < 16 has no
+  // parenthesised aggregate initialisation for emplace_back(key, value, loc).)
+  Member& m = members_.emplace_back();
+  m.key = std::move(key);
+  m.value = std::move(v);
   if (!index_.p && members_.size() > KeyIndex::kScanLimit) index_.p = std::make_unique<KeyIndex>();
   if (index_.p) index_.p->added(members_);
   return members_.back().value;
@@ -391,7 +394,10 @@ class Parser {
         members[same].value = std::move(v);
         members[same].key_loc = key_loc;
       } else {
-        members.emplace_back(std::move(key), std::move(v), key_loc);
+        Object::Member& m = members.emplace_back();
+        m.key = std::move(key);
+        m.value = std::move(v);
+        m.key_loc = key_loc;
         index.added(members);
       }
       skip_ws();
