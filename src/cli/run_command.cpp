@@ -56,6 +56,20 @@ std::unique_ptr<robot::Controller> generated_controller(const ir::Program& progr
   return codegen::load_controller(c.library, c.sha256);
 }
 
+// Each arm solve's `.degraded` column (ir::lowering::build_log) and the ticks
+// it was raised, in log order.
+std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::RunResult& r) {
+  constexpr std::string_view kSuffix = ".degraded";
+  std::vector<std::pair<std::string, std::uint64_t>> out;
+  // r.columns[0] is "t"; the controller's columns follow, as flag_ticks is indexed.
+  for (size_t i = 0; i < r.flag_ticks.size() && i + 1 < r.columns.size(); ++i) {
+    const std::string& name = r.columns[i + 1];
+    if (name.size() > kSuffix.size() && name.ends_with(kSuffix))
+      out.emplace_back(name.substr(0, name.size() - kSuffix.size()), r.flag_ticks[i]);
+  }
+  return out;
+}
+
 std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted) {
   nlohmann::ordered_json j;
   j["scenario"] = app;
@@ -125,6 +139,10 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   }
   j["events"] = std::move(events);
   j["events_not_listed"] = r.events_dropped;
+  // Per arm solver, the ticks whose solve lost constraint directions.
+  nlohmann::ordered_json degraded = nlohmann::ordered_json::object();
+  for (const auto& [solver, ticks] : degraded_solves(r)) degraded[solver] = ticks;
+  j["degraded_solves"] = std::move(degraded);
   // The table's edge runs along y of the world: the platform is aligned with
   // it at yaw 0.
   const double yaw = sim::last_value(r, "base_yaw");
@@ -228,6 +246,13 @@ Action add_run_command(CLI::App& app) {
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall
               << " s\n";
     const bool clamped = sim::report_clamps(std::cerr, r.clamps);
+    for (const auto& [solver, ticks] : degraded_solves(r)) {
+      if (ticks == 0) continue;
+      std::cerr << "mospec: warning: the solver '" << solver << "' lost constraint directions in "
+                << ticks << " of " << r.ticks
+                << " ticks (a singular configuration or conflicting constraints); its `.degraded` "
+                   "log column says when\n";
+    }
     if (r.instabilities > 0) {
       std::cerr << "mospec: error: MuJoCo reported " << r.instabilities
                 << " instability warning(s); the log is not trustworthy\n";

@@ -911,6 +911,7 @@ class Builder {
         put(s, "task", arm_names_[k].task);
         put(s, "workspace", arm_names_[k].ws);
         put(s, "port", std::to_string(a.port));
+        put(s, "degraded", out(st, 0));
         // in[0, drivers) are the drivers' data; the rest gate the solve: the
         // running flags of the motions that drive this arm (none running: hold).
         const std::size_t drivers = st.drivers();

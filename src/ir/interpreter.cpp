@@ -232,6 +232,7 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       if (!driven) {
         steps::arm_hold(arm.model, arm.data, arm.ws, idle_time_constant(solver),
                         command.arm_tau[static_cast<size_t>(solver.port)]);
+        s_.flags[out(0)] = false;
         break;
       }
       arm.ws.F_ext.fill(Vec6::Zero());
@@ -247,6 +248,7 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       }
       steps::arm_solve(arm.task_model, arm.model, arm.data, arm.ws,
                        command.arm_tau[static_cast<size_t>(solver.port)]);
+      s_.flags[out(0)] = arm.ws.status == runtime::Status::ConstraintsDegraded;
       break;
     }
     case StepKind::BaseForceDistribution: {

@@ -204,9 +204,10 @@ const KindEntry kStepKinds[] = {
       "ins: [signals..., (active flag)]; out: [control signal]"},
      &controller_signature},
     {{StepKind::ArmSolve, "arm-solve", std::nullopt, "slv:SolverWithInputAndOutput (its drivers)",
-      "ins: the drivers' data, then the motion gates; writes the arm's joint torques"},
+      "ins: the drivers' data, then the motion gates; out: [degraded flag]; writes the arm's "
+      "joint torques"},
      [](const Step&, const Program&) -> Signature {
-       return {{}, {}, true};
+       return {{}, {T::Flag}, true};
      }},
     {{StepKind::BaseForceDistribution, "base-force-distribution", std::nullopt,
       "mospec platform force-distribution solver",

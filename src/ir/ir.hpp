@@ -73,7 +73,8 @@ enum class StepKind : uint8_t {
   AnyOf,          // ins: [flags...] (2 or more); out: [flag] = any of them
   Controller,     // ins: [signals..., (active flag)]; out: [control signal]; Step::controller
                   // indexes controller_kinds() (controllers.hpp)
-  ArmSolve,       // solver; ins: drivers' data, motion gates; writes the arm's joint torques
+  ArmSolve,       // solver; ins: drivers' data, motion gates; out: [degraded flag]; writes
+                  // the arm's joint torques
   BaseForceDistribution,    // base solver; ins: [platform wrench, motion gates...]; writes the hub
                             // torques
   BaseVelocityComposition,  // base solver; out: [platform twist] from pivots and wheel rates

@@ -442,6 +442,11 @@ void lower_arm(State& st, TermId solver) {
   }
   // Drivers a level lists but the solver's drivers do not.
   st.pending_iri = arm.iri;
+  // Whether the tick's solve lost constraint directions (ACHD's
+  // ConstraintsDegraded: the coupling matrix is singular in this
+  // configuration, or the constraints conflict): logged, and counted by a run.
+  solve.out = {
+      st.synthetic(arm.iri + "#degraded", arm.name + "_degraded", DataType::Flag, arm.where)};
   st.program.arms.push_back(std::move(arm));
   st.add_step(std::move(kin));
   st.add_step(std::move(solve));

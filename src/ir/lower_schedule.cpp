@@ -105,8 +105,11 @@ void build_log(State& st) {
         st.program.log.push_back({base + ".mz", "N-M", s.in[0], 2});
         break;
       }
-      // What monitors and motions signal is latched: a log that keeps every
-      // N-th tick shows it in the next row it keeps.
+      // What monitors, motions and solves signal is latched: a log that keeps
+      // every N-th tick shows it in the next row it keeps.
+      case StepKind::ArmSolve:
+        add(".degraded", s.out[0], robot::LogColumnKind::Flag);
+        break;
       case StepKind::LevelMonitor:
         add(".flag", s.out[0], robot::LogColumnKind::Flag);
         break;

@@ -91,6 +91,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     if (columns[i].kind != robot::LogColumnKind::Value) latched.push_back(i);
   }
   std::vector<unsigned> latch(columns.size(), 0);
+  r.flag_ticks.assign(columns.size(), 0);
   robot::MeasuredState state;
   robot::Command command, idle_command;
   std::unique_ptr<GravityCompensation> hold;
@@ -119,7 +120,10 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
         const bool event = columns[i].kind == robot::LogColumnKind::Event;
         const auto code = event && v > 0.0 && v < 256.0 ? static_cast<unsigned>(v) : 1u;
         latch[i] |= code;
-        if (!event) continue;
+        if (!event) {
+          ++r.flag_ticks[i];
+          continue;
+        }
         if (r.events.size() < kMaxRunEvents) {
           r.events.push_back({k, state.clock.t, i + 1, static_cast<int>(code)});
         } else {

@@ -68,6 +68,9 @@ struct RunResult {
   // any tick since the previous row, so decimation loses nothing.
   std::vector<RunEvent> events;
   std::uint64_t events_dropped = 0;
+  // Per controller log column: in how many ticks a flag column was raised (0
+  // for the other kinds); e.g. an arm solve's `.degraded`.
+  std::vector<std::uint64_t> flag_ticks;
   // Safety summary over the whole run.
   bool non_finite = false;              // a command was NaN/inf (never sent: the world zeroes it)
   std::uint64_t non_finite_values = 0;  // logged rows with a NaN/inf value (e.g. from a NaN sensor)

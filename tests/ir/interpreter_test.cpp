@@ -315,3 +315,27 @@ TEST(Interpreter, AnyOfIsOnWhileAnyOfItsFlagsIs) {
 
 }  // namespace
 }  // namespace mospec::ir
+
+namespace mospec::ir {
+namespace {
+
+// Every arm solve logs whether its ACHD lost constraint directions (the
+// kernel's status: tests/runtime/arm_steps_test.cpp); a bent arm standing in
+// sc0a's initial pose solves all five end-effector constraints.
+TEST(Interpreter, AnArmSolveLogsWhetherItsSolveDegraded) {
+  Interpreter in(sc0a());
+  const int degraded = column(in, "slv-rightarm.degraded");
+  EXPECT_EQ(in.log_columns()[static_cast<size_t>(degraded)].kind, robot::LogColumnKind::Flag)
+      << "latched like a monitor's flag, so a decimated log keeps it";
+  robot::MeasuredState state = standing_robot();
+  robot::Command command;
+  std::vector<double> values(in.log_columns().size());
+  for (int k = 0; k < 3; ++k) {
+    tick_at(in, k, state, command, values);
+    EXPECT_EQ(values[static_cast<size_t>(column(in, "motion-rightarm.running"))], 1.0);
+    EXPECT_EQ(values[static_cast<size_t>(degraded)], 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace mospec::ir

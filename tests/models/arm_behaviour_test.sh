@@ -33,7 +33,7 @@ PY
 runs_alike() {  # NAME DURATION (from the tree's top: the world file names robots/ relative to it)
   cd "$work/$1" || return
   expect "$1: runs (interpreted)" 0 "" -- "$mospec" run models/sc0a.json --sim \
-    --interpret --duration "$2" --log "$work/$1.csv"
+    --interpret --duration "$2" --log "$work/$1.csv" --summary "$work/$1.json"
   expect "$1: runs (generated)" 0 "" -- "$mospec" run models/sc0a.json --sim \
     --duration "$2" --log "$work/$1.gen.csv" --cache "$work/cache"
   check "$1: generated and interpreted logs are byte-identical" cmp -s "$work/$1.csv" "$work/$1.gen.csv"
@@ -61,6 +61,8 @@ runs_alike falls 10
 held=$(max_elbow_error "$work/compensated.csv")
 sagged=$(max_elbow_error "$work/falls.csv")
 check "compensated: the elbow holds within 2 cm (max error $held m)" within "$held" 0 0.02
+check "compensated: the summary counts the solver's degraded ticks (none)" \
+  grep -Pzq '"degraded_solves": \{\n *"slv-rightarm": 0\n *\}' "$work/compensated.json"
 check "under gravity the undriven elbow sags more than 5 cm (max error $sagged m)" within "$sagged" 0.05 10
 
 # The motion ends at 2 s (its timeout); the arm then brakes with the model's time constant.

@@ -77,6 +77,28 @@ TEST(ArmSteps, AGravityCompensatedTaskHoldsUndrivenDirectionsAgainstGravity) {
   }
 }
 
+TEST(ArmSteps, ASolveWithMoreConstraintsThanJointsReportsItDegraded) {
+  // The toy arm has five joints: six tip constraints cannot all hold, and the
+  // solve says so (the IR logs it as the solve's `.degraded` flag); three can.
+  const Arm arm;
+  const AchdModel model(arm.chain, kGravity);
+  AchdData data(model);
+  std::mt19937 rng(13);
+  for (const int nc : {3, 6}) {
+    steps::ArmWorkspace ws(model, nc);
+    const testing::RandomState s = testing::random_state(rng, model.nq);
+    std::vector<double> q(s.q.data(), s.q.data() + model.nq),
+        qd(static_cast<size_t>(model.nq), 0.0);
+    steps::arm_kinematics(model, data, ws, q, qd);
+    for (int k = 0; k < nc; ++k) ws.alpha_To_B(k, k) = 1.0;
+    ws.beta.setZero();
+    std::vector<double> tau(static_cast<size_t>(model.nq));
+    steps::arm_solve(model, model, data, ws, tau);
+    EXPECT_EQ(ws.status, nc == 6 ? Status::ConstraintsDegraded : Status::Ok)
+        << nc << " constraints";
+  }
+}
+
 TEST(ArmSteps, BrakeAndHoldDecaysEveryJointVelocityWithTheModelsTimeConstant) {
   const Arm arm;
   const AchdModel physical(arm.chain, kGravity);
