@@ -82,9 +82,13 @@ namespace {
 struct Signature {
   Signature(std::vector<DataType> i, std::vector<DataType> o, bool variadic = false,
             std::string why = {})
-      : in(std::move(i)), out(std::move(o)), variadic_in(variadic), problem(std::move(why)) {}
+      : in(std::move(i)),
+        out(std::move(o)),
+        variadic_in(variadic),
+        variadic_out(variadic),
+        problem(std::move(why)) {}
   std::vector<DataType> in, out;
-  bool variadic_in = false;
+  bool variadic_in = false, variadic_out = false;  // any number, of any type (checked elsewhere)
   std::string problem;
 };
 
@@ -207,7 +211,9 @@ const KindEntry kStepKinds[] = {
       "ins: the drivers' data, then the motion gates; out: [degraded flag]; writes the arm's "
       "joint torques"},
      [](const Step&, const Program&) -> Signature {
-       return {{}, {T::Flag}, true};
+       Signature s{{}, {T::Flag}, true};
+       s.variadic_out = false;
+       return s;
      }},
     {{StepKind::BaseForceDistribution, "base-force-distribution", std::nullopt,
       "mospec platform force-distribution solver",
@@ -363,18 +369,24 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
     for (int d : st.out) {
       if (!f.valid_datum(d)) f.step(st, "writes " + f.describe(d));
     }
-    if (!sig.variadic_in && sig.problem.empty()) {
-      if (sig.in.size() != st.in.size() || sig.out.size() != st.out.size()) {
-        f.step(st, "has " + std::to_string(st.in.size()) + " inputs and " +
-                       std::to_string(st.out.size()) + " outputs; expected " +
-                       std::to_string(sig.in.size()) + " and " + std::to_string(sig.out.size()));
+    if (sig.problem.empty()) {
+      const bool ins_ok = sig.variadic_in || sig.in.size() == st.in.size();
+      const bool outs_ok = sig.variadic_out || sig.out.size() == st.out.size();
+      if (!ins_ok || !outs_ok) {
+        f.step(
+            st,
+            "has " + std::to_string(st.in.size()) + " inputs and " + std::to_string(st.out.size()) +
+                " outputs; expected " +
+                (sig.variadic_in ? std::string("any number of") : std::to_string(sig.in.size())) +
+                " and " +
+                (sig.variadic_out ? std::string("any number of") : std::to_string(sig.out.size())));
       } else {
-        for (size_t k = 0; k < st.in.size(); ++k) {
+        for (size_t k = 0; !sig.variadic_in && k < st.in.size(); ++k) {
           if (f.valid_datum(st.in[k]) && p.data[static_cast<size_t>(st.in[k])].type != sig.in[k])
             f.step(st, "input " + std::to_string(k) + " must be a " +
                            std::string(to_string(sig.in[k])) + "; it is " + f.describe(st.in[k]));
         }
-        for (size_t k = 0; k < st.out.size(); ++k) {
+        for (size_t k = 0; !sig.variadic_out && k < st.out.size(); ++k) {
           if (f.valid_datum(st.out[k]) && p.data[static_cast<size_t>(st.out[k])].type != sig.out[k])
             f.step(st, "output " + std::to_string(k) + " must be a " +
                            std::string(to_string(sig.out[k])) + "; it is " + f.describe(st.out[k]));

@@ -351,7 +351,9 @@ inline ir::Program arm_program(SourceFiles& files) {
   arm.cartesian_forces = {{"https://mospec.example/tests/codegen/push", n - 1, F_E_B, 0}};
   arm.joint_forces = {{"https://mospec.example/tests/codegen/tau-1", 1, tau_1, 0}};
   b.p.arms.push_back(std::move(arm));
-  ir::Step& solve = b.step(K::ArmSolve, "right_arm_solve", {acc, F_E_B, tau_1, reach}, {});
+  const int degraded = b.datum("right_arm_degraded", T::Flag);
+  ir::Step& solve =
+      b.step(K::ArmSolve, "right_arm_solve", {acc, F_E_B, tau_1, reach}, {degraded});
   solve.solver = 0;
   solve.n_drivers = 3;
 
@@ -421,7 +423,9 @@ inline ir::Program hostile_program(SourceFiles& files) {
     b.step(K::ViewRead, solvers[a].first + "_view", {outputs[a][0]}, {outputs[a][1]}).views = {5};
   }
   for (std::size_t a = 0; a < solvers.size(); ++a) {
-    ir::Step& solve = b.step(K::ArmSolve, solvers[a].first + "_solve", {forces[a], out}, {});
+    const int degraded = b.datum(solvers[a].first + "_degraded", T::Flag);
+    ir::Step& solve =
+        b.step(K::ArmSolve, solvers[a].first + "_solve", {forces[a], out}, {degraded});
     solve.solver = static_cast<int>(a);
   }
   b.log("?\?/", time, "SEC");

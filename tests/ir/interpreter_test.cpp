@@ -339,3 +339,22 @@ TEST(Interpreter, AnArmSolveLogsWhetherItsSolveDegraded) {
 
 }  // namespace
 }  // namespace mospec::ir
+
+namespace mospec::ir {
+namespace {
+
+// A step whose inputs are any number (an arm solve's drivers and gates) still
+// has its outputs checked: the back-ends write its degraded flag.
+TEST(Verifier, ChecksTheOutputsOfAStepWithAnyNumberOfInputs) {
+  Program p = sc0a();
+  ASSERT_TRUE(check(p).empty());
+  for (Step& st : p.steps) {
+    if (st.kind == StepKind::ArmSolve) st.out.clear();
+  }
+  std::string all;
+  for (const Diagnostic& d : check(p)) all.append(d.message).append("\n");
+  EXPECT_NE(all.find("0 outputs; expected any number of and 1"), std::string::npos) << all;
+}
+
+}  // namespace
+}  // namespace mospec::ir
