@@ -950,6 +950,8 @@ class Builder {
           put(e, "column", std::to_string(c));
           put(e, "source", ref(a.acceleration_constraints[c].energy));
           put(e, "iri", comment_text(a.acceleration_constraints[c].iri));
+          if (a.acceleration_constraints[c].engaged_by >= 0)
+            put(e, "engaged_by", ref(a.acceleration_constraints[c].engaged_by));
           append(betas, std::move(e));
         }
         put(s, "forces", std::move(forces));

@@ -243,8 +243,10 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       for (const JointForce& f : solver.joint_forces)
         arm.ws.tau_ff[f.joint] += s_.scalars[slot(f.force)];
       for (size_t k = 0; k < solver.acceleration_constraints.size(); ++k) {
-        arm.ws.beta[static_cast<Eigen::Index>(k)] =
-            s_.scalars[slot(solver.acceleration_constraints[k].energy)];
+        const AccelerationConstraint& ac = solver.acceleration_constraints[k];
+        arm.ws.beta[static_cast<Eigen::Index>(k)] = s_.scalars[slot(ac.energy)];
+        // NaN != 0: a faulty bound stays engaged (and faults the solve).
+        arm.ws.engaged[k] = ac.engaged_by < 0 || s_.scalars[slot(ac.engaged_by)] != 0.0;
       }
       steps::arm_solve(arm.task_model, arm.model, arm.data, arm.ws,
                        command.arm_tau[static_cast<size_t>(solver.port)]);

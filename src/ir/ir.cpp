@@ -482,6 +482,9 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
       if (c.component < 0 || c.component > 5)
         f.add(a.where, "arm solver '" + a.name + "': acceleration constraint '" + c.iri +
                            "' has component " + std::to_string(c.component) + "; expected 0..5");
+      if (c.engaged_by >= 0 && !f.valid_datum(c.engaged_by))
+        f.add(a.where, "arm solver '" + a.name + "': acceleration constraint '" + c.iri +
+                           "' is engaged by " + f.describe(c.engaged_by));
     }
     if (a.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints))
       f.add(a.where, "arm solver '" + a.name + "' has " +
@@ -634,8 +637,10 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["outputs"] = std::move(outs);
     Json acc = Json::array();
     for (const AccelerationConstraint& c : a.acceleration_constraints) {
-      acc.push_back(
-          {{"iri", c.iri}, {"component", c.component}, {"energy", c.energy}, {"level", c.level}});
+      Json e = {
+          {"iri", c.iri}, {"component", c.component}, {"energy", c.energy}, {"level", c.level}};
+      if (c.engaged_by >= 0) e["engaged-by"] = c.engaged_by;
+      acc.push_back(std::move(e));
     }
     e["acceleration-constraints"] = std::move(acc);
     Json frc = Json::array();

@@ -154,6 +154,11 @@ struct AccelerationConstraint {
   int component = 0;  // 0..5 of the root-frame spatial acceleration of the tip (angular first)
   int energy = -1;    // scalar data: the constraint's value (beta)
   int level = 0;      // priority level (0 = highest)
+  // One-sided: the error of the less-than/greater-than constraint whose
+  // controller produces `energy`. The direction is constrained only while
+  // that error is non-zero (the inequality violated); while it is satisfied
+  // the direction moves freely. -1: always constrained.
+  int engaged_by = -1;
 };
 struct CartesianForce {
   std::string iri;

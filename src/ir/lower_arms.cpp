@@ -495,6 +495,65 @@ void check_acceleration_energies(State& st, const ArmSolver& arm) {
   }
 }
 
+// A controller acting directly on the error of a less-than/greater-than
+// constraint drives its acceleration constraint one-sided: the row is engaged
+// only while the inequality is violated (a non-zero error), so a satisfied
+// bound leaves its direction free instead of locking it. An inequality reached
+// through anything else (an operator mixing it with other signals) has no
+// single error that says when the bound is reached: refused.
+void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
+  for (AccelerationConstraint& ac : arm.acceleration_constraints) {
+    const auto from = st.producer.find(ac.energy);
+    if (from == st.producer.end() || from->second < 0) continue;
+    const Step& controller = st.steps[static_cast<size_t>(from->second)];
+    if (controller.kind == StepKind::Controller && !controller.in.empty()) {
+      const auto e = st.producer.find(controller.in[0]);
+      if (e != st.producer.end() && e->second >= 0) {
+        const Step& evaluate = st.steps[static_cast<size_t>(e->second)];
+        const auto kind = evaluate.constraint.kind;
+        if (evaluate.kind == StepKind::Evaluate && (kind == runtime::ConstraintKind::LessThan ||
+                                                    kind == runtime::ConstraintKind::GreaterThan)) {
+          ac.engaged_by = controller.in[0];
+          solve.in.push_back(ac.engaged_by);
+          continue;
+        }
+      }
+    }
+    // Anything else upstream: look for an inequality feeding it indirectly.
+    std::set<int> seen;
+    std::vector<int> todo{ac.energy};
+    while (!todo.empty()) {
+      const int d = todo.back();
+      todo.pop_back();
+      if (!seen.insert(d).second) continue;
+      const auto it = st.producer.find(d);
+      if (it == st.producer.end() || it->second < 0) continue;
+      const Step& p = st.steps[static_cast<size_t>(it->second)];
+      const auto kind = p.constraint.kind;
+      if (p.kind == StepKind::Evaluate && (kind == runtime::ConstraintKind::LessThan ||
+                                           kind == runtime::ConstraintKind::GreaterThan)) {
+        st.error(st.term(ac.iri), "unsupported-one-sided",
+                 "the acceleration constraint '" + ac.iri + "' is driven by the inequality '" +
+                     p.iri + "' through '" + controller.iri +
+                     "', not by a controller acting on its error alone; a less-than or "
+                     "greater-than constraint drives a direction one-sided (only while it is "
+                     "violated), which mospec can do only when one controller acts directly on "
+                     "that constraint's error: feed the controller the evaluator's error, or "
+                     "use an equality or bilateral constraint");
+        break;
+      }
+      // Signals flow through controllers (not their running flag) and operators.
+      if (p.kind == StepKind::Controller) {
+        const size_t signals = controller_kinds()[static_cast<size_t>(p.controller)].in.size();
+        todo.insert(todo.end(), p.in.begin(),
+                    p.in.begin() + static_cast<std::ptrdiff_t>(std::min(signals, p.in.size())));
+      } else if (p.kind == StepKind::Operator) {
+        todo.insert(todo.end(), p.in.begin(), p.in.end());
+      }
+    }
+  }
+}
+
 }  // namespace
 
 // A Cartesian force on the constrained segment whose view writes a component
@@ -503,8 +562,13 @@ void check_acceleration_energies(State& st, const ArmSolver& arm) {
 // lowered: a wrench assembled by views writes exactly their components (a
 // wrench an operator computes may point anywhere and is not judged here).
 void check_driver_directions(State& st) {
-  for (const ArmSolver& arm : st.program.arms) {
+  for (size_t a = 0; a < st.program.arms.size(); ++a) {
+    ArmSolver& arm = st.program.arms[a];
     check_acceleration_energies(st, arm);
+    for (Step& solve : st.steps) {
+      if (solve.kind == StepKind::ArmSolve && solve.solver == static_cast<int>(a))
+        mark_one_sided(st, arm, solve);
+    }
     // One wrench applied by two Cartesian forces would push twice.
     std::map<int, const CartesianForce*> applied_by;
     for (const CartesianForce& cf : arm.cartesian_forces) {
@@ -525,7 +589,9 @@ void check_driver_directions(State& st) {
       if (writer.kind != StepKind::ViewWrite) continue;
       for (int component : writer.views) {
         for (const AccelerationConstraint& ac : arm.acceleration_constraints) {
-          if (ac.component != component) continue;
+          // A one-sided row cancels the force only while its bound is hit:
+          // the force moves the tip until then (a limit, not a conflict).
+          if (ac.component != component || ac.engaged_by >= 0) continue;
           const TermId force = st.term(cf.iri), constraint = st.term(ac.iri);
           st.error(force, "driven-twice",
                    "the Cartesian force '" + cf.iri + "' pushes along the " +

@@ -12,8 +12,11 @@ ArmWorkspace::ArmWorkspace(const AchdModel& model, int constraints)
       tau_ff(JointVector::Zero(model.nq)),
       alpha_To_B(ConstraintMatrix::Zero(6, constraints)),
       beta(ConstraintVector::Zero(constraints)),
+      alpha_engaged(ConstraintMatrix::Zero(6, constraints)),
+      beta_engaged(ConstraintVector::Zero(constraints)),
       tau_command(JointVector::Zero(model.nq)) {
   F_ext.fill(Vec6::Zero());
+  engaged.fill(true);
 }
 
 void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
@@ -54,11 +57,21 @@ void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, Ach
     arm_hold(physical_model, data, ws, kFaultHoldTimeConstant, tau_out);
     return;
   }
-  bool finite = ws.tau_ff.allFinite() && ws.beta.allFinite();
+  // Pack the engaged columns (all of them, unless a one-sided constraint is
+  // satisfied): fixed-capacity storage, nothing allocated.
+  Eigen::Index engaged = 0;
+  for (Eigen::Index k = 0; k < ws.beta.size(); ++k) {
+    if (!ws.engaged[static_cast<std::size_t>(k)]) continue;
+    ws.alpha_engaged.col(engaged) = ws.alpha_To_B.col(k);
+    ws.beta_engaged[engaged] = ws.beta[k];
+    ++engaged;
+  }
+  const auto beta = ws.beta_engaged.head(engaged);
+  bool finite = ws.tau_ff.allFinite() && beta.allFinite();
   for (std::size_t i = 0; i < n; ++i) finite = finite && ws.F_ext[i].allFinite();
   if (finite) {
     ws.status = achd(model, data, ws.q, ws.qd, ws.tau_ff, SegmentWrenches(ws.F_ext.data(), n),
-                     ws.alpha_To_B, ws.beta);
+                     ws.alpha_engaged.leftCols(engaged), beta);
   } else {
     ws.status = Status::SizeMismatch;  // reported as a fault: nothing solved
   }

@@ -27,7 +27,14 @@ struct ArmWorkspace {
   std::array<Vec6, kMaxJoints> F_ext{};
   ConstraintMatrix alpha_To_B;  // 6 x nc, filled at setup (unit columns)
   ConstraintVector beta;        // nc, filled every tick from the drivers
-  JointVector tau_command;      // what is sent to the arm
+  // Which columns constrain this tick (filled with beta). A column driven from
+  // a one-sided (less-than/greater-than) constraint is engaged only while
+  // that inequality is violated; a disengaged column leaves its direction to
+  // the least-constrained motion, as if the column were not there.
+  std::array<bool, kMaxConstraints> engaged{};
+  ConstraintMatrix alpha_engaged;  // the engaged columns, packed left (setup-sized)
+  ConstraintVector beta_engaged;
+  JointVector tau_command;  // what is sent to the arm
   Status status = Status::Ok;
   bool input_fault = false;  // the last sample had a non-finite q or qd
   bool any_valid = false;    // a complete finite sample has been seen
@@ -58,12 +65,13 @@ inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
                                   data.V[static_cast<std::size_t>(segment)]);
 }
 
-// Solves ACHD with the workspace's drivers (F_ext, tau_ff, alpha, beta) and
-// computes the joint torques to send. The arm runs gravity-compensated: ACHD
-// solves the task in `task_model`, the chain without gravity (so directions no
-// driver controls keep their velocity instead of falling), and the command
-// realises that motion on the real robot, where the drivers' wrenches are
-// virtual and gravity is real:
+// Solves ACHD with the workspace's drivers (F_ext, tau_ff, alpha, beta; the
+// engaged columns only) in `task_model` and computes the joint torques to
+// send. `task_model` carries the solver's gravity (directions no driver
+// controls fall, the paper's least-constrained motion) or none
+// (mos-slv:GravityCompensated: they keep their velocity); either way the
+// command realises the solved motion on the real robot, where the drivers'
+// wrenches are virtual and gravity is real:
 //   tau_command = rne(q, qd, qdd) in `physical_model` (with the solver's
 //   gravity) and without F_ext.
 // On a sensor fault (input_fault) it holds the arm (arm_hold) on the last

@@ -18,6 +18,7 @@
 #include "runtime/crba.hpp"
 #include "runtime/kinematics.hpp"
 #include "runtime/rne.hpp"
+#include "runtime/steps.hpp"
 #include "test_robots.hpp"
 // Defines the replacement allocator: this translation unit only, and last.
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order)
@@ -86,6 +87,30 @@ void run_all_algorithms(const Chain& chain, int nc) {
             }),
             0)
       << "rne, forward_kinematics, tip_jacobian, mass_matrix, forward_dynamics";
+}
+
+// The arm solve step packs the engaged columns of one-sided constraints into
+// setup-sized storage: engaging and disengaging rows allocates nothing.
+TEST_F(NoAllocation, ArmSolveWithOneSidedRows) {
+  const Chain chain = chain_from_urdf(testing::kToyUrdf, "world", "tool");
+  const AchdModel model(chain, Vec3(0.0, 0.0, -9.81));
+  AchdData data(model);
+  steps::ArmWorkspace ws(model, 3);
+  ws.alpha_To_B(2, 0) = ws.alpha_To_B(3, 1) = ws.alpha_To_B(5, 2) = 1.0;
+  ws.beta << 0.5, 7.0, -1.0;
+  std::vector<double> q(static_cast<size_t>(model.nq), 0.3), qd(q.size(), 0.1), tau(q.size());
+  int disengaged = 0;
+  const long n = alloc_counter::during([&] {
+    for (int k = 0; k < 10000; ++k) {
+      q[static_cast<size_t>(k % model.nq)] += 1e-4;
+      for (int c = 0; c < 3; ++c) ws.engaged[static_cast<size_t>(c)] = ((k >> c) & 1) != 0;
+      disengaged += !ws.engaged[1];
+      steps::arm_kinematics(model, data, ws, q, qd);
+      steps::arm_solve(model, model, data, ws, tau);
+    }
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_GT(disengaged, 0);
 }
 
 TEST_F(NoAllocation, ToyArm) {

@@ -99,6 +99,43 @@ TEST(ArmSteps, ASolveWithMoreConstraintsThanJointsReportsItDegraded) {
   }
 }
 
+TEST(ArmSteps, ADisengagedColumnLeavesItsDirectionFree) {
+  // A one-sided (less-than/greater-than) row is disengaged while its bound is
+  // satisfied: the solve is exactly the one without that column, whatever its
+  // beta says, and not one that holds the direction at beta (issue #15).
+  const Arm arm;
+  const AchdModel model(arm.chain, kGravity);
+  AchdData data(model);
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 10; ++trial) {
+    const testing::RandomState s = testing::random_state(rng, model.nq);
+    std::vector<double> q(s.q.data(), s.q.data() + model.nq),
+        qd(s.qd.data(), s.qd.data() + model.nq);
+    // Three rows (angular z, linear x, linear z); the middle one disengaged.
+    steps::ArmWorkspace three(model, 3);
+    three.alpha_To_B(2, 0) = three.alpha_To_B(3, 1) = three.alpha_To_B(5, 2) = 1.0;
+    three.beta << 0.5, 7.0, -1.0;
+    three.engaged[1] = false;
+    steps::arm_kinematics(model, data, three, q, qd);
+    std::vector<double> tau_three(static_cast<size_t>(model.nq));
+    steps::arm_solve(model, model, data, three, tau_three);
+    const JointVector qdd_three = data.qdd;
+    // The same without the row.
+    steps::ArmWorkspace two(model, 2);
+    two.alpha_To_B(2, 0) = two.alpha_To_B(5, 1) = 1.0;
+    two.beta << 0.5, -1.0;
+    steps::arm_kinematics(model, data, two, q, qd);
+    std::vector<double> tau_two(static_cast<size_t>(model.nq));
+    steps::arm_solve(model, model, data, two, tau_two);
+    EXPECT_EQ(tau_three, tau_two) << "trial " << trial;
+    EXPECT_EQ(three.status, two.status);
+    // Engaged, the row changes the motion.
+    three.engaged[1] = true;
+    steps::arm_solve(model, model, data, three, tau_three);
+    EXPECT_GT((data.qdd - qdd_three).norm(), 1e-3) << "trial " << trial;
+  }
+}
+
 TEST(ArmSteps, BrakeAndHoldDecaysEveryJointVelocityWithTheModelsTimeConstant) {
   const Arm arm;
   const AchdModel physical(arm.chain, kGravity);
