@@ -252,7 +252,7 @@ Action add_run_command(CLI::App& app) {
     std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall
               << " s\n";
-    const bool clamped = sim::report_clamps(std::cerr, r.clamps);
+    sim::report_clamps(std::cerr, r.clamps);  // a clamp is a limit breach: the verdict fails
     for (const auto& [solver, ticks] : degraded_solves(r)) {
       if (ticks == 0) continue;
       std::cerr << "mospec: warning: the solver '" << solver << "' lost constraint directions in "
@@ -260,7 +260,6 @@ Action add_run_command(CLI::App& app) {
                 << " ticks (a singular configuration or conflicting constraints); its `.degraded` "
                    "log column says when\n";
     }
-    (void)clamped;  // a clamp is a limit breach: the verdict fails
     if (r.instabilities > 0) {
       std::cerr << "mospec: error: MuJoCo reported " << r.instabilities
                 << " instability warning(s); the log is not trustworthy\n";
