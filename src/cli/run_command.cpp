@@ -11,6 +11,7 @@
 #include "cli/faults.hpp"
 #include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
+#include "cli/verdict.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
 #include "description/base_rdf.hpp"
@@ -70,7 +71,8 @@ std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::Ru
   return out;
 }
 
-std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted) {
+std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted,
+                         const Verdict& verdict) {
   nlohmann::ordered_json j;
   j["scenario"] = app;
   j["controller"] = interpreted ? "interpreted" : "generated";
@@ -154,6 +156,8 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
         std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
   }
   j["final"] = std::move(final_values);
+  // What happened, in short (cli/verdict.hpp).
+  j["verdict"] = verdict.json;
   return j.dump(2) + "\n";
 }
 
@@ -229,6 +233,8 @@ Action add_run_command(CLI::App& app) {
     options.idle = {true, true};
     for (const ir::ArmSolver& a : program->arms) options.idle[static_cast<size_t>(a.port)] = false;
     options.arm = &arm;
+    const VerdictPlan plan = plan_verdict(*program);
+    watch_for_verdict(plan, options);
     std::unique_ptr<robot::Controller> controller;
     if (flags->interpret) {
       controller = std::make_unique<ir::Interpreter>(std::move(*program));
@@ -238,14 +244,15 @@ Action add_run_command(CLI::App& app) {
     sim::World world(config, arm);
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
     const sim::RunResult r = sim::run(world, *controller, options);
+    const Verdict verdict = judge(plan, r);
     if (!flags->log.empty()) write_output(flags->log, r.csv);
     if (!flags->summary.empty()) {
-      write_output(flags->summary, summary_json(app_path, r, flags->interpret));
+      write_output(flags->summary, summary_json(app_path, r, flags->interpret, verdict));
     }
     std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall
               << " s\n";
-    const bool clamped = sim::report_clamps(std::cerr, r.clamps);
+    sim::report_clamps(std::cerr, r.clamps);  // a clamp is a limit breach: the verdict fails
     for (const auto& [solver, ticks] : degraded_solves(r)) {
       if (ticks == 0) continue;
       std::cerr << "mospec: warning: the solver '" << solver << "' lost constraint directions in "
@@ -256,13 +263,14 @@ Action add_run_command(CLI::App& app) {
     if (r.instabilities > 0) {
       std::cerr << "mospec: error: MuJoCo reported " << r.instabilities
                 << " instability warning(s); the log is not trustworthy\n";
-      return kExitFindings;
     }
     if (r.non_finite) {
       std::cerr << "mospec: error: the controller commanded a value that is not finite\n";
-      return kExitFindings;
     }
-    return clamped ? kExitFindings : kExitOk;
+    // Exit 1 when a limit was breached, a command was not finite, a `while`
+    // aborted a motion or MuJoCo was unstable.
+    std::cerr << verdict.text;
+    return verdict.failed ? kExitFindings : kExitOk;
   };
 }
 

@@ -101,19 +101,63 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
         *options.arm,
         std::array<runtime::Pose, robot::kArms>{config.arms[0].X_PB, config.arms[1].X_PB});
   }
+  for (const std::size_t i : options.watch) {
+    if (i >= columns.size())
+      throw Error("invalid-run-options", "a watched log column is out of range");
+  }
+  for (const auto& arm : options.pushing) {
+    for (const std::size_t i : arm) {
+      if (i >= columns.size())
+        throw Error("invalid-run-options", "a pushing log column is out of range");
+    }
+  }
+  std::vector<double> watched(options.watch.size(), 0.0);
+  std::array<bool, robot::kArms> pushing{};
+  std::array<bool, robot::kArms> touched{};        // contact since the force was last not commanded
+  std::array<std::uint64_t, robot::kArms> loss{};  // ticks of the current loss
+  for (size_t a = 0; a < robot::kArms; ++a) r.contact[a].observed = !options.pushing[a].empty();
+  const bool read_values = !latched.empty() || !options.watch.empty() ||
+                           !options.pushing[0].empty() || !options.pushing[1].empty();
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t k = 0; k < ticks; ++k) {
     world.read(state);
-    for (const auto& arm : state.arm) {
+    bool beyond = false;
+    for (size_t a = 0; a < state.arm.size(); ++a) {
+      const auto& arm = state.arm[a];
       for (size_t j = 0; j < arm.q.size(); ++j) {
-        if (arm.q[j] < config.actuation.lower[j] || arm.q[j] > config.actuation.upper[j]) {
-          r.joint_limit_exceeded = true;
+        const double excess =
+            std::max(config.actuation.lower[j] - arm.q[j], arm.q[j] - config.actuation.upper[j]);
+        if (!(excess > 0.0)) continue;
+        r.joint_limit_exceeded = true;
+        if (!beyond) {
+          beyond = true;
+          if (r.joint_limit.ticks++ == 0) r.joint_limit.first_tick = k;
+        }
+        if (excess > r.joint_limit.max_excess) {
+          r.joint_limit.max_excess = excess;
+          r.joint_limit.arm = static_cast<int>(a);
+          r.joint_limit.joint = static_cast<int>(j);
         }
       }
     }
     controller.tick(state, command);
-    if (!latched.empty()) {
+    if (read_values) {
       controller.log_values(values);
+      for (size_t w = 0; w < options.watch.size(); ++w) {
+        const double v = values[options.watch[w]];
+        const double was = watched[w];
+        if (v == was || (std::isnan(v) && std::isnan(was))) continue;
+        watched[w] = v;
+        if (r.changes.size() < kMaxRunEvents) {
+          r.changes.push_back({k, state.clock.t, options.watch[w] + 1, v});
+        } else {
+          ++r.changes_dropped;
+        }
+      }
+      for (size_t a = 0; a < robot::kArms; ++a) {
+        pushing[a] = false;
+        for (size_t i : options.pushing[a]) pushing[a] = pushing[a] || values[i] != 0.0;
+      }
       for (size_t i : latched) {
         const double v = values[i];
         if (!(v != 0.0)) continue;  // 0 (NaN never: flags and events are codes)
@@ -138,16 +182,51 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
       }
     }
     double tau_ratio = 0.0;
-    for (const auto& arm : command.arm_tau) {
+    bool finite_command = true;
+    for (size_t a = 0; a < command.arm_tau.size(); ++a) {
+      const auto& arm = command.arm_tau[a];
+      double arm_ratio = 0.0;
       for (size_t j = 0; j < arm.size(); ++j) {
-        if (!std::isfinite(arm[j])) r.non_finite = true;
-        tau_ratio = std::max(tau_ratio, std::abs(arm[j]) / config.actuation.effort_limit[j]);
+        finite_command = finite_command && std::isfinite(arm[j]);
+        arm_ratio = std::max(arm_ratio, std::abs(arm[j]) / config.actuation.effort_limit[j]);
       }
+      if (arm_ratio > r.peak_torque_ratio[a]) {
+        r.peak_torque_ratio[a] = arm_ratio;
+        r.peak_torque_tick[a] = k;
+      }
+      tau_ratio = std::max(tau_ratio, arm_ratio);
     }
-    for (double w : command.wheel_tau) r.non_finite = r.non_finite || !std::isfinite(w);
+    for (double w : command.wheel_tau) finite_command = finite_command && std::isfinite(w);
+    if (!finite_command) {
+      if (r.non_finite_ticks++ == 0) r.first_non_finite_tick = k;
+      r.non_finite = true;
+    }
     r.max_torque_ratio = std::max(r.max_torque_ratio, tau_ratio);
     world.write(command);
     world.step();
+    // The contacts of the step the command acted in.
+    for (size_t a = 0; a < robot::kArms; ++a) {
+      ContactRecord& c = r.contact[a];
+      if (!pushing[a]) {
+        touched[a] = false;
+        loss[a] = 0;
+        continue;
+      }
+      ++c.commanded_ticks;
+      if (world.mount_active() || world.contact(static_cast<int>(a)).contacts > 0) {
+        ++c.touching_ticks;
+        touched[a] = true;
+        loss[a] = 0;
+        continue;
+      }
+      if (!touched[a]) continue;  // still reaching for it
+      if (loss[a]++ == 0 && c.losses++ == 0) {
+        c.first_loss_tick = k;
+        c.first_loss_time = state.clock.t;
+      }
+      ++c.lost_ticks;
+      c.longest_loss = std::max(c.longest_loss, loss[a]);
+    }
     if (k % every != 0 && k + 1 != ticks) continue;
     controller.log_values(values);
     for (size_t i : latched) {

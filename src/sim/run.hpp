@@ -41,6 +41,13 @@ struct RunOptions {
   // being sent the controller's zeros. Needs `arm`, the arms' chain.
   std::array<bool, robot::kArms> idle{};
   const runtime::Chain* arm = nullptr;
+  // Controller log columns (indices into Controller::log_columns()) whose
+  // every change is recorded, tick by tick (RunResult::changes): e.g. a
+  // motion's running flag and its guards' satisfied flags.
+  std::vector<std::size_t> watch;
+  // Per arm, controller log columns whose value, when not 0, means the
+  // controller commands a force on that arm's end effector (RunResult::contact).
+  std::array<std::vector<std::size_t>, robot::kArms> pushing;
 };
 
 // One event a controller signalled: a column of kind robot::LogColumnKind::Event
@@ -52,6 +59,40 @@ struct RunEvent {
   int code = 0;            // the column's value: an edge (1 rising, 2 falling) or how a
                            // motion ended (1 an `until` held, 2 a `while` was violated)
 };
+// A watched column's new value (RunOptions::watch).
+struct RunChange {
+  std::uint64_t tick = 0;  // the control tick (0-based) after which it had the value
+  double time = 0.0;       // the controller's clock at that tick [s]
+  std::size_t column = 0;  // index into RunResult::columns
+  double value = 0.0;      // the value it changed to (every column starts at 0)
+};
+
+// Whether an arm's end effector kept its contact while the controller commanded
+// a force on it (RunOptions::pushing). The end effector is in contact in a tick
+// when it touches the table (ArmContact::contacts > 0) or the SC2 mount holds
+// it. A force is commanded in a tick when one of the arm's pushing columns is
+// not 0 after the controller's tick. A loss is a run of ticks, each with a
+// commanded force and no contact, that follows a tick with both in the same
+// stretch of commanded ticks (reaching for the contact first is not a loss).
+struct ContactRecord {
+  bool observed = false;              // the arm has pushing columns
+  std::uint64_t commanded_ticks = 0;  // ticks with a commanded force
+  std::uint64_t touching_ticks = 0;   // ... and contact
+  std::uint64_t losses = 0;           // losses, as above
+  std::uint64_t lost_ticks = 0;       // ticks within them
+  std::uint64_t first_loss_tick = 0;  // the first tick of the first loss
+  double first_loss_time = 0.0;       // its clock [s]
+  std::uint64_t longest_loss = 0;     // the longest loss [ticks]
+};
+
+// How far a measured joint position went beyond its limits.
+struct JointLimitRecord {
+  std::uint64_t ticks = 0;       // ticks with some measured joint beyond its limits
+  std::uint64_t first_tick = 0;  // the first of them
+  int arm = 0, joint = 0;        // the joint furthest beyond (robot::kRightArm / kLeftArm)
+  double max_excess = 0.0;       // by how much [rad]
+};
+
 // At most this many events are kept (a monitor chattering every tick of a long
 // run); RunResult::events_dropped counts the rest.
 inline constexpr std::size_t kMaxRunEvents = 100'000;
@@ -68,22 +109,33 @@ struct RunResult {
   // any tick since the previous row, so decimation loses nothing.
   std::vector<RunEvent> events;
   std::uint64_t events_dropped = 0;
+  // Every change of a watched column, in tick order, then column order; at
+  // most kMaxRunEvents (changes_dropped counts the rest).
+  std::vector<RunChange> changes;
+  std::uint64_t changes_dropped = 0;
   // Per controller log column: in how many ticks a flag column was raised (0
   // for the other kinds); e.g. an arm solve's `.degraded`.
   std::vector<std::uint64_t> flag_ticks;
   // Safety summary over the whole run.
-  bool non_finite = false;              // a command was NaN/inf (never sent: the world zeroes it)
+  bool non_finite = false;             // a command was NaN/inf (never sent: the world zeroes it)
+  std::uint64_t non_finite_ticks = 0;  // ticks with such a command
+  std::uint64_t first_non_finite_tick = 0;
   std::uint64_t non_finite_values = 0;  // logged rows with a NaN/inf value (e.g. from a NaN sensor)
   std::uint64_t dropped_commands = 0;   // ticks whose command the world rejected or dropped
   double max_torque_ratio = 0.0;        // max |tau_i| / effort_limit_i over arms and ticks,
                                         // as requested (before the clamp)
   bool torque_limit_exceeded = false;   // max_torque_ratio > 1
+  // Per arm (robot::kRightArm, kLeftArm): the largest such ratio and its first tick.
+  std::array<double, robot::kArms> peak_torque_ratio{};
+  std::array<std::uint64_t, robot::kArms> peak_torque_tick{};
   // What the robot interface clamped (World::limiter()), per limited quantity
   // in robot/limits.hpp's order; `clamped` when any entry has ticks > 0.
   std::array<robot::ClampRecord, robot::kLimitedQuantities> clamps{};
   bool clamped = false;
   bool joint_limit_exceeded = false;  // a measured joint position left its limits
-  int instabilities = 0;              // MuJoCo warnings (untrustworthy when > 0)
+  JointLimitRecord joint_limit;
+  std::array<ContactRecord, robot::kArms> contact{};
+  int instabilities = 0;  // MuJoCo warnings (untrustworthy when > 0)
 };
 
 // Runs `controller` against `world` from its current state. The per-tick path

@@ -12,8 +12,11 @@
 #     per-condition's error (fires at tick 6006).
 # The log keeps every 10th tick (the default): none of those ticks is kept,
 # so each signal must be latched into the next logged row (tick 3010, 6010),
-# and the summary lists every event with its tick. Interpreted and generated
-# runs log the same bytes and list the same events.
+# and the summary lists every event with its tick. The abort fails the run:
+# exit 1, and the verdict (console and summary) names the motion, its tick and
+# the violated `while`, and the `until` that ended phase 1. Interpreted and
+# generated runs log the same bytes, list the same events and give the same
+# verdict.
 # Usage: guards_test.sh MOSPEC_BINARY SOURCE_DIR
 source "$(dirname "$0")/../support/cli_lib.sh"
 src=$(realpath "$2")
@@ -28,8 +31,38 @@ check "phase 2 checks one per-condition (its equalities without tolerance are en
 check "the deadline monitor reports falling edges" grep -q '"edges": "falling"' "$work/ir.json"
 check "the equality guard carries its tolerance" grep -Eq '"tolerance": 0.0004,?$' "$work/ir.json"
 
-expect "runs (interpreted)" 0 "" -- "$mospec" run "$app" --sim --interpret --duration 8 \
-  --log "$work/run.csv" --summary "$work/run.json"
+expect "runs (interpreted); the aborted motion fails the run" 1 \
+  "^mospec: verdict: FAILED: the motion 'motion-rightarm-phase2' was aborted at tick 6006: its \`while\` cstr-time-deadline was violated$" -- \
+  "$mospec" run "$app" --sim --interpret --duration 8 --log "$work/run.csv" --summary "$work/run.json"
+# The verdict's lines on the console (the lines after "mospec: verdict:").
+verdict_lines() { sed -n '/^mospec: verdict:/,$p' "$1"; }
+verdict_lines "$work/stderr.txt" > "$work/verdict.txt"
+check "the console's timeline: phase 1 ended by its until at tick 3003" \
+  grep -q '^  motion motion-rightarm-phase1: ticks 0 to 3003 (0 s to 3.003 s), ended by its `until` cstr-time-phase-switch$' "$work/verdict.txt"
+check "the console's timeline: phase 2 aborted at tick 6006" \
+  grep -q '^  motion motion-rightarm-phase2: ticks 3003 to 6006 (3.003 s to 6.006 s), ABORTED: its `while` cstr-time-deadline was violated$' "$work/verdict.txt"
+check "the console lists the four events" \
+  grep -q '^  events: 4: motion-rightarm-phase1.ended until at tick 3003; mon-phase-switch.event rising at tick 3003; motion-rightarm-phase2.ended while-violated at tick 6006; mon-deadline.event falling at tick 6006$' "$work/verdict.txt"
+check "no limit breached" grep -q '^  limits: none breached$' "$work/verdict.txt"
+# The summary's verdict: status and each motion's ticks, how it ended and the guard's IRI.
+timeline() {
+  python3 -c '
+import json, sys
+v = json.load(open(sys.argv[1]))["verdict"]
+print(v["status"], v["exit_status"])
+for m in v["motions"]:
+    print(m["name"], m["started_tick"], m["ended_tick"], m["ended_by"],
+          " ".join(g["constraint"].rsplit("/", 1)[1] + (" timeout" if g["timeout"] else "") for g in m["guards"]))' "$1"
+}
+timeline "$work/run.json" > "$work/timeline.txt"
+cat > "$work/expected-timeline.txt" <<'END'
+failed 1
+motion-rightarm-phase1 0 3003 until cstr-time-phase-switch
+motion-rightarm-phase2 3003 6006 while-violated cstr-time-deadline
+END
+check "the summary's verdict: failed, with each motion's ticks, end and guard" \
+  cmp -s "$work/timeline.txt" "$work/expected-timeline.txt"
+if ! cmp -s "$work/timeline.txt" "$work/expected-timeline.txt"; then sed 's/^/  got: /' "$work/timeline.txt"; fi
 
 # The value of column NAME in the first row with t >= T.
 at() {
@@ -79,8 +112,15 @@ check "the summary lists the four events with their ticks" cmp -s "$work/events.
 if ! cmp -s "$work/events.txt" "$work/expected.txt"; then sed 's/^/  got: /' "$work/events.txt"; fi
 
 # The generated controller does exactly what the interpreter does.
-expect "runs (generated)" 0 "" -- "$mospec" run "$app" --sim --duration 8 --log "$work/gen.csv" \
-  --summary "$work/gen.json" --cache "$work/cache"
+expect "runs (generated); the aborted motion fails the run" 1 "^mospec: verdict: FAILED: the motion 'motion-rightarm-phase2' was aborted" -- \
+  "$mospec" run "$app" --sim --duration 8 --log "$work/gen.csv" --summary "$work/gen.json" \
+  --cache "$work/cache"
+check "generated and interpreted runs print the same verdict" \
+  cmp -s "$work/verdict.txt" <(verdict_lines "$work/stderr.txt")
+check "generated and interpreted summaries hold the same verdict" python3 -c '
+import json, sys
+sys.exit(json.load(open(sys.argv[1]))["verdict"] != json.load(open(sys.argv[2]))["verdict"])' \
+  "$work/run.json" "$work/gen.json"
 check "generated and interpreted logs are byte-identical" cmp -s "$work/run.csv" "$work/gen.csv"
 events "$work/gen.json" > "$work/gen-events.txt"
 check "generated and interpreted runs list the same events" cmp -s "$work/events.txt" "$work/gen-events.txt"

@@ -56,6 +56,10 @@ expect "sc1 with a base force beyond the limit: clamped, exit 1" 1 \
   "^  platform\.force: clamped in [0-9]+ ticks? from tick [0-9]+, requested up to [0-9.e+]+ N, limit [0-9.]+ N$" -- \
   "$mospec" run models/sc1 --sim --interpret --duration 0.3 --summary "$work/sc1.json"
 check "sc1: the hub torques are clamped too" grep -Eq '^  wheel_tau\[[0-7]\]: clamped' "$work/stderr.txt"
+check "sc1: the verdict names the breach" \
+  grep -Eq '^  limits: BREACHED: commands clamped from tick [0-9]+ \(.+\)$' "$work/stderr.txt"
+check "sc1: the summary's verdict lists platform.force" \
+  python3 -c 'import json, sys; v = json.load(open(sys.argv[1]))["verdict"]; sys.exit(not (v["status"] == "failed" and "platform.force" in [b["limit"] for b in v["limit_breaches"]]))' "$work/sc1.json"
 check "sc1: the summary lists platform.force" grep -q '"actuator": "platform.force"' "$work/sc1.json"
 
 finish scenarios-clamp
