@@ -144,6 +144,8 @@ VerdictPlan plan_verdict(const ir::Program& program) {
     if (s.constraint.kind != runtime::ConstraintKind::Assignment)
       c.error = column(c.name + ".error");
     c.guard = guard_flags.count(s.out[0]) > 0;
+    c.tolerance = s.constraint.tolerance;
+    c.judged = s.constraint.kind != runtime::ConstraintKind::Equality || c.tolerance > 0.0;
     plan.constraints.push_back(std::move(c));
   }
   // The end effector's forces, traced back through their producers to the
@@ -327,7 +329,7 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   // Each constraint at the end.
   Json constraints = Json::array();
   size_t counted = 0, met = 0;
-  std::vector<std::string> unmet;
+  std::vector<std::string> unmet, tracked;
   for (const VerdictPlan::Constraint& c : plan.constraints) {
     const double sat = last(c.satisfied);
     const bool holds = sat != 0.0 && !std::isnan(sat);
@@ -341,8 +343,15 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     const double error = c.error >= 0 ? last(static_cast<size_t>(c.error)) : std::nan("");
     x["final_error"] = c.error >= 0 ? number_or_null(error) : Json(nullptr);
     x["satisfied"] = holds;
+    x["tolerance"] =
+        c.judged && c.relation == std::string("equality") ? Json(c.tolerance) : Json(nullptr);
+    x["judged"] = c.judged;
     constraints.push_back(std::move(x));
     if (c.guard) continue;
+    if (!c.judged) {
+      tracked.push_back(c.name + " " + num(error));
+      continue;
+    }
     ++counted;
     if (holds) {
       ++met;
@@ -357,6 +366,11 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     for (size_t i = 0; i < unmet.size(); ++i) details << (i ? ", " : " ") << unmet[i];
   }
   details << '\n';
+  if (!tracked.empty()) {
+    details << "  equalities without a tolerance (final error, not judged):";
+    for (size_t i = 0; i < tracked.size(); ++i) details << (i ? ", " : " ") << tracked[i];
+    details << '\n';
+  }
 
   // Peak torque ratio per arm.
   Json peak;

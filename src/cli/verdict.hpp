@@ -45,6 +45,10 @@ struct VerdictPlan {
     std::ptrdiff_t value = -1, error = -1;  // -1: not logged (an assignment has no error)
     std::size_t satisfied = 0;
     bool guard = false;  // a motion's `when` or `until`
+    // An equality the model gives no tolerance (mos-grd:tolerance) holds only
+    // at an error of exactly 0: its final error is reported, not judged.
+    bool judged = true;
+    double tolerance = 0.0;
   };
   struct Solver {
     std::string name;  // as its `.degraded` column names it
