@@ -102,6 +102,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
         std::array<runtime::Pose, robot::kArms>{config.arms[0].X_PB, config.arms[1].X_PB});
   }
   const auto start = std::chrono::steady_clock::now();
+  if (options.observer) options.observer->observe(world);
   for (std::uint64_t k = 0; k < ticks; ++k) {
     world.read(state);
     for (const auto& arm : state.arm) {
@@ -148,6 +149,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     r.max_torque_ratio = std::max(r.max_torque_ratio, tau_ratio);
     world.write(command);
     world.step();
+    if (options.observer) options.observer->observe(world);
     if (k % every != 0 && k + 1 != ticks) continue;
     controller.log_values(values);
     for (size_t i : latched) {

@@ -33,6 +33,16 @@ inline constexpr std::uint64_t kMaxLogRows = 1'000'000;
 // control_period and --log-every.
 std::uint64_t tick_count(double duration, double control_period, std::uint64_t log_every);
 
+// Sees the world between control ticks: once before the first tick and once
+// after every step, never inside one (e.g. to render a video). What it does
+// costs wall time only: it must not change the world, and the loop's per-tick
+// path stays allocation-free without one.
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  virtual void observe(const World& world) = 0;
+};
+
 struct RunOptions {
   double duration = 10.0;  // [s] simulated
   int log_every = 1;       // log every N-th tick (and the last)
@@ -41,6 +51,7 @@ struct RunOptions {
   // being sent the controller's zeros. Needs `arm`, the arms' chain.
   std::array<bool, robot::kArms> idle{};
   const runtime::Chain* arm = nullptr;
+  StepObserver* observer = nullptr;  // not owned; none when null
 };
 
 // One event a controller signalled: a column of kind robot::LogColumnKind::Event
