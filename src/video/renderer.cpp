@@ -1,6 +1,7 @@
 #include "video/renderer.hpp"
 
 #include <GL/osmesa.h>
+#include <dlfcn.h>
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -18,6 +19,38 @@ namespace {
 
 constexpr int kMinSide = 16;
 constexpr int kMaxSide = 4096;
+
+// OSMesa, loaded when the first video is rendered rather than linked: it
+// pulls in LLVM (llvmpipe), whose loading would add tens of milliseconds to
+// the start of every `mospec run`, `sim` and trial. RTLD_GLOBAL, because
+// MuJoCo looks OpenGL's functions up through OSMesaGetProcAddress itself.
+struct OsMesa {
+  decltype(&::OSMesaCreateContextExt) create = nullptr;
+  decltype(&::OSMesaMakeCurrent) make_current = nullptr;
+  decltype(&::OSMesaDestroyContext) destroy = nullptr;
+};
+
+const OsMesa& osmesa() {
+  static const OsMesa api = [] {
+    constexpr const char* kLibrary = "libOSMesa.so.8";
+    void* lib = ::dlopen(kLibrary, RTLD_NOW | RTLD_GLOBAL);
+    if (lib == nullptr) {
+      const char* why = ::dlerror();
+      throw Error("video", std::string("--video renders with OSMesa, and ") + kLibrary +
+                               " cannot be loaded (" + (why != nullptr ? why : "unknown reason") +
+                               "): install Debian's libosmesa6 package (scripts/install-deps)");
+    }
+    OsMesa f;
+    f.create = reinterpret_cast<decltype(f.create)>(::dlsym(lib, "OSMesaCreateContextExt"));
+    f.make_current = reinterpret_cast<decltype(f.make_current)>(::dlsym(lib, "OSMesaMakeCurrent"));
+    f.destroy = reinterpret_cast<decltype(f.destroy)>(::dlsym(lib, "OSMesaDestroyContext"));
+    if (f.create == nullptr || f.make_current == nullptr || f.destroy == nullptr) {
+      throw Error("video", std::string(kLibrary) + " lacks the OSMesa functions MuJoCo needs");
+    }
+    return f;
+  }();
+  return api;
+}
 
 // The world's models have no lights of their own: a sun high above the
 // scene, slightly from the camera's side, casting shadows, beside MuJoCo's
@@ -155,17 +188,17 @@ struct Renderer::Impl {
   ~Impl() {
     // MuJoCo frees its GL objects in the context they belong to.
     if (gl != nullptr && !window.empty()) {
-      OSMesaMakeCurrent(gl, window.data(), GL_UNSIGNED_BYTE, size.width, size.height);
+      osmesa().make_current(gl, window.data(), GL_UNSIGNED_BYTE, size.width, size.height);
     }
     if (context_made) mjr_freeContext(&context);
     if (scene_made) mjv_freeScene(&scene);
     if (data != nullptr) mj_deleteData(data);
     if (model != nullptr) mj_deleteModel(model);
-    if (gl != nullptr) OSMesaDestroyContext(gl);
+    if (gl != nullptr) osmesa().destroy(gl);
   }
 
   void make_current() {
-    if (!OSMesaMakeCurrent(gl, window.data(), GL_UNSIGNED_BYTE, size.width, size.height)) {
+    if (!osmesa().make_current(gl, window.data(), GL_UNSIGNED_BYTE, size.width, size.height)) {
       throw Error("video", "the OSMesa context cannot be made current (libosmesa6)");
     }
   }
@@ -179,7 +212,7 @@ Renderer::Renderer(const mjModel* model, FrameSize size) : size_(size), impl_(ne
                              std::to_string(kMinSide) + ", " + std::to_string(kMaxSide) + "]");
   }
   Impl& s = *impl_;
-  s.gl = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 8, nullptr);
+  s.gl = osmesa().create(OSMESA_RGBA, 24, 8, 8, nullptr);
   if (s.gl == nullptr) {
     throw Error("video",
                 "OSMesa cannot create an OpenGL context (is libosmesa6 installed? "
