@@ -202,6 +202,7 @@ Action add_run_command(CLI::App& app) {
     std::vector<std::string> faults;
     std::string video;
     std::string video_size = "640x480";
+    std::string video_camera = "corner";
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand("run", kRunSummary);
@@ -234,6 +235,11 @@ Action add_run_command(CLI::App& app) {
       ->type_name("FILE.mp4|FILE.gif");
   cmd->add_option("--video-size", flags->video_size, "The video's frame size in pixels")
       ->check(frame_size())
+      ->capture_default_str();
+  cmd->add_option("--video-camera", flags->video_camera,
+                  "Where the video's camera looks from: corner (behind the robot's right, 30 "
+                  "degrees down) or top (straight down)")
+      ->check(CLI::IsMember({"corner", "top"}))
       ->capture_default_str();
   cmd->add_option("--cache", flags->cache,
                   "Directory of generated and built controllers, private to you (default: "
@@ -273,6 +279,7 @@ Action add_run_command(CLI::App& app) {
     if (!flags->video.empty()) {
       video::VideoOptions v;
       v.size = parse_frame_size(flags->video_size);
+      (void)video::parse_camera(flags->video_camera, v.camera);  // checked by CLI11
       recorder = std::make_unique<video::Recorder>(world, flags->video, v);
       options.observer = recorder.get();
     }

@@ -18,7 +18,7 @@ namespace mospec::video {
 
 enum class VideoFormat {
   Mp4,  // H.264 (libx264), yuv420p: plays everywhere
-  Gif,  // 256 colours per frame, looping
+  Gif,  // 256 colours (the first frame's), looping
 };
 
 // The format a file name asks for by its extension (.mp4 or .gif, any case).

@@ -7,6 +7,41 @@
 
 namespace mospec::video {
 
+namespace {
+
+// Azimuth and elevation [deg] (mjvCamera's): the direction the camera looks.
+struct Direction {
+  double azimuth_deg, elevation_deg;
+};
+
+Direction direction(Camera camera) {
+  switch (camera) {
+    case Camera::Top:
+      // Straight down, the table's edge across the frame (x up the picture);
+      // 89.9 keeps the camera's horizontal axis defined.
+      return {0.0, -89.9};
+    case Camera::Corner:
+      break;
+  }
+  return {30.0, -30.0};
+}
+
+}  // namespace
+
+const char* camera_name(Camera camera) noexcept {
+  return camera == Camera::Top ? "top" : "corner";
+}
+
+bool parse_camera(const std::string& name, Camera& camera) noexcept {
+  for (Camera c : {Camera::Corner, Camera::Top}) {
+    if (name == camera_name(c)) {
+      camera = c;
+      return true;
+    }
+  }
+  return false;
+}
+
 FrameSampler::FrameSampler(const sim::World& world, const VideoOptions& options)
     : options_(options),
       renderer_(world.mj_model(), options.size),
@@ -23,8 +58,9 @@ void FrameSampler::observe(const sim::World& world) {
   if (t + 1e-9 < static_cast<double>(next_) / options_.fps) return;
   const auto start = std::chrono::steady_clock::now();
   const double aspect = static_cast<double>(options_.size.width) / options_.size.height;
+  const Direction from = direction(options_.camera);
   CameraView view = frame_geoms(world.mj_model(), world.mj_data(), robot_root_, options_.context,
-                                options_.azimuth_deg, options_.elevation_deg, aspect);
+                                from.azimuth_deg, from.elevation_deg, aspect);
   distance_ = std::max(distance_, view.distance);
   view.distance = distance_;
   renderer_.render(world.mj_data(), view, rgb_);

@@ -7,7 +7,7 @@
 // t = k / fps (frame 0 is the initial state), so a run of D seconds has
 // floor(D * fps) + 1 frames and the same run gives the same frames.
 //
-// The camera looks from a fixed direction (VideoOptions) at the robot and the
+// The camera looks from a fixed direction (VideoOptions::camera) at the robot and the
 // table around it: at each frame, at the centre of the box around the robot
 // (the bodies of the platform's tree, sim/mjcf.hpp) and the nearby part of
 // the table (video::frame_geoms), from the distance that fits them; the
@@ -28,13 +28,21 @@
 
 namespace mospec::video {
 
+// The cameras `--video-camera` names: the direction the free camera looks
+// from (W: x into the table, y left, z up).
+enum class Camera {
+  Corner,  // from behind the robot's right, 30 deg down: the arms, the table's edge and top
+  Top,     // straight down: the base turning to the edge, the contacts sliding along it
+};
+
+// "corner" / "top", and back; parse_camera returns false for other names.
+const char* camera_name(Camera camera) noexcept;
+bool parse_camera(const std::string& name, Camera& camera) noexcept;
+
 struct VideoOptions {
   FrameSize size{640, 480};
   int fps = 30;
-  // From behind the robot's right (W: x into the table, y left), looking
-  // over it at the table's edge and down at the table's top.
-  double azimuth_deg = 30.0;
-  double elevation_deg = -30.0;
+  Camera camera = Camera::Corner;
   // How much of the table is framed around the robot, in robot sizes.
   double context = 0.5;
 };

@@ -36,6 +36,13 @@ done
 codec=$(ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,width,height -of csv=p=0 "$work/sc1.mp4")
 check ".mp4 is H.264 at 160x120 (got $codec)" test "$codec" = "h264,160,120"
 
+# The second camera, from above.
+expect "--video-camera top" 0 "^mospec: wrote 31 frames" -- run --video "$work/top.mp4" --video-camera top
+check "the top camera shows another picture" \
+  test "$(paste <(grey "$work/top.mp4" 0) <(grey "$work/sc1.mp4" 0) | awk '{ d = $1 - $2; if (d > 8 || d < -8) c++ } END { print c + 0 }')" -gt 100
+expect "--video-camera side" 2 "^mospec: --video-camera: side not in \{corner,top\}" -- \
+  run --video "$work/out.mp4" --video-camera side
+
 # The same run, the same frames (decoded, frame by frame).
 expect "--video again" 0 "" -- run --video "$work/again.mp4"
 check "the same run gives the same frames" \

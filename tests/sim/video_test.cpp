@@ -25,7 +25,8 @@ constexpr FrameSize kSmall{160, 120};
 // The frames of `seconds` of the default world, the base pushed forward and
 // turned while the arms hold themselves up; `world_out` gets the final qpos.
 std::vector<Frame> film(const runtime::Chain& arm, double seconds,
-                        std::vector<double>* qpos_out = nullptr, bool render = true) {
+                        std::vector<double>* qpos_out = nullptr, bool render = true,
+                        Camera camera = Camera::Corner) {
   const sim::WorldConfig c = sim::testing::test_world();
   sim::World world(c, arm);
   sim::GravityCompensation arms(arm, sim::testing::mounts(c));
@@ -34,6 +35,7 @@ std::vector<Frame> film(const runtime::Chain& arm, double seconds,
   std::vector<Frame> frames;
   VideoOptions options;
   options.size = kSmall;
+  options.camera = camera;
   std::unique_ptr<FrameSampler> sampler;
   if (render) {
     sampler = std::make_unique<FrameSampler>(world, options);
@@ -109,6 +111,22 @@ TEST(Video, FramesAreNotBlankAndFollowTheRobot) {
   EXPECT_GT(grey_variance(frames.back()), 100.0);
   // The base drove and turned for a second: much of the picture changed.
   EXPECT_GT(changed_fraction(frames.front(), frames.back()), 0.02);
+}
+
+TEST(Video, TheTopCameraSeesTheRobotFromAbove) {
+  NEED_GEN3();
+  const std::vector<Frame> top = film(arm_chain, 1.0, nullptr, true, Camera::Top);
+  const std::vector<Frame> corner = film(arm_chain, 0.0);
+  ASSERT_EQ(top.size(), 31u);
+  ASSERT_EQ(corner.size(), 1u);
+  EXPECT_GT(grey_variance(top.front()), 100.0);
+  EXPECT_GT(changed_fraction(top.front(), corner.front()), 0.2) << "another view";
+  EXPECT_GT(changed_fraction(top.front(), top.back()), 0.02) << "the base drove and turned";
+  Camera c = Camera::Corner;
+  EXPECT_TRUE(parse_camera("top", c));
+  EXPECT_EQ(c, Camera::Top);
+  EXPECT_STREQ(camera_name(c), "top");
+  EXPECT_FALSE(parse_camera("side", c));
 }
 
 TEST(Video, RenderingLeavesTheWorldAlone) {
