@@ -36,6 +36,11 @@ done
 codec=$(ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,width,height -of csv=p=0 "$work/sc1.mp4")
 check ".mp4 is H.264 at 160x120 (got $codec)" test "$codec" = "h264,160,120"
 
+# Rendering does not touch the simulation: the same log with and without a video.
+expect "--log with --video" 0 "" -- run --video "$work/logged.mp4" --log "$work/with.csv"
+expect "--log without --video" 0 "" -- run --log "$work/without.csv"
+check "the log is the same with and without a video" cmp -s "$work/with.csv" "$work/without.csv"
+
 # The second camera, from above.
 expect "--video-camera top" 0 "^mospec: wrote 31 frames" -- run --video "$work/top.mp4" --video-camera top
 check "the top camera shows another picture" \
