@@ -56,7 +56,7 @@ class FrameSampler final : public sim::StepObserver {
   // and hands each to `on_frame` (when set).
   void observe(const sim::World& world) override;
 
-  // The most recent frame (RGB, top row first); empty before the first.
+  // The most recent frame (RGB, top row first); black before the first.
   const std::vector<std::uint8_t>& frame() const noexcept { return rgb_; }
   std::uint64_t frames() const noexcept { return next_; }
   // Wall time spent in observe(): rendering and on_frame [s].
