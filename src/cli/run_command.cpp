@@ -1,7 +1,7 @@
 // `mospec run APP --sim`: validate -> lower -> run the controller against the
 // simulated robot -> log and summary. With --interpret the IR is executed
 // directly; otherwise the generated controller is built (cached by content
-// hash) and loaded.
+// hash) and loaded. With --video the run is rendered (src/video).
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -21,10 +21,37 @@
 #include "sim/run.hpp"
 #include "sim/world.hpp"
 #include "support/io.hpp"
+#include "video/recorder.hpp"
 
 namespace mospec::cli {
 
 namespace {
+
+// --video-size WxH: even sides in [16, 4096] (H.264 needs even sides).
+CLI::Validator frame_size() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const size_t x = text.find('x');
+        auto side = [](const std::string& t) {
+          if (t.empty() || t.size() > 4 || t.find_first_not_of("0123456789") != std::string::npos)
+            return -1;
+          return std::stoi(t);
+        };
+        const int w = x == std::string::npos ? -1 : side(text.substr(0, x));
+        const int h = x == std::string::npos ? -1 : side(text.substr(x + 1));
+        if (w < 0 || h < 0) return "'" + text + "' is not WIDTHxHEIGHT (e.g. 640x480)";
+        if (w < 16 || h < 16 || w > 4096 || h > 4096 || w % 2 != 0 || h % 2 != 0) {
+          return text + ": each side must be even and in [16, 4096] pixels";
+        }
+        return {};
+      },
+      "WxH");
+}
+
+video::FrameSize parse_frame_size(const std::string& text) {
+  const size_t x = text.find('x');
+  return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
+}
 
 // The scenario's world: --world, else APP's sibling "<name>.world.json", else
 // the default world.
@@ -177,6 +204,9 @@ Action add_run_command(CLI::App& app) {
     int log_every = 10;
     std::string cache;
     std::vector<std::string> faults;
+    std::string video;
+    std::string video_size = "640x480";
+    std::string video_camera = "corner";
   };
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand("run", kRunSummary);
@@ -203,6 +233,18 @@ Action add_run_command(CLI::App& app) {
   cmd->add_option("--summary", flags->summary, "JSON summary file ('-' = standard output)")
       ->type_name("FILE.json");
   cmd->add_option("--fault", flags->faults, kFaultHelp)->type_name("SPEC");
+  cmd->add_option("--video", flags->video,
+                  "Video of the run, rendered offscreen by MuJoCo at 30 frames per simulated "
+                  "second and encoded by ffmpeg: .mp4 (H.264) or .gif")
+      ->type_name("FILE.mp4|FILE.gif");
+  cmd->add_option("--video-size", flags->video_size, "The video's frame size in pixels")
+      ->check(frame_size())
+      ->capture_default_str();
+  cmd->add_option("--video-camera", flags->video_camera,
+                  "Where the video's camera looks from: corner (behind the robot's right, 30 "
+                  "degrees down) or top (straight down)")
+      ->check(CLI::IsMember({"corner", "top"}))
+      ->capture_default_str();
   cmd->add_option("--cache", flags->cache,
                   "Directory of generated and built controllers, private to you (default: "
                   "$XDG_CACHE_HOME/mospec, else ~/.cache/mospec)")
@@ -235,15 +277,26 @@ Action add_run_command(CLI::App& app) {
     options.arm = &arm;
     const VerdictPlan plan = plan_verdict(*program);
     watch_for_verdict(plan, options);
+    sim::World world(config, arm);
+    for (const std::string& f : flags->faults) add_fault(world.faults(), f);
+    // The video's encoder starts before the controller is built and the run
+    // starts, so a bad path, format or a missing ffmpeg fails first.
+    std::unique_ptr<video::Recorder> recorder;
+    if (!flags->video.empty()) {
+      video::VideoOptions v;
+      v.size = parse_frame_size(flags->video_size);
+      (void)video::parse_camera(flags->video_camera, v.camera);  // checked by CLI11
+      recorder = std::make_unique<video::Recorder>(world, flags->video, v);
+      options.observer = recorder.get();
+    }
     std::unique_ptr<robot::Controller> controller;
     if (flags->interpret) {
       controller = std::make_unique<ir::Interpreter>(std::move(*program));
     } else {
       controller = generated_controller(*program, files, flags->cache);
     }
-    sim::World world(config, arm);
-    for (const std::string& f : flags->faults) add_fault(world.faults(), f);
     const sim::RunResult r = sim::run(world, *controller, options);
+    if (recorder) recorder->finish();
     const Verdict verdict = judge(plan, r);
     if (!flags->log.empty()) write_output(flags->log, r.csv);
     if (!flags->summary.empty()) {
@@ -252,6 +305,10 @@ Action add_run_command(CLI::App& app) {
     std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall
               << " s\n";
+    if (recorder) {
+      std::cerr << "mospec: wrote " << recorder->frames() << " frames to " << flags->video
+                << " (rendering and encoding took " << recorder->seconds() << " s)\n";
+    }
     sim::report_clamps(std::cerr, r.clamps);  // a clamp is a limit breach: the verdict fails
     for (const auto& [solver, ticks] : degraded_solves(r)) {
       if (ticks == 0) continue;

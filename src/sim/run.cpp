@@ -119,6 +119,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   const bool read_values = !latched.empty() || !options.watch.empty() ||
                            !options.pushing[0].empty() || !options.pushing[1].empty();
   const auto start = std::chrono::steady_clock::now();
+  if (options.observer) options.observer->observe(world);
   for (std::uint64_t k = 0; k < ticks; ++k) {
     world.read(state);
     bool beyond = false;
@@ -227,6 +228,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
       ++c.lost_ticks;
       c.longest_loss = std::max(c.longest_loss, loss[a]);
     }
+    if (options.observer) options.observer->observe(world);
     if (k % every != 0 && k + 1 != ticks) continue;
     controller.log_values(values);
     for (size_t i : latched) {

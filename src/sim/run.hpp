@@ -33,6 +33,16 @@ inline constexpr std::uint64_t kMaxLogRows = 1'000'000;
 // control_period and --log-every.
 std::uint64_t tick_count(double duration, double control_period, std::uint64_t log_every);
 
+// Sees the world between control ticks: once before the first tick and once
+// after every step, never inside one (e.g. to render a video). What it does
+// costs wall time only: it must not change the world, and the loop's per-tick
+// path stays allocation-free without one.
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  virtual void observe(const World& world) = 0;
+};
+
 struct RunOptions {
   double duration = 10.0;  // [s] simulated
   int log_every = 1;       // log every N-th tick (and the last)
@@ -48,6 +58,7 @@ struct RunOptions {
   // Per arm, controller log columns whose value, when not 0, means the
   // controller commands a force on that arm's end effector (RunResult::contact).
   std::array<std::vector<std::size_t>, robot::kArms> pushing;
+  StepObserver* observer = nullptr;  // not owned; none when null
 };
 
 // One event a controller signalled: a column of kind robot::LogColumnKind::Event
