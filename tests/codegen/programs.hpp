@@ -325,6 +325,16 @@ inline ir::Program arm_program(SourceFiles& files) {
   ev.has_error_output = true;
   const int acc = b.datum("acc_z", T::Scalar, {}, "M-PER-SEC2");
   b.controller("pid", "pid_height", {err}, {acc}, {{"kp", 40.0}, {"ki", 2.0}, {"kd", 0.0}});
+  // A one-sided row (issue #15): a less-than bound on the height drives the
+  // tip's linear x only while it is violated (the push below acts along x
+  // until then).
+  const int low_ok = b.datum("low_ok", T::Flag);
+  const int low_err = b.datum("low_err", T::Scalar, {}, "M");
+  ir::Step& lt = b.step(K::Evaluate, "cstr_low", {height}, {low_ok, low_err});
+  lt.constraint = {runtime::ConstraintKind::LessThan, 0.0, 0.84, 0.0, 0.0, 0.0};
+  lt.has_error_output = true;
+  const int acc_x = b.datum("acc_x", T::Scalar, {}, "M-PER-SEC2");
+  b.controller("pid", "pid_low", {low_err}, {acc_x}, {{"kp", 10.0}, {"ki", 0.0}, {"kd", 1.0}});
   const int push = b.datum("push", T::Scalar, {}, "N");
   const int push_ok = b.datum("push_ok", T::Flag);
   const int push_ref = b.datum("push_ref", T::Scalar, {0.0}, "N");
@@ -347,22 +357,25 @@ inline ir::Program arm_program(SourceFiles& files) {
   gm.n_when = 0;
   gm.state = b.state(ir::StateKind::Motion);
 
-  arm.acceleration_constraints = {{"https://mospec.example/tests/codegen/acc-z", 5, acc, 0}};
+  arm.acceleration_constraints = {
+      {"https://mospec.example/tests/codegen/acc-z", 5, acc, 0},
+      {"https://mospec.example/tests/codegen/acc-x", 3, acc_x, 0, low_err}};
   arm.cartesian_forces = {{"https://mospec.example/tests/codegen/push", n - 1, F_E_B, 0}};
   arm.joint_forces = {{"https://mospec.example/tests/codegen/tau-1", 1, tau_1, 0}};
   b.p.arms.push_back(std::move(arm));
   const int degraded = b.datum("right_arm_degraded", T::Flag);
-  ir::Step& solve =
-      b.step(K::ArmSolve, "right_arm_solve", {acc, F_E_B, tau_1, reach}, {degraded});
+  ir::Step& solve = b.step(K::ArmSolve, "right_arm_solve",
+                           {acc, acc_x, F_E_B, tau_1, low_err, reach}, {degraded});
   solve.solver = 0;
-  solve.n_drivers = 3;
+  solve.n_drivers = 5;
 
-  for (int d : {time, height, elbow_x, vz, err, acc, push}) {
+  for (int d : {time, height, elbow_x, vz, err, acc, low_err, acc_x, push}) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d,
           b.p.data[static_cast<std::size_t>(d)].unit);
   }
   b.log("height_ok", ok);
   b.log("reach", reach);
+  b.log("right_arm_degraded", degraded, "", true);
   return b.p;
 }
 

@@ -358,3 +358,28 @@ TEST(Verifier, ChecksTheOutputsOfAStepWithAnyNumberOfInputs) {
 
 }  // namespace
 }  // namespace mospec::ir
+
+namespace mospec::ir {
+namespace {
+
+// The hand-built arm program's one-sided row (a less-than bound on the tip's
+// height driving its linear x) is both engaged and released in the 2000 ticks
+// codegen's equivalence test runs, so both branches are compared there.
+TEST(Interpreter, TheArmProgramsOneSidedRowEngagesAndReleases) {
+  SourceFiles files;
+  Interpreter in(codegen::testing::arm_program(files));
+  const int low_err = column(in, "low_err");
+  robot::Command command;
+  std::vector<double> values(in.log_columns().size());
+  int engaged = 0, released = 0;
+  for (std::uint64_t k = 0; k < 2000; ++k) {
+    in.tick(codegen::testing::measurement(k), command);
+    in.log_values(values);
+    (values[static_cast<size_t>(low_err)] != 0.0 ? engaged : released)++;
+  }
+  EXPECT_GT(engaged, 0);
+  EXPECT_GT(released, 0);
+}
+
+}  // namespace
+}  // namespace mospec::ir
