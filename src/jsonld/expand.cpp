@@ -206,16 +206,18 @@ class Expander {
   explicit Expander(const Options& options) : opts_(options) {}
 
   // The Expansion Algorithm (5.1.2).
-  Value expand(ContextPtr active, ActiveProperty ap, const Value& element,
+  // `active` is taken by reference: most elements are scalars and arrays,
+  // which need no copy of it (a copy is two atomic reference-count updates).
+  Value expand(const ContextPtr& active, ActiveProperty ap, const Value& element,
                const std::string& base_url, bool from_map) {
     const TermDefinition* ap_def = ap ? active->find(*ap) : nullptr;
-    return expand(std::move(active), ap, ap_def, element, base_url, from_map);
+    return expand(active, ap, ap_def, element, base_url, from_map);
   }
 
  private:
   // The same, given `ap_def`: the term definition of `ap` in `active` (step 3),
   // which the caller has looked up already.
-  Value expand(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
+  Value expand(const ContextPtr& active, ActiveProperty ap, const TermDefinition* ap_def,
                const Value& element, const std::string& base_url, bool from_map);
 
   // A finding reported after the node's @id is known.
@@ -234,7 +236,7 @@ class Expander {
   };
 
   // `ap_def`: the term definition of `ap` in `active` (looked up once by expand()).
-  Value expand_object(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
+  Value expand_object(const ContextPtr& entry, ActiveProperty ap, const TermDefinition* ap_def,
                       const Value& element, const std::string& base_url, bool from_map);
   void expand_entries(const ContextPtr& active, ActiveProperty ap, const Object& element,
                       const std::string& base_url, ObjectState& st);
@@ -357,7 +359,7 @@ void Expander::flush(ObjectState& st, const Object& result, ActiveProperty ap) c
   st.pending.clear();
 }
 
-Value Expander::expand(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
+Value Expander::expand(const ContextPtr& active, ActiveProperty ap, const TermDefinition* ap_def,
                        const Value& element, const std::string& base_url, bool from_map) {
   // 1
   if (element.is_null()) return Value();
@@ -366,8 +368,9 @@ Value Expander::expand(ContextPtr active, ActiveProperty ap, const TermDefinitio
   if (element.is_scalar()) {
     if (!ap || *ap == kGraph) return Value();  // 4.1 free-floating scalar
     if (ap_def != nullptr && ap_def->local_context) {
-      active = process_context(active, *ap_def->local_context, ap_def->base_url, opts_);  // 4.2
-      return expand_value(*active, ap, element);                                          // 4.3
+      const ContextPtr scoped =
+          process_context(active, *ap_def->local_context, ap_def->base_url, opts_);  // 4.2
+      return expand_value(*scoped, ap, element);                                     // 4.3
     }
     return expand_value(*active, ap_def, element);  // 4.3
   }
@@ -396,15 +399,17 @@ Value Expander::expand(ContextPtr active, ActiveProperty ap, const TermDefinitio
     return out;
   }
   // 6
-  return expand_object(std::move(active), ap, ap_def, element, base_url, from_map);
+  return expand_object(active, ap, ap_def, element, base_url, from_map);
 }
 
-Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDefinition* ap_def,
-                              const Value& element, const std::string& base_url, bool from_map) {
+Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
+                              const TermDefinition* ap_def, const Value& element,
+                              const std::string& base_url, bool from_map) {
   const Object& obj = element.as_object();
   // 3: the property-scoped context comes from the context we were called with.
-  // `entry` keeps that context, and so `ap_def`, alive after `active` moves on.
-  const ContextPtr entry = active;
+  // The caller's `entry` keeps that context, and so `ap_def`, alive after
+  // `active` moves on.
+  ContextPtr active = entry;
   if (ap_def != nullptr && !ap_def->local_context) ap_def = nullptr;
 
   // 7: a type-scoped context does not propagate into new node objects.
@@ -433,8 +438,8 @@ Value Expander::expand_object(ContextPtr active, ActiveProperty ap, const TermDe
   st.type_scoped = active;
   // 11, 12: keys are visited in code-point order; every @type entry applies the
   // type-scoped contexts of its values, in code-point order of the values.
-  const ContextPtr tsc = st.type_scoped;
-  std::vector<size_t> type_entries;  // stays unallocated for the usual single "@type"
+  const ContextPtr& tsc = st.type_scoped;  // st.type_scoped is not reassigned
+  std::vector<size_t> type_entries;        // stays unallocated for the usual single "@type"
   size_t single_type = obj.size();
   for (size_t i = 0; i < obj.size(); ++i) {
     if (!expands_to(*tsc, obj.key(i), "@type")) continue;

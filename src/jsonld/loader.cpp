@@ -285,7 +285,7 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
   std::string key = read_path_is_canonical ? read_path : canonical_key(read_path);
   auto it = cache_.find(key);
   if (it == cache_.end()) {
-    std::string text;
+    std::string& text = read_buffer_;
     // Regular files of bounded size only: a device or a FIFO would block or
     // never end, and a huge file would exhaust memory.
     if (std::string reason = read_file_reason(read_path, text); !reason.empty()) {

@@ -11,6 +11,7 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <memory_resource>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -222,29 +223,38 @@ std::string double_lexical_exact(double d) {
 
 // Node-map keys (IRIs and "_:" labels) are views of strings that outlive the
 // conversion: the expanded document's, or labels owned by the Converter.
+//
+// The node map is built and dropped whole within one conversion, so its
+// containers draw from one monotonic arena (the Converter's): a few large
+// blocks instead of an allocation per node, property and value list, and no
+// frees one by one.
+using Arena = std::pmr::monotonic_buffer_resource;
+
 struct Item {
   enum class Kind : uint8_t { Value, Ref, List };
   Kind kind = Kind::Value;
   const json::Value* value = nullptr;  // Kind::Value: the value object
   std::string_view id;                 // Kind::Ref: node map key (IRI or "_:" label)
-  std::vector<Item> list;              // Kind::List
+  std::pmr::vector<Item> list;         // Kind::List (given the arena when made)
   SourceLoc where;                     // the subject node object's "@id" (or the object)
 };
 
 struct Node {
+  explicit Node(Arena* arena) : types(arena), properties(arena) {}
   SourceLoc where;
-  std::vector<std::pair<std::string_view, SourceLoc>> types;
+  std::pmr::vector<std::pair<std::string_view, SourceLoc>> types;
   // In the order first met; emit() visits them ordered by property. A node
   // has a handful, so a scan finds one faster than a map would.
-  std::vector<std::pair<std::string_view, std::vector<Item>>> properties;
+  std::pmr::vector<std::pair<std::string_view, std::pmr::vector<Item>>> properties;
   const json::Value* index = nullptr;
 
-  // The index of `property` in `properties`, added if new.
+  // The index of `property` in `properties`, added if new (its value list in
+  // the node's arena).
   size_t slot(std::string_view property) {
     for (size_t i = 0; i < properties.size(); ++i) {
       if (properties[i].first == property) return i;
     }
-    properties.emplace_back(property, std::vector<Item>());
+    properties.emplace_back(property, std::pmr::vector<Item>(properties.get_allocator()));
     return properties.size() - 1;
   }
 };
@@ -253,12 +263,13 @@ struct Node {
 // subject.
 class Graph {
  public:
+  explicit Graph(Arena* arena) : arena_(arena), nodes_(arena), ids_(arena), by_id_(arena) {}
   bool empty() const { return nodes_.empty(); }
   // The node of `id` and whether it was created now. Nodes never move.
   std::pair<Node*, bool> try_emplace(std::string_view id) {
     auto [it, fresh] = by_id_.try_emplace(id, static_cast<uint32_t>(nodes_.size()));
     if (fresh) {
-      nodes_.emplace_back();
+      nodes_.emplace_back(arena_);
       ids_.push_back(id);
     }
     return {&nodes_[it->second], fresh};
@@ -274,9 +285,10 @@ class Graph {
   Node& node(uint32_t i) { return nodes_[i]; }
 
  private:
-  std::deque<Node> nodes_;
-  std::vector<std::string_view> ids_;
-  std::unordered_map<std::string_view, uint32_t, StringHash> by_id_;
+  Arena* arena_;
+  std::pmr::deque<Node> nodes_;
+  std::pmr::vector<std::string_view> ids_;
+  std::pmr::unordered_map<std::string_view, uint32_t, StringHash> by_id_;
 };
 
 struct Triple {
@@ -289,7 +301,7 @@ class Converter {
   Converter(rdf::Dataset& out, const Options& options) : out_(out), options_(options) {}
 
   void run(const json::Value& expanded) {
-    generate(expanded, graphs_["@default"], nullptr, nullptr, {}, nullptr, SourceLoc{});
+    generate(expanded, graph_named("@default"), nullptr, nullptr, {}, nullptr, SourceLoc{});
     emit();
   }
 
@@ -301,7 +313,7 @@ class Converter {
     std::string_view property;
     size_t slot = SIZE_MAX;  // in subject->properties, once created
     explicit operator bool() const { return subject != nullptr; }
-    std::vector<Item>& get() {
+    std::pmr::vector<Item>& get() {
       // An index, not a pointer: nested nodes may add properties to the same
       // subject, which moves its property vector.
       if (slot == SIZE_MAX) slot = subject->slot(property);
@@ -332,7 +344,12 @@ class Converter {
     return a.kind == Item::Kind::Value && b.kind == Item::Kind::Value && *a.value == *b.value;
   }
 
-  void add_to(std::vector<Item>& values, Item item) {
+  // The node map of the graph named `name` (created empty).
+  Graph& graph_named(std::string_view name) {
+    return graphs_.try_emplace(name, &arena_).first->second;
+  }
+
+  void add_to(std::pmr::vector<Item>& values, Item item) {
     // Duplicates only change the output where a value object becomes a fresh
     // blank node (compound literals); elsewhere the dataset deduplicates quads.
     if (item.kind == Item::Kind::Value && options_.rdf_direction == RdfDirection::CompoundLiteral &&
@@ -347,7 +364,7 @@ class Converter {
   // `target`: where values of the active property go (unset: no active
   // subject or property). `reverse_subject`: set instead when a reverse
   // property is being processed (then `reverse_property` names it).
-  void generate(const json::Value& element, Graph& graph, std::vector<Item>* list,
+  void generate(const json::Value& element, Graph& graph, std::pmr::vector<Item>* list,
                 const Item* reverse_subject, std::string_view reverse_property, Target* target,
                 SourceLoc subject_where) {
     if (element.is_array()) {
@@ -363,7 +380,7 @@ class Converter {
     const json::Value *value_kw = nullptr, *list_kw = nullptr, *id_kw = nullptr, *type_kw = nullptr,
                       *index_kw = nullptr, *reverse_kw = nullptr, *graph_kw = nullptr,
                       *included_kw = nullptr;
-    std::vector<size_t> properties;  // value objects have none: no allocation
+    std::pmr::vector<size_t> properties(&arena_);  // value objects have none: no allocation
     for (size_t i = 0; i < members.size(); ++i) {
       const std::string_view key = members.key(i);
       if (!key.starts_with('@') || !is_keyword(key)) {
@@ -401,7 +418,7 @@ class Converter {
       return;
     }
     if (const json::Value* list_members = list_kw) {
-      Item result{Item::Kind::List, nullptr, {}, {}, subject_where};
+      Item result{Item::Kind::List, nullptr, {}, std::pmr::vector<Item>(&arena_), subject_where};
       generate(*list_members, graph, &result.list, reverse_subject, reverse_property, target,
                subject_where);
       if (list != nullptr) {
@@ -479,7 +496,7 @@ class Converter {
     }
 
     if (const json::Value* g = graph_kw) {
-      generate(*g, graphs_[id], nullptr, nullptr, {}, nullptr, where);
+      generate(*g, graph_named(id), nullptr, nullptr, {}, nullptr, where);
     }
     if (const json::Value* included = included_kw) {
       generate(*included, graph, nullptr, nullptr, {}, nullptr, where);
@@ -678,9 +695,11 @@ class Converter {
 
   rdf::Dataset& out_;
   const Options& options_;
-  std::map<std::string_view, Graph> graphs_;  // ordered by graph name
+  // Declared first: destroyed after everything that draws from it.
+  Arena arena_{16 * 1024};
+  std::pmr::map<std::string_view, Graph> graphs_{&arena_};  // ordered by graph name
   // IRI -> its term, TermId::any() when not well-formed.
-  std::unordered_map<std::string_view, rdf::TermId, StringHash> iri_terms_;
+  std::pmr::unordered_map<std::string_view, rdf::TermId, StringHash> iri_terms_{&arena_};
   // Document label -> key (a view of a blank_terms_ key).
   std::unordered_map<std::string, std::string_view, StringHash, std::equal_to<>> identifiers_;
   // Key -> fresh blank node (node-based: the keys never move).

@@ -89,6 +89,38 @@ TEST_F(LoaderTest, ParsesEachFileOnce) {
   EXPECT_EQ(loc.column, 14u);
 }
 
+// The loader reads every document into one buffer: a document read after a
+// larger one is parsed from its own bytes only, never from what the larger
+// one left behind.
+TEST_F(LoaderTest, EachDocumentIsParsedFromItsOwnBytes) {
+  std::string big = "{\"a\": [";
+  for (int i = 0; i < 2000; ++i) big += std::to_string(i) + ", ";
+  big += "0]}";
+  write("big.json", big);
+  write("small.json", R"({"b": 1})");
+  // Valid only if the big document's bytes followed it; alone it ends early.
+  const std::string cut = write("cut.json", R"({"c": [1, 2)");
+  MappedDocumentLoader loader;
+  loader.map("https://example.org/", dir());
+  auto a = loader.load("https://example.org/big.json", {}, false);
+  auto b = loader.load("https://example.org/small.json", {}, false);
+  ASSERT_TRUE(a.document->is_object());
+  EXPECT_EQ(a.document->get("a")->as_array().size(), 2001u);
+  ASSERT_TRUE(b.document->is_object());
+  EXPECT_EQ(b.document->as_object().size(), 1u);
+  EXPECT_EQ(b.document->get("b")->as_number(), 1);
+  try {
+    loader.load("https://example.org/cut.json", {}, false);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "invalid json");
+    EXPECT_EQ(e.diagnostic().file, cut);
+    EXPECT_EQ(e.diagnostic().line, 1u);
+  }
+  // The first document is unchanged by the reads after it.
+  EXPECT_EQ(a.document->get("a")->as_array().back().as_number(), 0);
+}
+
 TEST_F(LoaderTest, UnmappedIriNamesIriAndReference) {
   std::string app = write("a.json", "{\n  \"@context\": [\n    \"https://x/y.json\"]}");
   MappedDocumentLoader loader;
