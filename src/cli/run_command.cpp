@@ -7,6 +7,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 
 #include "cli/faults.hpp"
 #include "cli/numbers.hpp"
@@ -64,6 +65,57 @@ sim::WorldConfig scenario_world(const std::string& app, const std::string& world
     if (std::filesystem::exists(w)) return sim::load_world_config(w.string());
   }
   return sim::default_world();
+}
+
+std::string located(const SourceFiles& files, const SourceLoc& where) {
+  if (!where.known()) return "";
+  return files.path(where.file) + ":" + std::to_string(where.line) + ":" +
+         std::to_string(where.column) + ": ";
+}
+
+std::string describe_pose(const runtime::Pose& X) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "position (" << X.p.x() << ", " << X.p.y() << ", " << X.p.z() << ") m";
+  return s.str();
+}
+
+// The arms' mounts come from the task models: a solver rooted elsewhere than
+// its chain's root composes the models' constant pose X_RB into the chain,
+// and the simulator mounts that arm's base at the same X_RB in the platform
+// frame, so the IR and the simulated robot agree by construction. A world
+// file may state the mount of an arm the models do not mount (or the same
+// pose); anything else would leave the task and the simulated robot
+// disagreeing about where the arm is.
+void mount_arms(const ir::Program& program, const SourceFiles& files, sim::WorldConfig& config) {
+  std::string root;  // the frame the mounted solvers share: the platform's
+  for (const ir::ArmSolver& a : program.arms) {
+    if (a.mount_pose_iri.empty()) continue;
+    const std::string where = located(files, a.where);
+    if (root.empty()) {
+      root = a.root_frame;
+    } else if (a.root_frame != root) {
+      throw Error("mount-mismatch",
+                  where + "the arm solver '" + a.iri + "' is rooted at '" + a.root_frame +
+                      "', another mounted arm's solver at '" + root +
+                      "'; the simulator mounts every arm on one platform: root the solvers of "
+                      "mounted arms at the platform's frame");
+    }
+    sim::ArmSetup& arm = config.arms[static_cast<size_t>(a.port)];
+    const bool same = (arm.X_PB.R - a.X_RB.R).cwiseAbs().maxCoeff() <= 1e-9 &&
+                      (arm.X_PB.p - a.X_RB.p).cwiseAbs().maxCoeff() <= 1e-9;
+    if (!arm.mount_source.empty() && !same) {
+      throw Error("mount-mismatch",
+                  where + "the arm solver '" + a.iri + "' mounts its chain at '" +
+                      a.mount_pose_iri + "' (" + describe_pose(a.X_RB) + "), but " +
+                      arm.mount_source + " puts the " + arm.name + " arm elsewhere (" +
+                      describe_pose(arm.X_PB) +
+                      "); state the mount once, in the task models, and drop it from the "
+                      "world file");
+    }
+    arm.X_PB = a.X_RB;
+    arm.mount_source = "the task models' '" + a.mount_pose_iri + "'";
+  }
 }
 
 // The generated controller for `program`, generated and built once into the
@@ -261,6 +313,7 @@ Action add_run_command(CLI::App& app) {
     // Refuse a run too long to simulate before building anything.
     (void)sim::tick_count(flags->duration, config.control_period,
                           static_cast<std::uint64_t>(flags->log_every));
+    mount_arms(*program, files, config);
     const runtime::Chain arm =
         description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
     // The simulated base is the program's (the numbers lowering read from the

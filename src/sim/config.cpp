@@ -297,6 +297,7 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
           const json::Object& mo = r.object(
               *m, what + ".mount",
               {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z", "x", "y", "z"});
+          c.arms[static_cast<size_t>(arm)].mount_source = "the world file's " + what + ".mount";
           runtime::Pose& X = c.arms[static_cast<size_t>(arm)].X_PB;
           runtime::Vec3 cols[3] = {X.R.col(0), X.R.col(1), X.R.col(2)};
           const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};

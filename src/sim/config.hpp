@@ -74,6 +74,9 @@ struct ArmSetup {
   std::string name;       // "right" / "left": prefixes the arm's MJCF names
   runtime::Pose X_PB;     // the arm's base B in the platform frame P
   robot::ArmVector q0{};  // initial joint positions [rad]
+  // Where X_PB came from, for messages: empty for the default, else the world
+  // file's key or the task model's mount pose that set it.
+  std::string mount_source;
 };
 
 struct TableParameters {
