@@ -97,8 +97,8 @@ check "gain: generated and interpreted summaries hold the same verdict" \
 
 # --- an unreachable reference: a joint beyond its range, exit 1 --------------
 rm -rf models && cp -r "$SRC/models" .
-sed -i 's/"value": "0.4926"/"value": "-1.0"/' models/right-arm/00-misc.json
-check "the copy has the unreachable elbow height" grep -q '"value": "-1.0"' models/right-arm/00-misc.json
+sed -i 's/"value": "0.4926"/"value": "-1.0"/' models/sc0a/00-misc.json
+check "the copy has the unreachable elbow height" grep -q '"value": "-1.0"' models/sc0a/00-misc.json
 expect "an elbow height of -1 m: a joint beyond its limits, exit 1" 1 \
   "^mospec: verdict: FAILED: a limit was breached: a joint beyond its limits from tick [0-9]+$" -- \
   "$mospec" run models/sc0a.json --sim --interpret --duration 3 --summary "$work/reach.json"
