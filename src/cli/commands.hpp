@@ -66,5 +66,6 @@ Action add_ir_command(CLI::App& app);
 Action add_run_command(CLI::App& app);
 Action add_plot_command(CLI::App& app);
 Action add_trials_command(CLI::App& app);
+Action add_new_command(CLI::App& app);
 
 }  // namespace mospec::cli

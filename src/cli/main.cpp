@@ -141,6 +141,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("plot"), plot);
   Action trials = add_trials_command(app);
   commands.emplace_back(app.get_subcommand("trials"), trials);
+  Action new_task = add_new_command(app);
+  commands.emplace_back(app.get_subcommand("new"), new_task);
 
   try {
     app.parse(argc, argv);

@@ -143,6 +143,14 @@ bad mobile-base mospec/mobile-base.ttl 8 \
   '<https://ex.org/d1>: a castor drive has exactly one drive weight, a number >= 0' \
   '<https://ex.org/d2>: a castor drive has exactly one moment-alignment weight, a number >= 0'
 
+good quantities mospec/quantities.ttl
+bad quantities mospec/quantities.ttl 5 \
+  "<https://ex.org/thirty>: the value 'thirty' is not a finite number" \
+  "<https://ex.org/nan>: the value 'NaN' is not a finite number" \
+  "<https://ex.org/inf>: the value 'INF' is not a finite number" \
+  "<https://ex.org/empty>: the value '' is not a finite number" \
+  "<https://ex.org/node>: a quantity's value is a literal number, not a node"
+
 good time mospec/time.ttl
 bad time mospec/time.ttl 9 \
   '<https://ex.org/timeout-negative>: a timeout \(a threshold on a clock.s time\) must be a number of seconds > 0' \

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# docs/tutorial.md stays true: every command in its ```sh blocks is run, in
+# order, in a fresh copy of the repository's models/, robots/ and metamodels/,
+# with mospec on PATH. A command must exit 0, or the status its line states
+# with a trailing "# exits N". Then the claims the guide makes about the
+# results are checked.
+# Usage: tutorial_test.sh MOSPEC_BINARY SOURCE_DIR
+source "$(dirname "$0")/../support/cli_lib.sh"
+src=$(realpath "$2")
+tree="$work/tree"
+mkdir -p "$tree/build/release/bin"
+cp -r "$src/models" "$src/robots" "$src/metamodels" "$tree/"
+# The guide's PATH line names build/release/bin under the repository's root.
+ln -s "$mospec" "$tree/build/release/bin/mospec"
+ln -s "$(dirname "$mospec")/mospec-full" "$tree/build/release/bin/mospec-full"
+cd "$tree" || exit 1
+
+# The commands of the ```sh blocks, one per line.
+awk '/^```sh$/ { on = 1; next } /^```/ { on = 0 } on' "$src/docs/tutorial.md" > "$work/commands.txt"
+check "the guide has commands" test -s "$work/commands.txt"
+n=0
+while IFS= read -r line; do
+  n=$((n + 1))
+  want=0
+  if [[ "$line" =~ \#\ exits\ ([0-9]+)$ ]]; then want=${BASH_REMATCH[1]}; fi
+  bash -c "export PATH=\"$tree/build/release/bin:\$PATH\"; $line" > "$work/out.txt" 2> "$work/err.txt" < /dev/null
+  got=$?
+  if [ "$got" -eq "$want" ]; then
+    passed=$((passed + 1))
+  else
+    fail "command $n exits $got, the guide says $want: $line"
+    sed 's/^/  stderr: /' "$work/err.txt" | tail -5
+  fi
+  cp "$work/out.txt" "$work/out-$n.txt"
+  cp "$work/err.txt" "$work/err-$n.txt"
+done < "$work/commands.txt"
+
+# What the guide says about the results.
+check "the copy's files are the scenario's" test -f models/push-harder/07-scenario.json
+check "the shared files stay shared" \
+  grep -q '"https://mospec.example/models/right-arm/00-misc.json"' models/push-harder.json
+check "the broken value is refused at its file and line" \
+  grep -Rq 'models/push-harder/00-misc.json:[0-9]*:[0-9]*' "$work"/out-*.txt "$work"/err-*.txt
+check "the run's verdict is in the summary" \
+  python3 -c 'import json, sys; sys.exit(json.load(open("run.json"))["verdict"]["status"] != "ok")'
+# The contact force the table exerts over the last second: 30 N, as edited.
+check "the table pushes back with 30 N" awk -F, '
+  NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+  $c["t"] >= 4 { n++; s += $c["right_fn"] } END { exit !(n > 0 && s / n > 29.5 && s / n < 30.5) }' run.csv
+check "the plot and the video were written" test -s run.svg -a -s run.gif
+check "two-step ran both phases (phase 1 ended by its until)" \
+  python3 -c 'import json, sys; m = json.load(open("two-step.json"))["verdict"]["motions"]; sys.exit(not (len(m) == 2 and m[0]["ended_by"] == "until"))'
+
+# The copy behaves exactly like the original.
+rm -rf models && cp -r "$src/models" .
+expect "a fresh copy of sc0a" 0 "" -- "$mospec" new copy --from sc0a
+expect "sc0a runs" 0 "" -- "$mospec" run models/sc0a.json --sim --interpret --duration 1 --log "$work/sc0a.csv"
+expect "its copy runs" 0 "" -- "$mospec" run models/copy.json --sim --interpret --duration 1 --log "$work/copy.csv"
+check "the copy's log is byte-identical to sc0a's" cmp -s "$work/sc0a.csv" "$work/copy.csv"
+
+# mospec new refuses what it cannot do, leaving nothing behind.
+expect "an existing name" 2 "models/copy.json exists; choose another name" -- "$mospec" new copy --from sc0a
+expect "a name that is not one" 2 "is not a task name" -- "$mospec" new ../escape --from sc0a
+check "nothing escaped" test ! -e ../escape.json
+expect "an unknown scenario" 2 "no scenario 'sc9'" -- "$mospec" new other --from sc9
+check "no half-made task" test ! -e models/other -a ! -e models/other.json
+
+finish tutorial
