@@ -67,5 +67,6 @@ Action add_run_command(CLI::App& app);
 Action add_plot_command(CLI::App& app);
 Action add_trials_command(CLI::App& app);
 Action add_new_command(CLI::App& app);
+Action add_report_command(CLI::App& app);
 
 }  // namespace mospec::cli

@@ -143,6 +143,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("trials"), trials);
   Action new_task = add_new_command(app);
   commands.emplace_back(app.get_subcommand("new"), new_task);
+  Action report = add_report_command(app);
+  commands.emplace_back(app.get_subcommand("report"), report);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,172 @@
+// `mospec report RUN_OR_TRIALS -o report.html`: a run's summary and log (or a
+// directory of them: one run, or `mospec trials`' trial-<i>.json/.csv) and its
+// model as one self-contained page (src/report/report.hpp).
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "cli/pipeline.hpp"
+#include "report/report.hpp"
+#include "support/io.hpp"
+
+namespace mospec::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ReportFlags {
+  std::string input, output, title;
+  LoadFlags load;
+};
+
+// A run's files: SUMMARY.json beside SUMMARY.csv and, when present,
+// SUMMARY.mp4 or SUMMARY.gif.
+report::Run run_of(const fs::path& summary) {
+  report::Run r;
+  r.name = summary.stem().string();
+  r.summary_path = summary.string();
+  fs::path log = summary;
+  log.replace_extension(".csv");
+  if (!fs::is_regular_file(log)) {
+    throw Error("report", "mospec report: " + summary.string() + " has no log beside it (" +
+                              log.string() + "): run with --log " + log.string() + " --summary " +
+                              summary.string());
+  }
+  r.log_path = log.string();
+  for (const char* ext : {".mp4", ".gif"}) {
+    fs::path video = summary;
+    video.replace_extension(ext);
+    if (fs::is_regular_file(video)) {
+      r.video_path = video.string();
+      break;
+    }
+  }
+  return r;
+}
+
+// trial-2 before trial-10.
+bool natural_less(const std::string& a, const std::string& b) {
+  return a.size() != b.size() ? a.size() < b.size() : a < b;
+}
+
+std::vector<report::Run> runs_in(const std::string& input) {
+  const fs::path p(input);
+  if (fs::is_regular_file(p)) return {run_of(p)};
+  if (!fs::is_directory(p)) {
+    throw Error("report", "mospec report: " + input +
+                              " is neither a run's summary (FILE.json) nor a directory of runs");
+  }
+  std::vector<fs::path> summaries;
+  for (const fs::directory_entry& e : fs::directory_iterator(p)) {
+    if (e.is_regular_file() && e.path().extension() == ".json") {
+      fs::path log = e.path();
+      log.replace_extension(".csv");
+      if (fs::is_regular_file(log)) summaries.push_back(e.path());
+    }
+  }
+  std::sort(summaries.begin(), summaries.end(), [](const fs::path& a, const fs::path& b) {
+    return natural_less(a.filename().string(), b.filename().string());
+  });
+  if (summaries.empty()) {
+    throw Error("report", "mospec report: " + input +
+                              " holds no run (a NAME.json summary beside its NAME.csv log)");
+  }
+  std::vector<report::Run> runs;
+  for (const fs::path& s : summaries) runs.push_back(run_of(s));
+  return runs;
+}
+
+// The model the run came from, validated and lowered again: the page lists its
+// constraints, monitors, controllers and motions where the files define them.
+void describe_model(const report::Run& run, const ReportFlags& flags, report::Input& in) {
+  std::string app;
+  try {
+    const auto summary = nlohmann::json::parse(read_file(run.summary_path));
+    app = summary.value("scenario", std::string());
+  } catch (const nlohmann::json::exception&) {
+    // render() reports the malformed summary.
+  }
+  if (app.empty() || !fs::exists(app)) {
+    in.model_verdict = "The run's app (" + (app.empty() ? std::string("unnamed") : app) +
+                       ") is not found from here: run mospec report where you ran the run.";
+    return;
+  }
+  PipelineFlags pipeline;
+  pipeline.inputs = {app};
+  pipeline.load = flags.load;
+  int code = kExitOk;
+  SourceFiles files;
+  const auto program = load_validate_lower(pipeline, code, &files);
+  if (!program) {
+    in.model_verdict = app + " no longer validates and lowers (mospec exit status " +
+                       std::to_string(code) + "; `mospec validate " + app + "` says why).";
+    return;
+  }
+  in.model_ok = true;
+  in.model_verdict = app + " validates and lowers today: " + std::to_string(program->steps.size()) +
+                     " steps, " + std::to_string(program->arms.size()) + " arm solver(s).";
+  for (const ir::Step& s : program->steps) {
+    const char* kind = nullptr;
+    switch (s.kind) {
+      case ir::StepKind::Evaluate:
+        kind = "constraint";
+        break;
+      case ir::StepKind::LevelMonitor:
+      case ir::StepKind::EdgeMonitor:
+        kind = "monitor";
+        break;
+      case ir::StepKind::Controller:
+        kind = "controller";
+        break;
+      case ir::StepKind::GuardedMotion:
+        kind = "motion";
+        break;
+      default:
+        break;
+    }
+    if (!kind) continue;
+    report::Entity e{kind, s.iri, "", "", s.where.line};
+    if (s.where.known()) {
+      e.file = files.path(s.where.file);
+      std::error_code ec;
+      const fs::path absolute = fs::absolute(e.file, ec);
+      if (!ec) e.url = "file://" + absolute.lexically_normal().string();
+    }
+    in.entities.push_back(std::move(e));
+  }
+}
+
+int run_report(const ReportFlags& flags) {
+  report::Input in;
+  in.runs = runs_in(flags.input);
+  in.title = flags.title.empty() ? "mospec report: " + flags.input : flags.title;
+  describe_model(in.runs.front(), flags, in);
+  write_output(flags.output, report::render(in));
+  std::cerr << "mospec: wrote " << flags.output << " (" << in.runs.size() << " run"
+            << (in.runs.size() == 1 ? "" : "s") << ")\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+Action add_report_command(CLI::App& app) {
+  auto flags = std::make_shared<ReportFlags>();
+  CLI::App* cmd = app.add_subcommand(
+      "report",
+      "Write one self-contained HTML page about a run (its SUMMARY.json from `mospec run "
+      "--summary`, with SUMMARY.csv and an optional SUMMARY.mp4|.gif beside it) or a directory "
+      "of runs or trials: the verdicts and timeline, interactive time series of the log, the "
+      "video, and the model's constraints, monitors and controllers with their file:line. "
+      "Works offline: nothing is fetched when it is opened.");
+  cmd->add_option("input", flags->input, "A run's summary, or a directory of runs or trials")
+      ->required()
+      ->type_name("RUN.json|DIR");
+  cmd->add_option("-o,--output", flags->output, "The page")->required()->type_name("FILE.html");
+  cmd->add_option("--title", flags->title, "The page's title (default: from the input)");
+  flags->load.add_to(*cmd);
+  return [flags]() { return run_report(*flags); };
+}
+
+}  // namespace mospec::cli
