@@ -127,7 +127,14 @@ void describe_model(const report::Run& run, const ReportFlags& flags, report::In
         break;
     }
     if (!kind) continue;
-    report::Entity e{kind, s.iri, "", "", s.where.line};
+    std::string iri = s.iri;
+    if (s.kind == ir::StepKind::Evaluate && !s.out.empty()) {
+      // The constraint it evaluates ("<constraint>#satisfied"), located at
+      // the evaluator.
+      const std::string& flag = program->data[static_cast<size_t>(s.out[0])].iri;
+      iri = flag.substr(0, flag.rfind('#')) + " (evaluated by " + s.iri + ")";
+    }
+    report::Entity e{kind, iri, "", "", s.where.line};
     if (s.where.known()) {
       e.file = files.path(s.where.file);
       std::error_code ec;
