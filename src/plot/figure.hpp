@@ -46,7 +46,7 @@ struct Curve {
 // A y scale's extent, decided by mospec (never gnuplot's autoscale): the data
 // curves and their bands with a margin, so that nothing drawn sits on the
 // frame. A start-up spike does not set it: values in the first 5 % of the run
-// that reach more than one span of the rest beyond the rest's extent are
+// that reach more than three spans of the rest beyond the rest's extent are
 // clipped, and `clipped` says so.
 struct Range {
   double lo = 0.0, hi = 1.0;
