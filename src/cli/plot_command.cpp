@@ -83,6 +83,37 @@ std::vector<std::string> trial_logs(const std::string& dir) {
   return logs;
 }
 
+// The scenario a run or trials came from, by the name of its app
+// ("models/sc2.json" -> "sc2"): from a trials directory's trials.json ("app"),
+// or from a run log's summary next to it (X.json or X-summary.json for X.csv,
+// "scenario"). Empty when none says.
+std::string scenario_name(const fs::path& json, const char* key) {
+  std::error_code ec;
+  if (!fs::is_regular_file(json, ec)) return "";
+  try {
+    const nlohmann::json j = nlohmann::json::parse(read_file(json.string()));
+    const auto it = j.find(key);
+    if (it == j.end() || !it->is_string()) return "";
+    fs::path app = fs::path(it->get<std::string>()).lexically_normal();
+    if (app.filename().empty()) app = app.parent_path();
+    return app.stem().string();
+  } catch (const std::exception&) {
+    return "";  // not ours to judge here: the title falls back to the file's name
+  }
+}
+
+std::string run_scenario(const std::string& csv) {
+  const fs::path p(csv);
+  fs::path stem = p;
+  stem.replace_extension();
+  for (const fs::path& json :
+       {fs::path(stem.string() + ".json"), fs::path(stem.string() + "-summary.json")}) {
+    std::string name = scenario_name(json, "scenario");
+    if (!name.empty()) return name;
+  }
+  return "";
+}
+
 }  // namespace
 
 Action add_plot_command(CLI::App& app) {
@@ -107,7 +138,10 @@ Action add_plot_command(CLI::App& app) {
   cmd->add_option("-o,--output", flags->output, "The figure; the format follows the extension")
       ->required()
       ->type_name("FIG.svg|FIG.png");
-  cmd->add_option("--title", flags->title, "Figure title (default: the input's name)");
+  cmd->add_option(
+      "--title", flags->title,
+      "Figure title (default: the scenario's name, from the trials' trials.json or "
+      "the run's summary X.json / X-summary.json next to X.csv; else the input's name)");
   cmd->add_option(
          "--distance", flags->selection.distances,
          "A distance column [m] for the left panel instead of the shoulder-contact distances; "
@@ -127,7 +161,8 @@ Action add_plot_command(CLI::App& app) {
       for (const std::string& log : trial_logs(flags->input)) trials.push_back(plot::read_csv(log));
       std::string title = flags->title;
       if (title.empty()) {
-        title = fs::path(flags->input).lexically_normal().filename().string();
+        title = scenario_name(fs::path(flags->input) / "trials.json", "app");
+        if (title.empty()) title = fs::path(flags->input).lexically_normal().filename().string();
         if (title.empty())
           title = fs::path(flags->input).lexically_normal().parent_path().filename().string();
         title.append(": mean ± 1 std over ")
@@ -140,8 +175,9 @@ Action add_plot_command(CLI::App& app) {
                 << (trials.size() == 1 ? " trial)\n" : " trials)\n");
     } else {
       const plot::Table run = plot::read_csv(flags->input);
-      const std::string title =
-          flags->title.empty() ? fs::path(flags->input).filename().string() : flags->title;
+      std::string title = flags->title;
+      if (title.empty()) title = run_scenario(flags->input);
+      if (title.empty()) title = fs::path(flags->input).filename().string();
       figure = plot::run_figure(run, flags->selection, title);
       plot::render(figure, flags->output);
       std::cerr << "mospec: wrote " << flags->output << "\n";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "support/diagnostics.hpp"
 
@@ -206,18 +207,238 @@ void add_forces(const Table& table, const Selection& selection, bool base_wrench
   }
 }
 
-Figure make_figure(const Layout& layout, const std::string& title, std::vector<double> t) {
+// An axis label that names what is plotted on it: the columns (verbatim, at
+// most two, then "and N more") and their unit when they share one that the
+// names tell.
+std::string axis_label(const Layout& layout, size_t panel, bool right_axis) {
+  std::vector<std::string> names;
+  for (const CurveSpec& c : layout.curves) {
+    if (c.panel != panel || c.look.dashed || c.look.right_axis != right_axis) continue;
+    names.push_back(c.column);
+  }
+  if (names.empty()) return "";
+  std::string label = names[0];
+  if (names.size() >= 2) label.append(", ").append(names[1]);
+  if (names.size() > 2)
+    label.append(" and ").append(std::to_string(names.size() - 2)).append(" more");
+  const std::string unit = unit_of(names[0]);
+  const bool shared = std::all_of(names.begin(), names.end(),
+                                  [&](const std::string& n) { return unit_of(n) == unit; });
+  if (shared && !unit.empty()) label.append(" [").append(unit).append("]");
+  return label;
+}
+
+// The labels: the paper's quantities for the default columns, else the
+// plotted columns themselves.
+Figure make_figure(const Layout& layout, const Selection& selection, const std::string& title,
+                   std::vector<double> t) {
   Figure figure;
   figure.title = title;
   figure.t = std::move(t);
   figure.panels.resize(2);
-  figure.panels[0].ylabel = "shoulder-contact distance [m]";
-  figure.panels[1].ylabel = "force [N]";
-  if (layout.torque) figure.panels[1].y2label = "torque [N·m]";
+  if (selection.distances.empty()) {
+    figure.panels[0].ylabel = "shoulder-contact distance [m]";
+  } else {
+    figure.panels[0].ylabel = axis_label(layout, 0, false);
+  }
+  const bool default_forces = selection.forces.empty();
+  if (default_forces) {
+    figure.panels[1].ylabel = "force [N]";
+    if (layout.torque) figure.panels[1].y2label = "torque [N·m]";
+  } else {
+    figure.panels[1].ylabel = axis_label(layout, 1, false);
+    figure.panels[1].y2label = axis_label(layout, 1, true);
+  }
   return figure;
 }
 
+// A short number for a note: 4 significant digits.
+std::string short_number(double x) {
+  char buf[32];
+  auto [p, ec] = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 4);
+  return ec == std::errc() ? std::string(buf, p) : exact_number(x);
+}
+
+struct Extent {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double x) {
+    if (!std::isfinite(x)) return;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  bool empty() const { return !(lo <= hi); }
+};
+
+// The extent of one axis's data curves (bands included): all of it, and the
+// part after the start-up window (the first 5 % of the run).
+void extents(const Figure& figure, const Panel& panel, bool right_axis, Extent& all, Extent& late) {
+  const std::vector<double>& t = figure.t;
+  const double start = t.empty() ? 0.0 : t.front() + 0.05 * (t.back() - t.front());
+  for (const Curve& c : panel.curves) {
+    if (c.dashed || c.right_axis != right_axis) continue;
+    for (size_t r = 0; r < c.y.size() && r < t.size(); ++r) {
+      const double sd = c.sd.empty() || !std::isfinite(c.sd[r]) ? 0.0 : c.sd[r];
+      for (const double v : {c.y[r] - sd, c.y[r] + sd}) {
+        all.add(v);
+        if (t[r] > start) late.add(v);
+      }
+    }
+  }
+}
+
+// Decides one axis's range and drops the thresholds that would fall outside
+// it (a threshold is never drawn on the frame).
+Range decide_range(const Figure& figure, Panel& panel, bool right_axis, const std::string& unit) {
+  Extent all, late;
+  extents(figure, panel, right_axis, all, late);
+  Range range;
+  if (all.empty()) return range;
+  double lo = all.lo, hi = all.hi;
+  const double scale = std::max({1.0, std::abs(late.lo), std::abs(late.hi)});
+  if (!late.empty() && late.hi - late.lo > 1e-9 * scale) {
+    // A start-up spike: beyond the rest's extent by more than three times the
+    // rest's span (SC2's distances rise 1.9 spans from their start: kept;
+    // SC1's platform force jumps 6 spans: clipped).
+    const double span = late.hi - late.lo;
+    const double allowed_lo = late.lo - 3.0 * span, allowed_hi = late.hi + 3.0 * span;
+    const bool above = hi > allowed_hi, below = lo < allowed_lo;
+    if (above || below) {
+      range.clipped = above && below ? short_number(lo) + " to " + short_number(hi)
+                      : above        ? "up to " + short_number(hi)
+                                     : "down to " + short_number(lo);
+      if (!unit.empty()) range.clipped.append(" ").append(unit);
+    }
+    if (above) hi = allowed_hi;
+    if (below) lo = allowed_lo;
+  }
+  // Thresholds near the data widen the range to show them; the others are
+  // not drawn.
+  const double reach = std::max({hi - lo, 0.1 * std::max(std::abs(lo), std::abs(hi)), 1e-9});
+  std::vector<Curve> kept;
+  for (Curve& c : panel.curves) {
+    if (c.dashed && c.right_axis == right_axis) {
+      Extent e;
+      for (double v : c.y) e.add(v);
+      if (e.empty() || e.lo < lo - 0.5 * reach || e.hi > hi + 0.5 * reach) continue;
+      lo = std::min(lo, e.lo);
+      hi = std::max(hi, e.hi);
+    }
+    kept.push_back(std::move(c));
+  }
+  panel.curves = std::move(kept);
+  // A margin, so that no curve and no threshold lies on the frame.
+  const double margin = hi > lo ? 0.05 * (hi - lo) : 0.05 * std::max(1.0, std::abs(hi));
+  range.lo = lo - margin;
+  range.hi = hi + margin;
+  return range;
+}
+
+// The unit an axis's label ends in ("[N]" -> "N"), for the clipped note.
+std::string unit_in(const std::string& label) {
+  const size_t open = label.rfind('[');
+  if (open == std::string::npos || label.back() != ']') return "";
+  return label.substr(open + 1, label.size() - open - 2);
+}
+
+void decide_ranges(Figure& figure) {
+  for (Panel& p : figure.panels) {
+    p.y = decide_range(figure, p, false, unit_in(p.ylabel));
+    p.y2 = decide_range(figure, p, true, unit_in(p.y2label));
+  }
+}
+
 }  // namespace
+
+std::string unit_of(std::string_view c) {
+  auto digit_after = [&](std::string_view prefix) {
+    // "<arm>_<prefix><digit>": right_q3, left_tau6
+    for (std::string_view arm : {"right_", "left_"}) {
+      if (c.size() == arm.size() + prefix.size() + 1 && c.substr(0, arm.size()) == arm &&
+          c.substr(arm.size(), prefix.size()) == prefix && c.back() >= '0' && c.back() <= '9')
+        return true;
+    }
+    return false;
+  };
+  if (c == "t") return "s";
+  if (c == "base_x" || c == "base_y" || c == "base_z") return "m";
+  if (c == "base_yaw" || digit_after("q") ||
+      c.substr(0, std::min<size_t>(c.size(), 7)) == "pivot_q")
+    return "rad";
+  if (digit_after("qd") || c.substr(0, std::min<size_t>(c.size(), 8)) == "wheel_qd") return "rad/s";
+  if (digit_after("tau") || c == "ground_mz" || ends_with(c, ".mz")) return "N·m";
+  if (c == "tau_ratio") return "1";
+  for (std::string_view arm : {"right_", "left_"}) {
+    if (c.substr(0, std::min(c.size(), arm.size())) != arm) continue;
+    const std::string_view rest = c.substr(arm.size());
+    if (rest == "ee_x" || rest == "ee_y" || rest == "ee_z") return "m";
+    if (rest == "fn" || rest == "fx" || rest == "fy" || rest == "fz" || rest == "mount_fx" ||
+        rest == "mount_fy" || rest == "mount_fz")
+      return "N";
+  }
+  if (c == "ground_fx" || c == "ground_fy" || ends_with(c, ".fx") || ends_with(c, ".fy"))
+    return "N";
+  if (c.substr(0, std::min<size_t>(c.size(), 10)) == "cstr-dist-") {
+    for (std::string_view s : {".value", ".error", ".lower", ".upper"}) {
+      if (ends_with(c, s)) return "m";
+    }
+  }
+  if (is_distance_controller_output(c)) return "N";
+  return "";
+}
+
+void add_markers(const Table& run, Figure& figure) {
+  const std::optional<size_t> time = run.find("t");
+  if (!time) return;
+  // Per row, what happened, in column order.
+  std::vector<std::pair<size_t, std::string>> happened;
+  for (size_t col = 0; col < run.columns.size(); ++col) {
+    const std::string& name = run.columns[col];
+    const std::vector<double>& v = run.data[col];
+    auto base = [&](std::string_view suffix) {
+      return name.substr(0, name.size() - suffix.size());
+    };
+    if (ends_with(name, ".running")) {
+      double was = 0.0;
+      for (size_t r = 0; r < v.size(); ++r) {
+        if (v[r] == 1.0 && was != 1.0) happened.emplace_back(r, base(".running") + " starts");
+        was = v[r];
+      }
+    } else if (ends_with(name, ".ended")) {
+      for (size_t r = 0; r < v.size(); ++r) {
+        if (!(v[r] != 0.0) || std::isnan(v[r])) continue;
+        const int code = static_cast<int>(v[r]);
+        happened.emplace_back(r, base(".ended") + (code == 1   ? " ends (until)"
+                                                   : code == 2 ? " aborted (while violated)"
+                                                               : " ends"));
+      }
+    } else if (ends_with(name, ".event")) {
+      for (size_t r = 0; r < v.size(); ++r) {
+        if (!(v[r] != 0.0) || std::isnan(v[r])) continue;
+        const int code = static_cast<int>(v[r]);
+        happened.emplace_back(r, base(".event") + (code == 1   ? " rising"
+                                                   : code == 2 ? " falling"
+                                                               : " rising and falling"));
+      }
+    }
+  }
+  std::stable_sort(happened.begin(), happened.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t i = 0; i < happened.size();) {
+    size_t j = i;
+    std::string label;
+    for (; j < happened.size() && happened[j].first == happened[i].first; ++j) {
+      if (!label.empty()) label.append(", ");
+      label.append(happened[j].second);
+    }
+    if (figure.markers.size() < kMaxMarkers) {
+      figure.markers.push_back({run.data[*time][happened[i].first], std::move(label)});
+    } else {
+      ++figure.markers_dropped;
+    }
+    i = j;
+  }
+}
 
 Format format_of(const std::string& path) {
   std::string ext;
@@ -238,12 +459,14 @@ Figure run_figure(const Table& run, const Selection& selection, const std::strin
   Layout layout;
   add_distances(run, selection, layout);
   add_forces(run, selection, /*base_wrench=*/true, layout);
-  Figure figure = make_figure(layout, title, run.data[t]);
+  Figure figure = make_figure(layout, selection, title, run.data[t]);
   for (const CurveSpec& spec : layout.curves) {
     Curve c = spec.look;
     c.y = run.data[*run.find(spec.column)];
     figure.panels[spec.panel].curves.push_back(std::move(c));
   }
+  decide_ranges(figure);
+  add_markers(run, figure);
   return figure;
 }
 
@@ -294,7 +517,7 @@ Figure trials_figure(const std::vector<Table>& trials, const Selection& selectio
   Layout layout;
   add_distances(first, selection, layout);
   add_forces(first, selection, /*base_wrench=*/false, layout);
-  Figure figure = make_figure(layout, title, first.data[t]);
+  Figure figure = make_figure(layout, selection, title, first.data[t]);
   const size_t rows = first.rows();
   const double n = static_cast<double>(trials.size());
   for (const CurveSpec& spec : layout.curves) {
@@ -317,6 +540,8 @@ Figure trials_figure(const std::vector<Table>& trials, const Selection& selectio
     if (spec.look.dashed) c.sd.clear();  // thresholds: the mean line only
     figure.panels[spec.panel].curves.push_back(std::move(c));
   }
+  decide_ranges(figure);
+  add_markers(first, figure);  // the first trial's
   return figure;
 }
 
@@ -392,15 +617,54 @@ std::string gnuplot_script(const Figure& figure, Format format, const std::strin
       "\nset grid lc rgb '#dddddd'\nset key below horizontal height 1 spacing 1.3\nset xlabel 't "
       "[s]'\n");
   s.append("set style fill transparent solid 0.22 noborder\n");
+  // Markers: a dotted vertical line and a label in every panel (no box: a
+  // label must not hide the curves it crosses).
+  for (const Marker& m : figure.markers) {
+    std::string t;
+    append_number(t, m.t);
+    s.append("set arrow from first ").append(t).append(", graph 0 to first ").append(t);
+    s.append(", graph 1 nohead dt 3 lw 1 lc rgb '#777777' back\n");
+    s.append("set label ").append(quoted(m.label)).append(" at first ").append(t);
+    s.append(
+        ", graph 0.98 rotate by 90 right offset character 0.9,0 font ',9' tc rgb '#444444' "
+        "noenhanced front\n");
+  }
+  if (figure.markers_dropped > 0) {
+    s.append("set label ")
+        .append(quoted("+" + std::to_string(figure.markers_dropped) + " later markers not drawn"))
+        .append(" at screen 0.99, screen 0.03 right font ',9' tc rgb '#444444' noenhanced\n");
+  }
   size_t index = 0;  // the curve's position in the datablock
   for (const Panel& p : figure.panels) {
-    s.append("set ylabel ").append(quoted(p.ylabel)).append("\n");
+    s.append("set ylabel ").append(quoted(p.ylabel)).append(" noenhanced\n");
+    auto range = [&](const char* axis, const Range& r) {
+      s.append("set ").append(axis).append("range [");
+      append_number(s, r.lo);
+      s.push_back(':');
+      append_number(s, r.hi);
+      s.append("]\n");
+    };
+    range("y", p.y);
     if (p.y2label.empty()) {
       s.append("unset y2label\nunset y2tics\nset ytics mirror\n");
     } else {
       s.append("set y2label ")
           .append(quoted(p.y2label))
-          .append("\nset y2tics\nset ytics nomirror\n");
+          .append(" noenhanced\nset y2tics\nset ytics nomirror\n");
+      range("y2", p.y2);
+    }
+    std::string note;
+    if (!p.y.clipped.empty()) note = "clipped: start-up spike " + p.y.clipped;
+    if (!p.y2label.empty() && !p.y2.clipped.empty()) {
+      note.append(note.empty() ? "clipped: start-up spike, right scale " : "; right scale ");
+      note.append(p.y2.clipped);
+    }
+    if (note.empty()) {
+      s.append("unset title\n");
+    } else {
+      s.append("set title ")
+          .append(quoted(note))
+          .append(" font ',10' tc rgb '#B00000' noenhanced\n");
     }
     std::string bands, lines;
     for (const Curve& c : p.curves) {

@@ -11,7 +11,9 @@
 // trials that share columns and time base.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plot/csv.hpp"
@@ -41,17 +43,50 @@ struct Curve {
   bool right_axis = false;  // on the panel's y2 scale
 };
 
+// A y scale's extent, decided by mospec (never gnuplot's autoscale): the data
+// curves and their bands with a margin, so that nothing drawn sits on the
+// frame. A start-up spike does not set it: values in the first 5 % of the run
+// that reach more than three spans of the rest beyond the rest's extent are
+// clipped, and `clipped` says so.
+struct Range {
+  double lo = 0.0, hi = 1.0;
+  std::string clipped;  // what was clipped: "down to -137 N", "up to 62.8 N",
+                        // "-134.9 to 49.52 N"; empty: nothing
+};
+
 struct Panel {
-  std::string ylabel;
+  std::string ylabel;   // shown verbatim (no enhanced-text markup)
   std::string y2label;  // empty: no right-hand scale
   std::vector<Curve> curves;
+  Range y, y2;  // filled by decide_ranges()
+};
+
+// A vertical line across every panel at a time something happened: a motion
+// started (its `.running` column became 1) or ended (its `.ended` code: until,
+// while violated), or an event column fired (rising, falling).
+struct Marker {
+  double t = 0.0;     // [s]
+  std::string label;  // shown verbatim, e.g. "motion-sc1-rightarm starts"
 };
 
 struct Figure {
   std::string title;      // shown verbatim
   std::vector<double> t;  // [s]
   std::vector<Panel> panels;
+  std::vector<Marker> markers;  // in time order; at most kMaxMarkers
+  std::size_t markers_dropped = 0;
 };
+
+inline constexpr std::size_t kMaxMarkers = 16;
+
+// The unit of a log column by mospec's naming (the simulator's columns, the
+// distance constraints and controllers, the platform wrench): "m", "N",
+// "N·m", "rad", "rad/s", "s", "1"; "" when the name does not tell.
+std::string unit_of(std::string_view column);
+
+// The markers of a run log, merged per row ("a starts, b starts") and capped
+// at kMaxMarkers (the rest counted in markers_dropped).
+void add_markers(const Table& run, Figure& figure);
 
 // Fig. 4 from one run log. Throws mospec::Error (code "missing-column") naming
 // the file, the column and the available columns.

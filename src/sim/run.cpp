@@ -30,6 +30,21 @@ const char* const kWorldColumns[] = {
     "right_fx", "right_fy", "right_fz", "left_ee_x",  "left_ee_y",  "left_ee_z",  "left_fn",
     "left_fx",  "left_fy",  "left_fz",  "ground_fx",  "ground_fy",  "ground_mz",  "tau_ratio"};
 
+// Then each arm's joints (true state, no sensor faults), after the columns
+// above so that their positions stay: <arm>_q0..6 [rad], <arm>_qd0..6 [rad/s],
+// <arm>_tau0..6 [N·m], the torque the actuator applied in the tick's last
+// physics step (the command after the robot interface's clamp, as it acts
+// after command_delay_ticks).
+void append_joint_columns(std::vector<std::string>& columns) {
+  for (const char* arm : {"right", "left"}) {
+    for (const char* field : {"q", "qd", "tau"}) {
+      for (int j = 0; j < robot::kArmJoints; ++j) {
+        columns.push_back(std::string(arm) + "_" + field + std::to_string(j));
+      }
+    }
+  }
+}
+
 // A number as a message quotes it: the shortest form that reads back the same.
 std::string shortest(double x) {
   char buffer[32];
@@ -78,6 +93,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   r.columns.push_back("t");
   for (const robot::LogColumnInfo& c : columns) r.columns.emplace_back(c.name);
   for (const char* c : kWorldColumns) r.columns.emplace_back(c);
+  append_joint_columns(r.columns);
   for (size_t i = 0; i < r.columns.size(); ++i) {
     if (i) r.csv.push_back(',');
     r.csv.append(r.columns[i]);
@@ -92,7 +108,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   }
   std::vector<unsigned> latch(columns.size(), 0);
   r.flag_ticks.assign(columns.size(), 0);
-  robot::MeasuredState state;
+  robot::MeasuredState state, truth;
   robot::Command command, idle_command;
   std::unique_ptr<GravityCompensation> hold;
   const bool any_idle = options.arm && (options.idle[0] || options.idle[1]);
@@ -263,6 +279,12 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     row[c++] = ground.y();
     row[c++] = ground.z();
     row[c++] = tau_ratio;
+    world.read_true(truth);
+    for (const robot::ArmMeasurement& arm : truth.arm) {
+      for (double x : arm.q) row[c++] = x;
+      for (double x : arm.qd) row[c++] = x;
+      for (double x : arm.tau) row[c++] = x;
+    }
     for (size_t i = 0; i < row.size(); ++i) {
       if (i) r.csv.push_back(',');
       append_number(r.csv, row[i]);

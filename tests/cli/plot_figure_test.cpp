@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "plot/csv.hpp"
@@ -157,6 +158,146 @@ TEST(PlotScript, QuotesTitlesAndKeepsColumnNamesVerbatim) {
   EXPECT_NE(s.find("title 't' noenhanced"), std::string::npos) << s;
   EXPECT_NE(s.find("set output '.out.png'"), std::string::npos) << s;
   EXPECT_NE(s.find("pngcairo"), std::string::npos) << s;
+}
+
+// A log of `rows` rows at 0.1 s with the distances and controller outputs as
+// given per row by `row(r)` (the text after "t,").
+std::string log_of(int rows, const std::string& extra_header,
+                   const std::function<std::string(int)>& row) {
+  std::string text = kDistances;
+  text.append(extra_header).append("\n");
+  for (int r = 0; r < rows; ++r) {
+    text.append(std::to_string(0.1 * r)).append(",").append(row(r)).append("\n");
+  }
+  return text;
+}
+
+// Issue #17: a threshold far outside the data is not drawn (it would sit on
+// the frame or squash the curves); the others widen the range and lie inside.
+TEST(PlotRange, ThresholdsAreInsideTheFrameOrNotDrawn) {
+  // SC2's shape: d rises from 0.58 to 0.714; the thresholds 0.68 and 0.72.
+  const std::string shared = log_of(40, "", [](int r) {
+    const std::string d = std::to_string(0.714 - 0.134 * std::exp(-r / 5.0));
+    return d + ",0.68,0.72," + d + ",0.68,0.72,1,2";
+  });
+  const Figure f = run_figure(parse_csv(shared, "sc2.csv"), {}, "SC2");
+  ASSERT_EQ(labels(f.panels[0]), (std::vector<std::string>{"d_r", "d_l", "d_{thr}", "-"}));
+  EXPECT_GT(f.panels[0].y.hi, 0.72);  // strictly: the threshold is not on the frame
+  EXPECT_LT(f.panels[0].y.lo, 0.58);
+  EXPECT_TRUE(f.panels[0].y.clipped.empty());
+
+  // An upper bound of 50 m next to distances of 0.7 m: not drawn.
+  const std::string far = log_of(40, "", [](int r) {
+    const std::string d = std::to_string(0.70 + 0.001 * r);
+    return d + ",0.68,50," + d + ",0.68,50,1,2";
+  });
+  const Figure g = run_figure(parse_csv(far, "far.csv"), {}, "far");
+  ASSERT_EQ(labels(g.panels[0]), (std::vector<std::string>{"d_r", "d_l", "d_{thr}"}));
+  EXPECT_EQ(g.panels[0].curves[2].y.front(), 0.68);
+  EXPECT_LT(g.panels[0].y.hi, 1.0);
+  EXPECT_LT(g.panels[0].y.lo, 0.68);
+  const std::string script = gnuplot_script(g, Format::Svg, "far.svg");
+  EXPECT_EQ(script.find(" 50 "), std::string::npos) << "the 50 m bound is not in the data block";
+}
+
+// Issue #17: the axis labels name the plotted columns and their unit.
+TEST(PlotLabels, FollowThePlottedColumns) {
+  const std::string text = log_of(
+      3, ",base_x,right_fx,right_tau3,base-force-distribution.mz",
+      [](int r) { return "0.6,0.68,0.72,0.8,0.68,0.72,1,2," + std::to_string(r) + ",3,4,5"; });
+  const Table t = parse_csv(text, "run.csv");
+  Selection chosen;
+  chosen.distances = {"base_x"};
+  chosen.forces = {"right_fx"};
+  Figure f = run_figure(t, chosen, "run");
+  EXPECT_EQ(f.panels[0].ylabel, "base_x [m]");
+  EXPECT_EQ(f.panels[1].ylabel, "right_fx [N]");
+  EXPECT_EQ(f.panels[1].y2label, "");
+  chosen.forces = {"right_fx", "right_tau3", "base-force-distribution.mz"};
+  f = run_figure(t, chosen, "run");
+  EXPECT_EQ(f.panels[1].ylabel, "right_fx, right_tau3");  // two units: none claimed
+  EXPECT_EQ(f.panels[1].y2label, "base-force-distribution.mz [N·m]");
+  const std::string script = gnuplot_script(f, Format::Svg, "run.svg");
+  EXPECT_NE(script.find("set ylabel 'base_x [m]' noenhanced"), std::string::npos) << script;
+  EXPECT_NE(script.find("set y2label 'base-force-distribution.mz [N·m]' noenhanced"),
+            std::string::npos);
+  // The defaults keep the paper's quantities.
+  EXPECT_EQ(run_figure(t, {}, "run").panels[0].ylabel, "shoulder-contact distance [m]");
+}
+
+TEST(PlotLabels, UnitsFromColumnNames) {
+  EXPECT_EQ(unit_of("right_q0"), "rad");
+  EXPECT_EQ(unit_of("left_qd6"), "rad/s");
+  EXPECT_EQ(unit_of("left_tau2"), "N·m");
+  EXPECT_EQ(unit_of("right_ee_z"), "m");
+  EXPECT_EQ(unit_of("left_fn"), "N");
+  EXPECT_EQ(unit_of("ground_mz"), "N·m");
+  EXPECT_EQ(unit_of("base_yaw"), "rad");
+  EXPECT_EQ(unit_of("tau_ratio"), "1");
+  EXPECT_EQ(unit_of("cstr-dist-rightarm-shoulder-ee.error"), "m");
+  EXPECT_EQ(unit_of("ctrl-dist-leftarm-shoulder-ee.output"), "N");
+  EXPECT_EQ(unit_of("right_qx"), "");
+  EXPECT_EQ(unit_of("mon-x.event"), "");
+}
+
+// Issue #17: a start-up spike does not set the scale, and the figure says so.
+TEST(PlotRange, AStartUpSpikeIsClippedAndSaid) {
+  // Forces about 0..10 N, but -1000 N in the first row.
+  const std::string text = log_of(100, "", [](int r) {
+    const double f = r == 0 ? -1000.0 : 10.0 * std::exp(-r / 20.0);
+    return "0.7,0.68,0.72,0.7,0.68,0.72," + std::to_string(f) + "," + std::to_string(f);
+  });
+  const Figure f = run_figure(parse_csv(text, "spike.csv"), {}, "spike");
+  EXPECT_EQ(f.panels[1].y.clipped, "down to -1000 N");
+  EXPECT_GT(f.panels[1].y.lo, -100.0);
+  EXPECT_TRUE(f.panels[0].y.clipped.empty());
+  const std::string script = gnuplot_script(f, Format::Svg, "spike.svg");
+  EXPECT_NE(script.find("set title 'clipped: start-up spike down to -1000 N'"), std::string::npos)
+      << script;
+  // The same excursion late in the run is data, not a start-up spike.
+  const std::string late = log_of(100, "", [](int r) {
+    const double f = r == 80 ? -1000.0 : 10.0 * std::exp(-r / 20.0);
+    return "0.7,0.68,0.72,0.7,0.68,0.72," + std::to_string(f) + "," + std::to_string(f);
+  });
+  const Figure g = run_figure(parse_csv(late, "late.csv"), {}, "late");
+  EXPECT_TRUE(g.panels[1].y.clipped.empty());
+  EXPECT_LT(g.panels[1].y.lo, -1000.0);
+}
+
+// Issue #17: motion starts and ends and events are marked, labelled.
+TEST(PlotMarkers, MotionStartsEndsAndEvents) {
+  const std::string text =
+      log_of(5, ",motion-a.running,motion-a.ended,mon-x.event,mon-x.flag", [](int r) {
+        const char* running = r >= 1 && r <= 3 ? "1" : "0";
+        const char* ended = r == 3 ? "1" : "0";
+        const char* event = r == 3 ? "2" : r == 4 ? "1" : "0";
+        return std::string("0.7,0.68,0.72,0.7,0.68,0.72,1,2,") + running + "," + ended + "," +
+               event + ",1";
+      });
+  const Figure f = run_figure(parse_csv(text, "m.csv"), {}, "m");
+  ASSERT_EQ(f.markers.size(), 3u);
+  EXPECT_NEAR(f.markers[0].t, 0.1, 1e-12);
+  EXPECT_EQ(f.markers[0].label, "motion-a starts");
+  EXPECT_NEAR(f.markers[1].t, 0.3, 1e-12);
+  EXPECT_EQ(f.markers[1].label, "motion-a ends (until), mon-x falling");
+  EXPECT_EQ(f.markers[2].label, "mon-x rising");
+  const std::string script = gnuplot_script(f, Format::Svg, "m.svg");
+  EXPECT_NE(script.find("set arrow from first 0.1, graph 0 to first 0.1, graph 1 nohead"),
+            std::string::npos)
+      << script;
+  EXPECT_NE(script.find("set label 'motion-a ends (until), mon-x falling' at first 0.3, graph"),
+            std::string::npos)
+      << script;
+
+  // More than kMaxMarkers: the rest are counted and said.
+  const std::string many = log_of(40, ",mon-y.event", [](int r) {
+    return std::string("0.7,0.68,0.72,0.7,0.68,0.72,1,2,") + (r % 2 ? "1" : "0");
+  });
+  const Figure g = run_figure(parse_csv(many, "many.csv"), {}, "many");
+  EXPECT_EQ(g.markers.size(), kMaxMarkers);
+  EXPECT_EQ(g.markers_dropped, 20u - kMaxMarkers);
+  EXPECT_NE(gnuplot_script(g, Format::Svg, "x.svg").find("+4 later markers not drawn"),
+            std::string::npos);
 }
 
 TEST(PlotFormat, ByExtension) {

@@ -98,6 +98,42 @@ check "failed trial warned" grep -q "leaving out .*trial-1.csv: its run did not 
 echo '{"trials": 3}' > "$work/trials/trials.json"
 expect "bad manifest" 2 "trials/trials.json: error: not a .mospec trials. manifest" -- \
   "$mospec" plot "$work/trials" -o "$work/trials.svg"
+# Issue #17: the title is the scenario's name (trials.json's app; a run's
+# summary next to its log); a start-up spike is clipped and said; markers at
+# motion starts and events, labelled; labels follow the chosen columns.
+has_text() { grep -q -- "$2" "$1"; }
+mkdir "$work/named"
+for i in 0 1; do run_log sc2 "1.$i" > "$work/named/trial-$i.csv"; done
+echo '{"app": "models/sc2.json", "trials": []}' > "$work/named/trials.json"
+expect "trials titled by the scenario" 0 "2 trials" -- "$mospec" plot "$work/named" -o "$work/named.svg"
+check "the title names sc2" has_text "$work/named.svg" "sc2: mean ± 1 std over 2 trials"
+run_log sc1 1 > "$work/sc1-run.csv"
+echo '{"scenario": "models/sc1.json"}' > "$work/sc1-run-summary.json"
+expect "run titled by its summary's scenario" 0 "wrote" -- \
+  "$mospec" plot "$work/sc1-run.csv" -o "$work/sc1-run.svg"
+check "the title is sc1" has_text "$work/sc1-run.svg" ">sc1</text>"
+expect "without a summary: the file's name" 0 "wrote" -- "$mospec" plot "$work/sc1.csv" -o "$work/plain.svg"
+check "the title is the file's name" has_text "$work/plain.svg" ">sc1.csv</text>"
+# A -900 N spike in the first row, a motion starting in the second row, an
+# event in the 30th row.
+awk -F, -v OFS=, 'NR == 1 { print $0, "motion-m.running", "mon-e.event"; next }
+  { if (NR == 2) $(NF - 3) = -900; print $0, (NR >= 3 ? 1 : 0), (NR == 31 ? 1 : 0) }' \
+  "$work/sc1.csv" > "$work/spike.csv"
+expect "spike" 0 "wrote" -- "$mospec" plot "$work/spike.csv" -o "$work/spike.svg"
+check "the clipped note" has_text "$work/spike.svg" "clipped: start-up spike down to -900 N"
+check "the motion start marker" has_text "$work/spike.svg" "motion-m starts"
+check "the event marker" has_text "$work/spike.svg" "mon-e rising"
+check "no clipped note without a spike" sh -c '! grep -q clipped "$1"' - "$work/plain.svg"
+expect "labels follow columns" 0 "wrote" -- "$mospec" plot "$work/sc1.csv" -o "$work/cols.svg" \
+  --distance base_x --force base-force-distribution.fx
+check "left label: base_x [m]" has_text "$work/cols.svg" "base_x \[m\]"
+check "right label: the force column [N]" has_text "$work/cols.svg" "base-force-distribution.fx \[N\]"
+# A threshold far outside the data is not drawn: an upper bound of 40 m.
+sed '2,$s/,0\.72,/,40,/g' "$work/sc2.csv" > "$work/far.csv"
+check "the copy has the far bound" grep -q ',40,' "$work/far.csv"
+expect "far threshold" 0 "wrote" -- "$mospec" plot "$work/far.csv" -o "$work/far.svg"
+check "the distance axis does not reach 40 m" sh -c '! grep -Eq ">(40|35|30|20|10)</text>" "$1"' - "$work/far.svg"
+
 mkdir "$work/none"
 expect "no trials" 2 "no trial-<i>.csv" -- "$mospec" plot "$work/none" -o "$work/bad.svg"
 

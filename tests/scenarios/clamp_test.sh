@@ -40,11 +40,35 @@ check "every clamped actuator has ticks, a limit, a unit and the huge request" \
     END { exit (n > 0 && !bad) ? 0 : 1 }' <(clamped "$work/sc0a.json")
 check "the log was still written" test -s "$work/sc0a.csv"
 
+# The log's joint columns (issue #17 item 5): after the world's columns (whose
+# positions stay), each arm's q, qd and tau; tau is the torque the actuator
+# applied, i.e. the command after the clamp: never beyond the limit, and at it
+# while the huge gain is clamped.
+joints=""
+for arm in right left; do
+  for field in q qd tau; do
+    for j in 0 1 2 3 4 5 6; do joints="$joints,${arm}_${field}$j"; done
+  done
+done
+check "the log ends with tau_ratio, then the 42 joint columns"   grep -q "ground_fx,ground_fy,ground_mz,tau_ratio$joints\$" <(head -1 "$work/sc0a.csv")
+# awk: the largest |right_tau<j>| over the run, and whether it sits at the limit.
+right_tau() {
+  awk -F, -v j="$1" 'NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    { x = $c["right_tau" j]; if (x < 0) x = -x; if (x > m) m = x }
+    END { printf "%.17g\n", m }' "$work/sc0a.csv"
+}
+check "no right-arm torque in the log is beyond its limit (39 or 9 N·m)"   awk -v a="$(right_tau 0)" -v b="$(right_tau 1)" -v c="$(right_tau 2)" -v d="$(right_tau 3)"   -v e="$(right_tau 4)" -v f="$(right_tau 5)" -v g="$(right_tau 6)"   'BEGIN { exit !(a <= 39 && b <= 39 && c <= 39 && d <= 39 && e <= 9 && f <= 9 && g <= 9) }'
+check "some right-arm torque in the log is at its limit (clamped, then applied)"   awk -v a="$(right_tau 0)" -v b="$(right_tau 1)" -v c="$(right_tau 2)" -v d="$(right_tau 3)"   -v e="$(right_tau 4)" -v f="$(right_tau 5)" -v g="$(right_tau 6)"   'BEGIN { exit !(a == 39 || b == 39 || c == 39 || d == 39 || e == 9 || f == 9 || g == 9) }'
+check "the first row's right_q are the world's initial pose (not all 0)"   awk -F, 'NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    NR==2 { for (j = 0; j < 7; j++) if ($c["right_q" j] != 0) n++; exit !(n > 0) }' "$work/sc0a.csv"
+
 # The generated controller's commands go through the same robot interface.
 expect "sc0a with a gain of 1e300, generated controller: clamped, exit 1" 1 \
   "^  right_arm\.tau\[[0-6]\]: clamped in [0-9]+ ticks? from tick [0-9]+" -- \
   "$mospec" run models/sc0a --sim --duration 0.5 --cache "$work/cache" \
-  --summary "$work/sc0a-generated.json"
+  --summary "$work/sc0a-generated.json" --log "$work/sc0a-generated.csv"
+check "generated: the same log, joint columns included, byte for byte" \
+  cmp -s "$work/sc0a.csv" "$work/sc0a-generated.csv"
 check "generated: the same clamps as interpreted" \
   cmp -s <(clamped "$work/sc0a.json") <(clamped "$work/sc0a-generated.json")
 check "generated: the clamp list is not empty" grep -q '"actuator"' <(clamped "$work/sc0a-generated.json")
