@@ -10,6 +10,7 @@ ArmWorkspace::ArmWorkspace(const AchdModel& model, int constraints)
     : q(JointVector::Zero(model.nq)),
       qd(JointVector::Zero(model.nq)),
       tau_ff(JointVector::Zero(model.nq)),
+      tau_measured(JointVector::Zero(model.nq)),
       alpha_To_B(ConstraintMatrix::Zero(6, constraints)),
       beta(ConstraintVector::Zero(constraints)),
       alpha_engaged(ConstraintMatrix::Zero(6, constraints)),

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -24,6 +25,9 @@ namespace mospec::runtime::steps {
 struct ArmWorkspace {
   explicit ArmWorkspace(const AchdModel& model, int constraints);
   JointVector q, qd, tau_ff;
+  // The measured joint torques the task reads (joint_torque): each entry's
+  // last finite sample.
+  JointVector tau_measured;
   std::array<Vec6, kMaxJoints> F_ext{};
   ConstraintMatrix alpha_To_B;  // 6 x nc, filled at setup (unit columns)
   ConstraintVector beta;        // nc, filled every tick from the drivers
@@ -63,6 +67,24 @@ inline Pose segment_pose_in_chain_root(const AchdData& data, const Pose& X_BR,
 inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
   return rotate_twist_to_proximal(data.X_BS[static_cast<std::size_t>(segment)],
                                   data.V[static_cast<std::size_t>(segment)]);
+}
+
+// Joint i's position q_i [rad] and velocity qd_i [rad/s] as arm_kinematics
+// read them this tick (a non-finite sample keeps the last finite value).
+inline double joint_position(const ArmWorkspace& ws, int joint) noexcept {
+  return ws.q[joint];
+}
+inline double joint_velocity(const ArmWorkspace& ws, int joint) noexcept {
+  return ws.qd[joint];
+}
+// Joint i's measured torque [N·m] (the arm's torque sensors): a non-finite
+// sample, or none, keeps the last finite value (0 before the first).
+inline double joint_torque(ArmWorkspace& ws, std::span<const double> tau_measured,
+                           int joint) noexcept {
+  const auto k = static_cast<std::size_t>(joint);
+  if (k < tau_measured.size() && std::isfinite(tau_measured[k]))
+    ws.tau_measured[joint] = tau_measured[k];
+  return ws.tau_measured[joint];
 }
 
 // Solves ACHD with the workspace's drivers (F_ext, tau_ff, alpha, beta; the
