@@ -166,7 +166,7 @@ bad arm-behaviour mospec/solver.ttl 11 \
   '<https://ex.org/float>: a Float does not brake'
 
 good joints mospec/joints.ttl
-bad joints mospec/joints.ttl 6 \
+bad joints mospec/joints.ttl 7 \
   '<https://ex.org/q-deg>: a revolute joint.s position is an angle: exactly one unit, RAD' \
   '<https://ex.org/q-link>: a joint position is of exactly one joint' \
   '<https://ex.org/q-orphan>: a joint position is the output of exactly one solver' \
