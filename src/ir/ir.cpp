@@ -501,7 +501,8 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
         continue;
       }
       const DataType expected =
-          o.what == ArmOutput::What::SegmentTwist ? DataType::Twist
+          o.what == ArmOutput::What::SegmentTwist      ? DataType::Twist
+          : o.what == ArmOutput::What::EstimatedWrench ? DataType::Wrench
           : o.what == ArmOutput::What::SegmentPose || o.what == ArmOutput::What::ChainRootPose
               ? DataType::Pose
               : DataType::Scalar;
@@ -648,12 +649,13 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["X_NT"] = pose_json(a.chain.X_NT());
     Json outs = Json::array();
     for (const ArmOutput& o : a.outputs) {
-      const char* what = o.what == ArmOutput::What::SegmentPose     ? "segment-pose"
-                         : o.what == ArmOutput::What::ChainRootPose ? "segment-pose-in-chain-root"
-                         : o.what == ArmOutput::What::JointPosition ? "joint-position"
-                         : o.what == ArmOutput::What::JointVelocity ? "joint-velocity"
-                         : o.what == ArmOutput::What::JointTorque   ? "measured-joint-torque"
-                                                                    : "segment-twist";
+      const char* what = o.what == ArmOutput::What::SegmentPose       ? "segment-pose"
+                         : o.what == ArmOutput::What::ChainRootPose   ? "segment-pose-in-chain-root"
+                         : o.what == ArmOutput::What::JointPosition   ? "joint-position"
+                         : o.what == ArmOutput::What::JointVelocity   ? "joint-velocity"
+                         : o.what == ArmOutput::What::JointTorque     ? "measured-joint-torque"
+                         : o.what == ArmOutput::What::EstimatedWrench ? "estimated-wrench"
+                                                                      : "segment-twist";
       outs.push_back({{"what", what}, {"segment", o.segment}, {"data", o.data}});
     }
     e["outputs"] = std::move(outs);

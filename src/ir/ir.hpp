@@ -155,7 +155,9 @@ struct ArmOutput {
     ChainRootPose,
     JointPosition,
     JointVelocity,
-    JointTorque
+    JointTorque,
+    EstimatedWrench  // the wrench on segment S_i at So_i seen by the root, from the measured
+                     // torques (runtime::steps::estimated_wrench)
   } what = What::SegmentPose;
   int segment = 0;
   int data = 0;

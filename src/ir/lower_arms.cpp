@@ -308,6 +308,31 @@ void lower_arm(State& st, TermId solver) {
       lower_joint_output(st, arm, o, *joint_output, joint_index, kin);
       continue;
     }
+    if (st.has_type(o, mospec::vocab::term(mospec::vocab::mospec_joints::ns, "EstimatedWrench"))) {
+      // The wrench on a segment estimated from the measured joint torques:
+      // at a segment's origin, seen by the root (runtime::steps::estimated_wrench).
+      const int d = st.datum(o, DataType::Wrench, solver, "output");
+      const Data& dd = st.program.data[static_cast<size_t>(d)];
+      int seg = -1;
+      for (size_t i = 0; i < frames.segments.size(); ++i) {
+        if (!dd.reference_point.empty() && frames.segments[i].origin == dd.reference_point)
+          seg = static_cast<int>(i);
+      }
+      if (seg < 0 || dd.as_seen_by != arm.root_frame) {
+        st.error(
+            o, "unsupported-output",
+            "the solver '" + arm.iri +
+                "' estimates the wrench on a segment at the segment's origin, seen by the "
+                "root '" +
+                arm.root_frame + "'; '" + dd.iri + "' is at '" + dd.reference_point +
+                "' seen by '" + dd.as_seen_by +
+                "' (transform it with TransformWrenchToProximal/RotateWrenchToProximalWithPose)");
+        continue;
+      }
+      arm.outputs.push_back({ArmOutput::What::EstimatedWrench, seg, d});
+      kin.out.push_back(d);
+      continue;
+    }
     const auto t = st.type_of(o);
     if (t == DataType::Pose) {
       const int d = st.datum(o, DataType::Pose, solver, "output");

@@ -106,7 +106,8 @@ const std::vector<Family>& families() {
        false,
        {{"JointPosition", "joint position", {"of-joint"}},
         {"JointVelocity", "joint velocity", {"of-joint"}},
-        {"JointTorque", "measured joint torque", {"of-joint"}}}},
+        {"JointTorque", "measured joint torque", {"of-joint"}},
+        {"EstimatedWrench", "estimated wrench", {}}}},
   };
   return table;
 }

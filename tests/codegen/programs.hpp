@@ -310,16 +310,18 @@ inline ir::Program arm_program(SourceFiles& files) {
   const int q_3 = b.datum("q_3", T::Scalar, {}, "RAD");
   const int qd_3 = b.datum("qd_3", T::Scalar, {}, "RAD-PER-SEC");
   const int tau_m_3 = b.datum("tau_m_3", T::Scalar, {}, "N-M");
+  const int F_est = b.datum("F_est", T::Wrench);  // estimated from the measured torques
   arm.outputs = {{ir::ArmOutput::What::SegmentPose, n - 1, X_BE},
                  {ir::ArmOutput::What::SegmentTwist, n - 1, V_BE},
                  {ir::ArmOutput::What::SegmentPose, 3, X_B3},
                  {ir::ArmOutput::What::ChainRootPose, 3, X_C3},
                  {ir::ArmOutput::What::JointPosition, 3, q_3},
                  {ir::ArmOutput::What::JointVelocity, 3, qd_3},
-                 {ir::ArmOutput::What::JointTorque, 3, tau_m_3}};
+                 {ir::ArmOutput::What::JointTorque, 3, tau_m_3},
+                 {ir::ArmOutput::What::EstimatedWrench, n - 1, F_est}};
   b.step(K::ReadClock, "clock", {}, {time});
   ir::Step& kin = b.step(K::ArmKinematics, "right_arm_kinematics", {},
-                         {X_BE, V_BE, X_B3, X_C3, q_3, qd_3, tau_m_3});
+                         {X_BE, V_BE, X_B3, X_C3, q_3, qd_3, tau_m_3, F_est});
   kin.solver = 0;
   const int height = b.datum("ee_height", T::Scalar, {}, "M");
   b.step(K::ViewRead, "view_height", {X_BE}, {height}).views = {5};
@@ -382,6 +384,7 @@ inline ir::Program arm_program(SourceFiles& files) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d,
           b.p.data[static_cast<std::size_t>(d)].unit);
   }
+  b.p.log.push_back({"F_est.f_z", "N", F_est, 5});
   b.log("height_ok", ok);
   b.log("reach", reach);
   b.log("right_arm_degraded", degraded, "", true);

@@ -175,6 +175,11 @@ bad joints mospec/joints.ttl 7 \
   '<https://ex.org/tau-n>: a revolute joint.s torque is in N-M' \
   '<https://ex.org/not-a-quantity>: a measured joint torque is a quantity'
 
+good estimated-wrench mospec/estimated-wrench.ttl
+bad estimated-wrench mospec/estimated-wrench.ttl 2 \
+  '<https://ex.org/F-quantity>: an estimated wrench is a wrench' \
+  '<https://ex.org/F-quantity>: an estimated wrench is the output of exactly one solver'
+
 good guards mospec/guards.ttl
 bad guards mospec/guards.ttl 12 \
   '<https://ex.org/motion-while>: <https://ex.org/exact> is a per-condition on a quantity no controller or assignment of the motion acts on' \
