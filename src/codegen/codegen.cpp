@@ -790,6 +790,17 @@ class Builder {
           } else if (o.what == ir::ArmOutput::What::ChainRootPose) {
             call.append("segment_pose_in_chain_root(d.").append(arm_names_[k].arm).append(", m.");
             call.append(arm_names_[k].X_BR).append(", ");
+          } else if (o.what == ir::ArmOutput::What::JointPosition) {
+            call.append("joint_position(d.").append(arm_names_[k].ws).append(", ");
+          } else if (o.what == ir::ArmOutput::What::JointVelocity) {
+            call.append("joint_velocity(d.").append(arm_names_[k].ws).append(", ");
+          } else if (o.what == ir::ArmOutput::What::JointTorque) {
+            call.append("joint_torque(d.").append(arm_names_[k].ws).append(", state.arm[");
+            call.append(std::to_string(a.port)).append("].tau, ");
+          } else if (o.what == ir::ArmOutput::What::EstimatedWrench) {
+            call.append("estimated_wrench(m.").append(arm_names_[k].arm).append(", d.");
+            call.append(arm_names_[k].arm).append(", d.").append(arm_names_[k].ws);
+            call.append(", state.arm[").append(std::to_string(a.port)).append("].tau, ");
           } else {
             call.append("segment_twist(d.").append(arm_names_[k].arm).append(", ");
           }

@@ -386,7 +386,7 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
     }
     return std::string();
   };
-  out.frames.root = {r.name(roots.front()), origin_of(roots.front()), body_of(roots.front())};
+  out.frames.root = {r.name(roots.front()), origin_of(roots.front()), body_of(roots.front()), {}};
   rdf::TermId frame = roots.front();
   for (auto it = by_parent_frame.find(frame); it != by_parent_frame.end();
        it = by_parent_frame.find(frame)) {
@@ -400,7 +400,8 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
     s.axis_J = Vec3(r.number(axis, V::x), r.number(axis, V::y), r.number(axis, V::z));
     s.inertia = r.inertia(info.child);
     chain.add_segment(std::move(s));
-    out.frames.segments.push_back({r.name(info.child), origin_of(info.child), body_of(info.child)});
+    out.frames.segments.push_back(
+        {r.name(info.child), origin_of(info.child), body_of(info.child), r.name(info.joint)});
     frame = info.child;
     by_parent_frame.erase(it);
   }

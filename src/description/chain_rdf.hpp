@@ -35,6 +35,7 @@ Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri);
 // sees. An entity the model does not relate is "".
 struct FrameEntities {
   std::string frame, origin, body;
+  std::string joint;  // a segment's: the joint that moves its frame (empty for the root)
 };
 struct ChainFrames {
   FrameEntities root;                   // the chain's root frame (the base link's)

@@ -140,6 +140,15 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
           s_.poses[slot(o.data)] = steps::segment_pose(arm.data, o.segment);
         } else if (o.what == ArmOutput::What::ChainRootPose) {
           s_.poses[slot(o.data)] = steps::segment_pose_in_chain_root(arm.data, arm.X_BR, o.segment);
+        } else if (o.what == ArmOutput::What::JointPosition) {
+          s_.scalars[slot(o.data)] = steps::joint_position(arm.ws, o.segment);
+        } else if (o.what == ArmOutput::What::JointVelocity) {
+          s_.scalars[slot(o.data)] = steps::joint_velocity(arm.ws, o.segment);
+        } else if (o.what == ArmOutput::What::JointTorque) {
+          s_.scalars[slot(o.data)] = steps::joint_torque(arm.ws, m.tau, o.segment);
+        } else if (o.what == ArmOutput::What::EstimatedWrench) {
+          s_.wrenches[slot(o.data)] =
+              steps::estimated_wrench(arm.model, arm.data, arm.ws, m.tau, o.segment);
         } else {
           s_.twists[slot(o.data)] = steps::segment_twist(arm.data, o.segment);
         }

@@ -158,7 +158,8 @@ const KindEntry kStepKinds[] = {
      }},
     {{StepKind::ArmKinematics, "arm-kinematics", std::nullopt,
       "slv:SolverWithInputAndOutput (its outputs)",
-      "outs: the solver's outputs (poses, twists of segments w.r.t. the root)"},
+      "outs: the solver's outputs (poses, twists of segments w.r.t. the root; joint positions, "
+      "velocities, measured torques)"},
      [](const Step&, const Program&) -> Signature {
        return {{}, {}, true};
      }},
@@ -495,8 +496,27 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
       if (o.segment < 0 || o.segment >= a.chain.size())
         f.add(a.where, "arm solver '" + a.name + "': an output names segment " +
                            std::to_string(o.segment) + " of " + std::to_string(a.chain.size()));
-      if (!f.valid_datum(o.data))
+      if (!f.valid_datum(o.data)) {
         f.add(a.where, "arm solver '" + a.name + "' outputs " + f.describe(o.data));
+        continue;
+      }
+      const DataType expected =
+          o.what == ArmOutput::What::SegmentTwist      ? DataType::Twist
+          : o.what == ArmOutput::What::EstimatedWrench ? DataType::Wrench
+          : o.what == ArmOutput::What::SegmentPose || o.what == ArmOutput::What::ChainRootPose
+              ? DataType::Pose
+              : DataType::Scalar;
+      if (p.data[static_cast<size_t>(o.data)].type != expected)
+        f.add(a.where, "arm solver '" + a.name + "' writes an output of its kind into " +
+                           f.describe(o.data) + "; expected a " + std::string(to_string(expected)));
+    }
+    for (const JointForce& j : a.joint_forces) {
+      if (j.joint < 0 || j.joint >= a.chain.size())
+        f.add(a.where, "arm solver '" + a.name + "': joint force '" + j.iri + "' names joint " +
+                           std::to_string(j.joint) + " of " + std::to_string(a.chain.size()));
+      if (!f.valid_datum(j.force) || p.data[static_cast<size_t>(j.force)].type != DataType::Scalar)
+        f.add(a.where, "arm solver '" + a.name + "': joint force '" + j.iri + "' applies " +
+                           f.describe(j.force) + "; expected a scalar");
     }
   }
   for (const LogColumn& c : p.log) {
@@ -629,9 +649,13 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["X_NT"] = pose_json(a.chain.X_NT());
     Json outs = Json::array();
     for (const ArmOutput& o : a.outputs) {
-      const char* what = o.what == ArmOutput::What::SegmentPose     ? "segment-pose"
-                         : o.what == ArmOutput::What::ChainRootPose ? "segment-pose-in-chain-root"
-                                                                    : "segment-twist";
+      const char* what = o.what == ArmOutput::What::SegmentPose       ? "segment-pose"
+                         : o.what == ArmOutput::What::ChainRootPose   ? "segment-pose-in-chain-root"
+                         : o.what == ArmOutput::What::JointPosition   ? "joint-position"
+                         : o.what == ArmOutput::What::JointVelocity   ? "joint-velocity"
+                         : o.what == ArmOutput::What::JointTorque     ? "measured-joint-torque"
+                         : o.what == ArmOutput::What::EstimatedWrench ? "estimated-wrench"
+                                                                      : "segment-twist";
       outs.push_back({{"what", what}, {"segment", o.segment}, {"data", o.data}});
     }
     e["outputs"] = std::move(outs);

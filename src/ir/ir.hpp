@@ -143,8 +143,22 @@ struct Step {
 // So_i as seen by the root.
 // With a mount (root_frame is not the chain's root), a pose may also be asked
 // w.r.t. the chain's own root: X_BS = X_RB^-1 X_RS (ChainRootPose).
+// Joint quantities (mospec/joints) are scalars of joint `segment` (segment i
+// is moved by joint i): its position q_i, its velocity qd_i (as read by the
+// kinematics step, a non-finite sample keeping the last finite value) and its
+// measured torque tau_i (the arm's torque sensors, robot::ArmMeasurement::tau,
+// likewise).
 struct ArmOutput {
-  enum class What : uint8_t { SegmentPose, SegmentTwist, ChainRootPose } what = What::SegmentPose;
+  enum class What : uint8_t {
+    SegmentPose,
+    SegmentTwist,
+    ChainRootPose,
+    JointPosition,
+    JointVelocity,
+    JointTorque,
+    EstimatedWrench  // the wrench on segment S_i at So_i seen by the root, from the measured
+                     // torques (runtime::steps::estimated_wrench)
+  } what = What::SegmentPose;
   int segment = 0;
   int data = 0;
 };

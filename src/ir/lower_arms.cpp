@@ -97,6 +97,62 @@ void lower_arm_behaviour(State& st, TermId solver, ArmSolver& arm) {
   }
 }
 
+// mospec/joints: a solver output that is a joint quantity, and its kind.
+std::optional<ArmOutput::What> joint_quantity(State& st, TermId o) {
+  namespace mj = mospec::vocab::mospec_joints;
+  if (st.has_type(o, mospec::vocab::term(mj::ns, "JointPosition")))
+    return ArmOutput::What::JointPosition;
+  if (st.has_type(o, mospec::vocab::term(mj::ns, "JointVelocity")))
+    return ArmOutput::What::JointVelocity;
+  if (st.has_type(o, mospec::vocab::term(mj::ns, "JointTorque")))
+    return ArmOutput::What::JointTorque;
+  return std::nullopt;
+}
+
+// A joint position, velocity or measured torque the solver outputs: a scalar
+// of the joint its `of-joint` names, in RAD, RAD-PER-SEC or N-M (mospec's
+// chains have revolute joints only).
+template <class JointIndex>
+void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What what,
+                        const JointIndex& joint_index, Step& kin) {
+  namespace mj = mospec::vocab::mospec_joints;
+  const std::string of_joint = mospec::vocab::term(mj::ns, "of-joint");
+  const int d = st.datum(o, DataType::Scalar, st.term(arm.iri), "output");
+  const Data& dd = st.program.data[static_cast<size_t>(d)];
+  const char* kind = what == ArmOutput::What::JointPosition   ? "joint position"
+                     : what == ArmOutput::What::JointVelocity ? "joint velocity"
+                                                              : "measured joint torque";
+  const char* unit = what == ArmOutput::What::JointPosition   ? "RAD"
+                     : what == ArmOutput::What::JointVelocity ? "RAD-PER-SEC"
+                                                              : "N-M";
+  const auto joint = st.object(o, of_joint);
+  if (!joint) {
+    st.error(o, "missing-property",
+             std::string("the ") + kind + " '" + dd.iri +
+                 "' names no `of-joint` (mos-jnt:of-joint): the joint of '" + arm.chain_iri +
+                 "' it is of");
+    return;
+  }
+  const int j = joint_index(st.str(*joint));
+  if (j < 0) {
+    st.error(st.where(o, of_joint, *joint), "unknown-joint",
+             std::string("the ") + kind + " '" + dd.iri + "' is of '" + st.str(*joint) +
+                 "', which is no joint of '" + arm.chain_iri + "' (the chain the solver '" +
+                 arm.iri +
+                 "' reads); name one of the chain's `joints`, or output it from the "
+                 "solver of that joint's chain");
+    return;
+  }
+  if (dd.unit != unit) {
+    st.error(o, "wrong-unit",
+             std::string("the ") + kind + " '" + dd.iri + "' of the revolute joint '" +
+                 st.str(*joint) + "' is in " + unit + ", not in '" + dd.unit + "'");
+    return;
+  }
+  arm.outputs.push_back({what, j, d});
+  kin.out.push_back(d);
+}
+
 }  // namespace
 
 void lower_arm(State& st, TermId solver) {
@@ -240,7 +296,43 @@ void lower_arm(State& st, TermId solver) {
   };
   // Outputs.
   Step kin = arm_step(StepKind::ArmKinematics, "_kinematics");
+  // Joint i of the chain (it moves segment i), by the robot model's joint IRI.
+  const auto joint_index = [&](const std::string& iri) {
+    for (size_t i = 0; i < frames.segments.size(); ++i) {
+      if (frames.segments[i].joint == iri) return static_cast<int>(i);
+    }
+    return -1;
+  };
   for (TermId o : st.objects(solver, vocab(slv, "output"))) {
+    if (auto joint_output = joint_quantity(st, o)) {
+      lower_joint_output(st, arm, o, *joint_output, joint_index, kin);
+      continue;
+    }
+    if (st.has_type(o, mospec::vocab::term(mospec::vocab::mospec_joints::ns, "EstimatedWrench"))) {
+      // The wrench on a segment estimated from the measured joint torques:
+      // at a segment's origin, seen by the root (runtime::steps::estimated_wrench).
+      const int d = st.datum(o, DataType::Wrench, solver, "output");
+      const Data& dd = st.program.data[static_cast<size_t>(d)];
+      int seg = -1;
+      for (size_t i = 0; i < frames.segments.size(); ++i) {
+        if (!dd.reference_point.empty() && frames.segments[i].origin == dd.reference_point)
+          seg = static_cast<int>(i);
+      }
+      if (seg < 0 || dd.as_seen_by != arm.root_frame) {
+        st.error(
+            o, "unsupported-output",
+            "the solver '" + arm.iri +
+                "' estimates the wrench on a segment at the segment's origin, seen by the "
+                "root '" +
+                arm.root_frame + "'; '" + dd.iri + "' is at '" + dd.reference_point +
+                "' seen by '" + dd.as_seen_by +
+                "' (transform it with TransformWrenchToProximal/RotateWrenchToProximalWithPose)");
+        continue;
+      }
+      arm.outputs.push_back({ArmOutput::What::EstimatedWrench, seg, d});
+      kin.out.push_back(d);
+      continue;
+    }
     const auto t = st.type_of(o);
     if (t == DataType::Pose) {
       const int d = st.datum(o, DataType::Pose, solver, "output");
@@ -435,9 +527,46 @@ void lower_arm(State& st, TermId solver) {
       solve.in.push_back(cf.wrench);
       arm.cartesian_forces.push_back(cf);
     }
+    // A joint force adds its scalar to the joint's feed-forward torque
+    // (ACHD's tau_ff), which acts in the directions the acceleration
+    // constraints leave free.
     for (TermId spec : st.objects(*drivers, vocab(slv, "joint-force"))) {
-      st.error(spec, "unsupported-driver",
-               "joint-force motion drivers ('" + st.str(spec) + "') are not supported yet");
+      st.pending_iri = st.str(spec);
+      JointForce jf;
+      jf.iri = st.str(spec);
+      jf.level = level_for(spec);
+      if (jf.level != 0) {
+        st.error(spec, "unsupported-priority",
+                 "joint forces must be in the highest priority level: one ACHD solve adds every "
+                 "feed-forward joint force alike, so a lower level would not yield to the drivers "
+                 "above it; '" +
+                     jf.iri + "' is in level " + std::to_string(jf.level + 1));
+      }
+      auto joint = st.object(spec, vocab(slv, "attached-to"));
+      auto force = st.object(spec, vocab(slv, "force"));
+      if (!joint || !force) {
+        st.error(spec, "missing-property",
+                 "the joint force '" + jf.iri + "' needs `force` and `attached-to` (a joint)");
+        continue;
+      }
+      jf.joint = joint_index(st.str(*joint));
+      if (jf.joint < 0) {
+        st.error(st.where(spec, vocab(slv, "attached-to"), *joint), "unknown-joint",
+                 "'" + jf.iri + "' is attached to '" + st.str(*joint) +
+                     "', which is no joint of '" + arm.chain_iri + "' (the chain the solver '" +
+                     arm.iri + "' drives); attach it to one of the chain's `joints`");
+        continue;
+      }
+      jf.force = st.datum(*force, DataType::Scalar, spec, "force");
+      const Data& f = st.program.data[static_cast<size_t>(jf.force)];
+      if (f.unit != "N-M") {
+        st.error(*force, "wrong-unit",
+                 "the joint force '" + f.iri + "' drives the revolute joint '" + st.str(*joint) +
+                     "' through '" + jf.iri + "', so it is a torque in N-M, not in '" + f.unit +
+                     "'");
+      }
+      solve.in.push_back(jf.force);
+      arm.joint_forces.push_back(jf);
     }
   }
   // Drivers a level lists but the solver's drivers do not.

@@ -102,6 +102,12 @@ const std::vector<Family>& families() {
        false,
        {{"BrakeAndHold", "brake-and-hold idle behaviour", {"time-constant"}},
         {"Float", "float idle behaviour", {}}}},
+      {v::mospec_joints::ns,
+       false,
+       {{"JointPosition", "joint position", {"of-joint"}},
+        {"JointVelocity", "joint velocity", {"of-joint"}},
+        {"JointTorque", "measured joint torque", {"of-joint"}},
+        {"EstimatedWrench", "estimated wrench", {}}}},
   };
   return table;
 }
@@ -208,7 +214,7 @@ void refuse_unread_properties(State& st) {
   for (std::string_view ns :
        {mospec::vocab::cstr::ns, mospec::vocab::cstr_hdl::ns, mospec::vocab::mot::ns,
         mospec::vocab::slv::ns, mospec::vocab::map::ns, mospec::vocab::mospec_time::ns,
-        mospec::vocab::mospec_solver::ns}) {
+        mospec::vocab::mospec_solver::ns, mospec::vocab::mospec_joints::ns}) {
     std::vector<Entity> entities;
     std::map<uint32_t, size_t> index;
     for (const Family& f : families()) {

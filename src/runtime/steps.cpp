@@ -10,6 +10,8 @@ ArmWorkspace::ArmWorkspace(const AchdModel& model, int constraints)
     : q(JointVector::Zero(model.nq)),
       qd(JointVector::Zero(model.nq)),
       tau_ff(JointVector::Zero(model.nq)),
+      tau_measured(JointVector::Zero(model.nq)),
+      tau_bias(JointVector::Zero(model.nq)),
       alpha_To_B(ConstraintMatrix::Zero(6, constraints)),
       beta(ConstraintVector::Zero(constraints)),
       alpha_engaged(ConstraintMatrix::Zero(6, constraints)),
@@ -47,6 +49,32 @@ void arm_kinematics(const AchdModel& model, AchdData& data, ArmWorkspace& ws,
     X_BP = data.X_BS[k];
   }
   data.X_BT = X_BP * model.X_NT;
+}
+
+Vec6 estimated_wrench(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
+                      std::span<const double> tau_measured, int segment) noexcept {
+  const int n = physical_model.nq;
+  for (int i = 0; i < n; ++i) joint_torque(ws, tau_measured, i);
+  // h(q, qd): rne with qdd = 0 (also refreshes data.X_BS from ws.q).
+  impl::rne_into(physical_model, data, ws.q, ws.qd, nullptr, {}, ws.tau_bias);
+  const auto k = static_cast<std::size_t>(segment);
+  const Vec3& p_BSo = data.X_BS[k].p;
+  Jacobian J = Jacobian::Zero(6, n);
+  for (int i = 0; i <= segment && i < n; ++i) {
+    const auto j = static_cast<std::size_t>(i);
+    const Vec3 axis_B = data.X_BS[j].R * physical_model.segments[j].axis;
+    if (physical_model.segments[j].type == JointType::Revolute) {
+      J.col(i) << axis_B, axis_B.cross(p_BSo - data.X_BS[j].p);
+    } else {
+      J.col(i) << Vec3::Zero(), axis_B;
+    }
+  }
+  Mat6 A;
+  A.noalias() = J * J.transpose();
+  A.diagonal().array() += kWrenchEstimateDamping2;
+  Vec6 b;
+  b.noalias() = J * (ws.tau_bias - ws.tau_measured);
+  return A.ldlt().solve(b);
 }
 
 void arm_solve(const AchdModel& task_model, const AchdModel& physical_model, AchdData& data,

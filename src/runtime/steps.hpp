@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -24,6 +25,10 @@ namespace mospec::runtime::steps {
 struct ArmWorkspace {
   explicit ArmWorkspace(const AchdModel& model, int constraints);
   JointVector q, qd, tau_ff;
+  // The measured joint torques the task reads (joint_torque): each entry's
+  // last finite sample.
+  JointVector tau_measured;
+  JointVector tau_bias;  // estimated_wrench: h(q, qd), gravity and velocity products
   std::array<Vec6, kMaxJoints> F_ext{};
   ConstraintMatrix alpha_To_B;  // 6 x nc, filled at setup (unit columns)
   ConstraintVector beta;        // nc, filled every tick from the drivers
@@ -64,6 +69,44 @@ inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
   return rotate_twist_to_proximal(data.X_BS[static_cast<std::size_t>(segment)],
                                   data.V[static_cast<std::size_t>(segment)]);
 }
+
+// Joint i's position q_i [rad] and velocity qd_i [rad/s] as arm_kinematics
+// read them this tick (a non-finite sample keeps the last finite value).
+inline double joint_position(const ArmWorkspace& ws, int joint) noexcept {
+  return ws.q[joint];
+}
+inline double joint_velocity(const ArmWorkspace& ws, int joint) noexcept {
+  return ws.qd[joint];
+}
+// Joint i's measured torque [N·m] (the arm's torque sensors): a non-finite
+// sample, or none, keeps the last finite value (0 before the first).
+inline double joint_torque(ArmWorkspace& ws, std::span<const double> tau_measured,
+                           int joint) noexcept {
+  const auto k = static_cast<std::size_t>(joint);
+  if (k < tau_measured.size() && std::isfinite(tau_measured[k]))
+    ws.tau_measured[joint] = tau_measured[k];
+  return ws.tau_measured[joint];
+}
+
+// The wrench the environment exerts on segment S_i, at So_i and seen by the
+// root, estimated from the measured joint torques (quasi-static):
+//   the arm's dynamics M(q) qdd + h(q, qd) = tau + J_i(q)^T F,
+//   with qdd taken as 0:  J_i^T F = h(q, qd) - tau_measured,
+//   F = (J_i J_i^T + lambda^2 I)^-1 J_i (h - tau_measured),
+// J_i the 6 x n Jacobian of S_i's twist at So_i seen by the root (angular rows
+// first; the joints after i are zero columns), h from `physical_model` (the
+// solver's gravity), lambda^2 = kWrenchEstimateDamping2. Limits: the arm's
+// acceleration, friction and the rotors' inertia show up as force (at the
+// Gen3's accelerations, tenths of a newton); a wrench in the null space of
+// J_i^T (a chain with fewer than six joints up to S_i, or a singular
+// configuration) is not seen (damped: it reads as ~0, never as a jump); the
+// estimate is only as good as the model's inertias. Measured torques are read
+// as joint_torque reads them (last finite sample).
+Vec6 estimated_wrench(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
+                      std::span<const double> tau_measured, int segment) noexcept;
+// lambda^2 above [1 in the units of J J^T: m^2 for the force rows]: small
+// enough to leave a regular configuration's estimate unchanged to ~1e-6.
+inline constexpr double kWrenchEstimateDamping2 = 1e-9;
 
 // Solves ACHD with the workspace's drivers (F_ext, tau_ff, alpha, beta; the
 // engaged columns only) in `task_model` and computes the joint torques to

@@ -61,6 +61,7 @@ MOSPEC_VOCAB_NS(mospec_time, "mospec/time")
 MOSPEC_VOCAB_NS(mospec_base, "mospec/mobile-base")
 MOSPEC_VOCAB_NS(mospec_solver, "mospec/solver")
 MOSPEC_VOCAB_NS(mospec_guards, "mospec/guards")
+MOSPEC_VOCAB_NS(mospec_joints, "mospec/joints")
 MOSPEC_VOCAB_NS(mospec_shapes, "mospec/shapes")
 
 #undef MOSPEC_VOCAB_NS

@@ -305,12 +305,23 @@ inline ir::Program arm_program(SourceFiles& files) {
   const int V_BE = b.datum("V_BE", T::Twist);
   const int X_B3 = b.datum("X_B3", T::Pose);
   const int X_C3 = b.datum("X_C3", T::Pose);  // w.r.t. the chain's own root
+  // Joint quantities (mospec/joints, issue #16): joint 3's position,
+  // velocity and measured torque.
+  const int q_3 = b.datum("q_3", T::Scalar, {}, "RAD");
+  const int qd_3 = b.datum("qd_3", T::Scalar, {}, "RAD-PER-SEC");
+  const int tau_m_3 = b.datum("tau_m_3", T::Scalar, {}, "N-M");
+  const int F_est = b.datum("F_est", T::Wrench);  // estimated from the measured torques
   arm.outputs = {{ir::ArmOutput::What::SegmentPose, n - 1, X_BE},
                  {ir::ArmOutput::What::SegmentTwist, n - 1, V_BE},
                  {ir::ArmOutput::What::SegmentPose, 3, X_B3},
-                 {ir::ArmOutput::What::ChainRootPose, 3, X_C3}};
+                 {ir::ArmOutput::What::ChainRootPose, 3, X_C3},
+                 {ir::ArmOutput::What::JointPosition, 3, q_3},
+                 {ir::ArmOutput::What::JointVelocity, 3, qd_3},
+                 {ir::ArmOutput::What::JointTorque, 3, tau_m_3},
+                 {ir::ArmOutput::What::EstimatedWrench, n - 1, F_est}};
   b.step(K::ReadClock, "clock", {}, {time});
-  ir::Step& kin = b.step(K::ArmKinematics, "right_arm_kinematics", {}, {X_BE, V_BE, X_B3, X_C3});
+  ir::Step& kin = b.step(K::ArmKinematics, "right_arm_kinematics", {},
+                         {X_BE, V_BE, X_B3, X_C3, q_3, qd_3, tau_m_3, F_est});
   kin.solver = 0;
   const int height = b.datum("ee_height", T::Scalar, {}, "M");
   b.step(K::ViewRead, "view_height", {X_BE}, {height}).views = {5};
@@ -369,10 +380,11 @@ inline ir::Program arm_program(SourceFiles& files) {
   solve.solver = 0;
   solve.n_drivers = 5;
 
-  for (int d : {time, height, elbow_x, vz, err, acc, low_err, acc_x, push}) {
+  for (int d : {time, height, elbow_x, vz, err, acc, low_err, acc_x, push, q_3, qd_3, tau_m_3}) {
     b.log(b.p.data[static_cast<std::size_t>(d)].name, d,
           b.p.data[static_cast<std::size_t>(d)].unit);
   }
+  b.p.log.push_back({"F_est.f_z", "N", F_est, 5});
   b.log("height_ok", ok);
   b.log("reach", reach);
   b.log("right_arm_degraded", degraded, "", true);
@@ -600,6 +612,10 @@ inline robot::MeasuredState measurement(std::uint64_t k) {
       const double w = 0.5 + 0.1 * static_cast<double>(j) + 0.05 * static_cast<double>(a);
       s.arm[a].q[j] = 0.3 * std::sin(w * t + static_cast<double>(j)) + (j % 2 == 1 ? 0.4 : 0.0);
       s.arm[a].qd[j] = 0.3 * w * std::cos(w * t + static_cast<double>(j));
+      // Measured torques, with a non-finite sample now and then (a joint
+      // torque output keeps its last finite value).
+      s.arm[a].tau[j] =
+          k % 97 == 13 ? std::nan("") : 2.0 * std::cos(0.9 * t + static_cast<double>(j + a));
     }
   }
   for (std::size_t i = 0; i < s.pivot_q.size(); ++i) {

@@ -173,6 +173,21 @@ bad arm-behaviour mospec/solver.ttl 11 \
   '<https://ex.org/brake-none>: a BrakeAndHold has exactly one time-constant' \
   '<https://ex.org/float>: a Float does not brake'
 
+good joints mospec/joints.ttl
+bad joints mospec/joints.ttl 7 \
+  '<https://ex.org/q-deg>: a revolute joint.s position is an angle: exactly one unit, RAD' \
+  '<https://ex.org/q-link>: a joint position is of exactly one joint' \
+  '<https://ex.org/q-orphan>: a joint position is the output of exactly one solver' \
+  '<https://ex.org/qd-rad>: a joint velocity is of exactly one joint' \
+  '<https://ex.org/qd-rad>: a revolute joint.s velocity is an angular velocity: exactly one unit, RAD-PER-SEC' \
+  '<https://ex.org/tau-n>: a revolute joint.s torque is in N-M' \
+  '<https://ex.org/not-a-quantity>: a measured joint torque is a quantity'
+
+good estimated-wrench mospec/estimated-wrench.ttl
+bad estimated-wrench mospec/estimated-wrench.ttl 2 \
+  '<https://ex.org/F-quantity>: an estimated wrench is a wrench' \
+  '<https://ex.org/F-quantity>: an estimated wrench is the output of exactly one solver'
+
 good guards mospec/guards.ttl
 bad guards mospec/guards.ttl 12 \
   '<https://ex.org/motion-while>: <https://ex.org/exact> is a per-condition on a quantity no controller or assignment of the motion acts on' \

@@ -167,5 +167,59 @@ TEST(ArmSteps, FloatIsGravityCompensationAlone) {
     EXPECT_NEAR(tau[static_cast<size_t>(i)], expected[i], 1e-12);
 }
 
+// The estimated wrench (issue #16 item 4) checked against rne: measured
+// torques that hold the arm still against a wrench F on a segment are
+// rne(q, qd, 0, F); the estimate from them must produce the same joint torques
+// (the part of F the joints feel: the toy arm has five joints, so J^T has a
+// null space), and equal F where F is in the range of J.
+TEST(ArmSteps, TheEstimatedWrenchProducesTheMeasuredTorquesDeviationFromTheModel) {
+  const Arm arm;
+  const AchdModel physical(arm.chain, kGravity);
+  AchdData data(physical);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  const int n = physical.nq;
+  for (int trial = 0; trial < 20; ++trial) {
+    steps::ArmWorkspace ws = sampled(physical, data, rng);
+    const int segment = trial % n;
+    std::vector<Vec6> F_ext(static_cast<size_t>(n), Vec6::Zero());
+    Vec6 F;
+    for (int k = 0; k < 6; ++k) F[k] = u(rng);
+    F_ext[static_cast<size_t>(segment)] = F;
+    AchdData scratch(physical);
+    JointVector tau(n), zero = JointVector::Zero(n);
+    const JointIn zero_in(zero);
+    impl::rne_into(physical, scratch, ws.q, ws.qd, &zero_in, F_ext, tau);
+    std::vector<double> measured(tau.data(), tau.data() + n);
+    const Vec6 F_est = steps::estimated_wrench(physical, data, ws, measured, segment);
+    std::vector<Vec6> F_est_ext(static_cast<size_t>(n), Vec6::Zero());
+    F_est_ext[static_cast<size_t>(segment)] = F_est;
+    JointVector tau_est(n);
+    impl::rne_into(physical, scratch, ws.q, ws.qd, &zero_in, F_est_ext, tau_est);
+    for (int i = 0; i < n; ++i)
+      EXPECT_NEAR(tau_est[i], tau[i], 1e-6) << "trial " << trial << ", joint " << i;
+  }
+}
+
+TEST(ArmSteps, WithoutAnExternalWrenchTheEstimateIsZeroAndANaNTorqueKeepsTheLastSample) {
+  const Arm arm;
+  const AchdModel physical(arm.chain, kGravity);
+  AchdData data(physical);
+  std::mt19937 rng(3);
+  steps::ArmWorkspace ws = sampled(physical, data, rng);
+  const int n = physical.nq;
+  AchdData scratch(physical);
+  JointVector tau(n), zero = JointVector::Zero(n);
+  const JointIn zero_in(zero);
+  impl::rne_into(physical, scratch, ws.q, ws.qd, &zero_in, {}, tau);
+  std::vector<double> measured(tau.data(), tau.data() + n);
+  EXPECT_LT(steps::estimated_wrench(physical, data, ws, measured, n - 1).norm(), 1e-9);
+  measured[1] = std::nan("");
+  const Vec6 F = steps::estimated_wrench(physical, data, ws, measured, n - 1);
+  EXPECT_TRUE(F.allFinite());
+  EXPECT_LT(F.norm(), 1e-9);
+  EXPECT_EQ(steps::joint_torque(ws, measured, 1), tau[1]);
+}
+
 }  // namespace
 }  // namespace mospec::runtime
