@@ -630,6 +630,12 @@ void check_acceleration_energies(State& st, const ArmSolver& arm) {
 // bound leaves its direction free instead of locking it. An inequality reached
 // through anything else (an operator mixing it with other signals) has no
 // single error that says when the bound is reached: refused.
+bool evaluates_inequality(const Step& step) {
+  return step.kind == StepKind::Evaluate &&
+         (step.constraint.kind == runtime::ConstraintKind::LessThan ||
+          step.constraint.kind == runtime::ConstraintKind::GreaterThan);
+}
+
 void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
   for (AccelerationConstraint& ac : arm.acceleration_constraints) {
     const auto from = st.producer.find(ac.energy);
@@ -638,10 +644,7 @@ void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
     if (controller.kind == StepKind::Controller && !controller.in.empty()) {
       const auto e = st.producer.find(controller.in[0]);
       if (e != st.producer.end() && e->second >= 0) {
-        const Step& evaluate = st.steps[static_cast<size_t>(e->second)];
-        const auto kind = evaluate.constraint.kind;
-        if (evaluate.kind == StepKind::Evaluate && (kind == runtime::ConstraintKind::LessThan ||
-                                                    kind == runtime::ConstraintKind::GreaterThan)) {
+        if (evaluates_inequality(st.steps[static_cast<size_t>(e->second)])) {
           ac.engaged_by = controller.in[0];
           solve.in.push_back(ac.engaged_by);
           continue;
@@ -658,9 +661,7 @@ void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
       const auto it = st.producer.find(d);
       if (it == st.producer.end() || it->second < 0) continue;
       const Step& p = st.steps[static_cast<size_t>(it->second)];
-      const auto kind = p.constraint.kind;
-      if (p.kind == StepKind::Evaluate && (kind == runtime::ConstraintKind::LessThan ||
-                                           kind == runtime::ConstraintKind::GreaterThan)) {
+      if (evaluates_inequality(p)) {
         st.error(st.term(ac.iri), "unsupported-one-sided",
                  "the acceleration constraint '" + ac.iri + "' is driven by the inequality '" +
                      p.iri + "' through '" + controller.iri +
