@@ -51,10 +51,9 @@ mospec::ir::Program lower_sc1() {
 
 void run_ticks(benchmark::State& state, Controller& controller) {
   const mospec::sim::WorldConfig world = mospec::sim::default_world();
-  mospec::robot::MeasuredState s;
-  for (int a = 0; a < mospec::robot::kArms; ++a)
-    s.arm[static_cast<size_t>(a)].q = world.arms[static_cast<size_t>(a)].q0;
-  mospec::robot::Command command;
+  mospec::robot::MeasuredState s = mospec::robot::make_state(mospec::robot::gen3_pair_shape());
+  for (size_t a = 0; a < s.arm.size(); ++a) s.arm[a].q = world.arms[a].q0;
+  mospec::robot::Command command = mospec::robot::make_command(mospec::robot::gen3_pair_shape());
   std::uint64_t k = 0;
   for (auto _ : state) {
     s.clock.tick = k;

@@ -30,12 +30,12 @@ void BM_SimStep(benchmark::State& st, sim::BaseFidelity base) {
       description::load_chain(c.robot.model, c.robot.chain_iri, c.robot.maps);
   c.drives = description::load_base(c.base_model.model, c.base_model.configuration);
   sim::World world(c, arm);
-  sim::GravityCompensation arms(arm, {c.arms[0].X_PB, c.arms[1].X_PB});
+  sim::GravityCompensation arms(arm, std::vector<runtime::Pose>{c.arms[0].X_PB, c.arms[1].X_PB});
   arms.f_E_P = {runtime::Vec3(10, 0, 0), runtime::Vec3(10, 0, 0)};
   sim::PlatformWrenchDriver drives(c.drives);
   drives.F_p = runtime::Vec3(20, 0, 0);
-  robot::MeasuredState s;
-  robot::Command cmd;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
+  robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
   auto tick = [&] {
     world.read(s);
     arms.compute(s, cmd);

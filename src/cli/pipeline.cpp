@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "shacl/report.hpp"
+#include "sim/config.hpp"
 #include "validation/model_validation.hpp"
 
 namespace mospec::cli {
@@ -11,9 +12,14 @@ namespace mospec::cli {
 void PipelineFlags::add_to(CLI::App& cmd) {
   cmd.add_option("app", inputs, "App model")->required()->type_name("APP");
   cmd.add_option("--bind", binds,
-                 "Bind a kinematic chain to a robot arm (CHAIN=right|left); mospec's own robot "
-                 "descriptions are bound by default")
+                 "Bind a kinematic chain to an arm of the robot (CHAIN=ARM, ARM an arm's name "
+                 "in the world file or its index); the world file's arms bind their chains")
       ->type_name("CHAIN=ARM");
+  cmd.add_option("--world", world,
+                 "World file (JSON, docs/simulation.md): the robot, whose arms the chains drive, "
+                 "and for `run` the simulated world (default: the app's sibling "
+                 "NAME.world.json, else mospec's default robot and world)")
+      ->type_name("FILE");
   load.add_to(cmd);
 }
 
@@ -31,17 +37,51 @@ std::string resolve_app(const std::string& path) {
   return path;
 }
 
+sim::WorldConfig scenario_world(const std::string& app, const std::string& world_file,
+                                bool check_files) {
+  if (!world_file.empty()) return sim::load_world_config(world_file, check_files);
+  std::filesystem::path p(app);
+  if (p.extension() == ".json") {
+    std::filesystem::path w = p;
+    w.replace_extension(".world.json");
+    if (std::filesystem::exists(w)) return sim::load_world_config(w.string(), check_files);
+  }
+  return sim::default_world();
+}
+
+std::map<std::string, int> arm_ports(const sim::WorldConfig& world,
+                                     const std::vector<std::string>& binds) {
+  std::map<std::string, int> ports;
+  for (size_t k = 0; k < world.arms.size(); ++k) {
+    ports[world.arms[k].chain_iri] = static_cast<int>(k);
+  }
+  for (const std::string& b : binds) {
+    const auto eq = b.find('=');
+    const std::string arm = eq == std::string::npos ? "" : b.substr(eq + 1);
+    int port = -1;
+    for (size_t k = 0; k < world.arms.size(); ++k) {
+      if (world.arms[k].name == arm || std::to_string(k) == arm) port = static_cast<int>(k);
+    }
+    if (eq == std::string::npos || eq == 0 || port < 0) {
+      std::string names;
+      for (const sim::ArmSetup& a : world.arms) names += (names.empty() ? "" : ", ") + a.name;
+      throw Error("usage", "--bind expects CHAIN=ARM with ARM one of the robot's arms (" +
+                               (names.empty() ? std::string("it has none") : names) +
+                               ") or its index, got '" + b + "'");
+    }
+    ports[b.substr(0, eq)] = port;
+  }
+  return ports;
+}
+
 std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& exit_code,
                                                SourceFiles* files, const AfterPass& after_pass) {
   ir::LowerOptions options;
-  for (const std::string& b : flags.binds) {
-    const auto eq = b.find('=');
-    const std::string arm = eq == std::string::npos ? "" : b.substr(eq + 1);
-    if (eq == std::string::npos || eq == 0 || (arm != "right" && arm != "left")) {
-      throw Error("usage", "--bind expects CHAIN=right|left, got '" + b + "'");
-    }
-    options.ports[b.substr(0, eq)] = arm == "right" ? 0 : 1;
-  }
+  // Only the arms' chains are read: the files the world names are checked
+  // where they are loaded (`run`).
+  options.ports = arm_ports(
+      scenario_world(resolve_app(flags.inputs.front()), flags.world, /*check_files=*/false),
+      flags.binds);
   std::vector<std::string> inputs;
   for (const std::string& i : flags.inputs) inputs.push_back(resolve_app(i));
   app::LoadedModel model = app::load(inputs, flags.load.to_options());

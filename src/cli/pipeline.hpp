@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -11,12 +12,14 @@
 #include "cli/commands.hpp"
 #include "ir/ir.hpp"
 #include "ir/lower.hpp"
+#include "sim/config.hpp"
 
 namespace mospec::cli {
 
 struct PipelineFlags {
   std::vector<std::string> inputs;
-  std::vector<std::string> binds;  // CHAIN=right|left
+  std::vector<std::string> binds;  // CHAIN=ARM
+  std::string world;               // --world FILE
   LoadFlags load;
   void add_to(CLI::App& cmd);
 };
@@ -25,11 +28,21 @@ struct PipelineFlags {
 // is the JSON file next to it (`models/sc1.json`); other paths are unchanged.
 std::string resolve_app(const std::string& path);
 
-// Loads, validates and lowers. On failure prints every finding (located) to
-// stderr and returns the exit code in `exit_code`: 1 when the model does not
-// validate or lower, 2 on bad input. `files` receives the source files (for
-// locations in the IR's JSON) when non-null.
-// `after_pass`, when given, is called after each lowering pass with the
+// The scenario's world: `world_file`, else APP's sibling "<name>.world.json",
+// else the default world (mospec's robot: two Gen3 arms on the KELO base).
+// `check_files`: as sim::load_world_config.
+sim::WorldConfig scenario_world(const std::string& app, const std::string& world_file,
+                                bool check_files = true);
+
+// Which arm each kinematic chain drives (ir::LowerOptions::ports): the world's
+// arms' chains, then each --bind CHAIN=ARM (ARM a name or an index).
+std::map<std::string, int> arm_ports(const sim::WorldConfig& world,
+                                     const std::vector<std::string>& binds);
+
+// Loads, validates and lowers (chains bound to the arms of the scenario's world). On failure prints
+// every finding (located) to stderr and returns the exit code in `exit_code`: 1 when the model does
+// not validate or lower, 2 on bad input. `files` receives the source files (for locations in the
+// IR's JSON) when non-null. `after_pass`, when given, is called after each lowering pass with the
 // program so far and the model's files (mospec ir --dump-after).
 using AfterPass =
     std::function<void(std::string_view pass, const ir::Program&, const SourceFiles&)>;

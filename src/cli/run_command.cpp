@@ -13,6 +13,7 @@
 #include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/verdict.hpp"
+#include "cli/world_arms.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
 #include "description/base_rdf.hpp"
@@ -54,19 +55,6 @@ video::FrameSize parse_frame_size(const std::string& text) {
   return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
 }
 
-// The scenario's world: --world, else APP's sibling "<name>.world.json", else
-// the default world.
-sim::WorldConfig scenario_world(const std::string& app, const std::string& world_file) {
-  if (!world_file.empty()) return sim::load_world_config(world_file);
-  std::filesystem::path p(app);
-  if (p.extension() == ".json") {
-    std::filesystem::path w = p;
-    w.replace_extension(".world.json");
-    if (std::filesystem::exists(w)) return sim::load_world_config(w.string());
-  }
-  return sim::default_world();
-}
-
 std::string located(const SourceFiles& files, const SourceLoc& where) {
   if (!where.known()) return "";
   return files.path(where.file) + ":" + std::to_string(where.line) + ":" +
@@ -101,6 +89,7 @@ void mount_arms(const ir::Program& program, const SourceFiles& files, sim::World
                       "'; the simulator mounts every arm on one platform: root the solvers of "
                       "mounted arms at the platform's frame");
     }
+    if (a.port < 0 || static_cast<size_t>(a.port) >= config.arms.size()) continue;
     sim::ArmSetup& arm = config.arms[static_cast<size_t>(a.port)];
     const bool same = (arm.X_PB.R - a.X_RB.R).cwiseAbs().maxCoeff() <= 1e-9 &&
                       (arm.X_PB.p - a.X_RB.p).cwiseAbs().maxCoeff() <= 1e-9;
@@ -167,17 +156,16 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   // What the robot interface clamped to the actuation limits (robot/limits.hpp).
   j["command_clamped"] = r.clamped;
   nlohmann::ordered_json clamps = nlohmann::ordered_json::array();
-  for (int q = 0; q < robot::kLimitedQuantities; ++q) {
-    const robot::ClampRecord& c = r.clamps[static_cast<size_t>(q)];
+  for (const robot::ClampRecord& c : r.clamps) {
     if (c.ticks == 0) continue;
     nlohmann::ordered_json e;
-    e["actuator"] = robot::limited_quantity_name(q);
+    e["actuator"] = c.quantity;
     e["ticks"] = c.ticks;
     e["first_tick"] = c.first_tick;
     e["max_requested"] = std::isfinite(c.max_requested) ? nlohmann::ordered_json(c.max_requested)
                                                         : nlohmann::ordered_json(nullptr);
     e["limit"] = c.limit;
-    e["unit"] = robot::limited_quantity_unit(q);
+    e["unit"] = c.unit;
     clamps.push_back(std::move(e));
   }
   j["clamped_actuators"] = std::move(clamps);
@@ -249,7 +237,6 @@ Action add_run_command(CLI::App& app) {
     bool interpret = false;
     double duration = 10.0;
     std::optional<std::uint64_t> seed;
-    std::string world;
     std::string base;
     std::string log;
     std::string summary;
@@ -273,8 +260,6 @@ Action add_run_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", flags->seed, "Seed of the world's initial perturbations (0..2^53)")
       ->check(integer_in(0, kMaxSeed));
-  cmd->add_option("--world", flags->world, "World file (JSON, see docs/simulation.md)")
-      ->type_name("FILE");
   cmd->add_option("--base", flags->base, "Base model (overrides the world)")
       ->check(CLI::IsMember({"wheeled", "planar", "fixed"}));
   cmd->add_option("--log", flags->log, "CSV log file ('-' = standard output)")
@@ -307,15 +292,14 @@ Action add_run_command(CLI::App& app) {
     auto program = load_validate_lower(flags->pipeline, code, &files);
     if (!program) return code;
     const std::string app_path = resolve_app(flags->pipeline.inputs.front());
-    sim::WorldConfig config = scenario_world(app_path, flags->world);
+    sim::WorldConfig config = scenario_world(app_path, flags->pipeline.world);
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
     if (flags->seed) config.seed = *flags->seed;
     // Refuse a run too long to simulate before building anything.
     (void)sim::tick_count(flags->duration, config.control_period,
                           static_cast<std::uint64_t>(flags->log_every));
     mount_arms(*program, files, config);
-    const runtime::Chain arm =
-        description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
+    std::vector<runtime::Chain> arms = arm_chains(config, &*program);
     // The simulated base is the program's (the numbers lowering read from the
     // configuration its platform solvers name); a program without a base
     // drives none, and the world's base is the default robot description's.
@@ -325,12 +309,11 @@ Action add_run_command(CLI::App& app) {
     sim::RunOptions options;
     options.duration = flags->duration;
     options.log_every = flags->log_every;
-    options.idle = {true, true};
+    options.idle.assign(config.arms.size(), true);
     for (const ir::ArmSolver& a : program->arms) options.idle[static_cast<size_t>(a.port)] = false;
-    options.arm = &arm;
     const VerdictPlan plan = plan_verdict(*program);
     watch_for_verdict(plan, options);
-    sim::World world(config, arm);
+    sim::World world(config, std::move(arms));
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
     // The video's encoder starts before the controller is built and the run
     // starts, so a bad path, format or a missing ffmpeg fails first.

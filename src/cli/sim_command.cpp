@@ -9,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "cli/faults.hpp"
 #include "cli/numbers.hpp"
+#include "cli/world_arms.hpp"
 #include "description/base_rdf.hpp"
 #include "description/robot_model.hpp"
 #include "sim/config.hpp"
@@ -61,22 +62,22 @@ Action add_sim_command(CLI::App& app) {
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
     if (flags->seed) config.seed = *flags->seed;
     if (flags->mount) config.mount.active = true;
-    const runtime::Chain arm =
-        description::load_chain(config.robot.model, config.robot.chain_iri, config.robot.maps);
     config.drives =
         description::load_base(config.base_model.model, config.base_model.configuration);
-    sim::World world(config, arm);
+    sim::World world(config, arm_chains(config, nullptr));
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
-    sim::GravityCompensation gravity(arm, {config.arms[0].X_PB, config.arms[1].X_PB});
+    std::vector<runtime::Pose> X_PB;
+    for (const sim::ArmSetup& a : config.arms) X_PB.push_back(a.X_PB);
+    sim::GravityCompensation gravity(world.arms(), X_PB);
     const bool compensate = flags->controller == "gravity";
-    sim::CsvLog log;
+    sim::CsvLog log(world);
     const bool logging = !flags->log.empty();
 
     const std::uint64_t ticks =
         sim::tick_count(flags->duration, config.control_period,
                         logging ? static_cast<std::uint64_t>(flags->log_every) : 0);
-    robot::MeasuredState state;
-    robot::Command command;
+    robot::MeasuredState state = world.make_state();
+    robot::Command command = world.make_command();
     const auto start = std::chrono::steady_clock::now();
     for (std::uint64_t k = 0; k < ticks; ++k) {
       world.read(state);

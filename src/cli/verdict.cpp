@@ -57,8 +57,9 @@ Json number_or_null(double x) {
 // (runtime::steps::MotionEnd::WhileViolated; sim::RunEvent::code).
 constexpr int kWhileViolated = 2;
 
-const char* arm_name(size_t a) {
-  return a == robot::kRightArm ? "right" : "left";
+// The world's arm `a` by name (sim::RunResult::arms).
+std::string arm_name(const sim::RunResult& r, size_t a) {
+  return a < r.arms.size() ? r.arms[a] : "arm" + std::to_string(a);
 }
 
 }  // namespace
@@ -151,7 +152,8 @@ VerdictPlan plan_verdict(const ir::Program& program) {
   // The end effector's forces, traced back through their producers to the
   // logged values they are made of.
   for (const ir::ArmSolver& solver : program.arms) {
-    if (solver.port < 0 || solver.port >= robot::kArms) continue;
+    if (solver.port < 0) continue;
+    if (static_cast<size_t>(solver.port) >= plan.arms.size()) plan.arms.resize(solver.port + 1);
     VerdictPlan::Arm& arm = plan.arms[static_cast<size_t>(solver.port)];
     const int tip = solver.chain.size() - 1;
     for (const ir::CartesianForce& f : solver.cartesian_forces) {
@@ -190,7 +192,8 @@ void watch_for_verdict(const VerdictPlan& plan, sim::RunOptions& options) {
     for (const VerdictPlan::Guard& g : m.untils) watch.insert(g.satisfied);
   }
   options.watch.assign(watch.begin(), watch.end());
-  for (size_t a = 0; a < robot::kArms; ++a) options.pushing[a] = plan.arms[a].columns;
+  options.pushing.resize(std::max(options.pushing.size(), plan.arms.size()));
+  for (size_t a = 0; a < plan.arms.size(); ++a) options.pushing[a] = plan.arms[a].columns;
 }
 
 namespace {
@@ -375,12 +378,12 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   // Peak torque ratio per arm.
   Json peak;
   details << "  peak torque ratio |tau|/limit:";
-  for (size_t a = 0; a < robot::kArms; ++a) {
+  for (size_t a = 0; a < r.peak_torque_ratio.size(); ++a) {
     Json x;
     x["ratio"] = r.peak_torque_ratio[a];
     x["tick"] = r.peak_torque_tick[a];
-    peak[arm_name(a)] = std::move(x);
-    details << (a ? ", " : " ") << arm_name(a) << " arm " << num(r.peak_torque_ratio[a])
+    peak[arm_name(r, a)] = std::move(x);
+    details << (a ? ", " : " ") << arm_name(r, a) << " arm " << num(r.peak_torque_ratio[a])
             << " (tick " << r.peak_torque_tick[a] << ")";
   }
   details << '\n';
@@ -390,19 +393,18 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   Json breaches = Json::array();
   std::vector<std::string> breach_lines, clamped;
   std::uint64_t first_clamp = 0;
-  for (int q = 0; q < robot::kLimitedQuantities; ++q) {
-    const robot::ClampRecord& c = r.clamps[static_cast<size_t>(q)];
+  for (const robot::ClampRecord& c : r.clamps) {
     if (c.ticks == 0) continue;
     Json x;
-    x["limit"] = robot::limited_quantity_name(q);
+    x["limit"] = c.quantity;
     x["ticks"] = c.ticks;
     x["first_tick"] = c.first_tick;
     x["max_requested"] = number_or_null(c.max_requested);
     x["limit_value"] = c.limit;
-    x["unit"] = robot::limited_quantity_unit(q);
+    x["unit"] = c.unit;
     breaches.push_back(std::move(x));
     if (clamped.empty() || c.first_tick < first_clamp) first_clamp = c.first_tick;
-    clamped.push_back(robot::limited_quantity_name(q));
+    clamped.push_back(c.quantity);
   }
   if (!clamped.empty()) {
     constexpr size_t kNamed = 3;
@@ -413,8 +415,8 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     breach_lines.push_back(line + ")");
   }
   if (r.joint_limit.ticks > 0) {
-    const std::string name = std::string(arm_name(static_cast<size_t>(r.joint_limit.arm))) +
-                             "_arm.q[" + std::to_string(r.joint_limit.joint) + "]";
+    const std::string name = arm_name(r, static_cast<size_t>(r.joint_limit.arm)) + "_arm.q[" +
+                             std::to_string(r.joint_limit.joint) + "]";
     Json x;
     x["limit"] = "joint position";
     x["ticks"] = r.joint_limit.ticks;
@@ -478,8 +480,9 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   {
     Json x;
     details << "  contact:";
-    for (size_t a = 0; a < robot::kArms; ++a) {
-      const VerdictPlan::Arm& arm = plan.arms[a];
+    const VerdictPlan::Arm none;
+    for (size_t a = 0; a < r.contact.size(); ++a) {
+      const VerdictPlan::Arm& arm = a < plan.arms.size() ? plan.arms[a] : none;
       const sim::ContactRecord& c = r.contact[a];
       Json y;
       y["forces"] = arm.forces;
@@ -491,8 +494,8 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
       y["first_loss_tick"] = c.losses ? Json(c.first_loss_tick) : Json(nullptr);
       y["first_loss_time"] = c.losses ? Json(c.first_loss_time) : Json(nullptr);
       y["longest_loss_ticks"] = c.longest_loss;
-      x[arm_name(a)] = std::move(y);
-      details << (a ? "; " : " ") << arm_name(a) << " arm ";
+      x[arm_name(r, a)] = std::move(y);
+      details << (a ? "; " : " ") << arm_name(r, a) << " arm ";
       if (arm.forces.empty()) {
         details << (arm.unobserved.empty() ? "pushed nothing" : "pushes, not observed");
       } else if (c.commanded_ticks == 0) {

@@ -65,7 +65,7 @@ struct VerdictPlan {
   std::vector<Motion> motions;
   std::vector<Constraint> constraints;
   std::vector<Solver> solvers;
-  std::array<Arm, robot::kArms> arms;
+  std::vector<Arm> arms;  // by the robot's arm index (ir::ArmSolver::port)
 };
 
 VerdictPlan plan_verdict(const ir::Program& program);

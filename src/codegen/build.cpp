@@ -114,6 +114,7 @@ class LibraryController final : public robot::Controller {
     return inner_->log_columns();
   }
   void log_values(std::span<double> out) const noexcept override { inner_->log_values(out); }
+  std::span<const int> arm_joints() const noexcept override { return inner_->arm_joints(); }
 
  private:
   void* handle_;

@@ -1031,6 +1031,11 @@ class Builder {
       append(log, std::move(e));
     }
     put(root, "n_log", std::to_string(p_.log.size()));
+    const std::vector<int> joints = ir::arm_joints(p_);
+    std::string list;
+    for (int n : joints) list += (list.empty() ? "" : ", ") + std::to_string(n);
+    put(root, "n_arm_ports", std::to_string(joints.size()));
+    put(root, "arm_joints", list);
     put(root, "log", std::move(log));
   }
 

@@ -109,12 +109,13 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)) {
   for (size_t i = 0; i < column_names_.size(); ++i) {
     columns_.push_back({column_names_[i].c_str(), column_units_[i].c_str(), program_.log[i].kind});
   }
+  arm_joints_ = ir::arm_joints(program_);
 }
 
 Interpreter::~Interpreter() = default;
 
 void Interpreter::tick(const robot::MeasuredState& state, robot::Command& command) noexcept {
-  command = robot::Command{};
+  robot::zero(command);
   command.tick = state.clock.tick;
   std::fill(s_.events.begin(), s_.events.end(), 0);
   for (size_t i = 0; i < program_.steps.size(); ++i) execute(program_.steps[i], i, state, command);

@@ -30,6 +30,7 @@ class Interpreter final : public robot::Controller {
   void tick(const robot::MeasuredState& state, robot::Command& command) noexcept override;
   std::span<const robot::LogColumnInfo> log_columns() const noexcept override { return columns_; }
   void log_values(std::span<double> out) const noexcept override;
+  std::span<const int> arm_joints() const noexcept override { return arm_joints_; }
 
   const Program& program() const { return program_; }
   // The current value of a scalar, flag or event datum (flags as 0/1, events
@@ -58,6 +59,7 @@ class Interpreter final : public robot::Controller {
   std::vector<std::unique_ptr<Arm>> arms_;
   std::unique_ptr<Base> base_;
   std::vector<std::string> column_names_, column_units_;
+  std::vector<int> arm_joints_;
   std::vector<robot::LogColumnInfo> columns_;
 };
 

@@ -35,6 +35,17 @@ std::string_view to_string(StepKind k) {
   return info(k).name;
 }
 
+std::vector<int> arm_joints(const Program& program) {
+  std::vector<int> joints;
+  for (const ArmSolver& a : program.arms) {
+    if (a.port < 0) continue;
+    const auto port = static_cast<size_t>(a.port);
+    if (port >= joints.size()) joints.resize(port + 1, 0);
+    joints[port] = a.chain.size();
+  }
+  return joints;
+}
+
 std::string_view kind_name(const Step& step) {
   if (step.kind == StepKind::Operator) {
     const auto kinds = operator_kinds();

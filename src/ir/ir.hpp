@@ -195,8 +195,11 @@ struct ArmSolver {
   // joint's placement).
   std::string mount_pose_iri;  // the constant pose used for that, if any
   runtime::Pose X_RB;          // that pose (identity without a mount)
-  int port = 0;                // robot::kRightArm / kLeftArm: which arm's sensors and actuators
+  int port = 0;                // which arm of the robot (MeasuredState::arm[port]) it drives
   runtime::Chain chain{""};
+  // The chain as its robot description has it, rooted at its own root: what
+  // the simulator builds (mounted at X_RB). Not part of the IR's JSON.
+  runtime::Chain robot_chain{""};
   bool tip_is_last_segment = true;  // constraints act on the last segment's origin
   std::array<double, 3> gravity{};  // in the root frame [m/s^2]
   // mos-slv:GravityCompensated: the ACHD solve runs without gravity, so the
@@ -248,6 +251,10 @@ struct LogColumn {
 };
 
 struct Program;
+// Per arm index of the robot (ArmSolver::port, 0 .. the largest port): the
+// joint count of the arm the program drives there, 0 where it drives none.
+std::vector<int> arm_joints(const Program& program);
+
 // A step's kind as the IR's JSON and messages name it: the operator's name
 // for an Operator step ("compose-pose"), the controller's for a Controller
 // step ("pid"), else to_string(kind).

@@ -28,9 +28,10 @@
 namespace mospec::ir {
 
 struct LowerOptions {
-  // Which robot arm (robot::kRightArm = 0, kLeftArm = 1) each kinematic chain
-  // drives. Defaults bind mospec's robot descriptions
-  // (robots/kinova-gen3.jsonld -> right, its left twin -> left).
+  // Which arm of the robot (its index in the robot interface's arms) each
+  // kinematic chain drives. The CLI takes them from the scenario's world file
+  // (sim::WorldConfig::arms); the defaults are mospec's default robot
+  // (robots/kinova-gen3.jsonld -> 0, the right arm; its left twin -> 1).
   std::map<std::string, int> ports = default_ports();
   static std::map<std::string, int> default_ports();
   // Called after each pass (lowering_passes()) with the program so far: its

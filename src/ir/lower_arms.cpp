@@ -40,10 +40,10 @@ void lower_arms(State& st) {
         continue;
       st.error(b.where, "arm-driven-twice",
                "the solvers '" + a.iri + "' (" + st.place(a.where) + ") and '" + b.iri +
-                   "' both drive the " + (b.port == 0 ? "right" : "left") +
-                   " arm (their chains are bound to it), and each would overwrite the other's "
-                   "joint torques; bind the chains to different arms (--bind CHAIN=right|left) or "
-                   "merge the solvers' motion drivers");
+                   "' both drive arm " + std::to_string(b.port) +
+                   " of the robot (their chains are bound to it), and each would overwrite the "
+                   "other's joint torques; bind the chains to different arms (--bind CHAIN=ARM) "
+                   "or merge the solvers' motion drivers");
       break;
     }
   }
@@ -183,6 +183,7 @@ void lower_arm(State& st, TermId solver) {
     description::ChainDescription described = description::describe_chain(
         st.graph.dataset(), st.chain_graphs(arm.chain_iri), arm.chain_iri);
     arm.chain = std::move(described.chain);
+    arm.robot_chain = arm.chain;
     frames = std::move(described.frames);
   } catch (const Error& e) {
     st.error(st.where(solver, vocab(slv, "kinematic-chain"), *chain_t), "invalid-chain",
@@ -192,10 +193,19 @@ void lower_arm(State& st, TermId solver) {
   if (auto it = st.options.ports.find(arm.chain_iri); it != st.options.ports.end()) {
     arm.port = it->second;
   } else {
-    st.error(
-        solver, "unbound-chain",
-        "no robot arm is bound to the chain '" + arm.chain_iri +
-            "' (mospec's robot has a right and a left Gen3; bind it with --bind CHAIN=right|left)");
+    std::vector<std::pair<int, std::string>> bound;  // by arm index
+    for (const auto& [chain, port] : st.options.ports) bound.emplace_back(port, chain);
+    std::sort(bound.begin(), bound.end());
+    std::string arms;
+    for (const auto& [port, chain] : bound) {
+      arms +=
+          (arms.empty() ? "" : ", ") + std::string("arm ") + std::to_string(port) + ": " + chain;
+    }
+    st.error(solver, "unbound-chain",
+             "no arm of the robot is bound to the chain '" + arm.chain_iri +
+                 "' (the robot's arms drive " + (arms.empty() ? std::string("no chains") : arms) +
+                 "); add an arm with this chain to the scenario's world file (`arms`, "
+                 "docs/simulation.md) or bind it with --bind CHAIN=ARM");
   }
   // The chain's frames, their origins and links, as the robot model relates
   // them (description::describe_chain): segment i by its frame, its origin

@@ -13,13 +13,14 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include "robot/interface.hpp"
 
 namespace mospec::robot {
 
-// 2: LogColumnInfo::kind.
-inline constexpr int kControllerAbiVersion = 2;
+// 2: LogColumnInfo::kind. 3: states and commands sized by the robot (any arms and joints).
+inline constexpr int kControllerAbiVersion = 3;
 inline constexpr const char* kControllerFactorySymbol = "mospec_create_controller";
 
 // How a log that keeps only every N-th tick (sim::RunOptions::log_every)
@@ -46,7 +47,12 @@ class Controller {
   virtual const char* app() const noexcept = 0;
   // One control tick: reads `state`, writes every field of `command`.
   // Allocation-free and noexcept.
+  // `state` and `command` are made for a robot whose arms fit arm_joints().
   virtual void tick(const MeasuredState& state, Command& command) noexcept = 0;
+  // The robot this controller was made for, per arm index (MeasuredState::arm):
+  // the joint count of each arm it drives, 0 for an arm it does not. A loop
+  // checks it against the robot once, before the first tick.
+  virtual std::span<const int> arm_joints() const noexcept = 0;
   // The log's columns, fixed at construction.
   virtual std::span<const LogColumnInfo> log_columns() const noexcept = 0;
   // The values after the last tick, one per column (out.size() == columns).
@@ -54,5 +60,9 @@ class Controller {
 };
 
 using ControllerFactory = Controller* (*)();
+
+// Empty when `controller` fits a robot of `shape` (every arm it drives exists
+// with that joint count), else why not, naming the arm.
+std::string check_fits(const Controller& controller, const RobotShape& shape);
 
 }  // namespace mospec::robot

@@ -19,7 +19,7 @@ void FaultInjector::add_sensor_fault(FaultKind kind, std::string_view sensor_nam
                                      std::uint64_t from_tick, std::uint64_t ticks) {
   Fault f;
   f.kind = kind;
-  f.sensor = sensor(sensor_name);
+  f.sensor = sensor(shape_, sensor_name);
   f.from_tick = from_tick;
   f.ticks = ticks;
   add(f);

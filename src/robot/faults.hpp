@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 #include <string_view>
+#include <utility>
 
 #include "robot/interface.hpp"
 #include "robot/sensors.hpp"
@@ -43,6 +44,11 @@ class FaultInjector {
  public:
   static constexpr int kCapacity = 16;
 
+  // Sensor names are resolved against the robot's shape (robot/sensors.hpp);
+  // without one only the base's sensors have names.
+  FaultInjector() = default;
+  explicit FaultInjector(RobotShape shape) : shape_(std::move(shape)) {}
+
   // Each throws mospec::Error: "unknown-sensor" for a bad name (listing the
   // forms), "too-many-faults" beyond kCapacity.
   void inject_nan(std::string_view sensor_name, std::uint64_t from_tick, std::uint64_t ticks = 0);
@@ -60,6 +66,7 @@ class FaultInjector {
   void add(const Fault& fault);
   void add_sensor_fault(FaultKind kind, std::string_view sensor_name, std::uint64_t from_tick,
                         std::uint64_t ticks);
+  RobotShape shape_;
   std::array<Fault, kCapacity> faults_{};
   int count_ = 0;
 };

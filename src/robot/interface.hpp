@@ -1,16 +1,20 @@
 // The robot interface: what one control tick reads from and writes to the
-// robot — two Kinova Gen3 arms on a KELO base with four castor drives.
+// robot — any number of serial arms (each with its own joint count) on a
+// KELO base with four castor drives.
 //
 // The same structs are filled by the MuJoCo simulation (src/sim) and would be
-// filled by a real EtherCAT (KELO drives) / Kortex low-level (arms) adapter:
-// fixed-size arrays, no allocation, plain doubles in SI units (rad, rad/s,
-// N·m, m, s). Sign conventions are those of the runtime (src/runtime/kelo.hpp
+// filled by a real EtherCAT (KELO drives) / arm low-level adapter: arrays sized
+// once at setup from the robot's RobotShape (make_state, make_command), never
+// resized per tick, plain doubles in SI units (rad or m, rad/s or m/s, N·m or
+// N, s). Sign conventions are those of the runtime (src/runtime/kelo.hpp
 // for the drives, the chain model's joint axes for the arms); an adapter flips
 // signs of mirrored motors or encoders, not the controller.
 //
 // Layouts:
-//   arm[kRightArm], arm[kLeftArm]    joint i of the chain, 0-based (Gen3
-//                                    "Actuator1" is index 0);
+//   arm[k]                           the robot's arm k, in RobotShape order
+//                                    (mospec's default robot: 0 the right
+//                                    Gen3, 1 the left); entry i is joint i of
+//                                    its chain, 0-based (Gen3 "Actuator1" is 0);
 //   pivot_q[i]                       drive i, numbered as in kelo.hpp:
 //                                    0 front-left, 1 rear-left, 2 rear-right,
 //                                    3 front-right;
@@ -20,18 +24,20 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace mospec::robot {
 
-inline constexpr int kArms = 2;
-inline constexpr int kArmJoints = 7;
 inline constexpr int kDrives = 4;
 inline constexpr int kWheels = 2 * kDrives;
 
+// The arms of mospec's default robot (sim::default_world), in its order.
 inline constexpr int kRightArm = 0;
 inline constexpr int kLeftArm = 1;
 
-using ArmVector = std::array<double, kArmJoints>;
+// One value per joint of one arm, sized at setup.
+using JointValues = std::vector<double>;
 using DriveVector = std::array<double, kDrives>;
 using WheelVector = std::array<double, kWheels>;
 
@@ -44,11 +50,22 @@ struct ClockSample {
   double dt = 0.0;  // [s]
 };
 
-// One arm's joint measurements.
+// What the structs are sized by: the robot's arms, each named (it prefixes
+// sensor names and log columns) and with its joint count.
+struct ArmShape {
+  std::string name;
+  int joints = 0;
+};
+struct RobotShape {
+  std::vector<ArmShape> arms;
+};
+
+// One arm's joint measurements (revolute joints in rad, rad/s, N·m; prismatic
+// in m, m/s, N).
 struct ArmMeasurement {
-  ArmVector q{};    // joint positions [rad]
-  ArmVector qd{};   // joint velocities [rad/s]
-  ArmVector tau{};  // joint torques (torque sensors) [N·m]
+  JointValues q;    // joint positions
+  JointValues qd;   // joint velocities
+  JointValues tau;  // joint torques or forces (torque sensors)
 };
 
 // Ground truth that no real robot measures: the simulator fills it for logs
@@ -62,22 +79,36 @@ struct GroundTruth {
 // Everything one tick reads.
 struct MeasuredState {
   ClockSample clock;
-  std::array<ArmMeasurement, kArms> arm{};
-  DriveVector pivot_q{};   // drive pivot angles, x_P to x_Di about +z [rad]
-  WheelVector wheel_qd{};  // wheel rates, positive rolling forward [rad/s]
-  GroundTruth truth;       // logging only
+  std::vector<ArmMeasurement> arm;  // one per arm of the RobotShape
+  DriveVector pivot_q{};            // drive pivot angles, x_P to x_Di about +z [rad]
+  WheelVector wheel_qd{};           // wheel rates, positive rolling forward [rad/s]
+  GroundTruth truth;                // logging only
 };
 
 // Everything one tick writes. `tick` is the clock tick the command was
 // computed for (adapters may use it to detect stale commands).
 struct Command {
   std::uint64_t tick = 0;
-  std::array<ArmVector, kArms> arm_tau{};  // joint torques [N·m]
-  WheelVector wheel_tau{};                 // hub torques, positive driving forward [N·m]
+  std::vector<JointValues> arm_tau;  // per arm: joint torques [N·m] (prismatic: forces [N])
+  WheelVector wheel_tau{};           // hub torques, positive driving forward [N·m]
 };
 
-// A robot a control loop runs against. read() returns the newest sample;
-// write() hands over the command for the next period. Both are called from the
+// A sample and a command sized for `shape`, all values 0. Made once at setup;
+// the per-tick code only writes into them (copying one sized alike into
+// another allocates nothing either).
+MeasuredState make_state(const RobotShape& shape);
+Command make_command(const RobotShape& shape);
+
+// Zeroes every value of `command` in place (its sizes kept), tick included.
+void zero(Command& command) noexcept;
+
+// mospec's default robot (sim::default_world): the right and the left Gen3, 7
+// joints each.
+RobotShape gen3_pair_shape();
+
+// A robot a control loop runs against. read() returns the newest sample into
+// a state made for the robot's shape; write() hands over the command for the
+// next period (made likewise). Both are called from the
 // control thread once per tick and must not allocate or throw.
 class RobotInterface {
  public:

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include "support/diagnostics.hpp"
@@ -10,11 +11,10 @@
 namespace mospec::robot {
 namespace {
 
-void check_limit(double limit, int index) {
-  if (!std::isfinite(limit) || limit <= 0.0) {
-    throw Error("invalid-limits", "the limit of " + limited_quantity_name(index) + " is " +
-                                      exact_number(limit) + " " + limited_quantity_unit(index) +
-                                      "; expected a finite number > 0");
+void check_limit(const ClampRecord& r) {
+  if (!std::isfinite(r.limit) || r.limit <= 0.0) {
+    throw Error("invalid-limits", "the limit of " + r.quantity + " is " + exact_number(r.limit) +
+                                      " " + r.unit + "; expected a finite number > 0");
   }
 }
 
@@ -35,51 +35,69 @@ void note(ClampRecord& r, std::uint64_t tick, double requested) noexcept {
 
 CommandLimiter::CommandLimiter() noexcept {
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  for (auto& arm : limits_.arm_effort) arm.fill(kNone);
   limits_.wheel_torque.fill(kNone);
   limits_.platform_force = limits_.platform_moment = kNone;
+  try {
+    records_.resize(kWheels + 2);
+  } catch (...) {
+    std::terminate();  // 10 records: only an exhausted heap gets here
+  }
   for (ClampRecord& r : records_) r.limit = kNone;
 }
 
 CommandLimiter::CommandLimiter(const CommandLimits& limits) : limits_(limits) {
-  for (int k = 0; k < kArms; ++k) {
-    for (int i = 0; i < kArmJoints; ++i) {
-      const int index = k * kArmJoints + i;
-      records_[static_cast<size_t>(index)].limit =
-          limits.arm_effort[static_cast<size_t>(k)][static_cast<size_t>(i)];
+  if (limits.arm_names.size() != limits.arm_effort.size()) {
+    throw Error("invalid-limits", "the limits name " + std::to_string(limits.arm_names.size()) +
+                                      " arms but give efforts for " +
+                                      std::to_string(limits.arm_effort.size()));
+  }
+  for (size_t k = 0; k < limits.arm_effort.size(); ++k) {
+    for (size_t i = 0; i < limits.arm_effort[k].size(); ++i) {
+      ClampRecord r;
+      r.quantity = limits.arm_names[k] + "_arm.tau[" + std::to_string(i) + "]";
+      r.limit = limits.arm_effort[k][i];
+      if (k < limits.arm_prismatic.size() && i < limits.arm_prismatic[k].size() &&
+          limits.arm_prismatic[k][i])
+        r.unit = "N";
+      records_.push_back(std::move(r));
     }
   }
   for (int w = 0; w < kWheels; ++w) {
-    records_[static_cast<size_t>(kArmTorqueLimits + w)].limit =
-        limits.wheel_torque[static_cast<size_t>(w)];
+    ClampRecord r;
+    r.quantity = "wheel_tau[" + std::to_string(w) + "]";
+    r.limit = limits.wheel_torque[static_cast<size_t>(w)];
+    records_.push_back(std::move(r));
   }
-  records_[kPlatformForceLimit].limit = limits.platform_force;
-  records_[kPlatformMomentLimit].limit = limits.platform_moment;
-  for (int q = 0; q < kLimitedQuantities; ++q)
-    check_limit(records_[static_cast<size_t>(q)].limit, q);
+  ClampRecord force;
+  force.quantity = "platform.force";
+  force.unit = "N";
+  force.limit = limits.platform_force;
+  records_.push_back(std::move(force));
+  ClampRecord moment;
+  moment.quantity = "platform.moment";
+  moment.limit = limits.platform_moment;
+  records_.push_back(std::move(moment));
+  for (const ClampRecord& r : records_) check_limit(r);
 }
 
 void CommandLimiter::saturate(Command& command, std::uint64_t tick) noexcept {
-  auto clamp = [&](double& x, int index) {
-    ClampRecord& r = records_[static_cast<size_t>(index)];
+  auto clamp = [&](double& x, size_t index) {
+    ClampRecord& r = records_[index];
     note(r, tick, std::abs(x));
     x = std::clamp(x, -r.limit, r.limit);
   };
-  for (int k = 0; k < kArms; ++k) {
-    for (int i = 0; i < kArmJoints; ++i) {
-      clamp(command.arm_tau[static_cast<size_t>(k)][static_cast<size_t>(i)], k * kArmJoints + i);
-    }
+  size_t index = 0;
+  for (size_t k = 0; k < limits_.arm_effort.size(); ++k) {
+    for (size_t i = 0; i < limits_.arm_effort[k].size(); ++i) clamp(command.arm_tau[k][i], index++);
   }
-  for (int w = 0; w < kWheels; ++w) {
-    clamp(command.wheel_tau[static_cast<size_t>(w)], kArmTorqueLimits + w);
-  }
+  for (double& t : command.wheel_tau) clamp(t, index++);
 }
 
 void CommandLimiter::limit_platform(Command& command, std::uint64_t tick,
                                     const PlatformWrench& requested,
                                     const PlatformWrench& saturated) noexcept {
-  ClampRecord& force = records_[kPlatformForceLimit];
-  ClampRecord& moment = records_[kPlatformMomentLimit];
+  ClampRecord& force = records_[static_cast<size_t>(platform_force_index())];
+  ClampRecord& moment = records_[static_cast<size_t>(platform_moment_index())];
   note(force, tick, std::hypot(requested[0], requested[1]));
   note(moment, tick, std::abs(requested[2]));
   const double f = std::hypot(saturated[0], saturated[1]), m = std::abs(saturated[2]);
@@ -103,28 +121,12 @@ void CommandLimiter::reset() noexcept {
   }
 }
 
-std::string limited_quantity_name(int index) {
-  if (index < kArmTorqueLimits) {
-    return std::string(index < kArmJoints ? "right_arm" : "left_arm") + ".tau[" +
-           std::to_string(index % kArmJoints) + "]";
-  }
-  if (index < kPlatformForceLimit) {
-    return "wheel_tau[" + std::to_string(index - kArmTorqueLimits) + "]";
-  }
-  return index == kPlatformForceLimit ? "platform.force" : "platform.moment";
-}
-
-const char* limited_quantity_unit(int index) {
-  return index == kPlatformForceLimit ? "N" : "N·m";
-}
-
-std::string describe_clamps(std::span<const ClampRecord, kLimitedQuantities> records) {
+std::string describe_clamps(std::span<const ClampRecord> records) {
   std::string out;
-  for (int q = 0; q < kLimitedQuantities; ++q) {
-    const ClampRecord& r = records[static_cast<size_t>(q)];
+  for (const ClampRecord& r : records) {
     if (r.ticks == 0) continue;
-    const std::string unit = limited_quantity_unit(q);
-    out += limited_quantity_name(q) + ": clamped in " + std::to_string(r.ticks) + " tick" +
+    const std::string unit = r.unit;
+    out += r.quantity + ": clamped in " + std::to_string(r.ticks) + " tick" +
            (r.ticks == 1 ? "" : "s") + " from tick " + std::to_string(r.first_tick) +
            ", requested up to " + shortest(r.max_requested) + " " + unit + ", limit " +
            shortest(r.limit) + " " + unit + "\n";

@@ -7,11 +7,7 @@
 namespace mospec::robot {
 namespace {
 
-constexpr int kPerArm = 3 * kArmJoints;
-constexpr int kPivotBase = kArms * kPerArm;
-constexpr int kWheelBase = kPivotBase + kDrives;
-
-constexpr std::string_view kArmNames[kArms] = {"right_arm", "left_arm"};
+using Field = SensorId::Field;
 constexpr std::string_view kArmFields[3] = {"q", "qd", "tau"};
 
 // "field[i]" -> i when the field matches and 0 <= i < n.
@@ -26,62 +22,83 @@ std::optional<int> parse_indexed(std::string_view text, std::string_view field, 
   return i;
 }
 
-}  // namespace
-
-std::string sensor_name(SensorId id) {
-  const int k = id.index;
-  if (k < kPivotBase) {
-    const int arm = k / kPerArm, field = (k % kPerArm) / kArmJoints, joint = k % kArmJoints;
-    return std::string(kArmNames[arm]) + "." + std::string(kArmFields[field]) + "[" +
-           std::to_string(joint) + "]";
-  }
-  if (k < kWheelBase) return "pivot_q[" + std::to_string(k - kPivotBase) + "]";
-  return "wheel_qd[" + std::to_string(k - kWheelBase) + "]";
+SensorId id(Field field, int arm, int index) {
+  return SensorId{field, static_cast<std::uint16_t>(arm), static_cast<std::uint16_t>(index)};
 }
 
-std::optional<SensorId> find_sensor(std::string_view name) {
-  auto id = [](int k) { return SensorId{static_cast<std::uint16_t>(k)}; };
-  for (int arm = 0; arm < kArms; ++arm) {
-    const std::string_view prefix = kArmNames[arm];
-    if (name.size() > prefix.size() + 1 && name.substr(0, prefix.size()) == prefix &&
-        name[prefix.size()] == '.') {
-      const std::string_view rest = name.substr(prefix.size() + 1);
+}  // namespace
+
+std::vector<SensorId> all_sensors(const RobotShape& shape) {
+  std::vector<SensorId> out;
+  for (size_t a = 0; a < shape.arms.size(); ++a) {
+    for (int f = 0; f < 3; ++f) {
+      for (int j = 0; j < shape.arms[a].joints; ++j) {
+        out.push_back(id(static_cast<Field>(f), static_cast<int>(a), j));
+      }
+    }
+  }
+  for (int i = 0; i < kDrives; ++i) out.push_back(id(Field::PivotQ, 0, i));
+  for (int i = 0; i < kWheels; ++i) out.push_back(id(Field::WheelQd, 0, i));
+  return out;
+}
+
+std::string sensor_name(const RobotShape& shape, SensorId s) {
+  switch (s.field) {
+    case Field::PivotQ:
+      return "pivot_q[" + std::to_string(s.index) + "]";
+    case Field::WheelQd:
+      return "wheel_qd[" + std::to_string(s.index) + "]";
+    default:
+      break;
+  }
+  const std::string arm =
+      s.arm < shape.arms.size() ? shape.arms[s.arm].name : "arm" + std::to_string(s.arm);
+  return arm + "_arm." + std::string(kArmFields[static_cast<int>(s.field)]) + "[" +
+         std::to_string(s.index) + "]";
+}
+
+std::optional<SensorId> find_sensor(const RobotShape& shape, std::string_view name) {
+  for (size_t arm = 0; arm < shape.arms.size(); ++arm) {
+    const std::string prefix = shape.arms[arm].name + "_arm.";
+    if (name.size() > prefix.size() && name.substr(0, prefix.size()) == prefix) {
+      const std::string_view rest = name.substr(prefix.size());
       for (int field = 0; field < 3; ++field) {
-        if (auto j = parse_indexed(rest, kArmFields[field], kArmJoints)) {
-          return id(arm * kPerArm + field * kArmJoints + *j);
+        if (auto j = parse_indexed(rest, kArmFields[field], shape.arms[arm].joints)) {
+          return id(static_cast<Field>(field), static_cast<int>(arm), *j);
         }
       }
       return {};
     }
   }
-  if (auto i = parse_indexed(name, "pivot_q", kDrives)) return id(kPivotBase + *i);
-  if (auto i = parse_indexed(name, "wheel_qd", kWheels)) return id(kWheelBase + *i);
+  if (auto i = parse_indexed(name, "pivot_q", kDrives)) return id(Field::PivotQ, 0, *i);
+  if (auto i = parse_indexed(name, "wheel_qd", kWheels)) return id(Field::WheelQd, 0, *i);
   return {};
 }
 
-SensorId sensor(std::string_view name) {
-  if (auto id = find_sensor(name)) return *id;
-  throw Error("unknown-sensor", "no sensor named '" + std::string(name) +
-                                    "'; sensors are right_arm.{q,qd,tau}[0..6], "
-                                    "left_arm.{q,qd,tau}[0..6], pivot_q[0..3], wheel_qd[0..7]");
+SensorId sensor(const RobotShape& shape, std::string_view name) {
+  if (auto s = find_sensor(shape, name)) return *s;
+  std::string forms;
+  for (const ArmShape& a : shape.arms) {
+    forms += a.name + "_arm.{q,qd,tau}[0.." + std::to_string(a.joints - 1) + "], ";
+  }
+  throw Error("unknown-sensor", "no sensor named '" + std::string(name) + "'; sensors are " +
+                                    forms + "pivot_q[0..3], wheel_qd[0..7]");
 }
 
-double& sensor_value(MeasuredState& state, SensorId id) noexcept {
-  const int k = id.index;
-  if (k < kPivotBase) {
-    ArmMeasurement& arm = state.arm[static_cast<std::size_t>(k / kPerArm)];
-    const auto joint = static_cast<std::size_t>(k % kArmJoints);
-    switch ((k % kPerArm) / kArmJoints) {
-      case 0:
-        return arm.q[joint];
-      case 1:
-        return arm.qd[joint];
-      default:
-        return arm.tau[joint];
-    }
+double& sensor_value(MeasuredState& state, SensorId s) noexcept {
+  switch (s.field) {
+    case Field::ArmQ:
+      return state.arm[s.arm].q[s.index];
+    case Field::ArmQd:
+      return state.arm[s.arm].qd[s.index];
+    case Field::ArmTau:
+      return state.arm[s.arm].tau[s.index];
+    case Field::PivotQ:
+      return state.pivot_q[s.index];
+    case Field::WheelQd:
+      break;
   }
-  if (k < kWheelBase) return state.pivot_q[static_cast<std::size_t>(k - kPivotBase)];
-  return state.wheel_qd[static_cast<std::size_t>(k - kWheelBase)];
+  return state.wheel_qd[s.index];
 }
 
 }  // namespace mospec::robot

@@ -1,6 +1,7 @@
 #include "sim/config.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -72,11 +73,16 @@ WorldConfig default_world() {
   // (pose-leftarm-platform-shoulder); direction-cosine-x/y/z are the columns
   // of R_PB (the shoulder's axes seen by the platform), as the authors'
   // gravity vectors in models/00-common/01-world-model.json confirm.
+  c.arms.resize(2);
   c.arms[robot::kRightArm].name = "right";
+  c.arms[robot::kRightArm].chain_iri = vocab::robots::kinova_gen3_chain;
   c.arms[robot::kRightArm].X_PB =
       pose_from_cosines({0.130526192, 0.0, 0.991444861}, {-0.701057385, -0.707106781, 0.0922959556},
                         {0.701057385, -0.707106781, -0.0922959556}, {0.0, -0.1, 0.1});
+  // The left arm is the same Gen3 description (read from `robot`); the task
+  // models name its chain by the left twin's IRI (models/left-arm/robot.jsonld).
   c.arms[robot::kLeftArm].name = "left";
+  c.arms[robot::kLeftArm].chain_iri = vocab::robots::kinova_gen3_left_chain;
   c.arms[robot::kLeftArm].X_PB =
       pose_from_cosines({0.130526192, 0.0, 0.991444861}, {0.701057385, -0.707106781, -0.0922959556},
                         {0.701057385, 0.707106781, -0.0922959556}, {0.0, 0.1, 0.1});
@@ -88,6 +94,24 @@ WorldConfig default_world() {
   c.arms[robot::kRightArm].q0 = {-0.1989, 1.7282, -0.9470, -2.1654, -0.3097, 0.4927, 0.0};
   c.arms[robot::kLeftArm].q0 = {0.0984, 1.7898, 0.9763, -2.1188, 0.3954, 0.4859, 0.0341};
   return c;
+}
+
+const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm) {
+  const ArmSetup& a = config.arms[arm];
+  return a.actuation ? *a.actuation : config.actuation;
+}
+
+RobotModelSource arm_source(const WorldConfig& config, std::size_t arm) {
+  const ArmSetup& a = config.arms[arm];
+  return a.robot.model.empty() ? config.robot : a.robot;
+}
+
+robot::RobotShape robot_shape(const WorldConfig& config, const std::vector<int>& joints) {
+  robot::RobotShape shape;
+  for (std::size_t k = 0; k < config.arms.size(); ++k) {
+    shape.arms.push_back({config.arms[k].name, k < joints.size() ? joints[k] : 0});
+  }
+  return shape;
 }
 
 namespace {
@@ -114,7 +138,7 @@ std::string shortest(double x) {
 // Reads one JSON world file; every error names file:line:col.
 class Reader {
  public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
+  Reader(std::string file, bool check_files) : file_(std::move(file)), check_files_(check_files) {}
 
   [[noreturn]] void fail(const json::Value& v, const std::string& message) const {
     const SourceLoc l = v.location();
@@ -197,6 +221,27 @@ class Reader {
     return out;
   }
 
+  // 1 to kMaxJoints numbers, each in [lo, hi] (or (lo, hi] with `lo_open`).
+  std::vector<double> joint_numbers(const json::Value& v, const std::string& what, double lo,
+                                    double hi, std::string_view unit, bool lo_open = false) const {
+    constexpr size_t kMaxJoints = 64;
+    if (!v.is_array() || v.as_array().empty() || v.as_array().size() > kMaxJoints) {
+      fail(v, what + ": expected an array of 1 to " + std::to_string(kMaxJoints) +
+                  " numbers, one per joint");
+    }
+    std::vector<double> out;
+    for (size_t i = 0; i < v.as_array().size(); ++i) {
+      out.push_back(
+          in_range(v.as_array()[i], what + "[" + std::to_string(i) + "]", lo, hi, unit, lo_open));
+    }
+    return out;
+  }
+
+  std::string where(const json::Value& v) const {
+    const SourceLoc l = v.location();
+    return file_ + ":" + std::to_string(l.line) + ":" + std::to_string(l.column) + ": ";
+  }
+
   std::string path(const std::string& p) const {
     std::filesystem::path fp(p);
     if (fp.is_absolute()) return p;
@@ -212,6 +257,7 @@ class Reader {
   std::string confined_path(const json::Value& v, const std::string& what) const {
     namespace fs = std::filesystem;
     const std::string p = path(string(v, what));
+    if (!check_files_) return p;
     const fs::path target = canonical_path(p);
     const fs::path world_dir = fs::absolute(fs::path(file_)).parent_path();
     const fs::path robots_dir = fs::path(MOSPEC_DEFAULT_ROBOT_MODEL).parent_path();
@@ -228,16 +274,146 @@ class Reader {
                 "file there or run from the bundle's top directory");
   }
 
+  const std::string& file() const { return file_; }
+
  private:
   std::string file_;
+  bool check_files_ = true;
 };
+
+void read_robot_source(const Reader& r, const json::Value& v, const std::string& what,
+                       RobotModelSource& source) {
+  const json::Object& o = r.object(v, what, {"model", "chain", "map"});
+  if (auto* m = o.find("model")) source.model = r.confined_path(*m, what + ".model");
+  if (auto* m = o.find("chain")) source.chain_iri = r.string(*m, what + ".chain");
+  if (auto* m = o.find("map")) {
+    if (!m->is_object()) r.fail(*m, what + ".map: expected an object of IRI prefix: directory");
+    const json::Object& mo = m->as_object();
+    for (size_t k = 0; k < mo.size(); ++k) {
+      const std::string dir = r.confined_path(mo.value(k), what + ".map");
+      bool replaced = false;
+      for (auto& [prefix, d] : source.maps) {
+        if (prefix == mo.key(k)) {
+          d = dir;
+          replaced = true;
+        }
+      }
+      if (!replaced) source.maps.emplace_back(mo.key(k), dir);
+    }
+  }
+}
+
+ArmActuation read_actuation(const Reader& r, const json::Value& v, const std::string& what,
+                            ArmActuation a) {
+  const json::Object& o = r.object(v, what, {"effort_limit", "lower", "upper", "damping"});
+  if (auto* x = o.find("effort_limit"))
+    a.effort_limit = r.joint_numbers(*x, what + ".effort_limit", 0.0, kMaxTorque, "N·m", true);
+  if (auto* x = o.find("lower")) a.lower = r.joint_numbers(*x, what + ".lower", -1e9, 1e9, "rad");
+  if (auto* x = o.find("upper")) a.upper = r.joint_numbers(*x, what + ".upper", -1e9, 1e9, "rad");
+  if (auto* x = o.find("damping")) {
+    a.damping = r.non_negative(*x, what + ".damping", kMaxDamping, "N·m·s/rad");
+  }
+  if (o.find("effort_limit") && !o.find("lower") && !o.find("upper") &&
+      a.effort_limit.size() != a.lower.size()) {
+    // Efforts for another arm than the Gen3 without position limits: none.
+    a.lower.assign(a.effort_limit.size(), -1e9);
+    a.upper.assign(a.effort_limit.size(), 1e9);
+  }
+  return a;
+}
+
+// `arms`: an object keyed by arm name. An entry for an arm of the default
+// robot (right, left) changes it; `"present": false` removes it; any other
+// name adds an arm, which then needs its `robot`, `q` and `actuation`.
+void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
+  if (!v.is_object()) r.fail(v, "arms: expected an object of arm name: arm");
+  const json::Object& o = v.as_object();
+  for (size_t k = 0; k < o.size(); ++k) {
+    const std::string& name = o.key(k);
+    const std::string what = "arms." + name;
+    if (name.empty() || name.size() > 32 ||
+        name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789") != std::string::npos) {
+      const SourceLoc l = o.key_location(k);
+      throw Error("invalid-world",
+                  what +
+                      ": an arm's name must be 1 to 32 lower-case letters and digits (it "
+                      "prefixes sensor names and log columns)",
+                  r.file(), l.line, l.column);
+    }
+    const json::Object& a =
+        r.object(o.value(k), what, {"present", "robot", "q", "mount", "actuation"});
+    auto it = std::find_if(c.arms.begin(), c.arms.end(),
+                           [&](const ArmSetup& s) { return s.name == name; });
+    if (auto* p = a.find("present"); p && !r.boolean(*p, what + ".present")) {
+      if (a.size() != 1) r.fail(o.value(k), what + ": an absent arm takes no other keys");
+      if (it != c.arms.end()) c.arms.erase(it);
+      continue;
+    }
+    const bool added = it == c.arms.end();
+    if (added) {
+      if (!a.find("robot") || !a.find("q") || !a.find("actuation")) {
+        r.fail(o.value(k), what +
+                               ": a new arm needs its `robot` (model and chain), `q` and "
+                               "`actuation` (mospec's default robot has the arms right and "
+                               "left)");
+      }
+      c.arms.emplace_back();
+      c.arms.back().name = name;
+      it = c.arms.end() - 1;
+    }
+    ArmSetup& arm = *it;
+    arm.where = r.where(o.value(k));
+    if (auto* x = a.find("robot")) {
+      read_robot_source(r, *x, what + ".robot", arm.robot);
+      if (arm.robot.model.empty() || arm.robot.chain_iri.empty()) {
+        r.fail(*x, what + ".robot: expected the `model` file and the `chain` IRI in it");
+      }
+      arm.chain_iri = arm.robot.chain_iri;
+    }
+    if (auto* q = a.find("q"))
+      arm.q0 = r.joint_numbers(*q, what + ".q", -kMaxAngle, kMaxAngle, "rad");
+    if (auto* x = a.find("actuation")) {
+      arm.actuation = read_actuation(r, *x, what + ".actuation",
+                                     arm_actuation(c, static_cast<size_t>(it - c.arms.begin())));
+    }
+    if (auto* m = a.find("mount")) {
+      const json::Object& mo = r.object(
+          *m, what + ".mount",
+          {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z", "x", "y", "z"});
+      arm.mount_source = "the world file's " + what + ".mount";
+      runtime::Pose& X = arm.X_PB;
+      runtime::Vec3 cols[3] = {X.R.col(0), X.R.col(1), X.R.col(2)};
+      const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
+      for (int j = 0; j < 3; ++j) {
+        if (auto* d = mo.find(names[j])) {
+          auto n = r.numbers<3>(*d, what + ".mount." + names[j], -1.01, 1.01, "");
+          cols[j] = runtime::Vec3(n[0], n[1], n[2]);
+        }
+      }
+      runtime::Vec3 p = X.p;
+      if (auto* x = mo.find("x"))
+        p.x() = r.in_range(*x, what + ".mount.x", -kMaxLength, kMaxLength, "m");
+      if (auto* y = mo.find("y"))
+        p.y() = r.in_range(*y, what + ".mount.y", -kMaxLength, kMaxLength, "m");
+      if (auto* z = mo.find("z"))
+        p.z() = r.in_range(*z, what + ".mount.z", -kMaxLength, kMaxLength, "m");
+      const runtime::Mat3 R = (runtime::Mat3() << cols[0], cols[1], cols[2]).finished();
+      if (std::abs(R.determinant() - 1.0) > 1e-3 ||
+          !(R.transpose() * R).isApprox(runtime::Mat3::Identity(), 1e-3)) {
+        r.fail(*m, what + ".mount: the direction cosines are not a rotation");
+      }
+      X = pose_from_cosines(cols[0], cols[1], cols[2], p);
+    }
+  }
+}
 
 }  // namespace
 
-WorldConfig parse_world_config(std::string_view text, const std::string& file_name) {
+WorldConfig parse_world_config(std::string_view text, const std::string& file_name,
+                               bool check_files) {
   WorldConfig c = default_world();
   const json::Value doc = json::parse(text, 1, file_name);
-  const Reader r(file_name);
+  const Reader r(file_name, check_files);
   const json::Object& top = r.object(
       doc, "world",
       {"base", "control_period", "substeps", "command_delay_ticks", "seed", "robot", "arms",
@@ -266,74 +442,11 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       }
       c.seed = static_cast<std::uint64_t>(n);
     } else if (key == "robot") {
-      const json::Object& o = r.object(v, "robot", {"model", "chain", "map"});
-      if (auto* m = o.find("model")) c.robot.model = r.confined_path(*m, "robot.model");
-      if (auto* m = o.find("chain")) c.robot.chain_iri = r.string(*m, "robot.chain");
-      if (auto* m = o.find("map")) {
-        if (!m->is_object()) r.fail(*m, "robot.map: expected an object of IRI prefix: directory");
-        const json::Object& mo = m->as_object();
-        for (size_t k = 0; k < mo.size(); ++k) {
-          const std::string dir = r.confined_path(mo.value(k), "robot.map");
-          bool replaced = false;
-          for (auto& [prefix, d] : c.robot.maps) {
-            if (prefix == mo.key(k)) {
-              d = dir;
-              replaced = true;
-            }
-          }
-          if (!replaced) c.robot.maps.emplace_back(mo.key(k), dir);
-        }
-      }
+      read_robot_source(r, v, "robot", c.robot);
     } else if (key == "arms") {
-      const json::Object& o = r.object(v, "arms", {"right", "left"});
-      for (size_t k = 0; k < o.size(); ++k) {
-        const int arm = o.key(k) == "right" ? robot::kRightArm : robot::kLeftArm;
-        const std::string what = "arms." + o.key(k);
-        const json::Object& a = r.object(o.value(k), what, {"q", "mount"});
-        if (auto* q = a.find("q"))
-          c.arms[static_cast<size_t>(arm)].q0 =
-              r.numbers<7>(*q, what + ".q", -kMaxAngle, kMaxAngle, "rad");
-        if (auto* m = a.find("mount")) {
-          const json::Object& mo = r.object(
-              *m, what + ".mount",
-              {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z", "x", "y", "z"});
-          c.arms[static_cast<size_t>(arm)].mount_source = "the world file's " + what + ".mount";
-          runtime::Pose& X = c.arms[static_cast<size_t>(arm)].X_PB;
-          runtime::Vec3 cols[3] = {X.R.col(0), X.R.col(1), X.R.col(2)};
-          const char* names[3] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
-          for (int j = 0; j < 3; ++j) {
-            if (auto* d = mo.find(names[j])) {
-              auto n = r.numbers<3>(*d, what + ".mount." + names[j], -1.01, 1.01, "");
-              cols[j] = runtime::Vec3(n[0], n[1], n[2]);
-            }
-          }
-          runtime::Vec3 p = X.p;
-          if (auto* x = mo.find("x"))
-            p.x() = r.in_range(*x, what + ".mount.x", -kMaxLength, kMaxLength, "m");
-          if (auto* y = mo.find("y"))
-            p.y() = r.in_range(*y, what + ".mount.y", -kMaxLength, kMaxLength, "m");
-          if (auto* z = mo.find("z"))
-            p.z() = r.in_range(*z, what + ".mount.z", -kMaxLength, kMaxLength, "m");
-          const runtime::Mat3 R = (runtime::Mat3() << cols[0], cols[1], cols[2]).finished();
-          if (std::abs(R.determinant() - 1.0) > 1e-3 ||
-              !(R.transpose() * R).isApprox(runtime::Mat3::Identity(), 1e-3)) {
-            r.fail(*m, what + ".mount: the direction cosines are not a rotation");
-          }
-          X = pose_from_cosines(cols[0], cols[1], cols[2], p);
-        }
-      }
+      read_arms(r, v, c);
     } else if (key == "actuation") {
-      const json::Object& o =
-          r.object(v, "actuation", {"effort_limit", "lower", "upper", "damping"});
-      if (auto* x = o.find("effort_limit"))
-        c.actuation.effort_limit = r.numbers<7>(*x, "effort_limit", 0.0, kMaxTorque, "N·m", true);
-      if (auto* x = o.find("lower"))
-        c.actuation.lower = r.numbers<7>(*x, "lower", -1e9, 1e9, "rad");
-      if (auto* x = o.find("upper"))
-        c.actuation.upper = r.numbers<7>(*x, "upper", -1e9, 1e9, "rad");
-      if (auto* x = o.find("damping")) {
-        c.actuation.damping = r.non_negative(*x, "damping", kMaxDamping, "N·m·s/rad");
-      }
+      c.actuation = read_actuation(r, v, "actuation", c.actuation);
     } else if (key == "end_effector") {
       const json::Object& o = r.object(v, "end_effector", {"radius", "friction"});
       if (auto* x = o.find("radius")) c.end_effector.radius = r.positive(*x, "radius", 1.0, "m");
@@ -420,8 +533,8 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
   return c;
 }
 
-WorldConfig load_world_config(const std::string& path) {
-  return parse_world_config(read_file(path), path);
+WorldConfig load_world_config(const std::string& path, bool check_files) {
+  return parse_world_config(read_file(path), path, check_files);
 }
 
 }  // namespace mospec::sim

@@ -58,25 +58,46 @@ struct PlatformParameters {
   double wheel_friction = 1.0;                   // wheel-floor Coulomb coefficient
 };
 
-// A Gen3 arm's actuation. Defaults: Kinova's published limits, as in Kinova's
-// GEN3_URDF_V12.urdf <limit> tags (effort 39 N·m for actuators 1-4 and 9 N·m
-// for 5-7; position limits on actuators 2, 4, 6 only). The project's robot
-// model (robots/kinova-gen3.jsonld) carries no limits, so they live here.
+// An arm's actuation, one entry per joint of its chain (revolute joints in
+// N·m and rad, prismatic in N and m). The default is the Gen3's: Kinova's
+// published limits, as in Kinova's GEN3_URDF_V12.urdf <limit> tags (effort
+// 39 N·m for actuators 1-4 and 9 N·m for 5-7; position limits on actuators 2,
+// 4, 6 only). The published kinematic-chain vocabulary has no limits, so a
+// robot description carries none: they live here (the world file's
+// `actuation`, or an arm's own).
 struct ArmActuation {
-  robot::ArmVector effort_limit{39, 39, 39, 39, 9, 9, 9};               // [N·m]
-  robot::ArmVector lower{-1e9, -2.41, -1e9, -2.66, -1e9, -2.23, -1e9};  // [rad]; ±1e9: none
-  robot::ArmVector upper{1e9, 2.41, 1e9, 2.66, 1e9, 2.23, 1e9};
+  std::vector<double> effort_limit{39, 39, 39, 39, 9, 9, 9};               // [N·m]
+  std::vector<double> lower{-1e9, -2.41, -1e9, -2.66, -1e9, -2.23, -1e9};  // [rad]; ±1e9: none
+  std::vector<double> upper{1e9, 2.41, 1e9, 2.66, 1e9, 2.23, 1e9};
   double damping = 0.05;  // small viscous joint damping [N·m·s/rad]
 };
 
-// One arm's mount and initial configuration.
+// Where an arm's kinematic chain comes from: a JSON-LD robot description,
+// loaded offline with IRI-prefix -> directory maps.
+struct RobotModelSource {
+  std::string model;                                      // path of the JSON-LD file
+  std::string chain_iri;                                  // the KinematicChain node to read
+  std::vector<std::pair<std::string, std::string>> maps;  // IRI prefix -> directory
+};
+
+// One arm of the robot: its name, which chain the task models call it, its
+// mount, initial configuration and actuation.
 struct ArmSetup {
-  std::string name;       // "right" / "left": prefixes the arm's MJCF names
-  runtime::Pose X_PB;     // the arm's base B in the platform frame P
-  robot::ArmVector q0{};  // initial joint positions [rad]
+  std::string name;  // "right" / "left": prefixes the arm's MJCF names, sensors, log columns
+  // The kinematic chain task models name for this arm: an arm solver of that
+  // chain drives this arm (ir::LowerOptions::ports).
+  std::string chain_iri;
+  // Where the simulator reads the chain from when no arm solver of the
+  // program gives it (an idle arm, `mospec sim`); an empty model: the world's
+  // `robot`.
+  RobotModelSource robot;
+  runtime::Pose X_PB;                     // the arm's base B in the platform frame P
+  std::vector<double> q0;                 // initial joint positions, one per joint [rad or m]
+  std::optional<ArmActuation> actuation;  // unset: the world's `actuation`
   // Where X_PB came from, for messages: empty for the default, else the world
   // file's key or the task model's mount pose that set it.
   std::string mount_source;
+  std::string where;  // "file:line:col: " of the world file's entry for this arm, or ""
 };
 
 struct TableParameters {
@@ -121,14 +142,6 @@ struct Perturbation {
   double pivot_q = 0.0;   // every pivot [rad]
 };
 
-// Where the arm's kinematic chain comes from: the project's JSON-LD robot
-// description, loaded offline with IRI-prefix -> directory maps.
-struct RobotModelSource {
-  std::string model;                                      // path of the JSON-LD file
-  std::string chain_iri;                                  // the KinematicChain node to read
-  std::vector<std::pair<std::string, std::string>> maps;  // IRI prefix -> directory
-};
-
 // Where the mobile base comes from when no controller program gives it: a
 // CastorDriveBase (mospec/mobile-base) in a JSON-LD robot description.
 struct BaseModelSource {
@@ -143,9 +156,9 @@ struct WorldConfig {
   int command_delay_ticks = 1;    // 0 or 1: a command acts from the next tick on
   std::uint64_t seed = 0;
 
-  RobotModelSource robot;
-  std::array<ArmSetup, robot::kArms> arms;
-  ArmActuation actuation;
+  RobotModelSource robot;      // the default source of every arm's chain
+  std::vector<ArmSetup> arms;  // the robot's arms, in port order
+  ArmActuation actuation;      // of every arm that states none of its own
   EndEffectorParameters end_effector;
   PlatformParameters platform;
   // The mobile base's drives: geometry and the weights of Eq. 2-3. Not a
@@ -165,11 +178,25 @@ struct WorldConfig {
 // in front of the table, arms in the "whisker" pose touching its edge.
 WorldConfig default_world();
 
+// The actuation of arm `arm`: its own, else the world's.
+const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm);
+// Where the chain of arm `arm` is read from: its own source, else the world's
+// `robot` (with the arm's chain IRI when it names none).
+RobotModelSource arm_source(const WorldConfig& config, std::size_t arm);
+// The robot interface's shape: the arms' names and joint counts (`joints`,
+// one per arm, from their chains).
+robot::RobotShape robot_shape(const WorldConfig& config, const std::vector<int>& joints);
+
 // Reads a world file (JSON, schema in docs/simulation.md) over the defaults.
 // Unknown keys and wrong types are errors located at file:line:col
 // (mospec::Error "invalid-world"). Relative robot paths resolve against the
 // file's directory.
-WorldConfig parse_world_config(std::string_view text, const std::string& file_name);
-WorldConfig load_world_config(const std::string& path);
+// `check_files` false: the files the world names (robot descriptions, map
+// directories) are resolved but not checked to lie inside the model tree, for
+// a caller that reads only the robot's arms (their names and chains) and
+// loads none of them.
+WorldConfig parse_world_config(std::string_view text, const std::string& file_name,
+                               bool check_files = true);
+WorldConfig load_world_config(const std::string& path, bool check_files = true);
 
 }  // namespace mospec::sim

@@ -1,5 +1,6 @@
 #include "sim/drivers.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -18,44 +19,44 @@ runtime::AchdModel gravity_model(const runtime::Chain& arm, const runtime::Pose&
 
 }  // namespace
 
-GravityCompensation::GravityCompensation(const runtime::Chain& arm,
-                                         const std::array<runtime::Pose, robot::kArms>& X_PB)
-    : X_PB_(X_PB),
-      models_{gravity_model(arm, X_PB[0]), gravity_model(arm, X_PB[1])},
-      data_{runtime::AchdData(models_[0]), runtime::AchdData(models_[1])} {
-  if (arm.size() != robot::kArmJoints) {
-    throw Error("invalid-world", "gravity compensation: the arm chain has " +
-                                     std::to_string(arm.size()) + " joints; the robot has " +
-                                     std::to_string(robot::kArmJoints));
+GravityCompensation::GravityCompensation(std::span<const runtime::Chain> arms,
+                                         std::span<const runtime::Pose> X_PB) {
+  if (arms.size() != X_PB.size()) {
+    throw Error("invalid-world", "gravity compensation: " + std::to_string(arms.size()) +
+                                     " chains for " + std::to_string(X_PB.size()) + " mounts");
   }
+  X_PB_.assign(X_PB.begin(), X_PB.end());
+  f_E_P.assign(arms.size(), runtime::Vec3::Zero());
+  models_.reserve(arms.size());
+  for (size_t k = 0; k < arms.size(); ++k) models_.push_back(gravity_model(arms[k], X_PB[k]));
+  for (const runtime::AchdModel& m : models_) data_.emplace_back(m);
 }
 
 void GravityCompensation::compute(const robot::MeasuredState& state,
                                   robot::Command& command) noexcept {
   command.tick = state.clock.tick;
-  for (int k = 0; k < robot::kArms; ++k) {
-    const auto ak = static_cast<size_t>(k);
+  for (size_t ak = 0; ak < models_.size(); ++ak) {
     const runtime::AchdModel& model = models_[ak];
     runtime::AchdData& data = data_[ak];
-    Eigen::Matrix<double, robot::kArmJoints, 1> q, zero = decltype(q)::Zero();
+    const int n = model.nq;
+    runtime::JointVector q(n), zero = runtime::JointVector::Zero(n);
     bool finite = true;
-    for (int i = 0; i < robot::kArmJoints; ++i) {
+    for (int i = 0; i < n; ++i) {
       q[i] = state.arm[ak].q[static_cast<size_t>(i)];
       finite = finite && std::isfinite(q[i]);
     }
-    robot::ArmVector& tau = command.arm_tau[ak];
+    robot::JointValues& tau = command.arm_tau[ak];
     if (!finite) {
-      tau.fill(0.0);
+      std::fill(tau.begin(), tau.end(), 0.0);
       continue;
     }
     runtime::rne(model, data, q, zero, zero, {});
-    for (int i = 0; i < robot::kArmJoints; ++i) tau[static_cast<size_t>(i)] = data.tau[i];
+    for (int i = 0; i < n; ++i) tau[static_cast<size_t>(i)] = data.tau[i];
     if (!f_E_P[ak].isZero()) {
       runtime::tip_jacobian(model, data, q);
       const runtime::Vec3 f_B = X_PB_[ak].R.transpose() * f_E_P[ak];
-      const Eigen::Matrix<double, robot::kArmJoints, 1> t =
-          data.J_To_B.bottomRows<3>().transpose() * f_B;
-      for (int i = 0; i < robot::kArmJoints; ++i) tau[static_cast<size_t>(i)] += t[i];
+      const runtime::JointVector t = data.J_To_B.bottomRows<3>().transpose() * f_B;
+      for (int i = 0; i < n; ++i) tau[static_cast<size_t>(i)] += t[i];
     }
   }
 }

@@ -5,7 +5,8 @@
 // "controller" means only the robot::Controller that sim::run drives.)
 #pragma once
 
-#include <array>
+#include <span>
+#include <vector>
 
 #include "robot/interface.hpp"
 #include "runtime/chain.hpp"
@@ -14,7 +15,7 @@
 
 namespace mospec::sim {
 
-// Gravity compensation of both arms with the runtime's RNE, tau = g(q), plus
+// Gravity compensation of every arm with the runtime's RNE, tau = g(q), plus
 // an optional end-effector force: tau += J^T f with f the force each
 // end-effector is to exert on its environment, in the platform frame P.
 // Gravity is taken as -9.81 m/s² along z_P (the platform is assumed level;
@@ -22,21 +23,23 @@ namespace mospec::sim {
 // arm (a torque computed from NaN is not sent).
 class GravityCompensation {
  public:
-  // X_PB: each arm's base in the platform frame. Throws mospec::Error when the
-  // chain does not have robot::kArmJoints joints.
-  GravityCompensation(const runtime::Chain& arm,
-                      const std::array<runtime::Pose, robot::kArms>& X_PB);
+  // arms[k], X_PB[k]: arm k's chain and its base in the platform frame.
+  // Throws mospec::Error when the counts differ.
+  GravityCompensation(std::span<const runtime::Chain> arms, std::span<const runtime::Pose> X_PB);
+  // Every arm is `arm`.
+  GravityCompensation(const runtime::Chain& arm, std::span<const runtime::Pose> X_PB)
+      : GravityCompensation(std::vector<runtime::Chain>(X_PB.size(), arm), X_PB) {}
 
   // Sets command.arm_tau (and command.tick); leaves the wheel torques alone.
   void compute(const robot::MeasuredState& state, robot::Command& command) noexcept;
 
-  // End-effector force to exert [N] (Eigen leaves {} uninitialised: zero it).
-  std::array<runtime::Vec3, robot::kArms> f_E_P{runtime::Vec3::Zero(), runtime::Vec3::Zero()};
+  // Per arm: the end-effector force to exert [N] (zero at construction).
+  std::vector<runtime::Vec3> f_E_P;
 
  private:
-  std::array<runtime::Pose, robot::kArms> X_PB_;
-  std::array<runtime::AchdModel, robot::kArms> models_;
-  std::array<runtime::AchdData, robot::kArms> data_;
+  std::vector<runtime::Pose> X_PB_;
+  std::vector<runtime::AchdModel> models_;
+  std::vector<runtime::AchdData> data_;
 };
 
 // A commanded platform wrench distributed to the drives by the runtime's KELO

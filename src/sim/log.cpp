@@ -4,12 +4,12 @@
 
 namespace mospec::sim {
 
-CsvLog::CsvLog() {
+CsvLog::CsvLog(const World& world) : state_(world.make_state()) {
   std::string h = "t";
-  const char* arms[] = {"right", "left"};
-  for (const char* a : arms) {
+  for (const robot::ArmShape& arm : world.shape().arms) {
+    const char* a = arm.name.c_str();
     for (const char* field : {"q", "qd", "tau"}) {
-      for (int i = 0; i < robot::kArmJoints; ++i) {
+      for (int i = 0; i < arm.joints; ++i) {
         h += ",";
         h += a;
         h += "_";
@@ -21,8 +21,8 @@ CsvLog::CsvLog() {
   for (int i = 0; i < robot::kDrives; ++i) h += ",pivot_q" + std::to_string(i);
   for (int i = 0; i < robot::kWheels; ++i) h += ",wheel_qd" + std::to_string(i);
   h += ",base_x,base_y,base_z,base_yaw";
-  for (const char* a : arms) {
-    const std::string p = std::string(",") + a + "_";
+  for (const robot::ArmShape& arm : world.shape().arms) {
+    const std::string p = "," + arm.name + "_";
     h += p + "ee_x" + p + "ee_y" + p + "ee_z" + p + "fn" + p + "fx" + p + "fy" + p + "fz" + p +
          "mount_fx" + p + "mount_fy" + p + "mount_fz";
   }
@@ -53,7 +53,8 @@ void CsvLog::record(const World& world) {
   for (double x : state_.wheel_qd) add(x);
   for (double x : state_.truth.p_WoPo_W) add(x);
   add(state_.truth.yaw);
-  for (int k = 0; k < robot::kArms; ++k) {
+  for (size_t arm = 0; arm < state_.arm.size(); ++arm) {
+    const int k = static_cast<int>(arm);
     const runtime::Vec3 p = world.p_WoE_W(k);
     const ArmContact c = world.contact(k);
     add(p.x());

@@ -4,9 +4,9 @@
 // form, so identical runs give byte-identical logs. The text is kept in memory
 // and written once (atomically) by the caller.
 //
-// Columns: t; for each arm (right, left): <arm>_q0..6, <arm>_qd0..6,
-// <arm>_tau0..6; pivot_q0..3; wheel_qd0..7; base_x, base_y, base_z, base_yaw;
-// for each arm: <arm>_ee_x/y/z (end-effector centre in W), <arm>_fn (sum of
+// Columns: t; for each arm (by its name, e.g. right, left): <arm>_q0..,
+// <arm>_qd0.., <arm>_tau0.. (one per joint); pivot_q0..3; wheel_qd0..7; base_x, base_y, base_z,
+// base_yaw; for each arm: <arm>_ee_x/y/z (end-effector centre in W), <arm>_fn (sum of
 // end-effector–table normal forces), <arm>_fx/fy/fz (the table's force on the
 // end-effector, in W), <arm>_mount_fx/fy/fz (SC2 mount force on the
 // end-effector, in W); ground_fx, ground_fy, ground_mz (the ground's wrench on
@@ -22,7 +22,8 @@ namespace mospec::sim {
 
 class CsvLog {
  public:
-  CsvLog();
+  // The columns of `world`'s arms.
+  explicit CsvLog(const World& world);
   void record(const World& world);
   const std::string& text() const { return text_; }
   std::size_t rows() const { return rows_; }

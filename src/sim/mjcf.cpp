@@ -71,6 +71,7 @@ Vec3 box_inertia(double m, const std::array<double, 3>& s) {
 // One arm: its base on the platform, one body per chain segment.
 void arm_bodies(std::string& x, const WorldConfig& c, const runtime::Chain& chain, int arm) {
   const ArmSetup& setup = c.arms[static_cast<size_t>(arm)];
+  const ArmActuation& act = arm_actuation(c, static_cast<size_t>(arm));
   const std::string& a = setup.name;
   x += R"(<body name=")" + a + R"(_base" pos=")" + vec(setup.X_PB.p) + R"(" quat=")" +
        quat(setup.X_PB.R) + "\">\n";
@@ -86,12 +87,12 @@ void arm_bodies(std::string& x, const WorldConfig& c, const runtime::Chain& chai
     Mat3 I = s.inertia.I_Scm_S;
     if (I.trace() < 1e-9) I = Mat3::Identity() * 1e-7;
     x += inertial(mass, s.inertia.p_SoScm_S, I);
-    const bool limited = c.actuation.lower[j] > -1e8 || c.actuation.upper[j] < 1e8;
-    x += R"(<joint name=")" + a + "_" + s.joint + R"(" type="hinge" axis=")" + vec(s.axis_J) +
-         R"(" damping=")" + num(c.actuation.damping) + R"(" armature=")" + num(s.armature) + "\"";
-    if (limited) {
-      x += R"( limited="true" range=")" + nums({c.actuation.lower[j], c.actuation.upper[j]}) + "\"";
-    }
+    const bool limited = act.lower[j] > -1e8 || act.upper[j] < 1e8;
+    const char* type = s.type == runtime::JointType::Prismatic ? "slide" : "hinge";
+    x += R"(<joint name=")" + a + "_" + s.joint + R"(" type=")" + type + R"(" axis=")" +
+         vec(s.axis_J) + R"(" damping=")" + num(act.damping) + R"(" armature=")" + num(s.armature) +
+         "\"";
+    if (limited) x += R"( limited="true" range=")" + nums({act.lower[j], act.upper[j]}) + "\"";
     x += "/>\n";
     // A capsule from this joint to the next (or to the tip).
     const Vec3 next = i + 1 < chain.size() ? chain.segment(i + 1).X_PJ.p : chain.X_NT().p;
@@ -151,48 +152,63 @@ void drive_bodies(std::string& x, const WorldConfig& c) {
 
 }  // namespace
 
-WorldLayout layout_world(const WorldConfig& c, const runtime::Chain& arm) {
-  if (arm.size() != robot::kArmJoints) {
-    throw Error("invalid-world", "the arm chain '" + arm.root() + "' -> '" + arm.tip() + "' has " +
-                                     std::to_string(arm.size()) +
-                                     " joints; the robot interface "
-                                     "has " +
-                                     std::to_string(robot::kArmJoints));
-  }
-  for (int i = 0; i < arm.size(); ++i) {
-    if (arm.segment(i).type != runtime::JointType::Revolute) {
-      throw Error("invalid-world", "arm joint '" + arm.segment(i).joint +
-                                       "' is prismatic; the simulated arms have revolute joints");
-    }
-    const auto j = static_cast<size_t>(i);
-    if (!(c.actuation.lower[j] < c.actuation.upper[j])) {
-      throw Error("invalid-world", "actuation: joint " + std::to_string(i) + " has lower limit " +
-                                       num(c.actuation.lower[j]) + " >= upper limit " +
-                                       num(c.actuation.upper[j]));
-    }
+WorldLayout layout_world(const WorldConfig& c, std::span<const runtime::Chain> arms) {
+  if (arms.size() != c.arms.size()) {
+    throw Error("invalid-world", "internal: " + std::to_string(arms.size()) + " chains for " +
+                                     std::to_string(c.arms.size()) + " arms");
   }
   WorldLayout l;
-  const runtime::AchdModel model(arm);
-  runtime::AchdData data(model);
-  for (int k = 0; k < robot::kArms; ++k) {
-    const ArmSetup& s = c.arms[static_cast<size_t>(k)];
-    Eigen::Matrix<double, robot::kArmJoints, 1> q;
-    for (int i = 0; i < robot::kArmJoints; ++i) q[i] = s.q0[static_cast<size_t>(i)];
+  for (size_t k = 0; k < arms.size(); ++k) {
+    const runtime::Chain& arm = arms[k];
+    const ArmSetup& s = c.arms[k];
+    const ArmActuation& act = arm_actuation(c, k);
+    const auto n = static_cast<size_t>(arm.size());
+    const std::string chain = "the chain '" + arm.root() + "' -> '" + arm.tip() + "' of the " +
+                              s.name + " arm has " + std::to_string(n) + " joints";
+    const auto check = [&](size_t entries, const std::string& key, const std::string& in) {
+      if (entries == n) return;
+      throw Error("invalid-world", s.where + chain + ", but " + in + key + " has " +
+                                       std::to_string(entries) + " entries; give one per joint");
+    };
+    const std::string in = s.actuation ? "arms." + s.name + "." : "the world's ";
+    check(s.q0.size(), "arms." + s.name + ".q", "");
+    check(act.effort_limit.size(), "actuation.effort_limit", in);
+    check(act.lower.size(), "actuation.lower", in);
+    check(act.upper.size(), "actuation.upper", in);
+    for (size_t j = 0; j < n; ++j) {
+      if (!(act.lower[j] < act.upper[j])) {
+        throw Error("invalid-world", s.where + in + "actuation: joint " + std::to_string(j) +
+                                         " of the " + s.name + " arm has lower limit " +
+                                         num(act.lower[j]) + " >= upper limit " +
+                                         num(act.upper[j]));
+      }
+    }
+    const runtime::AchdModel model(arm);
+    runtime::AchdData data(model);
+    runtime::JointVector q(arm.size());
+    for (size_t i = 0; i < n; ++i) q[static_cast<Eigen::Index>(i)] = s.q0[i];
     runtime::forward_kinematics(model, data, q);
-    l.p_PoE_P[static_cast<size_t>(k)] = s.X_PB.apply(data.X_BT.p);
+    l.p_PoE_P.push_back(s.X_PB.apply(data.X_BT.p));
   }
-  const double mean_z = (l.p_PoE_P[0].z() + l.p_PoE_P[1].z()) / 2;
+  // The table's top at the mean end-effector height, its face where the
+  // farthest end effector reaches.
+  double mean_z = 0.0, reach = l.p_PoE_P.empty() ? 0.0 : l.p_PoE_P.front().x();
+  for (const Vec3& p : l.p_PoE_P) {
+    mean_z += p.z();
+    reach = std::max(reach, p.x());
+  }
+  if (!l.p_PoE_P.empty()) mean_z /= static_cast<double>(l.p_PoE_P.size());
   l.table_height = c.platform.deck_height + mean_z + c.table.edge_height_offset;
   if (c.initial.base_x) {
     l.base_x = *c.initial.base_x;
   } else {
-    const double reach = std::max(l.p_PoE_P[0].x(), l.p_PoE_P[1].x());
     l.base_x = -(reach + c.end_effector.radius + c.initial.contact_gap);
   }
   return l;
 }
 
-std::string world_mjcf(const WorldConfig& c, const runtime::Chain& arm, const WorldLayout& l) {
+std::string world_mjcf(const WorldConfig& c, std::span<const runtime::Chain> arms,
+                       const WorldLayout& l) {
   const PlatformParameters& p = c.platform;
   std::string x;
   x.reserve(16384);
@@ -264,13 +280,14 @@ std::string world_mjcf(const WorldConfig& c, const runtime::Chain& arm, const Wo
   x += R"(<geom type="box" size=")" + nums({p.size[0] / 2, p.size[1] / 2, p.size[2] / 2}) +
        R"(" pos=")" + vec(chassis_com) + R"(" rgba="0.25 0.35 0.6 1")" + kVisual + "/>\n";
   if (c.base == BaseFidelity::Wheeled) drive_bodies(x, c);
-  for (int k = 0; k < robot::kArms; ++k) arm_bodies(x, c, arm, k);
+  for (size_t k = 0; k < arms.size(); ++k) arm_bodies(x, c, arms[k], static_cast<int>(k));
   x += "</body>\n</worldbody>\n";
 
   if (c.table.present) {
     x += "<equality>\n";
-    for (int k = 0; k < robot::kArms; ++k) {
-      const std::string& a = c.arms[static_cast<size_t>(k)].name;
+    for (size_t k = 0; k < arms.size(); ++k) {
+      const runtime::Chain& arm = arms[k];
+      const std::string& a = c.arms[k].name;
       x += R"(<connect name=")" + a + R"(_mount" body1=")" + a + "_" +
            arm.segment(arm.size() - 1).link + R"(" body2="table" anchor=")" + vec(arm.X_NT().p) +
            R"(" active=")" + (c.mount.active ? "true" : "false") + R"(" solref=")" +
@@ -280,10 +297,11 @@ std::string world_mjcf(const WorldConfig& c, const runtime::Chain& arm, const Wo
   }
 
   x += "<actuator>\n";
-  for (int k = 0; k < robot::kArms; ++k) {
-    const std::string& a = c.arms[static_cast<size_t>(k)].name;
+  for (size_t k = 0; k < arms.size(); ++k) {
+    const runtime::Chain& arm = arms[k];
+    const std::string& a = c.arms[k].name;
     for (int i = 0; i < arm.size(); ++i) {
-      const double e = c.actuation.effort_limit[static_cast<size_t>(i)];
+      const double e = arm_actuation(c, k).effort_limit[static_cast<size_t>(i)];
       const std::string j = a + "_" + arm.segment(i).joint;
       x += R"(<motor name=")" + j + R"(" joint=")" + j + R"(" gear="1" ctrllimited="true" )" +
            R"(ctrlrange=")" + nums({-e, e}) + "\"/>\n";

@@ -25,21 +25,30 @@ void append_number(std::string& out, double x) {
 }
 
 // The world's columns: what the figures and the acceptance criteria read.
-const char* const kWorldColumns[] = {
-    "base_x",   "base_y",   "base_yaw", "right_ee_x", "right_ee_y", "right_ee_z", "right_fn",
-    "right_fx", "right_fy", "right_fz", "left_ee_x",  "left_ee_y",  "left_ee_z",  "left_fn",
-    "left_fx",  "left_fy",  "left_fz",  "ground_fx",  "ground_fy",  "ground_mz",  "tau_ratio"};
+// base_x, base_y, base_yaw; per arm <arm>_ee_x/y/z, _fn, _fx/fy/fz;
+// ground_fx/fy/mz, tau_ratio.
+void append_world_columns(const robot::RobotShape& shape, std::vector<std::string>& columns) {
+  for (const char* c : {"base_x", "base_y", "base_yaw"}) columns.emplace_back(c);
+  for (const robot::ArmShape& arm : shape.arms) {
+    for (const char* c : {"_ee_x", "_ee_y", "_ee_z", "_fn", "_fx", "_fy", "_fz"}) {
+      columns.push_back(arm.name + c);
+    }
+  }
+  for (const char* c : {"ground_fx", "ground_fy", "ground_mz", "tau_ratio"}) {
+    columns.emplace_back(c);
+  }
+}
 
 // Then each arm's joints (true state, no sensor faults), after the columns
-// above so that their positions stay: <arm>_q0..6 [rad], <arm>_qd0..6 [rad/s],
-// <arm>_tau0..6 [N·m], the torque the actuator applied in the tick's last
+// above so that their positions stay: <arm>_q0.. [rad], <arm>_qd0.. [rad/s],
+// <arm>_tau0.. [N·m], the torque the actuator applied in the tick's last
 // physics step (the command after the robot interface's clamp, as it acts
-// after command_delay_ticks).
-void append_joint_columns(std::vector<std::string>& columns) {
-  for (const char* arm : {"right", "left"}) {
+// after command_delay_ticks); prismatic joints in m, m/s, N.
+void append_joint_columns(const robot::RobotShape& shape, std::vector<std::string>& columns) {
+  for (const robot::ArmShape& arm : shape.arms) {
     for (const char* field : {"q", "qd", "tau"}) {
-      for (int j = 0; j < robot::kArmJoints; ++j) {
-        columns.push_back(std::string(arm) + "_" + field + std::to_string(j));
+      for (int j = 0; j < arm.joints; ++j) {
+        columns.push_back(arm.name + "_" + field + std::to_string(j));
       }
     }
   }
@@ -88,12 +97,17 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   const WorldConfig& config = world.config();
   const auto every = static_cast<std::uint64_t>(options.log_every < 1 ? 1 : options.log_every);
   const std::uint64_t ticks = tick_count(options.duration, config.control_period, every);
+  if (const std::string misfit = robot::check_fits(controller, world.shape()); !misfit.empty()) {
+    throw Error("robot-mismatch", misfit + "; the controller was made for another robot");
+  }
   RunResult r;
   const auto columns = controller.log_columns();
   r.columns.push_back("t");
   for (const robot::LogColumnInfo& c : columns) r.columns.emplace_back(c.name);
-  for (const char* c : kWorldColumns) r.columns.emplace_back(c);
-  append_joint_columns(r.columns);
+  const robot::RobotShape& shape = world.shape();
+  const size_t arms = shape.arms.size();
+  append_world_columns(shape, r.columns);
+  append_joint_columns(shape, r.columns);
   for (size_t i = 0; i < r.columns.size(); ++i) {
     if (i) r.csv.push_back(',');
     r.csv.append(r.columns[i]);
@@ -108,32 +122,51 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   }
   std::vector<unsigned> latch(columns.size(), 0);
   r.flag_ticks.assign(columns.size(), 0);
-  robot::MeasuredState state, truth;
-  robot::Command command, idle_command;
+  robot::MeasuredState state = world.make_state(), truth = world.make_state();
+  robot::Command command = world.make_command(), idle_command = world.make_command();
   std::unique_ptr<GravityCompensation> hold;
-  const bool any_idle = options.arm && (options.idle[0] || options.idle[1]);
+  std::vector<bool> idle(arms, false);
+  for (size_t a = 0; a < arms && a < options.idle.size(); ++a) idle[a] = options.idle[a];
+  const bool any_idle = std::find(idle.begin(), idle.end(), true) != idle.end();
   if (any_idle) {
-    hold = std::make_unique<GravityCompensation>(
-        *options.arm,
-        std::array<runtime::Pose, robot::kArms>{config.arms[0].X_PB, config.arms[1].X_PB});
+    std::vector<runtime::Pose> X_PB;
+    for (const ArmSetup& a : config.arms) X_PB.push_back(a.X_PB);
+    hold = std::make_unique<GravityCompensation>(world.arms(), X_PB);
   }
+  std::vector<std::vector<std::size_t>> pushing_columns(arms);
+  for (size_t a = 0; a < arms && a < options.pushing.size(); ++a) {
+    pushing_columns[a] = options.pushing[a];
+  }
+  if (options.pushing.size() > arms || options.idle.size() > arms) {
+    throw Error("invalid-run-options", "the run options name more arms than the world has");
+  }
+  r.arms.reserve(arms);
+  for (const robot::ArmShape& a : shape.arms) r.arms.push_back(a.name);
+  r.peak_torque_ratio.assign(arms, 0.0);
+  r.peak_torque_tick.assign(arms, 0);
+  r.contact.assign(arms, ContactRecord{});
   for (const std::size_t i : options.watch) {
     if (i >= columns.size())
       throw Error("invalid-run-options", "a watched log column is out of range");
   }
-  for (const auto& arm : options.pushing) {
+  for (const auto& arm : pushing_columns) {
     for (const std::size_t i : arm) {
       if (i >= columns.size())
         throw Error("invalid-run-options", "a pushing log column is out of range");
     }
   }
   std::vector<double> watched(options.watch.size(), 0.0);
-  std::array<bool, robot::kArms> pushing{};
-  std::array<bool, robot::kArms> touched{};        // contact since the force was last not commanded
-  std::array<std::uint64_t, robot::kArms> loss{};  // ticks of the current loss
-  for (size_t a = 0; a < robot::kArms; ++a) r.contact[a].observed = !options.pushing[a].empty();
-  const bool read_values = !latched.empty() || !options.watch.empty() ||
-                           !options.pushing[0].empty() || !options.pushing[1].empty();
+  std::vector<bool> pushing(arms, false);
+  std::vector<bool> touched(arms, false);    // contact since the force was last not commanded
+  std::vector<std::uint64_t> loss(arms, 0);  // ticks of the current loss
+  bool any_pushing = false;
+  for (size_t a = 0; a < arms; ++a) {
+    r.contact[a].observed = !pushing_columns[a].empty();
+    any_pushing = any_pushing || r.contact[a].observed;
+  }
+  std::vector<const ArmActuation*> actuation;
+  for (size_t a = 0; a < arms; ++a) actuation.push_back(&arm_actuation(config, a));
+  const bool read_values = !latched.empty() || !options.watch.empty() || any_pushing;
   const auto start = std::chrono::steady_clock::now();
   if (options.observer) options.observer->observe(world);
   for (std::uint64_t k = 0; k < ticks; ++k) {
@@ -143,7 +176,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
       const auto& arm = state.arm[a];
       for (size_t j = 0; j < arm.q.size(); ++j) {
         const double excess =
-            std::max(config.actuation.lower[j] - arm.q[j], arm.q[j] - config.actuation.upper[j]);
+            std::max(actuation[a]->lower[j] - arm.q[j], arm.q[j] - actuation[a]->upper[j]);
         if (!(excess > 0.0)) continue;
         r.joint_limit_exceeded = true;
         if (!beyond) {
@@ -171,9 +204,9 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
           ++r.changes_dropped;
         }
       }
-      for (size_t a = 0; a < robot::kArms; ++a) {
+      for (size_t a = 0; a < arms; ++a) {
         pushing[a] = false;
-        for (size_t i : options.pushing[a]) pushing[a] = pushing[a] || values[i] != 0.0;
+        for (size_t i : pushing_columns[a]) pushing[a] = pushing[a] || values[i] != 0.0;
       }
       for (size_t i : latched) {
         const double v = values[i];
@@ -195,7 +228,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     if (any_idle) {
       hold->compute(state, idle_command);
       for (size_t a = 0; a < command.arm_tau.size(); ++a) {
-        if (options.idle[a]) command.arm_tau[a] = idle_command.arm_tau[a];
+        if (idle[a]) command.arm_tau[a] = idle_command.arm_tau[a];
       }
     }
     double tau_ratio = 0.0;
@@ -205,7 +238,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
       double arm_ratio = 0.0;
       for (size_t j = 0; j < arm.size(); ++j) {
         finite_command = finite_command && std::isfinite(arm[j]);
-        arm_ratio = std::max(arm_ratio, std::abs(arm[j]) / config.actuation.effort_limit[j]);
+        arm_ratio = std::max(arm_ratio, std::abs(arm[j]) / actuation[a]->effort_limit[j]);
       }
       if (arm_ratio > r.peak_torque_ratio[a]) {
         r.peak_torque_ratio[a] = arm_ratio;
@@ -222,7 +255,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     world.write(command);
     world.step();
     // The contacts of the step the command acted in.
-    for (size_t a = 0; a < robot::kArms; ++a) {
+    for (size_t a = 0; a < arms; ++a) {
       ContactRecord& c = r.contact[a];
       if (!pushing[a]) {
         touched[a] = false;
@@ -263,7 +296,8 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
     row[c++] = X_WP.p.x();
     row[c++] = X_WP.p.y();
     row[c++] = std::atan2(X_WP.R(1, 0), X_WP.R(0, 0));
-    for (int a = 0; a < 2; ++a) {
+    for (size_t arm = 0; arm < arms; ++arm) {
+      const int a = static_cast<int>(arm);
       const runtime::Vec3 p = world.p_WoE_W(a);
       const ArmContact contact = world.contact(a);
       row[c++] = p.x();
@@ -298,13 +332,12 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   r.torque_limit_exceeded = r.max_torque_ratio > 1.0;
   r.instabilities = world.instabilities();
   const auto clamps = world.limiter().records();
-  std::copy(clamps.begin(), clamps.end(), r.clamps.begin());
+  r.clamps.assign(clamps.begin(), clamps.end());
   r.clamped = world.limiter().any();
   return r;
 }
 
-bool report_clamps(std::ostream& out,
-                   std::span<const robot::ClampRecord, robot::kLimitedQuantities> clamps) {
+bool report_clamps(std::ostream& out, std::span<const robot::ClampRecord> clamps) {
   const std::string lines = robot::describe_clamps(clamps);
   if (lines.empty()) return false;
   out << "mospec: warning: commands beyond the robot's limits were clamped at the robot "

@@ -46,18 +46,18 @@ class StepObserver {
 struct RunOptions {
   double duration = 10.0;  // [s] simulated
   int log_every = 1;       // log every N-th tick (and the last)
-  // Arms the controller does not drive (e.g. the left arm in a right-arm
-  // task) are held by the robot side with gravity compensation instead of
-  // being sent the controller's zeros. Needs `arm`, the arms' chain.
-  std::array<bool, robot::kArms> idle{};
-  const runtime::Chain* arm = nullptr;
+  // Per arm of the world: an arm the controller does not drive (e.g. the left
+  // arm in a right-arm task) is held by the robot side with gravity
+  // compensation instead of being sent the controller's zeros. Empty: none.
+  std::vector<bool> idle;
   // Controller log columns (indices into Controller::log_columns()) whose
   // every change is recorded, tick by tick (RunResult::changes): e.g. a
   // motion's running flag and its guards' satisfied flags.
   std::vector<std::size_t> watch;
-  // Per arm, controller log columns whose value, when not 0, means the
-  // controller commands a force on that arm's end effector (RunResult::contact).
-  std::array<std::vector<std::size_t>, robot::kArms> pushing;
+  // Per arm of the world, controller log columns whose value, when not 0,
+  // means the controller commands a force on that arm's end effector
+  // (RunResult::contact). Empty, or shorter than the arms: none.
+  std::vector<std::vector<std::size_t>> pushing;
   StepObserver* observer = nullptr;  // not owned; none when null
 };
 
@@ -100,7 +100,7 @@ struct ContactRecord {
 struct JointLimitRecord {
   std::uint64_t ticks = 0;       // ticks with some measured joint beyond its limits
   std::uint64_t first_tick = 0;  // the first of them
-  int arm = 0, joint = 0;        // the joint furthest beyond (robot::kRightArm / kLeftArm)
+  int arm = 0, joint = 0;        // the joint furthest beyond (the world's arm index)
   double max_excess = 0.0;       // by how much [rad]
 };
 
@@ -136,17 +136,18 @@ struct RunResult {
   double max_torque_ratio = 0.0;        // max |tau_i| / effort_limit_i over arms and ticks,
                                         // as requested (before the clamp)
   bool torque_limit_exceeded = false;   // max_torque_ratio > 1
-  // Per arm (robot::kRightArm, kLeftArm): the largest such ratio and its first tick.
-  std::array<double, robot::kArms> peak_torque_ratio{};
-  std::array<std::uint64_t, robot::kArms> peak_torque_tick{};
+  // The world's arms (their names), and per arm the largest such ratio and its first tick.
+  std::vector<std::string> arms;
+  std::vector<double> peak_torque_ratio;
+  std::vector<std::uint64_t> peak_torque_tick;
   // What the robot interface clamped (World::limiter()), per limited quantity
   // in robot/limits.hpp's order; `clamped` when any entry has ticks > 0.
-  std::array<robot::ClampRecord, robot::kLimitedQuantities> clamps{};
+  std::vector<robot::ClampRecord> clamps;
   bool clamped = false;
   bool joint_limit_exceeded = false;  // a measured joint position left its limits
   JointLimitRecord joint_limit;
-  std::array<ContactRecord, robot::kArms> contact{};
-  int instabilities = 0;  // MuJoCo warnings (untrustworthy when > 0)
+  std::vector<ContactRecord> contact;  // per arm
+  int instabilities = 0;               // MuJoCo warnings (untrustworthy when > 0)
 };
 
 // Runs `controller` against `world` from its current state. The per-tick path
@@ -157,8 +158,7 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
 // Writes the console warning about clamped commands — "mospec: warning: ..."
 // and one line per clamped quantity (robot::describe_clamps) — and returns
 // true, or writes nothing and returns false when nothing was clamped.
-bool report_clamps(std::ostream& out,
-                   std::span<const robot::ClampRecord, robot::kLimitedQuantities> clamps);
+bool report_clamps(std::ostream& out, std::span<const robot::ClampRecord> clamps);
 
 // The value of a named column in the last row (NaN when absent).
 double last_value(const RunResult& result, const std::string& column);

@@ -53,10 +53,20 @@ Mat3 mat3(const mjtNum* xmat) {
 
 }  // namespace
 
-World::World(const WorldConfig& config, const runtime::Chain& arm)
+namespace {
+std::vector<int> joint_counts(const std::vector<runtime::Chain>& arms) {
+  std::vector<int> n;
+  for (const runtime::Chain& c : arms) n.push_back(c.size());
+  return n;
+}
+}  // namespace
+
+World::World(const WorldConfig& config, std::vector<runtime::Chain> arms)
     : config_(config),
-      layout_(layout_world(config, arm)),
-      mjcf_(world_mjcf(config, arm, layout_)),
+      chains_(std::move(arms)),
+      shape_(robot_shape(config, joint_counts(chains_))),
+      layout_(layout_world(config, chains_)),
+      mjcf_(world_mjcf(config, chains_, layout_)),
       kelo_(config.drives),
       kelo_data_(kelo_) {
   // Compile the generated text from memory: one virtual file.
@@ -81,13 +91,14 @@ World::World(const WorldConfig& config, const runtime::Chain& arm)
   }
 
   try {
-    declare(arm);
+    declare();
   } catch (...) {
     mj_deleteData(d_);
     mj_deleteModel(m_);
     throw;
   }
   limiter_ = robot::CommandLimiter(command_limits());
+  faults_ = robot::FaultInjector(shape_);
   set_initial_state();
 }
 
@@ -99,7 +110,15 @@ World::World(const WorldConfig& config, const runtime::Chain& arm)
 // wheels would only slip.
 robot::CommandLimits World::command_limits() const {
   robot::CommandLimits l;
-  for (auto& arm : l.arm_effort) arm = config_.actuation.effort_limit;
+  for (size_t k = 0; k < chains_.size(); ++k) {
+    l.arm_names.push_back(config_.arms[k].name);
+    l.arm_effort.push_back(arm_actuation(config_, k).effort_limit);
+    std::vector<bool> prismatic;
+    for (int i = 0; i < chains_[k].size(); ++i) {
+      prismatic.push_back(chains_[k].segment(i).type == runtime::JointType::Prismatic);
+    }
+    l.arm_prismatic.push_back(std::move(prismatic));
+  }
   l.wheel_torque.fill(config_.platform.wheel_torque_limit);
   const double g =
       std::sqrt(m_->opt.gravity[0] * m_->opt.gravity[0] + m_->opt.gravity[1] * m_->opt.gravity[1] +
@@ -113,17 +132,24 @@ robot::CommandLimits World::command_limits() const {
   return l;
 }
 
-void World::declare(const runtime::Chain& arm) {
+void World::declare() {
   // Look everything up once.
-  for (int k = 0; k < robot::kArms; ++k) {
-    const auto ak = static_cast<size_t>(k);
+  const size_t arms = chains_.size();
+  arm_qpos_.assign(arms, {});
+  arm_dof_.assign(arms, {});
+  arm_act_.assign(arms, {});
+  ee_geom_.assign(arms, -1);
+  ee_site_.assign(arms, -1);
+  mount_eq_.assign(arms, -1);
+  for (size_t ak = 0; ak < arms; ++ak) {
     const std::string& a = config_.arms[ak].name;
-    for (int i = 0; i < robot::kArmJoints; ++i) {
+    const runtime::Chain& arm = chains_[ak];
+    for (int i = 0; i < arm.size(); ++i) {
       const std::string j = a + "_" + arm.segment(i).joint;
       const int jid = id_of(m_, mjOBJ_JOINT, j);
-      arm_qpos_[ak][static_cast<size_t>(i)] = m_->jnt_qposadr[jid];
-      arm_dof_[ak][static_cast<size_t>(i)] = m_->jnt_dofadr[jid];
-      arm_act_[ak][static_cast<size_t>(i)] = id_of(m_, mjOBJ_ACTUATOR, j);
+      arm_qpos_[ak].push_back(m_->jnt_qposadr[jid]);
+      arm_dof_[ak].push_back(m_->jnt_dofadr[jid]);
+      arm_act_[ak].push_back(id_of(m_, mjOBJ_ACTUATOR, j));
     }
     ee_geom_[ak] = id_of(m_, mjOBJ_GEOM, a + "_ee");
     ee_site_[ak] = id_of(m_, mjOBJ_SITE, a + "_ee");
@@ -166,8 +192,8 @@ World::~World() {
 void World::set_initial_state() {
   mj_resetData(m_, d_);
   // Draw every perturbation, always in this order, so that one amplitude
-  // never shifts another's draws: base x, y, yaw; pivots 0-3; right arm
-  // joints 0-6; left arm joints 0-6.
+  // never shifts another's draws: base x, y, yaw; pivots 0-3; then each arm's
+  // joints in order (right 0-6, left 0-6 on the default robot).
   SplitMix64 rng{config_.seed};
   const Perturbation& pert = config_.perturbation;
   const double x = layout_.base_x + pert.base_xy * symmetric_unit(rng.next());
@@ -175,13 +201,11 @@ void World::set_initial_state() {
   const double yaw = config_.initial.base_yaw + pert.base_yaw * symmetric_unit(rng.next());
   robot::DriveVector pivots = config_.initial.pivot_q;
   for (double& q : pivots) q += pert.pivot_q * symmetric_unit(rng.next());
-  std::array<robot::ArmVector, robot::kArms> arm_q;
-  for (int k = 0; k < robot::kArms; ++k) {
-    for (int i = 0; i < robot::kArmJoints; ++i) {
-      const auto ak = static_cast<size_t>(k), ji = static_cast<size_t>(i);
+  for (size_t ak = 0; ak < chains_.size(); ++ak) {
+    const ArmActuation& act = arm_actuation(config_, ak);
+    for (size_t ji = 0; ji < arm_qpos_[ak].size(); ++ji) {
       double q = config_.arms[ak].q0[ji] + pert.arm_q * symmetric_unit(rng.next());
-      q = std::min(std::max(q, config_.actuation.lower[ji]), config_.actuation.upper[ji]);
-      arm_q[ak][ji] = q;
+      q = std::min(std::max(q, act.lower[ji]), act.upper[ji]);
       d_->qpos[arm_qpos_[ak][ji]] = q;
     }
   }
@@ -213,13 +237,11 @@ void World::set_initial_state() {
   if (config_.table.present) {
     anchor_mounts();
     mount_active_ = config_.mount.active;
-    for (int k = 0; k < robot::kArms; ++k) {
-      m_->eq_active[mount_eq_[static_cast<size_t>(k)]] = mount_active_ ? 1 : 0;
-    }
+    for (int eq : mount_eq_) m_->eq_active[eq] = mount_active_ ? 1 : 0;
     mj_forward(m_, d_);
   }
   tick_ = 0;
-  current_ = previous_ = robot::Command{};
+  current_ = previous_ = make_command();
 }
 
 // Re-anchors each mount at the end-effector's current position: the point's
@@ -229,9 +251,9 @@ void World::anchor_mounts() noexcept {
   const Vec3 p_WoTo_W(d_->xpos[3 * table_body_], d_->xpos[3 * table_body_ + 1],
                       d_->xpos[3 * table_body_ + 2]);
   const Mat3 R_WT = mat3(d_->xmat + 9 * table_body_);
-  for (int k = 0; k < robot::kArms; ++k) {
-    const Vec3 p_TE = R_WT.transpose() * (p_WoE_W(k) - p_WoTo_W);
-    mjtNum* data = m_->eq_data + mjNEQDATA * mount_eq_[static_cast<size_t>(k)];
+  for (size_t k = 0; k < mount_eq_.size(); ++k) {
+    const Vec3 p_TE = R_WT.transpose() * (p_WoE_W(static_cast<int>(k)) - p_WoTo_W);
+    mjtNum* data = m_->eq_data + mjNEQDATA * mount_eq_[k];
     data[3] = p_TE.x();
     data[4] = p_TE.y();
     data[5] = p_TE.z();
@@ -242,9 +264,7 @@ void World::set_mount_active(bool active) noexcept {
   if (table_body_ < 0) return;
   if (active && !mount_active_) anchor_mounts();
   mount_active_ = active;
-  for (int k = 0; k < robot::kArms; ++k) {
-    m_->eq_active[mount_eq_[static_cast<size_t>(k)]] = active ? 1 : 0;
-  }
+  for (int eq : mount_eq_) m_->eq_active[eq] = active ? 1 : 0;
 }
 
 double World::time() const noexcept {
@@ -255,11 +275,9 @@ void World::read_true(robot::MeasuredState& s) const noexcept {
   s.clock.tick = tick_;
   s.clock.t = time();
   s.clock.dt = tick_ == 0 ? 0.0 : config_.control_period;
-  for (int k = 0; k < robot::kArms; ++k) {
-    const auto ak = static_cast<size_t>(k);
+  for (size_t ak = 0; ak < arm_qpos_.size(); ++ak) {
     robot::ArmMeasurement& a = s.arm[ak];
-    for (int i = 0; i < robot::kArmJoints; ++i) {
-      const auto ji = static_cast<size_t>(i);
+    for (size_t ji = 0; ji < arm_qpos_[ak].size(); ++ji) {
       a.q[ji] = d_->qpos[arm_qpos_[ak][ji]];
       a.qd[ji] = d_->qvel[arm_dof_[ak][ji]];
       a.tau[ji] = d_->actuator_force[arm_act_[ak][ji]];
@@ -316,11 +334,8 @@ void World::write(const robot::Command& command) noexcept {
 }
 
 void World::apply_command(const robot::Command& c) noexcept {
-  for (int k = 0; k < robot::kArms; ++k) {
-    const auto ak = static_cast<size_t>(k);
-    for (int i = 0; i < robot::kArmJoints; ++i) {
-      d_->ctrl[arm_act_[ak][static_cast<size_t>(i)]] = c.arm_tau[ak][static_cast<size_t>(i)];
-    }
+  for (size_t ak = 0; ak < arm_act_.size(); ++ak) {
+    for (size_t i = 0; i < arm_act_[ak].size(); ++i) d_->ctrl[arm_act_[ak][i]] = c.arm_tau[ak][i];
   }
   if (config_.base == BaseFidelity::Wheeled) {
     for (int w = 0; w < robot::kWheels; ++w) {

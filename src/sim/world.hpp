@@ -1,7 +1,7 @@
 // The simulated robot and its world, in Drake's shape: declare, then step.
 //
 // The constructor declares everything once — it generates the MJCF text from
-// the arm chain and the configuration (sim/mjcf.hpp), compiles it in memory
+// the arms' chains and the configuration (sim/mjcf.hpp), compiles it in memory
 // (no files), looks up every joint, actuator, geom and constraint by name and
 // sets the initial state (with the seeded perturbations). After that the
 // World owns the whole state; a controller sees only the robot interface:
@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "robot/faults.hpp"
 #include "robot/interface.hpp"
@@ -58,15 +59,28 @@ robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::D
 
 class World final : public robot::RobotInterface {
  public:
-  // Throws mospec::Error("invalid-world") when the chain does not fit the
-  // robot, and ("mujoco") with MuJoCo's message when the model does not compile.
-  World(const WorldConfig& config, const runtime::Chain& arm);
+  // `arms`: each arm's chain, one per config.arms entry (in that order).
+  // Throws mospec::Error("invalid-world") when a chain does not fit its arm's
+  // configuration, and ("mujoco") with MuJoCo's message when the model does
+  // not compile.
+  World(const WorldConfig& config, std::vector<runtime::Chain> arms);
+  // Every arm of the world is `arm` (mospec's default robot: two Gen3).
+  World(const WorldConfig& config, const runtime::Chain& arm)
+      : World(config, std::vector<runtime::Chain>(config.arms.size(), arm)) {}
   ~World() override;
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
+  // --- The robot's shape: its arms and their chains. ---
+  const robot::RobotShape& shape() const noexcept { return shape_; }
+  const std::vector<runtime::Chain>& arms() const noexcept { return chains_; }
+  // A sample and a command sized for this robot (setup; they allocate).
+  robot::MeasuredState make_state() const { return robot::make_state(shape_); }
+  robot::Command make_command() const { return robot::make_command(shape_); }
+
   // --- The robot interface (per tick, noexcept, no allocation). ---
-  // The sample at the current tick, with the sensor faults applied.
+  // The sample at the current tick, with the sensor faults applied, into a
+  // state made by make_state().
   void read(robot::MeasuredState& state) noexcept override;
   // Latches the command for the coming period (unless a fault drops it).
   // Non-finite entries are replaced by 0 and counted (rejected_entries());
@@ -123,7 +137,7 @@ class World final : public robot::RobotInterface {
   const mjData_* mj_data() const noexcept { return d_; }
 
  private:
-  void declare(const runtime::Chain& arm);
+  void declare();
   void set_initial_state();
   void apply_command(const robot::Command& command) noexcept;
   void planar_forces() noexcept;
@@ -132,16 +146,18 @@ class World final : public robot::RobotInterface {
   robot::CommandLimits command_limits() const;
 
   WorldConfig config_;
+  std::vector<runtime::Chain> chains_;
+  robot::RobotShape shape_;
   WorldLayout layout_;
   std::string mjcf_;
   mjModel_* m_ = nullptr;
   mjData_* d_ = nullptr;
 
   // Addresses looked up once (MuJoCo ids).
-  std::array<std::array<int, robot::kArmJoints>, robot::kArms> arm_qpos_{}, arm_dof_{}, arm_act_{};
+  std::vector<std::vector<int>> arm_qpos_, arm_dof_, arm_act_;  // per arm, per joint
   std::array<int, robot::kDrives> pivot_qpos_{}, pivot_dof_{};
   std::array<int, robot::kWheels> wheel_dof_{}, wheel_act_{};
-  std::array<int, robot::kArms> ee_geom_{}, ee_site_{}, mount_eq_{};
+  std::vector<int> ee_geom_, ee_site_, mount_eq_;  // per arm
   int base_qpos_ = -1, base_dof_ = -1, platform_body_ = -1, table_geom_ = -1, table_body_ = -1,
       floor_geom_ = -1;
 

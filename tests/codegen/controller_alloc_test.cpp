@@ -27,11 +27,12 @@ void expect_no_allocation(const char* env) {
   std::vector<double> values(c.log_columns().size());
   std::vector<robot::MeasuredState> states;
   for (std::uint64_t k = 0; k < 1000; ++k) states.push_back(testing::measurement(k));
-  robot::Command command;
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   // The robot interface's clamp after each tick (Gen3 and KELO hub limits;
   // the platform wrench here a plain sum of the hub torques).
   robot::CommandLimits limits;
-  limits.arm_effort[0] = limits.arm_effort[1] = {39, 39, 39, 39, 9, 9, 9};
+  limits.arm_names = {"right", "left"};
+  limits.arm_effort.assign(2, {39, 39, 39, 39, 9, 9, 9});
   limits.wheel_torque.fill(10.0);
   limits.platform_force = 1000.0;
   limits.platform_moment = 300.0;

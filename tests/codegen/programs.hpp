@@ -604,7 +604,7 @@ inline ir::Program operators_program(SourceFiles& files) {
 }
 
 inline robot::MeasuredState measurement(std::uint64_t k) {
-  robot::MeasuredState s;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
   const double t = 0.001 * static_cast<double>(k);
   s.clock = {k, t, k == 0 ? 0.0 : 0.001};
   for (std::size_t a = 0; a < s.arm.size(); ++a) {

@@ -110,11 +110,11 @@ TEST(BaseConfiguration, TheSimulatedBaseDrivesWherePushed) {
   for (sim::BaseFidelity fidelity : {sim::BaseFidelity::Planar, sim::BaseFidelity::Wheeled}) {
     c.base = fidelity;
     sim::World world(c, arm);
-    sim::GravityCompensation arms(arm, {c.arms[0].X_PB, c.arms[1].X_PB});
+    sim::GravityCompensation arms(arm, std::vector<runtime::Pose>{c.arms[0].X_PB, c.arms[1].X_PB});
     sim::PlatformWrenchDriver drives(c.drives);
     drives.F_p = runtime::Vec3(60, 30, 0);  // forward and left, in P
-    robot::MeasuredState s, start;
-    robot::Command command;
+    robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape()), start = s;
+    robot::Command command = robot::make_command(robot::gen3_pair_shape());
     world.read(start);
     for (int k = 0; k < 1500; ++k) {
       world.read(s);

@@ -59,8 +59,8 @@ TEST(Interpreter, GuardedMotionRunsBetweenItsWhenAndUntil) {
   const int effort = column(in, "ctrl-track.output");
   const int started = column(in, "mon-started.event");
   const int done = column(in, "mon-done.flag");
-  robot::MeasuredState state;
-  robot::Command command;
+  robot::MeasuredState state = robot::make_state(robot::gen3_pair_shape());
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> values(in.log_columns().size());
   int events = 0;
   for (int k = 0; k <= 3000; ++k) {
@@ -94,8 +94,8 @@ TEST(Interpreter, DampingAndImpedanceControllersFromAModel) {
   const int angular = column(in, "damper-ang.output");
   const int spring = column(in, "spring.output");
   const int error = column(in, "cstr-x.error");
-  robot::MeasuredState state;
-  robot::Command command;
+  robot::MeasuredState state = robot::make_state(robot::gen3_pair_shape());
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> values(in.log_columns().size());
   for (int k = 0; k <= 2500; ++k) {
     tick_at(in, k, state, command, values);
@@ -156,9 +156,8 @@ TEST(Verifier, ChecksControllerStepsAgainstTheirKind) {
 // the ACHD solve. Deterministic, finite, allocation-free.
 robot::MeasuredState standing_robot() {
   const sim::WorldConfig world = sim::default_world();
-  robot::MeasuredState state;
-  for (int arm = 0; arm < robot::kArms; ++arm)
-    state.arm[static_cast<size_t>(arm)].q = world.arms[static_cast<size_t>(arm)].q0;
+  robot::MeasuredState state = robot::make_state(robot::gen3_pair_shape());
+  for (size_t arm = 0; arm < state.arm.size(); ++arm) state.arm[arm].q = world.arms[arm].q0;
   return state;
 }
 
@@ -204,7 +203,7 @@ TEST(Interpreter, Sc0aTickIsDeterministic) {
   const Program program = sc0a();
   Interpreter a(program), b(program);
   robot::MeasuredState state = standing_robot();
-  robot::Command ca, cb;
+  robot::Command ca = robot::make_command(robot::gen3_pair_shape()), cb = ca;
   std::vector<double> va(a.log_columns().size()), vb(va.size());
   for (int k = 0; k < 2000; ++k) {
     advance(state, k);
@@ -219,7 +218,7 @@ TEST(Interpreter, Sc0aTickIsDeterministic) {
   bool any_torque = false;
   for (double tau : ca.arm_tau[0]) any_torque = any_torque || tau != 0.0;
   EXPECT_TRUE(any_torque) << "the right arm is commanded";
-  EXPECT_EQ(ca.arm_tau[1], robot::ArmVector{}) << "sc0a does not drive the left arm";
+  EXPECT_EQ(ca.arm_tau[1], robot::JointValues(7, 0.0)) << "sc0a does not drive the left arm";
 }
 
 TEST(Interpreter, Sc0aTickAllocatesNothing) {
@@ -228,11 +227,12 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
 #else
   Interpreter in(sc0a());
   robot::MeasuredState state = standing_robot();
-  robot::Command command;
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> values(in.log_columns().size());
   // The robot interface's clamp, as the simulator applies it after the tick.
   const sim::WorldConfig world = sim::default_world();
   robot::CommandLimits limits;
+  limits.arm_names = {"right", "left"};
   limits.arm_effort = {world.actuation.effort_limit, world.actuation.effort_limit};
   limits.wheel_torque.fill(world.platform.wheel_torque_limit);
   limits.platform_force = 1000.0;
@@ -264,7 +264,7 @@ TEST(Interpreter, EveryOperatorKindTicksWithoutAllocating) {
 #else
   SourceFiles files;
   Interpreter in(codegen::testing::operators_program(files));
-  robot::Command command;
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> values(in.log_columns().size());
   long allocations = 0;
   for (std::uint64_t k = 0; k < 1000; ++k) {
@@ -298,7 +298,7 @@ TEST(Interpreter, AnyOfIsOnWhileAnyOfItsFlagsIs) {
   }
   ASSERT_LT(either, columns.size());
   ASSERT_LT(out, columns.size());
-  robot::Command command;
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> values(columns.size());
   for (std::uint64_t k = 0; k < 300; ++k) {
     const robot::MeasuredState state = codegen::testing::measurement(k);
@@ -328,7 +328,7 @@ TEST(Interpreter, AnArmSolveLogsWhetherItsSolveDegraded) {
   EXPECT_EQ(in.log_columns()[static_cast<size_t>(degraded)].kind, robot::LogColumnKind::Flag)
       << "latched like a monitor's flag, so a decimated log keeps it";
   robot::MeasuredState state = standing_robot();
-  robot::Command command;
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> values(in.log_columns().size());
   for (int k = 0; k < 3; ++k) {
     tick_at(in, k, state, command, values);
@@ -369,7 +369,7 @@ TEST(Interpreter, TheArmProgramsOneSidedRowEngagesAndReleases) {
   SourceFiles files;
   Interpreter in(codegen::testing::arm_program(files));
   const int low_err = column(in, "low_err");
-  robot::Command command;
+  robot::Command command = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> values(in.log_columns().size());
   int engaged = 0, released = 0;
   for (std::uint64_t k = 0; k < 2000; ++k) {

@@ -76,10 +76,11 @@ Program lower_sc1(const fs::path& root, const std::map<std::string, int>& ports)
 
 robot::MeasuredState measurement(int k) {
   const sim::WorldConfig world = sim::default_world();
-  robot::MeasuredState state;
-  for (int arm = 0; arm < robot::kArms; ++arm) {
-    state.arm[static_cast<size_t>(arm)].q = world.arms[static_cast<size_t>(arm)].q0;
-    state.arm[static_cast<size_t>(arm)].qd[1] = 0.02 * std::sin(0.01 * k + arm);
+  robot::MeasuredState state = robot::make_state(robot::gen3_pair_shape());
+  for (size_t arm = 0; arm < state.arm.size(); ++arm) {
+    state.arm[arm].q = world.arms[arm].q0;
+    state.arm[arm].qd[1] =
+        0.02 * std::sin(0.01 * static_cast<double>(k) + static_cast<double>(arm));
   }
   state.clock.tick = static_cast<std::uint64_t>(k);
   state.clock.t = 0.001 * k;
@@ -160,13 +161,19 @@ TEST(RenamedModel, Sc1LowersToTheSameProgramUpToNamesAndTicksToTheSameLog) {
   std::vector<double> va(ia.log_columns().size()), vb(va.size());
   for (int k = 0; k < 1000; ++k) {
     const robot::MeasuredState state = measurement(k);
-    robot::Command ca, cb;
+    robot::Command ca = robot::make_command(robot::gen3_pair_shape()), cb = ca;
     ia.tick(state, ca);
     ib.tick(state, cb);
     ia.log_values(va);
     ib.log_values(vb);
     ASSERT_EQ(std::memcmp(va.data(), vb.data(), va.size() * sizeof(double)), 0) << "tick " << k;
-    ASSERT_EQ(std::memcmp(&ca.arm_tau, &cb.arm_tau, sizeof ca.arm_tau), 0) << "tick " << k;
+    ASSERT_EQ(ca.arm_tau.size(), cb.arm_tau.size());
+    for (size_t a = 0; a < ca.arm_tau.size(); ++a) {
+      ASSERT_EQ(std::memcmp(ca.arm_tau[a].data(), cb.arm_tau[a].data(),
+                            ca.arm_tau[a].size() * sizeof(double)),
+                0)
+          << "tick " << k;
+    }
     ASSERT_EQ(std::memcmp(&ca.wheel_tau, &cb.wheel_tau, sizeof ca.wheel_tau), 0) << "tick " << k;
   }
 }

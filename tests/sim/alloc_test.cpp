@@ -31,8 +31,8 @@ TEST(Allocation, TheControlTickAllocatesNothing) {
     arms.f_E_P = {runtime::Vec3(10, 0, 0), runtime::Vec3(10, 0, 0)};
     PlatformWrenchDriver drives(c.drives);
     drives.F_p = runtime::Vec3(20, 0, 0.5);
-    robot::MeasuredState s;
-    robot::Command cmd;
+    robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
+    robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
     const long n = alloc_counter::during([&] {
       for (int k = 0; k < 2000; ++k) {
         w.read(s);
@@ -40,7 +40,7 @@ TEST(Allocation, TheControlTickAllocatesNothing) {
         drives.compute(s, cmd);
         // Some ticks ask for far more than the robot has: the write clamps.
         if (k % 100 < 10) {
-          cmd.arm_tau[0][k % robot::kArmJoints] = 1e300;
+          cmd.arm_tau[0][k % 7] = 1e300;
           cmd.wheel_tau[static_cast<size_t>(k % robot::kWheels)] = -1e10;
         }
         w.write(cmd);

@@ -37,7 +37,7 @@ TEST(World, TableEdgeIsAtEndEffectorHeightAndTouching) {
   WorldConfig c = test_world();
   c.base = BaseFidelity::Fixed;
   World w(c, arm_chain);
-  for (int k = 0; k < robot::kArms; ++k) {
+  for (int k = 0; k < 2; ++k) {
     const runtime::Vec3 p = w.p_WoE_W(k);
     EXPECT_NEAR(p.z(), w.layout().table_height, 1e-3);  // the edge's height
     EXPECT_LT(p.x() + c.end_effector.radius, 1e-9);     // in front of the face
@@ -54,14 +54,14 @@ TEST(Physics, GravityCompensationHoldsThePose) {
     c.table.present = false;
     World w(c, arm_chain);
     GravityCompensation g(arm_chain, mounts(c));
-    robot::MeasuredState s0;
+    robot::MeasuredState s0 = robot::make_state(robot::gen3_pair_shape());
     w.read(s0);
     run(w, 2000, [&](const robot::MeasuredState& s, robot::Command& cmd) { g.compute(s, cmd); });
-    robot::MeasuredState s1;
+    robot::MeasuredState s1 = robot::make_state(robot::gen3_pair_shape());
     w.read(s1);
     double drift = 0;
-    for (int k = 0; k < robot::kArms; ++k) {
-      for (int i = 0; i < robot::kArmJoints; ++i) {
+    for (int k = 0; k < 2; ++k) {
+      for (int i = 0; i < 7; ++i) {
         const auto ak = static_cast<size_t>(k), ji = static_cast<size_t>(i);
         drift = std::max(drift, std::abs(s1.arm[ak].q[ji] - s0.arm[ak].q[ji]));
       }
@@ -79,9 +79,11 @@ TEST(Physics, WithoutCompensationTheArmsFall) {
   c.base = BaseFidelity::Fixed;
   c.table.present = false;
   World w(c, arm_chain);
-  robot::MeasuredState s0, s1;
+  robot::MeasuredState s0 = robot::make_state(robot::gen3_pair_shape()), s1 = s0;
   w.read(s0);
-  run(w, 500, [](const robot::MeasuredState&, robot::Command& cmd) { cmd = {}; });
+  run(w, 500, [](const robot::MeasuredState&, robot::Command& cmd) {
+    cmd = robot::make_command(robot::gen3_pair_shape());
+  });
   w.read(s1);
   EXPECT_GT(std::abs(s1.arm[0].q[1] - s0.arm[0].q[1]), 0.05);
 }
@@ -195,7 +197,7 @@ TEST(Physics, PushOnTableGivesTheContactForce) {
   g.f_E_P[robot::kRightArm] = runtime::Vec3(20, 0, 0);
   g.f_E_P[robot::kLeftArm] = runtime::Vec3(20, 0, 0);
   run(w, 1500, [&](const robot::MeasuredState& s, robot::Command& cmd) { g.compute(s, cmd); });
-  for (int k = 0; k < robot::kArms; ++k) {
+  for (int k = 0; k < 2; ++k) {
     const ArmContact contact = w.contact(k);
     EXPECT_GE(contact.contacts, 1);
     EXPECT_NEAR(contact.normal_force, 20.0, 1.0) << "arm " << k;
@@ -220,7 +222,7 @@ TEST(Physics, MountHoldsUnderTwentyNewtons) {
     GravityCompensation g(arm_chain, mounts(c));
     g.f_E_P = {f, f};
     run(w, 1500, [&](const robot::MeasuredState& s, robot::Command& cmd) { g.compute(s, cmd); });
-    for (int k = 0; k < robot::kArms; ++k) {
+    for (int k = 0; k < 2; ++k) {
       EXPECT_LT((w.p_WoE_W(k) - p0[k]).norm(), 2e-3) << "arm " << k << " f " << f.transpose();
       const ArmContact a = w.contact(k);
       EXPECT_EQ(a.contacts, 0);

@@ -12,24 +12,54 @@
 namespace mospec::robot {
 namespace {
 
+// mospec's default robot: two 7-joint arms.
+const RobotShape kPair{{{"right", 7}, {"left", 7}}};
+
 TEST(Sensors, EveryNameRoundTrips) {
-  for (int k = 0; k < kSensorCount; ++k) {
-    const SensorId id{static_cast<std::uint16_t>(k)};
-    const std::string name = sensor_name(id);
-    auto found = find_sensor(name);
+  const std::vector<SensorId> all = all_sensors(kPair);
+  EXPECT_EQ(all.size(), 2u * 3 * 7 + kDrives + kWheels);
+  for (const SensorId id : all) {
+    const std::string name = sensor_name(kPair, id);
+    auto found = find_sensor(kPair, name);
     ASSERT_TRUE(found.has_value()) << name;
-    EXPECT_EQ(found->index, k) << name;
+    EXPECT_EQ(*found, id) << name;
   }
-  EXPECT_EQ(sensor_name(sensor("right_arm.q[0]")), "right_arm.q[0]");
-  EXPECT_EQ(sensor_name(sensor("left_arm.tau[6]")), "left_arm.tau[6]");
-  EXPECT_EQ(sensor_name(sensor("wheel_qd[7]")), "wheel_qd[7]");
+  EXPECT_EQ(sensor_name(kPair, sensor(kPair, "right_arm.q[0]")), "right_arm.q[0]");
+  EXPECT_EQ(sensor_name(kPair, sensor(kPair, "left_arm.tau[6]")), "left_arm.tau[6]");
+  EXPECT_EQ(sensor_name(kPair, sensor(kPair, "wheel_qd[7]")), "wheel_qd[7]");
+}
+
+TEST(Sensors, AnyArmsAndJointCounts) {
+  const RobotShape shape{{{"ur", 6}, {"gantry", 3}, {"left", 7}}};
+  EXPECT_EQ(all_sensors(shape).size(), 3u * (6 + 3 + 7) + kDrives + kWheels);
+  EXPECT_TRUE(find_sensor(shape, "ur_arm.tau[5]").has_value());
+  EXPECT_FALSE(find_sensor(shape, "ur_arm.tau[6]").has_value());
+  EXPECT_TRUE(find_sensor(shape, "gantry_arm.qd[2]").has_value());
+  EXPECT_FALSE(find_sensor(shape, "right_arm.q[0]").has_value());
+  MeasuredState s = make_state(shape);
+  ASSERT_EQ(s.arm.size(), 3u);
+  EXPECT_EQ(s.arm[1].q.size(), 3u);
+  sensor_value(s, sensor(shape, "gantry_arm.qd[2]")) = 4.5;
+  EXPECT_EQ(s.arm[1].qd[2], 4.5);
+  const Command c = make_command(shape);
+  ASSERT_EQ(c.arm_tau.size(), 3u);
+  EXPECT_EQ(c.arm_tau[0].size(), 6u);
+  try {
+    sensor(shape, "right_arm.q[0]");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "mospec: error: no sensor named 'right_arm.q[0]'; sensors are "
+                 "ur_arm.{q,qd,tau}[0..5], gantry_arm.{q,qd,tau}[0..2], left_arm.{q,qd,tau}[0..6], "
+                 "pivot_q[0..3], wheel_qd[0..7]");
+  }
 }
 
 TEST(Sensors, ValuesAreTheStructFields) {
-  MeasuredState s;
-  sensor_value(s, sensor("left_arm.qd[3]")) = 1.5;
-  sensor_value(s, sensor("pivot_q[2]")) = 2.5;
-  sensor_value(s, sensor("wheel_qd[5]")) = 3.5;
+  MeasuredState s = make_state(kPair);
+  sensor_value(s, sensor(kPair, "left_arm.qd[3]")) = 1.5;
+  sensor_value(s, sensor(kPair, "pivot_q[2]")) = 2.5;
+  sensor_value(s, sensor(kPair, "wheel_qd[5]")) = 3.5;
   EXPECT_EQ(s.arm[kLeftArm].qd[3], 1.5);
   EXPECT_EQ(s.pivot_q[2], 2.5);
   EXPECT_EQ(s.wheel_qd[5], 3.5);
@@ -38,10 +68,10 @@ TEST(Sensors, ValuesAreTheStructFields) {
 TEST(Sensors, BadNamesAreRejectedWithTheForms) {
   for (const char* bad : {"", "right_arm", "right_arm.q[7]", "right_arm.q[-1]", "left_arm.x[0]",
                           "pivot_q[4]", "pivot_q[1", "wheel_qd[08x]", "middle_arm.q[0]"}) {
-    EXPECT_FALSE(find_sensor(bad).has_value()) << bad;
+    EXPECT_FALSE(find_sensor(kPair, bad).has_value()) << bad;
   }
   try {
-    sensor("pivot_q[4]");
+    sensor(kPair, "pivot_q[4]");
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
@@ -52,15 +82,15 @@ TEST(Sensors, BadNamesAreRejectedWithTheForms) {
 }
 
 MeasuredState sample(std::uint64_t tick, double value) {
-  MeasuredState s;
+  MeasuredState s = make_state(kPair);
   s.clock.tick = tick;
-  s.arm[kRightArm].q.fill(value);
+  std::fill(s.arm[kRightArm].q.begin(), s.arm[kRightArm].q.end(), value);
   s.pivot_q.fill(value);
   return s;
 }
 
 TEST(Faults, NanForASpanOfTicks) {
-  FaultInjector f;
+  FaultInjector f(kPair);
   f.inject_nan("right_arm.q[2]", 3, 2);
   for (std::uint64_t t = 0; t < 7; ++t) {
     MeasuredState s = sample(t, 1.0 + static_cast<double>(t));
@@ -109,7 +139,7 @@ TEST(Faults, DroppedCommands) {
 }
 
 TEST(Faults, CapacityAndNamesAreChecked) {
-  FaultInjector f;
+  FaultInjector f(kPair);
   EXPECT_THROW(f.inject_nan("nope", 0), Error);
   for (int i = 0; i < FaultInjector::kCapacity; ++i) f.drop_commands(0);
   try {
@@ -122,7 +152,8 @@ TEST(Faults, CapacityAndNamesAreChecked) {
 
 CommandLimits test_limits() {
   CommandLimits l;
-  l.arm_effort = {ArmVector{39, 39, 39, 39, 9, 9, 9}, ArmVector{39, 39, 39, 39, 9, 9, 9}};
+  l.arm_names = {"right", "left"};
+  l.arm_effort = {JointValues{39, 39, 39, 39, 9, 9, 9}, JointValues{39, 39, 39, 39, 9, 9, 9}};
   l.wheel_torque.fill(10.0);
   l.platform_force = 100.0;
   l.platform_moment = 20.0;
@@ -142,7 +173,7 @@ PlatformWrench toy_wrench(const WheelVector& tau) noexcept {
 
 TEST(Limits, JointAndHubTorquesSaturatePerActuatorAndAreCounted) {
   CommandLimiter limiter(test_limits());
-  Command c;
+  Command c = make_command(kPair);
   c.arm_tau[kRightArm][0] = 1e300;
   c.arm_tau[kLeftArm][6] = -12.0;
   c.arm_tau[kLeftArm][5] = 9.0;  // at the limit: not clamped
@@ -159,11 +190,12 @@ TEST(Limits, JointAndHubTorquesSaturatePerActuatorAndAreCounted) {
   EXPECT_EQ(r[0].first_tick, 7u);
   EXPECT_EQ(r[0].max_requested, 1e300);
   EXPECT_EQ(r[0].limit, 39.0);
-  EXPECT_EQ(r[kArmJoints + 6].ticks, 1u);
-  EXPECT_EQ(r[kArmJoints + 6].max_requested, 12.0);
-  EXPECT_EQ(r[kArmJoints + 5].ticks, 0u);
-  EXPECT_EQ(r[kArmTorqueLimits + 1].ticks, 1u);
-  EXPECT_EQ(r[kPlatformMomentLimit].ticks, 0u);
+  EXPECT_EQ(r[7 + 6].ticks, 1u);
+  EXPECT_EQ(r[7 + 6].max_requested, 12.0);
+  EXPECT_EQ(r[7 + 5].ticks, 0u);
+  EXPECT_EQ(r[14 + 1].ticks, 1u);
+  EXPECT_EQ(r[14 + 1].quantity, "wheel_tau[1]");
+  EXPECT_EQ(r[static_cast<size_t>(limiter.platform_moment_index())].ticks, 0u);
   EXPECT_TRUE(limiter.any());
   EXPECT_EQ(describe_clamps(r),
             "right_arm.tau[0]: clamped in 2 ticks from tick 7, requested up to 1e+300 N·m, "
@@ -179,7 +211,7 @@ TEST(Limits, ThePlatformWrenchIsScaledAlongItsDirection) {
   CommandLimits l = test_limits();
   l.platform_force = 50.0;
   CommandLimiter limiter(l);
-  Command c;
+  Command c = make_command(kPair);
   // Every hub within its limit, together 8 x 10 = 80 N > 50 N.
   c.wheel_tau.fill(10.0);
   limiter.clamp(c, 3, toy_wrench);
@@ -187,24 +219,26 @@ TEST(Limits, ThePlatformWrenchIsScaledAlongItsDirection) {
   const double scale = 20.0 / 280.0;
   for (double t : c.wheel_tau) EXPECT_DOUBLE_EQ(t, 10.0 * scale);
   const auto r = limiter.records();
-  EXPECT_EQ(r[kPlatformForceLimit].ticks, 1u);
-  EXPECT_EQ(r[kPlatformForceLimit].max_requested, 80.0);
-  EXPECT_EQ(r[kPlatformMomentLimit].ticks, 1u);
-  EXPECT_EQ(r[kPlatformMomentLimit].first_tick, 3u);
-  for (int w = 0; w < kWheels; ++w) EXPECT_EQ(r[kArmTorqueLimits + w].ticks, 0u) << w;
-  EXPECT_EQ(limited_quantity_name(kPlatformForceLimit), "platform.force");
-  EXPECT_EQ(limited_quantity_unit(kPlatformForceLimit), std::string("N"));
+  const auto force = static_cast<size_t>(limiter.platform_force_index());
+  const auto moment = static_cast<size_t>(limiter.platform_moment_index());
+  EXPECT_EQ(r[force].ticks, 1u);
+  EXPECT_EQ(r[force].max_requested, 80.0);
+  EXPECT_EQ(r[moment].ticks, 1u);
+  EXPECT_EQ(r[moment].first_tick, 3u);
+  for (size_t w = 0; w < kWheels; ++w) EXPECT_EQ(r[14 + w].ticks, 0u) << w;
+  EXPECT_EQ(r[force].quantity, "platform.force");
+  EXPECT_EQ(r[force].unit, std::string("N"));
   // A huge requested force (4e10 N through the hubs) is reported as requested.
   c.wheel_tau = {};
   c.wheel_tau[0] = 4e10;
   limiter.clamp(c, 4, toy_wrench);
-  EXPECT_EQ(limiter.records()[kPlatformForceLimit].max_requested, 4e10);
+  EXPECT_EQ(limiter.records()[force].max_requested, 4e10);
   EXPECT_LE(std::abs(toy_wrench(c.wheel_tau)[0]), 50.0 + 1e-9);
 }
 
 TEST(Limits, WithinTheLimitsNothingChanges) {
   CommandLimiter limiter(test_limits());
-  Command c;
+  Command c = make_command(kPair);
   c.arm_tau[kRightArm] = {38.9, -39, 1, 2, 8.9, -9, 0};
   c.wheel_tau = {1, -1, 2, -2, 0.5, 0.5, 0, 0};
   const Command before = c;
@@ -227,6 +261,22 @@ TEST(Limits, LimitsMustBeFinitePositive) {
   l = test_limits();
   l.platform_moment = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(CommandLimiter{l}, Error);
+}
+
+TEST(Limits, APrismaticJointIsLimitedInNewtons) {
+  CommandLimits l = test_limits();
+  l.arm_names = {"gantry"};
+  l.arm_effort = {JointValues{200, 5}};
+  l.arm_prismatic = {{true, false}};
+  CommandLimiter limiter(l);
+  Command c = make_command(RobotShape{{{"gantry", 2}}});
+  c.arm_tau[0] = {-300, 6};
+  limiter.clamp(c, 1, toy_wrench);
+  EXPECT_EQ(c.arm_tau[0], (JointValues{-200, 5}));
+  EXPECT_EQ(describe_clamps(limiter.records()),
+            "gantry_arm.tau[0]: clamped in 1 tick from tick 1, requested up to 300 N, limit 200 N\n"
+            "gantry_arm.tau[1]: clamped in 1 tick from tick 1, requested up to 6 N·m, limit 5 "
+            "N·m\n");
 }
 
 }  // namespace

@@ -43,15 +43,22 @@ inline WorldConfig test_world() {
   if (gen3_chain == nullptr) GTEST_SKIP() << "needs the published metamodels"; \
   const runtime::Chain& arm_chain = *gen3_chain
 
-inline std::array<runtime::Pose, robot::kArms> mounts(const WorldConfig& c) {
-  return {c.arms[0].X_PB, c.arms[1].X_PB};
+inline std::vector<runtime::Pose> mounts(const WorldConfig& c) {
+  std::vector<runtime::Pose> X_PB;
+  for (const ArmSetup& a : c.arms) X_PB.push_back(a.X_PB);
+  return X_PB;
+}
+
+// One chain per arm of `c`, each `arm` (the default robot's two Gen3).
+inline std::vector<runtime::Chain> chains(const WorldConfig& c, const runtime::Chain& arm) {
+  return std::vector<runtime::Chain>(c.arms.size(), arm);
 }
 
 // Runs `ticks` control ticks: read, let `control` fill the command, write, step.
 inline void run(World& world, int ticks,
                 const std::function<void(const robot::MeasuredState&, robot::Command&)>& control) {
-  robot::MeasuredState s;
-  robot::Command cmd;
+  robot::MeasuredState s = world.make_state();
+  robot::Command cmd = world.make_command();
   for (int k = 0; k < ticks; ++k) {
     world.read(s);
     control(s, cmd);

@@ -43,8 +43,8 @@ std::vector<Frame> film(const runtime::Chain& arm, double seconds,
     sampler->observe(world);
   }
   const int ticks = static_cast<int>(seconds / c.control_period + 0.5);
-  robot::MeasuredState s;
-  robot::Command cmd;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
+  robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
   for (int k = 0; k < ticks; ++k) {
     world.read(s);
     arms.compute(s, cmd);

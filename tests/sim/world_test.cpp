@@ -32,8 +32,8 @@ TEST(World, CommandsActOneTickLater) {
     WorldConfig c = arm_only();
     c.command_delay_ticks = delay;
     World w(c, arm_chain);
-    robot::MeasuredState s;
-    robot::Command cmd;
+    robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
+    robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
     std::vector<double> seen;
     for (int k = 0; k < 6; ++k) {
       w.read(s);
@@ -54,14 +54,14 @@ TEST(World, CommandsActOneTickLater) {
 TEST(World, TorquesAreLimitedToThePublishedEfforts) {
   NEED_GEN3();
   World w(arm_only(), arm_chain);
-  robot::Command cmd;
-  cmd.arm_tau[0].fill(100.0);
+  robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
+  std::fill(cmd.arm_tau[0].begin(), cmd.arm_tau[0].end(), 100.0);
   w.write(cmd);
   w.step();
   w.step();
-  robot::MeasuredState s;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
   w.read(s);
-  const robot::ArmVector expected{39, 39, 39, 39, 9, 9, 9};
+  const robot::JointValues expected{39, 39, 39, 39, 9, 9, 9};
   EXPECT_EQ(s.arm[0].tau, expected);
 }
 
@@ -70,15 +70,15 @@ TEST(World, TorquesAreLimitedToThePublishedEfforts) {
 TEST(World, CommandsBeyondTheLimitsAreClampedAndCounted) {
   NEED_GEN3();
   World w(arm_only(), arm_chain);
-  robot::Command cmd;
+  robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
   run(w, 5, [](const robot::MeasuredState& s, robot::Command& c) {
-    c = robot::Command{};
+    c = robot::make_command(robot::gen3_pair_shape());
     if (s.clock.tick >= 2) c.arm_tau[robot::kLeftArm][4] = -1e300;
   });
-  robot::MeasuredState s;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
   w.read(s);
   EXPECT_EQ(s.arm[robot::kLeftArm].tau[4], -9.0);
-  const robot::ClampRecord& r = w.limiter().records()[robot::kArmJoints + 4];
+  const robot::ClampRecord& r = w.limiter().records()[7 + 4];
   EXPECT_EQ(r.ticks, 3u);
   EXPECT_EQ(r.first_tick, 2u);
   EXPECT_EQ(r.max_requested, 1e300);
@@ -126,25 +126,26 @@ TEST(World, APlatformForceBeyondTractionIsClampedAndReported) {
   const auto records = w.limiter().records();
   const double traction = c.platform.wheel_friction * w.robot_mass() * 9.81;
   EXPECT_NEAR(w.limiter().limits().platform_force, traction, 1e-9 * traction);
-  const robot::ClampRecord& force = records[robot::kPlatformForceLimit];
+  const robot::ClampRecord& force =
+      records[static_cast<size_t>(w.limiter().platform_force_index())];
   EXPECT_EQ(force.ticks, 50u);
   EXPECT_EQ(force.first_tick, 0u);
   EXPECT_GT(force.max_requested, 1e10);
   for (int wh = 0; wh < robot::kWheels; ++wh) {
-    EXPECT_GT(records[robot::kArmTorqueLimits + wh].ticks, 0u) << wh;
+    EXPECT_GT(records[static_cast<size_t>(14 + wh)].ticks, 0u) << wh;
   }
   // What the base receives stays within the limit.
   const runtime::Vec3 F = w.ground_wrench_P();
   EXPECT_LE(std::hypot(F.x(), F.y()), traction * (1 + 1e-9));
   EXPECT_GT(F.x(), 0.5 * traction);  // and still pushes forward
   // The arms held by gravity compensation: nothing else clamped.
-  for (int j = 0; j < robot::kArmTorqueLimits; ++j) EXPECT_EQ(records[j].ticks, 0u) << j;
+  for (size_t j = 0; j < 14; ++j) EXPECT_EQ(records[j].ticks, 0u) << j;
 }
 
 TEST(World, ClockCountsTicks) {
   NEED_GEN3();
   World w(arm_only(), arm_chain);
-  robot::MeasuredState s;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
   w.read(s);
   EXPECT_EQ(s.clock.tick, 0u);
   EXPECT_EQ(s.clock.dt, 0.0);
@@ -162,8 +163,8 @@ TEST(World, SensorFaultsReachTheControllerNotTheTruth) {
   w.faults().inject_nan("right_arm.q[1]", 2, 2);
   w.faults().inject_stale("left_arm.tau[0]", 1);
   GravityCompensation g(arm_chain, mounts(w.config()));
-  robot::MeasuredState s, truth;
-  robot::Command cmd;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape()), truth = s;
+  robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
   double held = 0;
   for (int k = 0; k < 6; ++k) {
     w.read(s);
@@ -187,8 +188,8 @@ TEST(World, DroppedCommandsKeepThePreviousOne) {
   c.command_delay_ticks = 0;
   World w(c, arm_chain);
   w.faults().drop_commands(2, 2);
-  robot::MeasuredState s;
-  robot::Command cmd;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
+  robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
   std::vector<double> applied;
   for (int k = 0; k < 6; ++k) {
     cmd.arm_tau[0][6] = 0.1 * k;
@@ -204,13 +205,13 @@ TEST(World, DroppedCommandsKeepThePreviousOne) {
 TEST(World, NonFiniteCommandsAreRejected) {
   NEED_GEN3();
   World w(arm_only(), arm_chain);
-  robot::Command cmd;
+  robot::Command cmd = robot::make_command(robot::gen3_pair_shape());
   cmd.arm_tau[0][0] = std::numeric_limits<double>::quiet_NaN();
   cmd.wheel_tau[3] = std::numeric_limits<double>::infinity();
   w.write(cmd);
   w.step();
   w.step();
-  robot::MeasuredState s;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
   w.read(s);
   EXPECT_EQ(s.arm[0].tau[0], 0.0);
   EXPECT_EQ(w.rejected_entries(), 2u);
@@ -229,7 +230,7 @@ std::string run_logged(const runtime::Chain& chain, const WorldConfig& c, int ti
   PlatformWrenchDriver drives(c.drives);
   drives.F_p = runtime::Vec3(10, 0, 1);
   arms.f_E_P = {runtime::Vec3(5, 0, 0), runtime::Vec3(5, 0, 0)};
-  CsvLog log;
+  CsvLog log(w);
   run(w, ticks, [&](const robot::MeasuredState& s, robot::Command& cmd) {
     arms.compute(s, cmd);
     drives.compute(s, cmd);
@@ -253,14 +254,15 @@ TEST(World, SameSeedSameBytes) {
 
 TEST(World, SeedsPerturbTheInitialConditions) {
   NEED_GEN3();
-  robot::MeasuredState nominal, s1, s2;
+  robot::MeasuredState nominal = robot::make_state(robot::gen3_pair_shape()), s1 = nominal,
+                       s2 = nominal;
   World(test_world(), arm_chain).read(nominal);
   World(perturbed(1), arm_chain).read(s1);
   World(perturbed(2), arm_chain).read(s2);
   EXPECT_NE(s1.arm[0].q, nominal.arm[0].q);
   EXPECT_NE(s1.arm[0].q, s2.arm[0].q);
   EXPECT_NE(s1.pivot_q, s2.pivot_q);
-  for (int i = 0; i < robot::kArmJoints; ++i) {
+  for (int i = 0; i < 7; ++i) {
     const auto j = static_cast<size_t>(i);
     EXPECT_LE(std::abs(s1.arm[1].q[j] - nominal.arm[1].q[j]), 0.05);
   }
@@ -269,7 +271,7 @@ TEST(World, SeedsPerturbTheInitialConditions) {
   // Zero amplitudes: the seed changes nothing.
   WorldConfig c = test_world();
   c.seed = 99;
-  robot::MeasuredState s;
+  robot::MeasuredState s = robot::make_state(robot::gen3_pair_shape());
   World(c, arm_chain).read(s);
   EXPECT_EQ(s.arm[0].q, nominal.arm[0].q);
 }
@@ -336,8 +338,17 @@ TEST(WorldFile, ErrorsAreLocated) {
             "end_effector, platform, table, mount, initial, perturbation)");
   EXPECT_EQ(error_of("{ \"base\": \"hover\" }"),
             "w.json:1:11: error: base: expected \"wheeled\", \"planar\" or \"fixed\"");
-  EXPECT_EQ(error_of("{ \"arms\": { \"right\": { \"q\": [1, 2] } } }"),
-            "w.json:1:29: error: arms.right.q: expected an array of 7 numbers");
+  EXPECT_EQ(error_of("{ \"arms\": { \"right\": { \"q\": [] } } }"),
+            "w.json:1:29: error: arms.right.q: expected an array of 1 to 64 numbers, one per "
+            "joint");
+  EXPECT_EQ(error_of("{ \"arms\": { \"third\": { \"q\": [0] } } }"),
+            "w.json:1:22: error: arms.third: a new arm needs its `robot` (model and chain), `q` "
+            "and `actuation` (mospec's default robot has the arms right and left)");
+  EXPECT_EQ(error_of("{ \"arms\": { \"Right\": { \"q\": [0] } } }"),
+            "w.json:1:13: error: arms.Right: an arm's name must be 1 to 32 lower-case letters and "
+            "digits (it prefixes sensor names and log columns)");
+  EXPECT_EQ(error_of("{ \"arms\": { \"left\": { \"present\": false, \"q\": [0] } } }"),
+            "w.json:1:21: error: arms.left: an absent arm takes no other keys");
   EXPECT_EQ(error_of("{ \"seed\": -1 }"), "w.json:1:11: error: seed: expected an integer 0..2^53");
   EXPECT_EQ(error_of("{ \"arms\": { \"left\": { \"mount\": { \"direction-cosine-x\": [1, 1, 0] } "
                      "} } }"),
@@ -380,15 +391,27 @@ TEST(WorldFile, RobotFilesStayInsideTheWorldFilesTree) {
   fs::remove_all(tree);
 }
 
-TEST(World, RejectsAChainThatIsNotAGen3) {
+TEST(World, RejectsAChainThatDoesNotFitItsArm) {
   const runtime::Chain empty("base");
   try {
     World w(test_world(), empty);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
-                 "mospec: error: the arm chain 'base' -> 'base' has 0 joints; the robot interface "
-                 "has 7");
+                 "mospec: error: the chain 'base' -> 'base' of the right arm has 0 joints, but "
+                 "arms.right.q has 7 entries; give one per joint");
+  }
+  // An arm whose world-file entry states another joint count: located there.
+  NEED_GEN3();
+  const WorldConfig c =
+      parse_world_config("{ \"arms\": { \"left\": { \"q\": [0, 1, 0, 1, 0, 1] } } }", "w.json");
+  try {
+    World w(c, arm_chain);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "mospec: error: w.json:1:21: the chain 'base_link' -> 'EndEffector_Link' of the "
+                 "left arm has 7 joints, but arms.left.q has 6 entries; give one per joint");
   }
 }
 
