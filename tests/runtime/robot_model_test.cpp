@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include "app/app.hpp"
 #include "description/chain_jsonld.hpp"
@@ -221,6 +223,114 @@ TEST(RobotModel, WrongUnitsAreRejectedNotConverted) {
                  "unit must be {http://qudt.org/vocab/unit/KiloGM}, got "
                  "{http://qudt.org/vocab/unit/GM}");
   }
+}
+
+// robots/ur5e.jsonld: the UR5e written for mospec (robots/ur5e.urdf, from
+// Universal Robots' published DH and dynamics parameters). Both files are in
+// the repository, so these tests need nothing from ../shared.
+const std::string kUr5eUrdf = std::string(MOSPEC_SOURCE_DIR) + "/robots/ur5e.urdf";
+const std::string kUr5eModel = std::string(MOSPEC_SOURCE_DIR) + "/robots/ur5e.jsonld";
+const std::string kUr5eBase = "https://mospec.example/robots/ur5e/";
+
+Chain ur5e_from_urdf() {
+  return chain_from_urdf_file(kUr5eUrdf, "base_link", "wrist_3_link");
+}
+
+Chain ur5e_from_jsonld() {
+  app::LoadOptions options;
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+  const app::LoadedModel model = app::load({kUr5eModel}, options);
+  for (const auto& d : model.diagnostics().diagnostics()) ADD_FAILURE() << format(d);
+  return chain_from_rdf(model.flattened(), kUr5eBase + "chain");
+}
+
+// The committed file is what `mospec import-urdf robots/ur5e.urdf --base
+// https://mospec.example/robots/ur5e/` writes (the command's defaults: the
+// URDF's root link to its only leaf).
+TEST(RobotModelUr5e, CommittedFileIsTheGeneratorsOutput) {
+  ChainJsonldOptions options;
+  options.base = kUr5eBase;
+  const std::string generated = chain_to_jsonld(chain_from_urdf_file(kUr5eUrdf, "", ""), options);
+  // MOSPEC_REGENERATE_ROBOTS=1 rewrites the committed file instead of comparing.
+  if (const char* regen = std::getenv("MOSPEC_REGENERATE_ROBOTS"); regen && *regen == '1') {
+    write_output(kUr5eModel, generated);
+  }
+  EXPECT_EQ(read_file(kUr5eModel), generated)
+      << "robots/ur5e.jsonld is stale: run this test with MOSPEC_REGENERATE_ROBOTS=1";
+}
+
+TEST(RobotModelUr5e, IsSixRevoluteJointsWithThePublishedMasses) {
+  const Chain chain = ur5e_from_jsonld();
+  const char* const joints[] = {"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
+                                "wrist_1_joint",      "wrist_2_joint",       "wrist_3_joint"};
+  const double masses[] = {3.761, 8.058, 2.846, 1.37, 1.3, 0.365};  // kg, UR's DH article
+  ASSERT_EQ(chain.size(), 6);
+  EXPECT_EQ(chain.root(), "base_link");
+  EXPECT_EQ(chain.tip(), "wrist_3_link");
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(chain.segment(i).joint, joints[i]);
+    EXPECT_EQ(chain.segment(i).type, JointType::Revolute);
+    EXPECT_NEAR(chain.segment(i).inertia.mass, masses[i], 1e-12);
+  }
+  expect_same_chain(chain, ur5e_from_urdf(), 1e-12);
+}
+
+// Universal Robots' standard DH chain, frame i = frame i-1 * Rz(q_i) Tz(d_i)
+// Tx(a_i) Rx(alpha_i), written out independently of the URDF: frame 6 is the
+// tool flange.
+Pose ur5e_dh_flange(const Eigen::VectorXd& q) {
+  const double pi = std::acos(-1.0);
+  const double a[6] = {0, -0.425, -0.3922, 0, 0, 0};
+  const double d[6] = {0.1625, 0, 0, 0.1333, 0.0997, 0.0996};
+  const double alpha[6] = {pi / 2, 0, 0, pi / 2, -pi / 2, 0};
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  for (int i = 0; i < 6; ++i) {
+    const double ct = std::cos(q[i]), st = std::sin(q[i]);
+    const double ca = std::cos(alpha[i]), sa = std::sin(alpha[i]);
+    Eigen::Matrix4d A;
+    A << ct, -st * ca, st * sa, a[i] * ct,  //
+        st, ct * ca, -ct * sa, a[i] * st,   //
+        0, sa, ca, d[i],                    //
+        0, 0, 0, 1;
+    T = T * A;
+  }
+  Pose X;
+  X.R = T.topLeftCorner<3, 3>();
+  X.p = T.topRightCorner<3, 1>();
+  return X;
+}
+
+// The chain's tip (the URDF's and the JSON-LD model's) is the DH chain's frame
+// 6 at zero, at the scenario's initial configuration (models/ur5e.world.json)
+// and at random configurations.
+TEST(RobotModelUr5e, ForwardKinematicsIsThePublishedDhChain) {
+  for (const Chain& chain : {ur5e_from_urdf(), ur5e_from_jsonld()}) {
+    const AchdModel model(chain);
+    AchdData data(model);
+    std::vector<Eigen::VectorXd> configurations;
+    configurations.push_back(Eigen::VectorXd::Zero(6));
+    Eigen::VectorXd q0(6);
+    q0 << 0, -1.4081, -2.0773, -2.7978, -1.5708, 0;
+    configurations.push_back(q0);
+    std::mt19937 rng(5);
+    for (int trial = 0; trial < 10; ++trial)
+      configurations.push_back(testing::random_state(rng, 6).q);
+    for (const Eigen::VectorXd& q : configurations) {
+      forward_kinematics(model, data, q);
+      const Pose expected = ur5e_dh_flange(q);
+      EXPECT_TRUE(near(data.X_BT.p, expected.p, 1e-9)) << "q = " << q.transpose();
+      EXPECT_TRUE(near(data.X_BT.R, expected.R, 1e-9)) << "q = " << q.transpose();
+    }
+  }
+}
+
+// The published DH table at zero: the arm stretched along -x of the base, the
+// flange at (-(0.425 + 0.3922), -(0.1333 + 0.0996), 0.1625 - 0.0997).
+TEST(RobotModelUr5e, ZeroConfigurationIsTheStretchedArm) {
+  const AchdModel model(ur5e_from_jsonld());
+  AchdData data(model);
+  forward_kinematics(model, data, Eigen::VectorXd::Zero(6));
+  EXPECT_TRUE(near(data.X_BT.p, Vec3(-0.8172, -0.2329, 0.0628), 1e-12));
 }
 
 }  // namespace
