@@ -49,6 +49,26 @@ validates_clean() {
   stdout_has "validates with zero findings" '^shacl: 0 violations, 0 warnings, 0 infos'
 }
 
+# Reading a run's CSV log (header line, then rows; column "t" is the time):
+# csv_at FILE NAME T    the value of column NAME in the first row with t >= T;
+# csv_range FILE NAME T the smallest and largest value of NAME over the rows
+#                       with t >= T, as "MIN MAX";
+# csv_has FILE NAME     the header has a column NAME;
+# holds EXPRESSION      awk's verdict on a numeric condition, e.g. holds "0.39 < 0.4".
+csv_at() {
+  awk -F, -v name="$2" -v t="$3" '
+    NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    $c["t"] + 1e-9 >= t { print $c[name]; exit }' "$1"
+}
+csv_range() {
+  awk -F, -v name="$2" -v t="$3" '
+    NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    $c["t"] + 1e-9 >= t { v = $c[name] + 0; if (!n++ || v < lo) lo = v; if (n == 1 || v > hi) hi = v }
+    END { print lo, hi }' "$1"
+}
+csv_has() { head -1 "$1" | tr ',' '\n' | grep -qx -- "$2"; }
+holds() { awk "BEGIN { exit !($1) }"; }
+
 # finish SUITE: the closing summary line; exit status 0 only without failures.
 finish() {
   echo "$1: $passed passed, $failures failed"
