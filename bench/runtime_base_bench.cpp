@@ -29,7 +29,8 @@ void BM_KeloDistribution(benchmark::State& state) {
   double t = 0.0;
   for (auto _ : state) {
     t += 1e-3;
-    const Vec4 q(t, -t, 0.5 * t, 1.0 - t);
+    KeloPivotVector q(4);
+    q << t, -t, 0.5 * t, 1.0 - t;
     const Vec3 F_p(100.0 * std::cos(t), 50.0, 10.0 * std::sin(t));
     benchmark::DoNotOptimize(kelo_force_step(model, data, q, F_p).data());
   }
@@ -38,12 +39,14 @@ void BM_KeloDistribution(benchmark::State& state) {
 void BM_KeloPlatformTwist(benchmark::State& state) {
   const KeloModel model(mospec::testing::paper_base());
   KeloData data(model);
-  KeloDriveVector w = KeloDriveVector::Constant(3.0);
+  KeloDriveVector w = KeloDriveVector::Constant(8, 3.0);
+  KeloPivotVector q(4);
   double t = 0.0;
   for (auto _ : state) {
     t += 1e-3;
     w[0] = t;
-    kelo_set_pivots(model, data, Vec4(t, -t, 0.5 * t, 1.0 - t));
+    q << t, -t, 0.5 * t, 1.0 - t;
+    kelo_set_pivots(model, data, q);
     benchmark::DoNotOptimize(kelo_platform_twist(model, data, w).data());
   }
 }

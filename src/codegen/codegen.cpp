@@ -559,6 +559,7 @@ class Builder {
         drives.append(std::move(d));
       }
       put(root, "drives", std::move(drives));
+      put(root, "n_drives", std::to_string(c.geometry.p_PoAi_P.size()));
       put(root, "wheel_radius", cpp_double(c.geometry.wheel_radius));
       put(root, "wheel_distance", cpp_double(c.geometry.wheel_distance));
       put(root, "castor_offset", cpp_double(c.geometry.castor_offset));

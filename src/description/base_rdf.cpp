@@ -193,15 +193,18 @@ BaseReading read_base(const rdf::Dataset& dataset, std::string_view base_iri) {
     return out;
   }
   const std::vector<TermId> drives = r.list(heads.front());
-  if (drives.size() != static_cast<size_t>(runtime::kKeloDrives)) {
+  if (drives.size() < 2 || drives.size() > static_cast<size_t>(runtime::kMaxKeloDrives)) {
     r.problem(BaseProblemKind::DriveCount, b,
               cat({"the base '", base_iri, "' has ", std::to_string(drives.size()),
-                   " drive(s), but mospec's robot interface has exactly ",
-                   std::to_string(runtime::kKeloDrives),
-                   " drive ports (robot::kDrives, src/robot/interface.hpp): describe a base of ",
-                   std::to_string(runtime::kKeloDrives), " drives"}));
+                   " drive(s), but a base needs 2 to ", std::to_string(runtime::kMaxKeloDrives),
+                   " (two to push the platform in every direction; at most the runtime's "
+                   "workspace, runtime::kMaxKeloDrives)"}));
     return out;
   }
+  g.p_PoAi_P.assign(drives.size(), runtime::Vec2::Zero());
+  c.drive_weight.assign(drives.size(), 1.0);
+  c.align_force_weight.assign(drives.size(), 1.0);
+  c.align_moment_weight.assign(drives.size(), 1.0);
   for (size_t i = 0; i < drives.size(); ++i) {
     const TermId d = drives[i];
     if (!r.has_type(d, r.base("CastorDrive"))) {

@@ -26,7 +26,7 @@ enum class BaseProblemKind : unsigned char {
                   // (a drive: not a CastorDrive)
   MissingNumber,  // a length, position or weight is absent or not a number
   Unit,           // a length or position is not in exactly one unit, M
-  DriveCount,     // not as many drives as the robot has drive ports (kKeloDrives)
+  DriveCount,     // fewer than 2 or more than runtime::kMaxKeloDrives drives
   Degenerate,     // Eq. 2-3 are not well posed (runtime::KeloModel refuses the
                   // numbers: a length <= 0, a negative weight, fewer than two
                   // enabled drives at distinct pivots, ...)

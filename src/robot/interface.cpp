@@ -15,6 +15,8 @@ MeasuredState make_state(const RobotShape& shape) {
     s.arm[k].qd.assign(n, 0.0);
     s.arm[k].tau.assign(n, 0.0);
   }
+  s.pivot_q.assign(static_cast<std::size_t>(shape.drives), 0.0);
+  s.wheel_qd.assign(static_cast<std::size_t>(2 * shape.drives), 0.0);
   return s;
 }
 
@@ -24,13 +26,14 @@ Command make_command(const RobotShape& shape) {
   for (std::size_t k = 0; k < shape.arms.size(); ++k) {
     c.arm_tau[k].assign(static_cast<std::size_t>(shape.arms[k].joints), 0.0);
   }
+  c.wheel_tau.assign(static_cast<std::size_t>(2 * shape.drives), 0.0);
   return c;
 }
 
 void zero(Command& command) noexcept {
   command.tick = 0;
   for (JointValues& arm : command.arm_tau) std::fill(arm.begin(), arm.end(), 0.0);
-  command.wheel_tau.fill(0.0);
+  std::fill(command.wheel_tau.begin(), command.wheel_tau.end(), 0.0);
 }
 
 std::string check_fits(const Controller& controller, const RobotShape& shape) {

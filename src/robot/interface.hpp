@@ -1,6 +1,6 @@
 // The robot interface: what one control tick reads from and writes to the
 // robot — any number of serial arms (each with its own joint count) on a
-// KELO base with four castor drives.
+// KELO base with any number of castor drives (the paper's has four).
 //
 // The same structs are filled by the MuJoCo simulation (src/sim) and would be
 // filled by a real EtherCAT (KELO drives) / arm low-level adapter: arrays sized
@@ -15,9 +15,10 @@
 //                                    (mospec's default robot: 0 the right
 //                                    Gen3, 1 the left); entry i is joint i of
 //                                    its chain, 0-based (Gen3 "Actuator1" is 0);
-//   pivot_q[i]                       drive i, numbered as in kelo.hpp:
-//                                    0 front-left, 1 rear-left, 2 rear-right,
-//                                    3 front-right;
+//   pivot_q[i]                       drive i, numbered as the base's robot
+//                                    description does (the paper's base,
+//                                    robots/kelo-base.jsonld: 0 front-left,
+//                                    1 rear-left, 2 rear-right, 3 front-right);
 //   wheel_qd / wheel_tau             [drive 0 left, drive 0 right, drive 1
 //                                    left, …] (kelo.hpp's order).
 #pragma once
@@ -29,17 +30,12 @@
 
 namespace mospec::robot {
 
-inline constexpr int kDrives = 4;
-inline constexpr int kWheels = 2 * kDrives;
-
 // The arms of mospec's default robot (sim::default_world), in its order.
 inline constexpr int kRightArm = 0;
 inline constexpr int kLeftArm = 1;
 
 // One value per joint of one arm, sized at setup.
 using JointValues = std::vector<double>;
-using DriveVector = std::array<double, kDrives>;
-using WheelVector = std::array<double, kWheels>;
 
 // The clock of one sample: the tick counter and the time stamp the sample was
 // taken at, and the measured period since the previous sample (a real loop
@@ -58,6 +54,7 @@ struct ArmShape {
 };
 struct RobotShape {
   std::vector<ArmShape> arms;
+  int drives = 4;  // the base's castor drives (two wheels each); 0: no base
 };
 
 // One arm's joint measurements (revolute joints in rad, rad/s, N·m; prismatic
@@ -80,8 +77,8 @@ struct GroundTruth {
 struct MeasuredState {
   ClockSample clock;
   std::vector<ArmMeasurement> arm;  // one per arm of the RobotShape
-  DriveVector pivot_q{};            // drive pivot angles, x_P to x_Di about +z [rad]
-  WheelVector wheel_qd{};           // wheel rates, positive rolling forward [rad/s]
+  JointValues pivot_q;   // per drive: pivot angle, x_P to x_Di about +z [rad]
+  JointValues wheel_qd;  // per wheel (2 per drive): rate, positive rolling forward [rad/s]
   GroundTruth truth;                // logging only
 };
 
@@ -90,7 +87,7 @@ struct MeasuredState {
 struct Command {
   std::uint64_t tick = 0;
   std::vector<JointValues> arm_tau;  // per arm: joint torques [N·m] (prismatic: forces [N])
-  WheelVector wheel_tau{};           // hub torques, positive driving forward [N·m]
+  JointValues wheel_tau;              // hub torques, positive driving forward [N·m]
 };
 
 // A sample and a command sized for `shape`, all values 0. Made once at setup;

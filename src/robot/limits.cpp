@@ -35,12 +35,11 @@ void note(ClampRecord& r, std::uint64_t tick, double requested) noexcept {
 
 CommandLimiter::CommandLimiter() noexcept {
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  limits_.wheel_torque.fill(kNone);
   limits_.platform_force = limits_.platform_moment = kNone;
   try {
-    records_.resize(kWheels + 2);
+    records_.resize(2);
   } catch (...) {
-    std::terminate();  // 10 records: only an exhausted heap gets here
+    std::terminate();  // 2 records: only an exhausted heap gets here
   }
   for (ClampRecord& r : records_) r.limit = kNone;
 }
@@ -62,10 +61,10 @@ CommandLimiter::CommandLimiter(const CommandLimits& limits) : limits_(limits) {
       records_.push_back(std::move(r));
     }
   }
-  for (int w = 0; w < kWheels; ++w) {
+  for (size_t w = 0; w < limits.wheel_torque.size(); ++w) {
     ClampRecord r;
     r.quantity = "wheel_tau[" + std::to_string(w) + "]";
-    r.limit = limits.wheel_torque[static_cast<size_t>(w)];
+    r.limit = limits.wheel_torque[w];
     records_.push_back(std::move(r));
   }
   ClampRecord force;
@@ -90,7 +89,7 @@ void CommandLimiter::saturate(Command& command, std::uint64_t tick) noexcept {
   for (size_t k = 0; k < limits_.arm_effort.size(); ++k) {
     for (size_t i = 0; i < limits_.arm_effort[k].size(); ++i) clamp(command.arm_tau[k][i], index++);
   }
-  for (double& t : command.wheel_tau) clamp(t, index++);
+  for (size_t w = 0; w < limits_.wheel_torque.size(); ++w) clamp(command.wheel_tau[w], index++);
 }
 
 void CommandLimiter::limit_platform(Command& command, std::uint64_t tick,

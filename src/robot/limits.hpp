@@ -5,7 +5,8 @@
 //   every arm joint, <arm>_arm.tau[i], arm by arm (on mospec's default robot
 //             right_arm.tau[0..6] then left_arm.tau[0..6]) [N·m, or N for a
 //             prismatic joint], each |τ| <= effort limit;
-//   then the hub torques wheel_tau[0..7] [N·m], each |τ| <= hub limit;
+//   then the hub torques wheel_tau[0..2n-1] of the n drives [N·m], each |τ|
+//             <= hub limit;
 //   then platform.force: |(f_x, f_y)| of the platform wrench the hub
 //             torques produce (kelo.hpp's G F_d) [N];
 //   and platform.moment: its |m_z| about Po [N·m].
@@ -39,7 +40,7 @@ struct CommandLimits {
   // Per arm and joint: true for a prismatic joint (its limit is a force [N]);
   // empty: every joint revolute.
   std::vector<std::vector<bool>> arm_prismatic;
-  WheelVector wheel_torque{};    // per hub motor [N·m], > 0
+  JointValues wheel_torque;  // per hub motor [N·m], > 0
   double platform_force = 0.0;   // |(f_x, f_y)| [N], > 0
   double platform_moment = 0.0;  // |m_z| [N·m], > 0
 };

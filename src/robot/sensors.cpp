@@ -37,8 +37,8 @@ std::vector<SensorId> all_sensors(const RobotShape& shape) {
       }
     }
   }
-  for (int i = 0; i < kDrives; ++i) out.push_back(id(Field::PivotQ, 0, i));
-  for (int i = 0; i < kWheels; ++i) out.push_back(id(Field::WheelQd, 0, i));
+  for (int i = 0; i < shape.drives; ++i) out.push_back(id(Field::PivotQ, 0, i));
+  for (int i = 0; i < 2 * shape.drives; ++i) out.push_back(id(Field::WheelQd, 0, i));
   return out;
 }
 
@@ -70,8 +70,10 @@ std::optional<SensorId> find_sensor(const RobotShape& shape, std::string_view na
       return {};
     }
   }
-  if (auto i = parse_indexed(name, "pivot_q", kDrives)) return id(Field::PivotQ, 0, *i);
-  if (auto i = parse_indexed(name, "wheel_qd", kWheels)) return id(Field::WheelQd, 0, *i);
+  if (auto i = parse_indexed(name, "pivot_q", shape.drives)) return id(Field::PivotQ, 0, *i);
+  if (auto i = parse_indexed(name, "wheel_qd", 2 * shape.drives)) {
+    return id(Field::WheelQd, 0, *i);
+  }
   return {};
 }
 
@@ -81,8 +83,14 @@ SensorId sensor(const RobotShape& shape, std::string_view name) {
   for (const ArmShape& a : shape.arms) {
     forms += a.name + "_arm.{q,qd,tau}[0.." + std::to_string(a.joints - 1) + "], ";
   }
+  if (shape.drives > 0) {
+    forms += "pivot_q[0.." + std::to_string(shape.drives - 1) + "], wheel_qd[0.." +
+             std::to_string(2 * shape.drives - 1) + "]";
+  } else if (!forms.empty()) {
+    forms.resize(forms.size() - 2);
+  }
   throw Error("unknown-sensor", "no sensor named '" + std::string(name) + "'; sensors are " +
-                                    forms + "pivot_q[0..3], wheel_qd[0..7]");
+                                    (forms.empty() ? std::string("none") : forms));
 }
 
 double& sensor_value(MeasuredState& state, SensorId s) noexcept {

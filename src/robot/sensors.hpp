@@ -4,8 +4,8 @@
 // Names follow the struct fields, 0-based, with each arm named by its
 // RobotShape name:
 //   <arm>_arm.q[i], <arm>_arm.qd[i], <arm>_arm.tau[i]   i = 0 .. joints-1
-//   pivot_q[i]                                          i = 0..3
-//   wheel_qd[i]                                         i = 0..7
+//   pivot_q[i]                                          i = 0 .. drives-1
+//   wheel_qd[i]                                         i = 0 .. 2 drives-1
 // e.g. right_arm.q[0] .. right_arm.tau[6] on mospec's default robot. Ground
 // truth is not a sensor and has no name.
 #pragma once

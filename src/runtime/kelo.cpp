@@ -37,26 +37,39 @@ KeloModel::KeloModel(const KeloConfig& c) : config(c) {
   require_positive("castor offset", g.castor_offset);
   wheel_radius = g.wheel_radius;
   lateral_ratio = g.wheel_distance / (2.0 * g.castor_offset);
+  const size_t n = g.p_PoAi_P.size();
+  if (n < 2 || n > static_cast<size_t>(kMaxKeloDrives)) {
+    reject("it has " + std::to_string(n) + " drives; mospec's base has 2 to " +
+           std::to_string(kMaxKeloDrives));
+  }
+  if (c.drive_weight.size() != n || c.align_force_weight.size() != n ||
+      c.align_moment_weight.size() != n) {
+    reject("the drive, force-alignment and moment-alignment weights need one entry per drive (" +
+           std::to_string(n) + ")");
+  }
+  drives = static_cast<int>(n);
+  w_inv = KeloDriveVector::Zero(2 * drives);
   int first = -1;
   bool two_distinct = false;
-  for (int i = 0; i < kKeloDrives; ++i) {
+  for (size_t i = 0; i < n; ++i) {
     if (!g.p_PoAi_P[i].allFinite()) {
       reject("pivot position of drive " + std::to_string(i) + " must be finite");
     }
-    require_weight("drive weight", i, c.drive_weight[i]);
-    require_weight("force-alignment weight", i, c.align_force_weight[i]);
-    require_weight("moment-alignment weight", i, c.align_moment_weight[i]);
+    const int d = static_cast<int>(i);
+    require_weight("drive weight", d, c.drive_weight[i]);
+    require_weight("force-alignment weight", d, c.align_force_weight[i]);
+    require_weight("moment-alignment weight", d, c.align_moment_weight[i]);
     if (c.align_moment_weight[i] > 0.0 && !(g.p_PoAi_P[i].norm() > 0.0)) {
       reject("drive " + std::to_string(i) +
              " is at the platform centre, so it cannot align with the moment; set its "
              "moment-alignment weight to 0");
     }
     enabled[i] = c.drive_weight[i] > 0.0;
-    w_inv[2 * i] = w_inv[2 * i + 1] = c.drive_weight[i];
+    w_inv[2 * d] = w_inv[2 * d + 1] = c.drive_weight[i];
     if (!enabled[i]) continue;
     if (first < 0) {
-      first = i;
-    } else if ((g.p_PoAi_P[i] - g.p_PoAi_P[first]).norm() > 1e-6) {
+      first = d;
+    } else if ((g.p_PoAi_P[i] - g.p_PoAi_P[static_cast<size_t>(first)]).norm() > 1e-6) {
       two_distinct = true;
     }
   }
@@ -68,25 +81,35 @@ KeloModel::KeloModel(const KeloConfig& c) : config(c) {
 }
 
 KeloData::KeloData(const KeloModel& model) {
+  const int n = model.drives, m = 2 * model.drives;
+  q_pivot = KeloPivotVector::Zero(n);
+  qd_pivot = KeloPivotVector::Zero(n);
+  G = KeloComposition::Zero(3, m);
+  G_pinv = KeloDistribution::Zero(m, 3);
+  WinvGt = KeloDistribution::Zero(m, 3);
+  for (KeloDriveVector* v :
+       {&F_d_ref, &ref, &F_d_null, &F_d, &f_wheel, &tau_wheel, &u_pivot, &wheel_rates}) {
+    *v = KeloDriveVector::Zero(m);
+  }
   // A valid G W^{-1} G^T to start from: the one at zero pivot angles.
-  kelo_set_pivots(model, *this, Vec4::Zero());
+  kelo_set_pivots(model, *this, KeloPivotVector::Zero(n));
 }
 
 const KeloComposition& kelo_set_pivots(const KeloModel& model, KeloData& data,
-                                       const Vec4& q_pivot) noexcept {
+                                       const KeloPivotVector& q_pivot) noexcept {
   data.q_pivot = q_pivot;
-  for (int i = 0; i < kKeloDrives; ++i) {
+  for (int i = 0; i < model.drives; ++i) {
     const double c = std::cos(q_pivot[i]), s = std::sin(q_pivot[i]);
     const double x = model.config.geometry.p_PoAi_P[i].x();
     const double y = model.config.geometry.p_PoAi_P[i].y();
     data.G.col(2 * i) << c, s, x * s - y * c;
     data.G.col(2 * i + 1) << -s, c, x * c + y * s;
   }
-  // W^{-1} G^T (8x3), then (G W^{-1} G^T) and G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}.
-  const KeloDistribution WinvGt = model.w_inv.asDiagonal() * data.G.transpose();
-  const Mat3 GWGt = data.G * WinvGt;
+  // W^{-1} G^T (2n x 3), then (G W^{-1} G^T) and G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}.
+  data.WinvGt.noalias() = model.w_inv.asDiagonal() * data.G.transpose();
+  const Mat3 GWGt = data.G * data.WinvGt;
   data.llt_GWGt.compute(GWGt);
-  data.G_pinv = data.llt_GWGt.solve(WinvGt.transpose()).transpose();
+  data.G_pinv = data.llt_GWGt.solve(data.WinvGt.transpose()).transpose();
   return data.G;
 }
 
@@ -95,7 +118,7 @@ const KeloDriveVector& kelo_alignment_reference(const KeloModel& model, KeloData
   const double f = std::hypot(F_p[0], F_p[1]);
   const double m = F_p[2];
   const double force_heading = std::atan2(F_p[1], F_p[0]);
-  for (int i = 0; i < kKeloDrives; ++i) {
+  for (int i = 0; i < model.drives; ++i) {
     data.F_d_ref[2 * i] = 0.0;
     data.F_d_ref[2 * i + 1] = 0.0;
     if (!model.enabled[i]) continue;
@@ -121,15 +144,15 @@ const KeloDriveVector& kelo_distribute(const KeloModel& model, KeloData& data, c
                                        const KeloDriveVector& F_d_ref) noexcept {
   // Disabled drives' references are ignored: N keeps a reference on a drive
   // that G⁺ never loads, so it must not enter at all.
-  KeloDriveVector ref;
-  for (int k = 0; k < 2 * kKeloDrives; ++k) ref[k] = model.w_inv[k] > 0.0 ? F_d_ref[k] : 0.0;
-  // N F̄ = F̄ - G⁺ (G F̄), without forming the 8x8 N.
+  KeloDriveVector& ref = data.ref;
+  for (int k = 0; k < 2 * model.drives; ++k) ref[k] = model.w_inv[k] > 0.0 ? F_d_ref[k] : 0.0;
+  // N F̄ = F̄ - G⁺ (G F̄), without forming the 2n x 2n N.
   const Vec3 G_ref = data.G * ref;
   data.F_d_null.noalias() = ref - data.G_pinv * G_ref;
 
   if (model.config.rescale_reference) {
     double max_ref = 0.0, max_null = 0.0;
-    for (int i = 0; i < kKeloDrives; ++i) {
+    for (int i = 0; i < model.drives; ++i) {
       max_ref = std::max(max_ref, ref.segment<2>(2 * i).norm());
       max_null = std::max(max_null, data.F_d_null.segment<2>(2 * i).norm());
     }
@@ -145,7 +168,7 @@ const KeloDriveVector& kelo_distribute(const KeloModel& model, KeloData& data, c
 const KeloDriveVector& kelo_hub_torques(const KeloModel& model, KeloData& data) noexcept {
   const double r = model.wheel_radius;
   const double k = 0.5 / model.lateral_ratio;  // (f_r - f_l) / 2 = s f_y / d
-  for (int i = 0; i < kKeloDrives; ++i) {
+  for (int i = 0; i < model.drives; ++i) {
     const double fx = data.F_d[2 * i], fy = data.F_d[2 * i + 1];
     data.f_wheel[2 * i] = 0.5 * fx - k * fy;      // left
     data.f_wheel[2 * i + 1] = 0.5 * fx + k * fy;  // right
@@ -154,8 +177,8 @@ const KeloDriveVector& kelo_hub_torques(const KeloModel& model, KeloData& data) 
   return data.tau_wheel;
 }
 
-const KeloDriveVector& kelo_force_step(const KeloModel& model, KeloData& data, const Vec4& q_pivot,
-                                       const Vec3& F_p) noexcept {
+const KeloDriveVector& kelo_force_step(const KeloModel& model, KeloData& data,
+                                       const KeloPivotVector& q_pivot, const Vec3& F_p) noexcept {
   data.input_fault = !q_pivot.allFinite() || !F_p.allFinite();
   if (data.input_fault) {
     data.F_d.setZero();
@@ -173,7 +196,7 @@ const Vec3& kelo_platform_twist(const KeloModel& model, KeloData& data,
                                 const KeloDriveVector& wheel_rates) noexcept {
   const double r = model.wheel_radius;
   const double s_over_d = 0.5 / model.lateral_ratio;  // s / d
-  for (int i = 0; i < kKeloDrives; ++i) {
+  for (int i = 0; i < model.drives; ++i) {
     const double vl = r * wheel_rates[2 * i], vr = r * wheel_rates[2 * i + 1];
     data.u_pivot[2 * i] = 0.5 * (vl + vr);
     data.u_pivot[2 * i + 1] = s_over_d * (vr - vl);
@@ -187,7 +210,7 @@ const KeloDriveVector& kelo_wheel_rates(const KeloModel& model, KeloData& data,
   const double r = model.wheel_radius;
   const double s = model.config.geometry.castor_offset;
   data.u_pivot.noalias() = data.G.transpose() * xd_p;
-  for (int i = 0; i < kKeloDrives; ++i) {
+  for (int i = 0; i < model.drives; ++i) {
     const double ux = data.u_pivot[2 * i], uy = data.u_pivot[2 * i + 1];
     // v_r - v_l = d u_y / s; the drive turns at (v_r - v_l)/d = u_y / s.
     const double half_diff = model.lateral_ratio * uy;

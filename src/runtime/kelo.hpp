@@ -1,4 +1,5 @@
-// The KELO mobile base (paper Sec. III-C): four drives, each a pair of
+// The KELO mobile base (paper Sec. III-C): n drives (the paper's base has
+// four; 2 <= n <= kMaxKeloDrives), each a pair of
 // hub-driven wheels (a differential drive) on a passive pivot joint whose axis
 // is displaced from the wheel axle by a castor offset. Each drive can push its
 // pivot point in any planar direction; the platform wrench is distributed over
@@ -27,7 +28,7 @@
 //                               moment about Po, seen by P [N, N, N·m];
 //   xd_p = [v_x, v_y, ω_z]      platform twist: velocity of Po and angular
 //                               velocity, relative to the ground, seen by P;
-//   F_d  = [f_1x, f_1y, …, f_4x, f_4y]  the force drive i exerts on the
+//   F_d  = [f_1x, f_1y, …, f_nx, f_ny]  the force drive i exerts on the
 //                               platform at its pivot point, seen by D_i [N];
 //   wheel quantities = [1 left, 1 right, 2 left, …]: traction force f (the
 //   ground's force on the wheel along +x_Di), hub torque τ = r f, wheel rate ω
@@ -86,22 +87,30 @@
 
 #include <Eigen/Cholesky>
 #include <array>
+#include <vector>
 
 #include "runtime/spatial.hpp"
 
 namespace mospec::runtime {
 
-inline constexpr int kKeloDrives = 4;
+// The most drives a base may have: the workspace's fixed capacity.
+inline constexpr int kMaxKeloDrives = 8;
 
 using Vec2 = Eigen::Vector2d;
 using Vec4 = Eigen::Vector4d;
-using KeloDriveVector = Eigen::Matrix<double, 2 * kKeloDrives, 1>;   // F_d, wheel quantities
-using KeloComposition = Eigen::Matrix<double, 3, 2 * kKeloDrives>;   // G
-using KeloDistribution = Eigen::Matrix<double, 2 * kKeloDrives, 3>;  // G⁺
-using KeloProjector = Eigen::Matrix<double, 2 * kKeloDrives, 2 * kKeloDrives>;  // N
+// Sized by the model's drive count n, within fixed capacities (no allocation).
+using KeloPivotVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxKeloDrives, 1>;  // n
+using KeloDriveVector =
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2 * kMaxKeloDrives, 1>;  // 2n: F_d, wheels
+using KeloComposition =
+    Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 2 * kMaxKeloDrives>;  // G, 3 x 2n
+using KeloDistribution =
+    Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 2 * kMaxKeloDrives, 3>;  // G⁺, 2n x 3
+using KeloProjector = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
+                                    2 * kMaxKeloDrives, 2 * kMaxKeloDrives>;  // N, 2n x 2n
 
 struct KeloGeometry {
-  std::array<Vec2, kKeloDrives> p_PoAi_P{};  // pivot axis of drive i, seen by P [m]
+  std::vector<Vec2> p_PoAi_P;  // pivot axis of drive i, seen by P [m]; one per drive
   double wheel_radius = 0.0;                 // r [m]
   double wheel_distance = 0.0;               // d: between the two wheels of a drive [m]
   double castor_offset = 0.0;                // s: pivot axis to wheel axle [m]
@@ -112,12 +121,12 @@ struct KeloGeometry {
 
 struct KeloConfig {
   KeloGeometry geometry;
-  // Diagonal of W^{-1} per drive (>= 0; 0 disables the drive). At least two
-  // drives at distinct pivot positions must be enabled.
-  std::array<double, kKeloDrives> drive_weight{1.0, 1.0, 1.0, 1.0};
+  // One per drive. Diagonal of W^{-1} per drive (>= 0; 0 disables the drive).
+  // At least two drives at distinct pivot positions must be enabled.
+  std::vector<double> drive_weight;
   // Alignment task weights (dimensionless, >= 0): force task and moment task.
-  std::array<double, kKeloDrives> align_force_weight{1.0, 1.0, 1.0, 1.0};
-  std::array<double, kKeloDrives> align_moment_weight{1.0, 1.0, 1.0, 1.0};
+  std::vector<double> align_force_weight;
+  std::vector<double> align_moment_weight;
   // Scale the projected reference by α (the paper); false: α = 1.
   bool rescale_reference = true;
 };
@@ -125,47 +134,53 @@ struct KeloConfig {
 class KeloModel {
  public:
   // Throws mospec::Error("invalid-kelo") naming the offending drive/field:
+  // a drive count outside [2, kMaxKeloDrives] or weights not one per drive,
   // non-finite positions, wheel radius/distance/castor offset <= 0, negative
   // or non-finite weights, fewer than two enabled drives at distinct
   // positions, or a moment-alignment weight on a drive at the platform centre.
   explicit KeloModel(const KeloConfig& config);
 
   KeloConfig config;
+  int drives = 0;              // n
   double wheel_radius = 0.0;   // r
   double lateral_ratio = 0.0;  // d / (2 s): f_y = lateral_ratio (f_r - f_l)
   KeloDriveVector w_inv;       // diagonal of W^{-1} (each weight twice)
-  std::array<bool, kKeloDrives> enabled{};
+  std::array<bool, kMaxKeloDrives> enabled{};
 };
 
 struct KeloData {
   explicit KeloData(const KeloModel& model);
 
+  // Every vector below is sized for the model's n drives here, once.
+
   // kelo_set_pivots
-  Vec4 q_pivot = Vec4::Zero();                         // [rad]
-  KeloComposition G = KeloComposition::Zero();         // F_p = G F_d
-  Eigen::LLT<Mat3> llt_GWGt;                           // G W^{-1} G^T, factorised
-  KeloDistribution G_pinv = KeloDistribution::Zero();  // G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}
+  KeloPivotVector q_pivot;   // [rad]
+  KeloComposition G;         // F_p = G F_d
+  Eigen::LLT<Mat3> llt_GWGt;  // G W^{-1} G^T, factorised
+  KeloDistribution G_pinv;   // G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}
+  KeloDistribution WinvGt;   // W^{-1} G^T (a workspace of kelo_set_pivots)
 
   // kelo_alignment_reference
-  KeloDriveVector F_d_ref = KeloDriveVector::Zero();  // F̄_d, seen by each D_i [N]
+  KeloDriveVector F_d_ref;  // F̄_d, seen by each D_i [N]
 
   // kelo_distribute
-  KeloDriveVector F_d_null = KeloDriveVector::Zero();  // N F̄_d (before α)
+  KeloDriveVector ref;       // F̄_d of the enabled drives (a workspace)
+  KeloDriveVector F_d_null;  // N F̄_d (before α)
   double alpha = 0.0;
-  KeloDriveVector F_d = KeloDriveVector::Zero();  // the distributed drive forces [N]
+  KeloDriveVector F_d;  // the distributed drive forces [N]
 
   // kelo_force_step: the last tick's inputs were not finite (zero command).
   bool input_fault = false;
 
   // kelo_hub_torques
-  KeloDriveVector f_wheel = KeloDriveVector::Zero();    // traction forces [N]
-  KeloDriveVector tau_wheel = KeloDriveVector::Zero();  // hub torques [N·m]
+  KeloDriveVector f_wheel;    // traction forces [N]
+  KeloDriveVector tau_wheel;  // hub torques [N·m]
 
   // kelo_platform_twist / kelo_wheel_rates
-  KeloDriveVector u_pivot = KeloDriveVector::Zero();      // pivot velocities, seen by D_i [m/s]
-  Vec3 xd_platform = Vec3::Zero();                        // [v_x, v_y, ω_z]
-  KeloDriveVector wheel_rates = KeloDriveVector::Zero();  // [rad/s]
-  Vec4 qd_pivot = Vec4::Zero();  // pivot rates that go with wheel_rates [rad/s]
+  KeloDriveVector u_pivot;      // pivot velocities, seen by D_i [m/s]
+  Vec3 xd_platform = Vec3::Zero();  // [v_x, v_y, ω_z]
+  KeloDriveVector wheel_rates;  // [rad/s]
+  KeloPivotVector qd_pivot;     // pivot rates that go with wheel_rates [rad/s]
 };
 
 // The platform wrench [f_x, f_y, m_z] of a spatial wrench F_Po_P (angular
@@ -182,8 +197,9 @@ inline Vec6 spatial_twist(const Vec3& xd_p) noexcept {
 
 // G(q) and its weighted pseudo-inverse for the pivot angles q_pivot [rad].
 // \return data.G. Call once per tick before the functions below.
+// q_pivot has one angle per drive.
 const KeloComposition& kelo_set_pivots(const KeloModel& model, KeloData& data,
-                                       const Vec4& q_pivot) noexcept;
+                                       const KeloPivotVector& q_pivot) noexcept;
 
 // The alignment reference F̄_d for the platform wrench F_p = [f_x, f_y, m_z].
 // \return data.F_d_ref (zero for disabled drives).
@@ -204,8 +220,8 @@ const KeloDriveVector& kelo_hub_torques(const KeloModel& model, KeloData& data) 
 // data.input_fault and commands zero drive forces and hub torques for this
 // tick (the base stops pushing) instead of NaN; the next valid tick clears it.
 // \return data.tau_wheel.
-const KeloDriveVector& kelo_force_step(const KeloModel& model, KeloData& data, const Vec4& q_pivot,
-                                       const Vec3& F_p) noexcept;
+const KeloDriveVector& kelo_force_step(const KeloModel& model, KeloData& data,
+                                       const KeloPivotVector& q_pivot, const Vec3& F_p) noexcept;
 
 // Wheel rates -> pivot velocities (data.u_pivot) -> platform twist by weighted
 // least squares, at the pivot angles of the last kelo_set_pivots.
@@ -219,7 +235,7 @@ const Vec3& kelo_platform_twist(const KeloModel& model, KeloData& data,
 const KeloDriveVector& kelo_wheel_rates(const KeloModel& model, KeloData& data,
                                         const Vec3& xd_p) noexcept;
 
-// N = I - G⁺ G at the current pivot angles (8x8; for analysis and tests — the
+// N = I - G⁺ G at the current pivot angles (2n x 2n; for analysis and tests — the
 // tick never forms it).
 KeloProjector kelo_nullspace_projector(const KeloData& data) noexcept;
 

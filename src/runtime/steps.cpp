@@ -134,9 +134,9 @@ void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
 void base_force_distribution(const KeloModel& model, KeloData& data,
                              std::span<const double> pivot_q, const Vec6& F_Po_P,
                              std::span<double> wheel_tau) noexcept {
-  Vec4 q = Vec4::Zero();
-  bool finite = F_Po_P.allFinite() && pivot_q.size() >= static_cast<std::size_t>(kKeloDrives);
-  for (int i = 0; i < kKeloDrives && finite; ++i) {
+  KeloPivotVector q = KeloPivotVector::Zero(model.drives);
+  bool finite = F_Po_P.allFinite() && pivot_q.size() >= static_cast<std::size_t>(model.drives);
+  for (int i = 0; i < model.drives && finite; ++i) {
     q[i] = pivot_q[static_cast<std::size_t>(i)];
     finite = std::isfinite(q[i]);
   }
@@ -154,13 +154,13 @@ void base_force_distribution(const KeloModel& model, KeloData& data,
 namespace {
 
 // Pivots and wheel rates as Eigen vectors; false when any is not finite.
-bool base_measurements(std::span<const double> pivot_q, std::span<const double> wheel_qd, Vec4& q,
-                       KeloDriveVector& rates) noexcept {
-  if (pivot_q.size() < static_cast<std::size_t>(kKeloDrives) ||
+bool base_measurements(std::span<const double> pivot_q, std::span<const double> wheel_qd,
+                       KeloPivotVector& q, KeloDriveVector& rates) noexcept {
+  if (pivot_q.size() < static_cast<std::size_t>(q.size()) ||
       wheel_qd.size() < static_cast<std::size_t>(rates.size()))
     return false;
   bool finite = true;
-  for (int i = 0; i < kKeloDrives; ++i) {
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
     q[i] = pivot_q[static_cast<std::size_t>(i)];
     finite = finite && std::isfinite(q[i]);
   }
@@ -175,8 +175,8 @@ bool base_measurements(std::span<const double> pivot_q, std::span<const double> 
 
 void base_velocity(const KeloModel& model, KeloData& data, std::span<const double> pivot_q,
                    std::span<const double> wheel_qd, Vec6& twist) noexcept {
-  Vec4 q = Vec4::Zero();
-  KeloDriveVector rates = KeloDriveVector::Zero();
+  KeloPivotVector q = KeloPivotVector::Zero(model.drives);
+  KeloDriveVector rates = KeloDriveVector::Zero(2 * model.drives);
   if (!base_measurements(pivot_q, wheel_qd, q, rates)) {
     twist.setZero();
     return;
@@ -187,8 +187,8 @@ void base_velocity(const KeloModel& model, KeloData& data, std::span<const doubl
 
 void base_hold(const KeloModel& model, KeloData& data, std::span<const double> pivot_q,
                std::span<const double> wheel_qd, std::span<double> wheel_tau) noexcept {
-  Vec4 q = Vec4::Zero();
-  KeloDriveVector rates = KeloDriveVector::Zero();
+  KeloPivotVector q = KeloPivotVector::Zero(model.drives);
+  KeloDriveVector rates = KeloDriveVector::Zero(2 * model.drives);
   if (!base_measurements(pivot_q, wheel_qd, q, rates)) {
     for (double& t : wheel_tau) t = 0.0;
     return;

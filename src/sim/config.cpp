@@ -108,6 +108,7 @@ RobotModelSource arm_source(const WorldConfig& config, std::size_t arm) {
 
 robot::RobotShape robot_shape(const WorldConfig& config, const std::vector<int>& joints) {
   robot::RobotShape shape;
+  shape.drives = static_cast<int>(config.drives.geometry.p_PoAi_P.size());
   for (std::size_t k = 0; k < config.arms.size(); ++k) {
     shape.arms.push_back({config.arms[k].name, k < joints.size() ? joints[k] : 0});
   }
@@ -512,7 +513,7 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       if (auto* x = o.find("base_yaw")) c.initial.base_yaw = angle(*x, "base_yaw");
       if (auto* x = o.find("contact_gap")) c.initial.contact_gap = length(*x, "contact_gap");
       if (auto* x = o.find("pivot_q")) {
-        c.initial.pivot_q = r.numbers<4>(*x, "pivot_q", -kMaxAngle, kMaxAngle, "rad");
+        c.initial.pivot_q = r.joint_numbers(*x, "pivot_q", -kMaxAngle, kMaxAngle, "rad");
       }
     } else if (key == "perturbation") {
       const json::Object& o =

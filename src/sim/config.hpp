@@ -130,7 +130,7 @@ struct InitialConditions {
   double contact_gap = 0.0;      // [m]
   double base_y = 0.0;           // [m]
   double base_yaw = 0.0;         // [rad]
-  robot::DriveVector pivot_q{};  // [rad]
+  std::vector<double> pivot_q;  // one per drive [rad]; empty: every pivot at 0
 };
 
 // Uniform random perturbations of the initial conditions, each in ±amplitude,
@@ -184,7 +184,7 @@ const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm);
 // `robot` (with the arm's chain IRI when it names none).
 RobotModelSource arm_source(const WorldConfig& config, std::size_t arm);
 // The robot interface's shape: the arms' names and joint counts (`joints`,
-// one per arm, from their chains).
+// one per arm, from their chains) and the base's drives (config.drives).
 robot::RobotShape robot_shape(const WorldConfig& config, const std::vector<int>& joints);
 
 // Reads a world file (JSON, schema in docs/simulation.md) over the defaults.

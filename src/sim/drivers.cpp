@@ -62,18 +62,18 @@ void GravityCompensation::compute(const robot::MeasuredState& state,
 }
 
 PlatformWrenchDriver::PlatformWrenchDriver(const runtime::KeloConfig& config)
-    : model_(config), data_(model_) {}
+    : model_(config), data_(model_), q_(runtime::KeloPivotVector::Zero(model_.drives)) {}
 
 void PlatformWrenchDriver::compute(const robot::MeasuredState& state,
                                    robot::Command& command) noexcept {
   command.tick = state.clock.tick;
-  const Eigen::Vector4d q(state.pivot_q[0], state.pivot_q[1], state.pivot_q[2], state.pivot_q[3]);
-  if (!q.allFinite() || !F_p.allFinite()) {
-    command.wheel_tau.fill(0.0);
+  for (int i = 0; i < model_.drives; ++i) q_[i] = state.pivot_q[static_cast<size_t>(i)];
+  if (!q_.allFinite() || !F_p.allFinite()) {
+    std::fill(command.wheel_tau.begin(), command.wheel_tau.end(), 0.0);
     return;
   }
-  const runtime::KeloDriveVector& tau = runtime::kelo_force_step(model_, data_, q, F_p);
-  for (int w = 0; w < robot::kWheels; ++w) command.wheel_tau[static_cast<size_t>(w)] = tau[w];
+  const runtime::KeloDriveVector& tau = runtime::kelo_force_step(model_, data_, q_, F_p);
+  for (int w = 0; w < 2 * model_.drives; ++w) command.wheel_tau[static_cast<size_t>(w)] = tau[w];
 }
 
 }  // namespace mospec::sim

@@ -56,6 +56,7 @@ class PlatformWrenchDriver {
  private:
   runtime::KeloModel model_;
   runtime::KeloData data_;
+  runtime::KeloPivotVector q_;
 };
 
 }  // namespace mospec::sim

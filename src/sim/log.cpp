@@ -18,8 +18,8 @@ CsvLog::CsvLog(const World& world) : state_(world.make_state()) {
       }
     }
   }
-  for (int i = 0; i < robot::kDrives; ++i) h += ",pivot_q" + std::to_string(i);
-  for (int i = 0; i < robot::kWheels; ++i) h += ",wheel_qd" + std::to_string(i);
+  for (int i = 0; i < world.shape().drives; ++i) h += ",pivot_q" + std::to_string(i);
+  for (int i = 0; i < 2 * world.shape().drives; ++i) h += ",wheel_qd" + std::to_string(i);
   h += ",base_x,base_y,base_z,base_yaw";
   for (const robot::ArmShape& arm : world.shape().arms) {
     const std::string p = "," + arm.name + "_";

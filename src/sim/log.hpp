@@ -5,7 +5,7 @@
 // and written once (atomically) by the caller.
 //
 // Columns: t; for each arm (by its name, e.g. right, left): <arm>_q0..,
-// <arm>_qd0.., <arm>_tau0.. (one per joint); pivot_q0..3; wheel_qd0..7; base_x, base_y, base_z,
+// <arm>_qd0.., <arm>_tau0.. (one per joint); pivot_q0.. (per drive); wheel_qd0.. (per wheel); base_x, base_y, base_z,
 // base_yaw; for each arm: <arm>_ee_x/y/z (end-effector centre in W), <arm>_fn (sum of
 // end-effector–table normal forces), <arm>_fx/fy/fz (the table's force on the
 // end-effector, in W), <arm>_mount_fx/fy/fz (SC2 mount force on the

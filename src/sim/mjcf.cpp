@@ -123,9 +123,9 @@ void drive_bodies(std::string& x, const WorldConfig& c) {
   const double r = g.wheel_radius, s = g.castor_offset, d = g.wheel_distance;
   const double hz = p.drive_mass * 0.1 * 0.1 / 6;  // a 10 cm cube
   const Vec3 wheel_I(p.wheel_mass * r * r / 4, p.wheel_mass * r * r / 2, p.wheel_mass * r * r / 4);
-  for (int i = 0; i < runtime::kKeloDrives; ++i) {
+  for (size_t i = 0; i < g.p_PoAi_P.size(); ++i) {
     const std::string n = "drive" + std::to_string(i);
-    const auto& a = g.p_PoAi_P[static_cast<size_t>(i)];
+    const auto& a = g.p_PoAi_P[i];
     // The drive frame D_i sits on the pivot axis at wheel-axle height.
     x += R"(<body name=")" + n + R"(" pos=")" + nums({a.x(), a.y(), r - p.deck_height}) + "\">\n";
     x += R"(<joint name=")" + n + R"(_pivot" type="hinge" axis="0 0 1" damping=")" +
@@ -264,9 +264,10 @@ std::string world_mjcf(const WorldConfig& c, std::span<const runtime::Chain> arm
     // The drives are not bodies here: lump their masses at the pivots so both
     // fidelities carry the same mass and yaw inertia.
     const double md = p.drive_mass + 2 * p.wheel_mass;
-    const double mt = p.mass + runtime::kKeloDrives * md;
+    const double drives = static_cast<double>(c.drives.geometry.p_PoAi_P.size());
+    const double mt = p.mass + drives * md;
     const double zd = c.drives.geometry.wheel_radius - p.deck_height;
-    const Vec3 com = (p.mass * chassis_com + runtime::kKeloDrives * md * Vec3(0, 0, zd)) / mt;
+    const Vec3 com = (p.mass * chassis_com + drives * md * Vec3(0, 0, zd)) / mt;
     Vec3 I = box_inertia(p.mass, p.size);
     const double dzc = chassis_com.z() - com.z();
     I += p.mass * Vec3(dzc * dzc, dzc * dzc, 0);
@@ -309,7 +310,7 @@ std::string world_mjcf(const WorldConfig& c, std::span<const runtime::Chain> arm
   }
   if (c.base == BaseFidelity::Wheeled) {
     const double e = p.wheel_torque_limit;
-    for (int i = 0; i < runtime::kKeloDrives; ++i) {
+    for (size_t i = 0; i < c.drives.geometry.p_PoAi_P.size(); ++i) {
       for (const char* side : {"_left", "_right"}) {
         const std::string w = "drive" + std::to_string(i) + side;
         x += R"(<motor name=")" + w + R"(" joint=")" + w + R"(" gear="1" ctrllimited="true" )" +

@@ -91,6 +91,20 @@ World::World(const WorldConfig& config, std::vector<runtime::Chain> arms)
   }
 
   try {
+    const auto n = static_cast<size_t>(kelo_.drives);
+    if (!config.initial.pivot_q.empty() && config.initial.pivot_q.size() != n) {
+      throw Error("invalid-world", "initial.pivot_q has " +
+                                       std::to_string(config.initial.pivot_q.size()) +
+                                       " angles, but the base has " + std::to_string(n) +
+                                       " drives; give one per drive");
+    }
+    initial_pivot_q_ = config.initial.pivot_q.empty() ? std::vector<double>(n, 0.0)
+                                                      : config.initial.pivot_q;
+    planar_pivot_q_.assign(n, 0.0);
+    planar_wheel_qd_.assign(2 * n, 0.0);
+    pivot_buffer_.assign(n, 0.0);
+    pivot_work_ = runtime::KeloPivotVector::Zero(kelo_.drives);
+    drive_work_ = runtime::KeloDriveVector::Zero(2 * kelo_.drives);
     declare();
   } catch (...) {
     mj_deleteData(d_);
@@ -119,7 +133,7 @@ robot::CommandLimits World::command_limits() const {
     }
     l.arm_prismatic.push_back(std::move(prismatic));
   }
-  l.wheel_torque.fill(config_.platform.wheel_torque_limit);
+  l.wheel_torque.assign(static_cast<size_t>(2 * kelo_.drives), config_.platform.wheel_torque_limit);
   const double g =
       std::sqrt(m_->opt.gravity[0] * m_->opt.gravity[0] + m_->opt.gravity[1] * m_->opt.gravity[1] +
                 m_->opt.gravity[2] * m_->opt.gravity[2]);
@@ -165,16 +179,15 @@ void World::declare() {
     const int b = id_of(m_, mjOBJ_JOINT, "base");
     base_qpos_ = m_->jnt_qposadr[b];
     base_dof_ = m_->jnt_dofadr[b];
-    for (int i = 0; i < robot::kDrives; ++i) {
+    for (int i = 0; i < kelo_.drives; ++i) {
       const std::string n = "drive" + std::to_string(i);
       const int p = id_of(m_, mjOBJ_JOINT, n + "_pivot");
-      pivot_qpos_[static_cast<size_t>(i)] = m_->jnt_qposadr[p];
-      pivot_dof_[static_cast<size_t>(i)] = m_->jnt_dofadr[p];
+      pivot_qpos_.push_back(m_->jnt_qposadr[p]);
+      pivot_dof_.push_back(m_->jnt_dofadr[p]);
       for (int side = 0; side < 2; ++side) {
         const std::string w = n + (side == 0 ? "_left" : "_right");
-        const auto wi = static_cast<size_t>(2 * i + side);
-        wheel_dof_[wi] = m_->jnt_dofadr[id_of(m_, mjOBJ_JOINT, w)];
-        wheel_act_[wi] = id_of(m_, mjOBJ_ACTUATOR, w);
+        wheel_dof_.push_back(m_->jnt_dofadr[id_of(m_, mjOBJ_JOINT, w)]);
+        wheel_act_.push_back(id_of(m_, mjOBJ_ACTUATOR, w));
       }
     }
   } else if (config_.base == BaseFidelity::Planar) {
@@ -199,7 +212,7 @@ void World::set_initial_state() {
   const double x = layout_.base_x + pert.base_xy * symmetric_unit(rng.next());
   const double y = config_.initial.base_y + pert.base_xy * symmetric_unit(rng.next());
   const double yaw = config_.initial.base_yaw + pert.base_yaw * symmetric_unit(rng.next());
-  robot::DriveVector pivots = config_.initial.pivot_q;
+  std::vector<double> pivots = initial_pivot_q_;
   for (double& q : pivots) q += pert.pivot_q * symmetric_unit(rng.next());
   for (size_t ak = 0; ak < chains_.size(); ++ak) {
     const ArmActuation& act = arm_actuation(config_, ak);
@@ -219,9 +232,7 @@ void World::set_initial_state() {
       q[4] = 0;
       q[5] = 0;
       q[6] = std::sin(yaw / 2);
-      for (int i = 0; i < robot::kDrives; ++i) {
-        d_->qpos[pivot_qpos_[static_cast<size_t>(i)]] = pivots[static_cast<size_t>(i)];
-      }
+      for (size_t i = 0; i < pivot_qpos_.size(); ++i) d_->qpos[pivot_qpos_[i]] = pivots[i];
       break;
     }
     case BaseFidelity::Planar:
@@ -285,20 +296,16 @@ void World::read_true(robot::MeasuredState& s) const noexcept {
   }
   switch (config_.base) {
     case BaseFidelity::Wheeled:
-      for (int i = 0; i < robot::kDrives; ++i) {
-        s.pivot_q[static_cast<size_t>(i)] = d_->qpos[pivot_qpos_[static_cast<size_t>(i)]];
-      }
-      for (int w = 0; w < robot::kWheels; ++w) {
-        s.wheel_qd[static_cast<size_t>(w)] = d_->qvel[wheel_dof_[static_cast<size_t>(w)]];
-      }
+      for (size_t i = 0; i < pivot_qpos_.size(); ++i) s.pivot_q[i] = d_->qpos[pivot_qpos_[i]];
+      for (size_t w = 0; w < wheel_dof_.size(); ++w) s.wheel_qd[w] = d_->qvel[wheel_dof_[w]];
       break;
     case BaseFidelity::Planar:
-      s.pivot_q = planar_pivot_q_;
-      s.wheel_qd = planar_wheel_qd_;
+      std::copy(planar_pivot_q_.begin(), planar_pivot_q_.end(), s.pivot_q.begin());
+      std::copy(planar_wheel_qd_.begin(), planar_wheel_qd_.end(), s.wheel_qd.begin());
       break;
     case BaseFidelity::Fixed:
-      s.pivot_q = config_.initial.pivot_q;
-      s.wheel_qd = {};
+      std::copy(initial_pivot_q_.begin(), initial_pivot_q_.end(), s.pivot_q.begin());
+      std::fill(s.wheel_qd.begin(), s.wheel_qd.end(), 0.0);
       break;
   }
   const mjtNum* p = d_->xpos + 3 * platform_body_;
@@ -327,7 +334,7 @@ void World::write(const robot::Command& command) noexcept {
   }
   for (double& t : current_.wheel_tau) clean(t);
   limiter_.clamp(current_, tick_,
-                 [this](const robot::WheelVector& tau) noexcept { return platform_wrench(tau); });
+                 [this](std::span<const double> tau) noexcept { return platform_wrench(tau); });
   // Before the first tick there is no earlier command: the robot starts with
   // the first one (brakes released as the loop starts), not with zero torque.
   if (tick_ == 0) previous_ = current_;
@@ -338,9 +345,7 @@ void World::apply_command(const robot::Command& c) noexcept {
     for (size_t i = 0; i < arm_act_[ak].size(); ++i) d_->ctrl[arm_act_[ak][i]] = c.arm_tau[ak][i];
   }
   if (config_.base == BaseFidelity::Wheeled) {
-    for (int w = 0; w < robot::kWheels; ++w) {
-      d_->ctrl[wheel_act_[static_cast<size_t>(w)]] = c.wheel_tau[static_cast<size_t>(w)];
-    }
+    for (size_t w = 0; w < wheel_act_.size(); ++w) d_->ctrl[wheel_act_[w]] = c.wheel_tau[w];
   }
 }
 
@@ -349,16 +354,16 @@ void World::apply_command(const robot::Command& c) noexcept {
 void World::planar_forces() noexcept {
   const robot::Command& c = config_.command_delay_ticks == 1 ? previous_ : current_;
   const double r = kelo_.wheel_radius, limit = config_.platform.wheel_torque_limit;
-  runtime::KeloDriveVector F_d;
-  for (int i = 0; i < robot::kDrives; ++i) {
+  runtime::KeloDriveVector& F_d = drive_work_;
+  for (int i = 0; i < kelo_.drives; ++i) {
     const auto l = static_cast<size_t>(2 * i), rr = l + 1;
     const double f_l = std::clamp(c.wheel_tau[l], -limit, limit) / r;
     const double f_r = std::clamp(c.wheel_tau[rr], -limit, limit) / r;
     F_d[2 * i] = f_l + f_r;
     F_d[2 * i + 1] = kelo_.lateral_ratio * (f_r - f_l);
   }
-  Eigen::Vector4d q(planar_pivot_q_[0], planar_pivot_q_[1], planar_pivot_q_[2], planar_pivot_q_[3]);
-  runtime::kelo_set_pivots(kelo_, kelo_data_, q);
+  for (int i = 0; i < kelo_.drives; ++i) pivot_work_[i] = planar_pivot_q_[static_cast<size_t>(i)];
+  runtime::kelo_set_pivots(kelo_, kelo_data_, pivot_work_);
   planar_F_p_.noalias() = kelo_data_.G * F_d;
   const double yaw = d_->qpos[base_qpos_ + 2];
   const double cy = std::cos(yaw), sy = std::sin(yaw);
@@ -373,15 +378,15 @@ void World::planar_drives_after_step() noexcept {
   const double cy = std::cos(yaw), sy = std::sin(yaw);
   const double vx = d_->qvel[base_dof_], vy = d_->qvel[base_dof_ + 1];
   const runtime::Vec3 xd_p(cy * vx + sy * vy, -sy * vx + cy * vy, d_->qvel[base_dof_ + 2]);
-  Eigen::Vector4d q(planar_pivot_q_[0], planar_pivot_q_[1], planar_pivot_q_[2], planar_pivot_q_[3]);
-  runtime::kelo_set_pivots(kelo_, kelo_data_, q);
+  for (int i = 0; i < kelo_.drives; ++i) pivot_work_[i] = planar_pivot_q_[static_cast<size_t>(i)];
+  runtime::kelo_set_pivots(kelo_, kelo_data_, pivot_work_);
   runtime::kelo_wheel_rates(kelo_, kelo_data_, xd_p);
   const double h = m_->opt.timestep;
-  for (int i = 0; i < robot::kDrives; ++i) {
+  for (int i = 0; i < kelo_.drives; ++i) {
     double& p = planar_pivot_q_[static_cast<size_t>(i)];
     p = std::remainder(p + h * kelo_data_.qd_pivot[i], 2 * std::numbers::pi);
   }
-  for (int w = 0; w < robot::kWheels; ++w) {
+  for (int w = 0; w < 2 * kelo_.drives; ++w) {
     planar_wheel_qd_[static_cast<size_t>(w)] = kelo_data_.wheel_rates[w];
   }
 }
@@ -471,12 +476,12 @@ Vec3 World::ground_wrench_P() const noexcept {
   return {f_P.x(), f_P.y(), n_P.z()};
 }
 
-robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::DriveVector& pivot_q,
-                                 const robot::WheelVector& wheel_tau) noexcept {
+robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, std::span<const double> pivot_q,
+                                 std::span<const double> wheel_tau) noexcept {
   // F_p = sum_i G_i(q_i) F_d,i with kelo.hpp's 3x2 block G_i.
   robot::PlatformWrench F_p{0.0, 0.0, 0.0};
   const double r = model.wheel_radius;
-  for (int i = 0; i < robot::kDrives; ++i) {
+  for (int i = 0; i < model.drives; ++i) {
     const auto ii = static_cast<size_t>(i);
     const double f_l = wheel_tau[2 * ii] / r, f_r = wheel_tau[2 * ii + 1] / r;
     const double f_x = f_l + f_r, f_y = model.lateral_ratio * (f_r - f_l);
@@ -490,22 +495,17 @@ robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::D
   return F_p;
 }
 
-robot::PlatformWrench World::platform_wrench(const robot::WheelVector& wheel_tau) const noexcept {
-  robot::DriveVector q{};
+robot::PlatformWrench World::platform_wrench(std::span<const double> wheel_tau) const noexcept {
   switch (config_.base) {
     case BaseFidelity::Wheeled:
-      for (int i = 0; i < robot::kDrives; ++i) {
-        q[static_cast<size_t>(i)] = d_->qpos[pivot_qpos_[static_cast<size_t>(i)]];
-      }
-      break;
+      for (size_t i = 0; i < pivot_qpos_.size(); ++i) pivot_buffer_[i] = d_->qpos[pivot_qpos_[i]];
+      return hub_wrench(kelo_, pivot_buffer_, wheel_tau);
     case BaseFidelity::Planar:
-      q = planar_pivot_q_;
-      break;
+      return hub_wrench(kelo_, planar_pivot_q_, wheel_tau);
     case BaseFidelity::Fixed:
-      q = config_.initial.pivot_q;
       break;
   }
-  return hub_wrench(kelo_, q, wheel_tau);
+  return hub_wrench(kelo_, initial_pivot_q_, wheel_tau);
 }
 
 int World::instabilities() const noexcept {

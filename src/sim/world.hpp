@@ -26,6 +26,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,8 @@ struct ArmContact {
 // the pivot angles `pivot_q`: F_p = G(q) F_d with kelo.hpp's massless drive
 // model (f = τ/r, f_x = f_l + f_r, f_y = d/(2s) (f_r - f_l)). Per tick:
 // noexcept and allocation-free.
-robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, const robot::DriveVector& pivot_q,
-                                 const robot::WheelVector& wheel_tau) noexcept;
+robot::PlatformWrench hub_wrench(const runtime::KeloModel& model, std::span<const double> pivot_q,
+                                 std::span<const double> wheel_tau) noexcept;
 
 class World final : public robot::RobotInterface {
  public:
@@ -130,7 +131,7 @@ class World final : public robot::RobotInterface {
   // Total mass of the simulated robot [kg].
   double robot_mass() const noexcept;
   // hub_wrench() at the current pivot angles.
-  robot::PlatformWrench platform_wrench(const robot::WheelVector& wheel_tau) const noexcept;
+  robot::PlatformWrench platform_wrench(std::span<const double> wheel_tau) const noexcept;
 
   // MuJoCo's model and data, read-only, for tests and benchmarks.
   const mjModel_* mj_model() const noexcept { return m_; }
@@ -155,8 +156,8 @@ class World final : public robot::RobotInterface {
 
   // Addresses looked up once (MuJoCo ids).
   std::vector<std::vector<int>> arm_qpos_, arm_dof_, arm_act_;  // per arm, per joint
-  std::array<int, robot::kDrives> pivot_qpos_{}, pivot_dof_{};
-  std::array<int, robot::kWheels> wheel_dof_{}, wheel_act_{};
+  std::vector<int> pivot_qpos_, pivot_dof_;  // per drive
+  std::vector<int> wheel_dof_, wheel_act_;    // per wheel
   std::vector<int> ee_geom_, ee_site_, mount_eq_;  // per arm
   int base_qpos_ = -1, base_dof_ = -1, platform_body_ = -1, table_geom_ = -1, table_body_ = -1,
       floor_geom_ = -1;
@@ -164,8 +165,11 @@ class World final : public robot::RobotInterface {
   // The planar base's drives (kinematic castors) and the wrench they apply.
   runtime::KeloModel kelo_;
   runtime::KeloData kelo_data_;
-  robot::DriveVector planar_pivot_q_{};
-  robot::WheelVector planar_wheel_qd_{};
+  std::vector<double> initial_pivot_q_;  // per drive (config.initial.pivot_q or zeros)
+  std::vector<double> planar_pivot_q_, planar_wheel_qd_;
+  mutable std::vector<double> pivot_buffer_;  // platform_wrench's pivot angles (setup-sized)
+  runtime::KeloPivotVector pivot_work_;       // a per-tick workspace (setup-sized)
+  runtime::KeloDriveVector drive_work_;
   runtime::Vec3 planar_F_p_ = runtime::Vec3::Zero();
 
   robot::FaultInjector faults_;

@@ -33,11 +33,11 @@ void expect_no_allocation(const char* env) {
   robot::CommandLimits limits;
   limits.arm_names = {"right", "left"};
   limits.arm_effort.assign(2, {39, 39, 39, 39, 9, 9, 9});
-  limits.wheel_torque.fill(10.0);
+  limits.wheel_torque.assign(8, 10.0);
   limits.platform_force = 1000.0;
   limits.platform_moment = 300.0;
   robot::CommandLimiter limiter(limits);
-  const auto wrench = [](const robot::WheelVector& tau) noexcept {
+  const auto wrench = [](std::span<const double> tau) noexcept {
     robot::PlatformWrench F{0, 0, 0};
     for (double t : tau) F[0] += t;
     return F;

@@ -234,7 +234,7 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
   robot::CommandLimits limits;
   limits.arm_names = {"right", "left"};
   limits.arm_effort = {world.actuation.effort_limit, world.actuation.effort_limit};
-  limits.wheel_torque.fill(world.platform.wheel_torque_limit);
+  limits.wheel_torque.assign(8, world.platform.wheel_torque_limit);
   limits.platform_force = 1000.0;
   limits.platform_moment = 300.0;
   robot::CommandLimiter limiter(limits);
@@ -246,7 +246,7 @@ TEST(Interpreter, Sc0aTickAllocatesNothing) {
       in.tick(state, command);
       in.log_values(values);
       if (k % 100 < 10) command.arm_tau[0][0] = 1e300;  // beyond the limit
-      limiter.clamp(command, state.clock.tick, [&](const robot::WheelVector& tau) noexcept {
+      limiter.clamp(command, state.clock.tick, [&](std::span<const double> tau) noexcept {
         return sim::hub_wrench(kelo, state.pivot_q, tau);
       });
     });

@@ -37,4 +37,17 @@ check "diamond base: identical logs" cmp -s "$work/diamond-gen.csv" "$work/diamo
 check "diamond base: the log differs from SC1's on the paper's base" bash -c \
   "'$mospec' run models/sc1.json --sim --duration 1 --interpret --log '$work/sc1-int.csv' 2>/dev/null && ! cmp -s '$work/sc1-int.csv' '$work/diamond-int.csv'"
 
+# Three drives (tests/ir/data/tri-base): the controllers, the robot interface
+# and the simulated base are sized by the base's drive count (six wheels).
+expect "three-drive base: validates under --strict" 0 "" -- "$mospec" validate --strict \
+  tests/ir/data/tri-base/app.json
+expect "three-drive base, generated" 0 "" -- "$mospec" run tests/ir/data/tri-base/app.json --sim \
+  --duration 1 --log "$work/tri-gen.csv" --cache "$cache"
+expect "three-drive base, interpreted" 0 "" -- "$mospec" run tests/ir/data/tri-base/app.json \
+  --sim --duration 1 --log "$work/tri-int.csv" --interpret
+check "three-drive base: identical logs" cmp -s "$work/tri-gen.csv" "$work/tri-int.csv"
+expect "three-drive base: the fourth pivot is no sensor" 2 "no sensor named 'pivot_q\\[3\\]'.*pivot_q\\[0\\.\\.2\\]" \
+  -- "$mospec" run tests/ir/data/tri-base/app.json --sim --interpret --duration 0.1 \
+  --fault 'nan:pivot_q[3]@5'
+
 finish run-equivalence

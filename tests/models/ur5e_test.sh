@@ -18,9 +18,17 @@ expect "loads" 0 "" -- "$mospec" rdf "$app" --strict
 check "loads with no warning" test ! -s "$work/stderr.txt"
 validates_clean "$app"
 
-expect "refuses an unbound chain" 1 "no robot arm is bound to the chain" -- "$mospec" ir "$app" -o "$work/unbound.json"
+# The scenario's world file (models/ur5e.world.json) makes the UR5e the robot's
+# right arm, which binds its chain; on mospec's default robot (two Gen3) the
+# chain drives no arm.
+echo '{}' > "$work/default.world.json"
+expect "refuses the chain on the default robot" 1 \
+  "no arm of the robot is bound to the chain '$chain' \(the robot's arms drive arm 0: .*kinova-gen3/chain" \
+  -- "$mospec" ir "$app" --world "$work/default.world.json" -o "$work/unbound.json"
 expect "lowers with the chain bound to the right arm" 0 "" -- \
-  "$mospec" ir "$app" --bind "$chain=right" -o "$work/ir.json"
+  "$mospec" ir "$app" -o "$work/ir.json"
+expect "... as --bind CHAIN=right says on the default robot" 0 "" -- \
+  "$mospec" ir "$app" --world "$work/default.world.json" --bind "$chain=right" -o "$work/bound.json"
 
 # Reads the IR and the world file; prints one line per failed expectation.
 cat > "$work/check.py" <<'PY'

@@ -74,7 +74,7 @@ class BaseCycle {
     const Vec3 F_p = planar_wrench(F_Po_P);
     const Vec4 q(0.1 * std::sin(t), -0.2, 0.3 * std::cos(t), 1.0);
     kelo_force_step(kelo_, kelo_data_, q, F_p);
-    KeloDriveVector wheel_rates = KeloDriveVector::Constant(2.0);
+    KeloDriveVector wheel_rates = KeloDriveVector::Constant(8, 2.0);
     wheel_rates[0] += 0.1 * std::sin(3 * t);
     kelo_platform_twist(kelo_, kelo_data_, wheel_rates);
     return kelo_data_.tau_wheel;

@@ -25,6 +25,10 @@ constexpr double kPi = std::numbers::pi;
                                        << b.transpose();
 }
 
+// The paper's base (robots/kelo-base.jsonld) has four drives.
+constexpr int kKeloDrives = 4;
+constexpr int kWheels = 2 * kKeloDrives;
+
 class Random {
  public:
   explicit Random(unsigned seed) : rng_(seed) {}
@@ -32,7 +36,7 @@ class Random {
   Vec4 pivots() { return Vec4(angle(), angle(), angle(), angle()); }
   Vec3 wrench() { return Vec3(uniform(-200, 200), uniform(-200, 200), uniform(-50, 50)); }
   KeloDriveVector drive_vector(double scale) {
-    KeloDriveVector v;
+    KeloDriveVector v(kWheels);
     for (int k = 0; k < v.size(); ++k) v[k] = uniform(-scale, scale);
     return v;
   }
@@ -81,7 +85,7 @@ TEST(KeloDistribution, ReproducesThePlatformWrench) {
     const Vec3 F_p = rnd.wrench();
     kelo_set_pivots(model, data, q);
     // With no reference, with the alignment reference, with a random one.
-    kelo_distribute(model, data, F_p, KeloDriveVector::Zero());
+    kelo_distribute(model, data, F_p, KeloDriveVector::Zero(kWheels));
     ASSERT_TRUE(near(data.G * data.F_d, F_p, 1e-10));
     kelo_force_step(model, data, q, F_p);
     ASSERT_TRUE(near(data.G * data.F_d, F_p, 1e-10));
@@ -126,7 +130,7 @@ KeloDriveVector kkt_solution(const KeloModel& model, const KeloComposition& G, c
   }
   rhs.tail<3>() = F_p;
   const Eigen::VectorXd x = K.fullPivLu().solve(rhs);
-  KeloDriveVector F_d = KeloDriveVector::Zero();
+  KeloDriveVector F_d = KeloDriveVector::Zero(kWheels);
   for (int a = 0; a < n; ++a) F_d[active[a]] = x[a];
   return F_d;
 }
@@ -221,7 +225,7 @@ TEST(KeloVelocity, ClosedFormStraightAndTurningOnTheSpot) {
   KeloData data(model);
   const double r = 0.0575;
   kelo_set_pivots(model, data, Vec4::Zero());
-  KeloDriveVector w = KeloDriveVector::Constant(10.0);  // every wheel forwards at 10 rad/s
+  KeloDriveVector w = KeloDriveVector::Constant(kWheels, 10.0);  // every wheel forwards at 10 rad/s
   EXPECT_TRUE(near(kelo_platform_twist(model, data, w), Vec3(10 * r, 0, 0), 1e-14));
   // All drives tangential (counter-clockwise), rolling at the same speed:
   // a pure rotation, ω = v / |p|.
@@ -339,7 +343,7 @@ TEST(KeloAlignment, NullspaceReferenceLeavesThePlatformWrenchAlone) {
   const Vec3 F_p(50, 20, 5);
   kelo_force_step(model, data, q, F_p);
   const KeloDriveVector with_reference = data.F_d;
-  kelo_distribute(model, data, F_p, KeloDriveVector::Zero());
+  kelo_distribute(model, data, F_p, KeloDriveVector::Zero(kWheels));
   EXPECT_GT((with_reference - data.F_d).norm(), 1.0);
   EXPECT_TRUE(near(data.G * with_reference, F_p, 1e-10));
 }
@@ -353,11 +357,11 @@ TEST(KeloForceStep, NonFiniteInputCommandsZeroAndFlagsIt) {
   EXPECT_GT(data.tau_wheel.norm(), 0.0);
   kelo_force_step(model, data, Vec4(0, nan, 0, 0), Vec3(10, 0, 0));
   EXPECT_TRUE(data.input_fault);
-  EXPECT_EQ(data.tau_wheel, KeloDriveVector::Zero());
-  EXPECT_EQ(data.F_d, KeloDriveVector::Zero());
+  EXPECT_EQ(data.tau_wheel, KeloDriveVector::Zero(kWheels));
+  EXPECT_EQ(data.F_d, KeloDriveVector::Zero(kWheels));
   kelo_force_step(model, data, Vec4::Zero(), Vec3(10, 0, std::numeric_limits<double>::infinity()));
   EXPECT_TRUE(data.input_fault);
-  EXPECT_EQ(data.tau_wheel, KeloDriveVector::Zero());
+  EXPECT_EQ(data.tau_wheel, KeloDriveVector::Zero(kWheels));
   kelo_force_step(model, data, Vec4::Zero(), Vec3(10, 0, 0));
   EXPECT_FALSE(data.input_fault);
   EXPECT_TRUE(data.G.allFinite());  // the bad tick did not touch G

@@ -41,7 +41,7 @@ TEST(Allocation, TheControlTickAllocatesNothing) {
         // Some ticks ask for far more than the robot has: the write clamps.
         if (k % 100 < 10) {
           cmd.arm_tau[0][k % 7] = 1e300;
-          cmd.wheel_tau[static_cast<size_t>(k % robot::kWheels)] = -1e10;
+          cmd.wheel_tau[static_cast<size_t>(k % 8)] = -1e10;
         }
         w.write(cmd);
         w.step();

@@ -2,7 +2,9 @@
 // without a simulator.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "robot/faults.hpp"
 #include "robot/limits.hpp"
@@ -12,8 +14,9 @@
 namespace mospec::robot {
 namespace {
 
-// mospec's default robot: two 7-joint arms.
-const RobotShape kPair{{{"right", 7}, {"left", 7}}};
+// mospec's default robot: two 7-joint arms, four drives.
+const RobotShape kPair{{{"right", 7}, {"left", 7}}, 4};
+constexpr size_t kDrives = 4, kWheels = 8;
 
 TEST(Sensors, EveryNameRoundTrips) {
   const std::vector<SensorId> all = all_sensors(kPair);
@@ -30,7 +33,7 @@ TEST(Sensors, EveryNameRoundTrips) {
 }
 
 TEST(Sensors, AnyArmsAndJointCounts) {
-  const RobotShape shape{{{"ur", 6}, {"gantry", 3}, {"left", 7}}};
+  const RobotShape shape{{{"ur", 6}, {"gantry", 3}, {"left", 7}}, 4};
   EXPECT_EQ(all_sensors(shape).size(), 3u * (6 + 3 + 7) + kDrives + kWheels);
   EXPECT_TRUE(find_sensor(shape, "ur_arm.tau[5]").has_value());
   EXPECT_FALSE(find_sensor(shape, "ur_arm.tau[6]").has_value());
@@ -85,7 +88,7 @@ MeasuredState sample(std::uint64_t tick, double value) {
   MeasuredState s = make_state(kPair);
   s.clock.tick = tick;
   std::fill(s.arm[kRightArm].q.begin(), s.arm[kRightArm].q.end(), value);
-  s.pivot_q.fill(value);
+  std::fill(s.pivot_q.begin(), s.pivot_q.end(), value);
   return s;
 }
 
@@ -154,7 +157,7 @@ CommandLimits test_limits() {
   CommandLimits l;
   l.arm_names = {"right", "left"};
   l.arm_effort = {JointValues{39, 39, 39, 39, 9, 9, 9}, JointValues{39, 39, 39, 39, 9, 9, 9}};
-  l.wheel_torque.fill(10.0);
+  l.wheel_torque.assign(kWheels, 10.0);
   l.platform_force = 100.0;
   l.platform_moment = 20.0;
   return l;
@@ -162,7 +165,7 @@ CommandLimits test_limits() {
 
 // A stand-in for the robot's drive geometry: f_x is the sum of the hub
 // torques, f_y zero, m_z the sum of wheel i's torque times i.
-PlatformWrench toy_wrench(const WheelVector& tau) noexcept {
+PlatformWrench toy_wrench(std::span<const double> tau) noexcept {
   PlatformWrench F{0, 0, 0};
   for (size_t w = 0; w < tau.size(); ++w) {
     F[0] += tau[w];
@@ -213,7 +216,7 @@ TEST(Limits, ThePlatformWrenchIsScaledAlongItsDirection) {
   CommandLimiter limiter(l);
   Command c = make_command(kPair);
   // Every hub within its limit, together 8 x 10 = 80 N > 50 N.
-  c.wheel_tau.fill(10.0);
+  std::fill(c.wheel_tau.begin(), c.wheel_tau.end(), 10.0);
   limiter.clamp(c, 3, toy_wrench);
   // The moment (0+1+...+7) x 10 = 280 N·m > 20 N·m is the tighter bound.
   const double scale = 20.0 / 280.0;
@@ -229,7 +232,7 @@ TEST(Limits, ThePlatformWrenchIsScaledAlongItsDirection) {
   EXPECT_EQ(r[force].quantity, "platform.force");
   EXPECT_EQ(r[force].unit, std::string("N"));
   // A huge requested force (4e10 N through the hubs) is reported as requested.
-  c.wheel_tau = {};
+  std::fill(c.wheel_tau.begin(), c.wheel_tau.end(), 0.0);
   c.wheel_tau[0] = 4e10;
   limiter.clamp(c, 4, toy_wrench);
   EXPECT_EQ(limiter.records()[force].max_requested, 4e10);

@@ -93,11 +93,11 @@ TEST(World, CommandsBeyondTheLimitsAreClampedAndCounted) {
 TEST(World, HubWrenchIsTheKeloComposition) {
   const runtime::KeloModel kelo(::mospec::testing::paper_base());
   runtime::KeloData data(kelo);
-  const robot::DriveVector q{0.7, -1.2, 2.0, 0.3};
-  const robot::WheelVector tau{1.0, -2.0, 0.5, 3.0, -1.5, 2.5, 0.25, -0.75};
+  const std::vector<double> q{0.7, -1.2, 2.0, 0.3};
+  const std::vector<double> tau{1.0, -2.0, 0.5, 3.0, -1.5, 2.5, 0.25, -0.75};
   runtime::kelo_set_pivots(kelo, data, Eigen::Vector4d(q[0], q[1], q[2], q[3]));
-  runtime::KeloDriveVector F_d;
-  for (int i = 0; i < robot::kDrives; ++i) {
+  runtime::KeloDriveVector F_d(8);
+  for (int i = 0; i < 4; ++i) {
     const double f_l = tau[static_cast<size_t>(2 * i)] / kelo.wheel_radius;
     const double f_r = tau[static_cast<size_t>(2 * i + 1)] / kelo.wheel_radius;
     F_d[2 * i] = f_l + f_r;
@@ -131,7 +131,7 @@ TEST(World, APlatformForceBeyondTractionIsClampedAndReported) {
   EXPECT_EQ(force.ticks, 50u);
   EXPECT_EQ(force.first_tick, 0u);
   EXPECT_GT(force.max_requested, 1e10);
-  for (int wh = 0; wh < robot::kWheels; ++wh) {
+  for (int wh = 0; wh < 8; ++wh) {
     EXPECT_GT(records[static_cast<size_t>(14 + wh)].ticks, 0u) << wh;
   }
   // What the base receives stays within the limit.
