@@ -52,9 +52,12 @@ namespace mospec::runtime {
 // \param alpha_To_B     6 x nc, nc <= kMaxConstraints (nc = 0: forward dynamics).
 // \param beta           dim nc.
 // \return Status::Ok; ConstraintsDegraded when the constraint coupling matrix
-//         is singular in this configuration (constraint directions with
-//         relative singular value below 1e-12 are dropped: minimum-norm nu); or
-//         SizeMismatch (nothing written).
+//         M_0 is singular in this configuration: the Cholesky factorisation of
+//         -M_0 fails or its diagonal spans more than a factor 1e6 (a condition
+//         number beyond about 1e12); then the directions whose eigenvalue is
+//         below 1e-12 of the largest are dropped (minimum-norm nu). (At the
+//         UR5e's wrist singularity that flags |q5| below about 1e-9 rad:
+//         docs/models.md, wrist-singularity.) Or SizeMismatch (nothing written).
 // Results: data.qdd (dim nq), data.nu (dim nc), data.tau (dim nq); also every
 // segment's pose data.X_BS, data.X_BT, twist data.V and acceleration data.a
 // (which includes the root acceleration -g_B).
