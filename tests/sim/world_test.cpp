@@ -415,5 +415,76 @@ TEST(World, RejectsAChainThatDoesNotFitItsArm) {
   }
 }
 
+// A robot of any arms and joint counts, revolute and prismatic: the default
+// right Gen3, no left arm, and a two-joint "lift" (a vertical slide carrying a
+// hinge). The world is built from the chains, the robot interface is sized by
+// them, gravity compensation holds both, and the slide's limit is a force.
+TEST(World, AnyArmsRevoluteAndPrismatic) {
+  NEED_GEN3();
+  runtime::Chain lift("lift_base");
+  runtime::Segment slide;
+  slide.link = "carriage";
+  slide.joint = "slide";
+  slide.type = runtime::JointType::Prismatic;
+  slide.X_PJ.p = runtime::Vec3(0, 0, 0.1);
+  slide.axis_J = runtime::Vec3::UnitZ();
+  slide.inertia.mass = 2.0;
+  slide.inertia.I_Scm_S = runtime::Mat3::Identity() * 0.01;
+  lift.add_segment(slide);
+  runtime::Segment hinge;
+  hinge.link = "paddle";
+  hinge.joint = "hinge";
+  hinge.X_PJ.p = runtime::Vec3(0, 0, 0.05);
+  hinge.axis_J = runtime::Vec3::UnitY();
+  hinge.inertia.mass = 1.0;
+  hinge.inertia.p_SoScm_S = runtime::Vec3(0, 0, 0.1);
+  hinge.inertia.I_Scm_S = runtime::Mat3::Identity() * 0.005;
+  lift.add_segment(hinge);
+
+  WorldConfig c = test_world();
+  c.base = BaseFidelity::Fixed;
+  c.table.present = false;
+  c.arms.erase(c.arms.begin() + robot::kLeftArm);
+  ArmSetup a;
+  a.name = "lift";
+  a.X_PB.p = runtime::Vec3(-0.2, 0, 0);
+  a.q0 = {0.1, 0.3};
+  a.actuation = ArmActuation{{200, 20}, {-0.05, -3}, {0.25, 3}, 0.05};
+  c.arms.push_back(a);
+  World w(c, std::vector<runtime::Chain>{arm_chain, lift});
+  ASSERT_EQ(w.shape().arms.size(), 2u);
+  EXPECT_EQ(w.shape().arms[1].name, "lift");
+  EXPECT_EQ(w.shape().arms[1].joints, 2);
+  EXPECT_NE(w.mjcf().find(R"(<joint name="lift_slide" type="slide")"), std::string::npos);
+  EXPECT_NE(w.mjcf().find(R"(<joint name="lift_hinge" type="hinge")"), std::string::npos);
+  robot::MeasuredState s = w.make_state();
+  w.read(s);
+  ASSERT_EQ(s.arm.size(), 2u);
+  EXPECT_EQ(s.arm[0].q.size(), 7u);
+  ASSERT_EQ(s.arm[1].q.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.arm[1].q[0], 0.1);
+
+  GravityCompensation g(w.arms(), mounts(c));
+  run(w, 500, [&](const robot::MeasuredState& m, robot::Command& cmd) { g.compute(m, cmd); });
+  w.read(s);
+  EXPECT_NEAR(s.arm[1].q[0], 0.1, 1e-3) << "the slide holds against gravity";
+  EXPECT_NEAR(s.arm[1].q[1], 0.3, 1e-3) << "the hinge holds";
+  EXPECT_NEAR(s.arm[1].tau[0], 9.81 * 3.0, 0.05) << "the slide carries both links [N]";
+  for (size_t j = 0; j < 7; ++j) EXPECT_NEAR(s.arm[0].q[j], c.arms[0].q0[j], 1e-3) << j;
+
+  // The slide's actuator is limited in newtons; its record says so.
+  robot::Command cmd = w.make_command();
+  cmd.arm_tau[1][0] = 500.0;
+  w.write(cmd);
+  const robot::ClampRecord& slide_limit = w.limiter().records()[7];
+  EXPECT_EQ(slide_limit.quantity, "lift_arm.tau[0]");
+  EXPECT_EQ(std::string(slide_limit.unit), "N");
+  EXPECT_EQ(slide_limit.ticks, 1u);
+  EXPECT_EQ(std::string(w.limiter().records()[8].unit), "N·m");
+  // And its sensors have names.
+  w.faults().inject_nan("lift_arm.q[1]", 0);
+  EXPECT_THROW(w.faults().inject_nan("left_arm.q[0]", 0), Error);
+}
+
 }  // namespace
 }  // namespace mospec::sim
