@@ -240,7 +240,8 @@ class Parser {
       line_start_ = 3;
     }
     skip_ws();
-    Value v = parse_value(0);
+    Value v;
+    parse_value(v, 0);
     skip_ws();
     if (pos_ != text_.size()) fail("unexpected trailing characters after the JSON value");
     return v;
@@ -297,45 +298,43 @@ class Parser {
     return std::string("byte ") + buf;
   }
 
-  // Each value is built in place (returned, not assigned into a variant).
-  Value parse_value(int depth) {
+  // Parses one value into `out` (null on entry), building it in place: an
+  // object's members and an array's elements are parsed straight into their
+  // slots, so no value is moved or destroyed on the way up.
+  void parse_value(Value& out, int depth) {
     if (at_end()) fail("unexpected end of input; expected a JSON value");
     const SourceLoc start = here();
-    auto located = [start](Value v) {
-      v.set_location(start);
-      return v;
-    };
     switch (peek()) {
-      case '{': {
-        Value v = parse_object(depth);
-        v.set_location(start);
-        return v;
-      }
-      case '[': {
-        Value v = parse_array(depth);
-        v.set_location(start);
-        return v;
-      }
-      case '"': {
-        Value v(parse_string());
-        v.set_location(start);
-        return v;
-      }
+      case '{':
+        parse_object(out, depth);
+        break;
+      case '[':
+        parse_array(out, depth);
+        break;
+      case '"':
+        out.emplace_string() = parse_string();
+        break;
       case 't':
         expect_literal("true");
-        return located(Value(true));
+        out = Value(true);
+        break;
       case 'f':
         expect_literal("false");
-        return located(Value(false));
+        out = Value(false);
+        break;
       case 'n':
         expect_literal("null");
-        return located(Value());
+        break;
       default: {
         const char c = peek();
-        if (c == '-' || (c >= '0' && c <= '9')) return located(Value(parse_number()));
+        if (c == '-' || (c >= '0' && c <= '9')) {
+          out = Value(parse_number());
+          break;
+        }
         fail("unexpected " + describe(c) + "; expected a JSON value");
       }
     }
+    out.set_location(start);
   }
 
   void expect_literal(std::string_view lit) {
@@ -367,13 +366,14 @@ class Parser {
     return s[d];
   }
 
-  Value parse_object(int depth) {
+  void parse_object(Value& out, int depth) {
     if (depth >= kMaxDepth) fail("nesting deeper than 512 levels");
     ++pos_;  // '{'
     skip_ws();
     if (!at_end() && peek() == '}') {
       ++pos_;
-      return Value(Object());
+      out.emplace_object();
+      return;
     }
     scratch_at(member_scratch_, depth).clear();
     scratch_at(key_index_scratch_, depth).clear();
@@ -386,30 +386,36 @@ class Parser {
       if (at_end() || peek() != ':') fail("expected ':' after object key");
       ++pos_;
       skip_ws();
-      Value v = parse_value(depth + 1);
-      // Duplicate keys: the last wins, as in JavaScript's JSON.parse.
+      // Duplicate keys: the last wins, as in JavaScript's JSON.parse. The
+      // scratch vectors are looked up again after each nested value: parsing
+      // it may grow the per-depth lists (moving the vectors, not their
+      // elements, so `slot` stays valid).
       std::vector<Object::Member>& members = member_scratch_[static_cast<size_t>(depth)];
-      KeyIndex& index = scratch_at(key_index_scratch_, depth);
+      KeyIndex& index = key_index_scratch_[static_cast<size_t>(depth)];
       if (const size_t same = index.find(members, key); same != KeyIndex::kNone) {
-        members[same].value = std::move(v);
-        members[same].key_loc = key_loc;
+        Value v;
+        parse_value(v, depth + 1);
+        Object::Member& m = member_scratch_[static_cast<size_t>(depth)][same];
+        m.value = std::move(v);
+        m.key_loc = key_loc;
       } else {
         Object::Member& m = members.emplace_back();
         m.key = std::move(key);
-        m.value = std::move(v);
         m.key_loc = key_loc;
         index.added(members);
+        Value* slot = &m.value;
+        parse_value(*slot, depth + 1);
       }
       skip_ws();
       if (at_end()) fail("unexpected end of input; expected ',' or '}' after object member");
       const char c = peek();
       if (c == '}') {
         ++pos_;
-        Object obj;
-        obj.append_members(std::make_move_iterator(members.begin()),
-                           std::make_move_iterator(members.end()));
-        members.clear();
-        return Value(std::move(obj));
+        std::vector<Object::Member>& done = member_scratch_[static_cast<size_t>(depth)];
+        out.emplace_object().append_members(std::make_move_iterator(done.begin()),
+                                            std::make_move_iterator(done.end()));
+        done.clear();
+        return;
       }
       if (c != ',') fail("expected ',' or '}' after object member");
       const SourceLoc comma = here();
@@ -419,28 +425,31 @@ class Parser {
     }
   }
 
-  Value parse_array(int depth) {
+  void parse_array(Value& out, int depth) {
     if (depth >= kMaxDepth) fail("nesting deeper than 512 levels");
     ++pos_;  // '['
     skip_ws();
     if (!at_end() && peek() == ']') {
       ++pos_;
-      return Value(Array());
+      out.emplace_array();
+      return;
     }
     scratch_at(element_scratch_, depth).clear();
     for (;;) {
-      Value v = parse_value(depth + 1);
-      std::vector<Value>& elements = element_scratch_[static_cast<size_t>(depth)];
-      elements.push_back(std::move(v));
+      // As in parse_object: the element's slot survives the nested parse,
+      // the reference to this depth's vector may not.
+      Value* slot = &element_scratch_[static_cast<size_t>(depth)].emplace_back();
+      parse_value(*slot, depth + 1);
       skip_ws();
       if (at_end()) fail("unexpected end of input; expected ',' or ']' after array element");
       const char c = peek();
       if (c == ']') {
         ++pos_;
-        Array arr(std::make_move_iterator(elements.begin()),
-                  std::make_move_iterator(elements.end()));
+        std::vector<Value>& elements = element_scratch_[static_cast<size_t>(depth)];
+        out.emplace_array().assign(std::make_move_iterator(elements.begin()),
+                                   std::make_move_iterator(elements.end()));
         elements.clear();
-        return Value(std::move(arr));
+        return;
       }
       if (c != ',') fail("expected ',' or ']' after array element");
       const SourceLoc comma = here();

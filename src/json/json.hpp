@@ -117,6 +117,12 @@ class Value {
   const Object& as_object() const { return std::get<Object>(data_); }
   Object& as_object() { return std::get<Object>(data_); }
 
+  // Makes this an empty object, array or string and returns it, to be filled
+  // in place (the parser builds each value where it will stay).
+  Object& emplace_object() { return data_.emplace<Object>(); }
+  Array& emplace_array() { return data_.emplace<Array>(); }
+  std::string& emplace_string() { return data_.emplace<std::string>(); }
+
   // Convenience for objects: member lookup (nullptr if not an object or absent).
   const Value* get(std::string_view key) const {
     return is_object() ? as_object().find(key) : nullptr;

@@ -132,17 +132,19 @@ Value& put(Object& obj, std::string key, Value v, SourceLoc key_loc) {
 void add_value(Object& obj, std::string key, Value v, SourceLoc key_loc) {
   Value* slot = obj.find(key);
   if (slot == nullptr) {
-    // A new key: an array value becomes its array as it is.
-    Value values = std::move(v);
-    if (!values.is_array()) {
-      const SourceLoc loc = values.location();
-      Array a;
-      a.push_back(std::move(values));
-      values = Value(std::move(a));
+    // A new key: an array value becomes its array as it is; anything else a
+    // one-element array, built in the new member.
+    Value& values = obj.append_new(std::move(key), Value());
+    obj.set_key_location(obj.size() - 1, key_loc);
+    if (v.is_array()) {
+      values = std::move(v);
+    } else {
+      const SourceLoc loc = v.location();
+      Array& a = values.emplace_array();
+      a.reserve(1);
+      a.push_back(std::move(v));
       values.set_location(loc);
     }
-    obj.append_new(std::move(key), std::move(values));
-    obj.set_key_location(obj.size() - 1, key_loc);
     return;
   }
   if (!slot->is_array()) {
@@ -959,15 +961,19 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
                                                std::move(w->message)});
         }
       }
-      Object o;
-      o.append_new("@id", iri ? string_at(std::move(*iri), value.location()) : Value());
-      Value out(std::move(o));
+      Value out;
+      Value& id = out.emplace_object().append_new("@id", Value());
+      if (iri) {
+        id.emplace_string() = std::move(*iri);
+        id.set_location(value.location());
+      }
       out.set_location(value.location());
       return out;
     }
   }
-  // 3
-  Object result;
+  // 3 (built in place: the value object is returned, not moved into a Value)
+  Value out;
+  Object& result = out.emplace_object();
   result.reserve(2);
   result.append_new("@value", value);
   if (type != nullptr && *type && **type != "@id"sv && **type != "@vocab"sv &&
@@ -995,7 +1001,6 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
     }
     if (direction) result.append_new("@direction", Value(*direction));
   }
-  Value out(std::move(result));
   out.set_location(value.location());
   return out;
 }

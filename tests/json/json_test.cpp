@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -98,6 +99,37 @@ TEST(JsonParse, LargeObjectsParseInLinearTimeAndKeepDuplicateRules) {
   EXPECT_EQ(o.key_location(12345), (SourceLoc{3, 2, 1}));
   EXPECT_EQ(o.value(n - 1).as_number(), static_cast<double>(n - 1));
   EXPECT_EQ(o.find("k99999")->as_number(), 99999);
+}
+
+// The parser builds each value in its final slot while deeper levels are
+// parsed; those levels' buffers grow meanwhile (a new depth, more members or
+// elements than before). Each value must come out whole and in place: a
+// document whose every level is wider than the last one seen there, with a
+// duplicate key whose replaced value is itself nested, dumps back as written.
+TEST(JsonParse, NestedValuesSurviveDeeperLevelsGrowing) {
+  // Level d (from 0): an array of d + 2 elements, the last an object with
+  // d + 2 members, its last member nesting the next level.
+  std::function<std::string(int)> level = [&](int d) -> std::string {
+    if (d == 40) return "[\"leaf\",{\"x\":null}]";
+    std::string s = "[";
+    for (int i = 0; i < d + 1; ++i) s += std::to_string(d * 100 + i) + ",";
+    s += "{";
+    for (int i = 0; i < d + 1; ++i) {
+      s += "\"m" + std::to_string(i) + "\":[" + std::to_string(i) + ",\"s" + std::to_string(i) +
+           "-a-string-longer-than-fifteen-bytes\"],";
+    }
+    s += "\"next\":" + level(d + 1) + "}]";
+    return s;
+  };
+  const std::string text = level(0);
+  EXPECT_EQ(dump(parse(text)), text);
+
+  // A duplicate key: the first value (deeply nested) is replaced by the last.
+  const std::string dup = "{\"a\":" + level(30) + ",\"b\":[1],\"a\":" + level(35) + "}";
+  const Value v = parse(dup);
+  EXPECT_EQ(dump(v), "{\"a\":" + level(35) + ",\"b\":[1]}");
+  EXPECT_EQ(v.get("a")->as_array()[0].location(),
+            (SourceLoc{0, 1, static_cast<uint32_t>(dup.rfind("[3500") + 2)}));
 }
 
 // Lookups in large objects are indexed (JSON-LD expansion looked up every key
