@@ -25,27 +25,20 @@ expect "sc0a again: the cached build is reused" 0 "" -- "$mospec" run models/sc0
   --duration 0.1 --log "$work/sc0a-again.csv" --cache "$cache"
 check "no rebuild on the second run" bash -c "! grep -q 'generated and built' '$work/stderr.txt'"
 
-# SC1's task on another base (tests/ir/data/diamond-base): both controllers
-# and the simulated base run with the numbers lowering read from the model.
-expect "diamond base: validates under --strict" 0 "" -- "$mospec" validate --strict \
-  tests/ir/data/diamond-base/app.json
-expect "diamond base, generated" 0 "" -- "$mospec" run tests/ir/data/diamond-base/app.json --sim \
-  --duration 1 --log "$work/diamond-gen.csv" --cache "$cache"
-expect "diamond base, interpreted" 0 "" -- "$mospec" run tests/ir/data/diamond-base/app.json \
-  --sim --duration 1 --log "$work/diamond-int.csv" --interpret
-check "diamond base: identical logs" cmp -s "$work/diamond-gen.csv" "$work/diamond-int.csv"
+# SC1's task on other bases: both controllers and the simulated base run with
+# the numbers lowering read from the model, sized by the base's drive count.
+other_base() {  # NAME DIR: validates, runs generated and interpreted alike
+  expect "$1: validates under --strict" 0 "" -- "$mospec" validate --strict "$2/app.json"
+  expect "$1, generated" 0 "" -- "$mospec" run "$2/app.json" --sim --duration 1 \
+    --log "$work/$1-gen.csv" --cache "$cache"
+  expect "$1, interpreted" 0 "" -- "$mospec" run "$2/app.json" --sim --duration 1 \
+    --log "$work/$1-int.csv" --interpret
+  check "$1: identical logs" cmp -s "$work/$1-gen.csv" "$work/$1-int.csv"
+}
+other_base diamond tests/ir/data/diamond-base  # four drives on a diamond
 check "diamond base: the log differs from SC1's on the paper's base" bash -c \
   "'$mospec' run models/sc1.json --sim --duration 1 --interpret --log '$work/sc1-int.csv' 2>/dev/null && ! cmp -s '$work/sc1-int.csv' '$work/diamond-int.csv'"
-
-# Three drives (tests/ir/data/tri-base): the controllers, the robot interface
-# and the simulated base are sized by the base's drive count (six wheels).
-expect "three-drive base: validates under --strict" 0 "" -- "$mospec" validate --strict \
-  tests/ir/data/tri-base/app.json
-expect "three-drive base, generated" 0 "" -- "$mospec" run tests/ir/data/tri-base/app.json --sim \
-  --duration 1 --log "$work/tri-gen.csv" --cache "$cache"
-expect "three-drive base, interpreted" 0 "" -- "$mospec" run tests/ir/data/tri-base/app.json \
-  --sim --duration 1 --log "$work/tri-int.csv" --interpret
-check "three-drive base: identical logs" cmp -s "$work/tri-gen.csv" "$work/tri-int.csv"
+other_base three-drive tests/ir/data/tri-base  # three drives: six wheels
 expect "three-drive base: the fourth pivot is no sensor" 2 "no sensor named 'pivot_q\\[3\\]'.*pivot_q\\[0\\.\\.2\\]" \
   -- "$mospec" run tests/ir/data/tri-base/app.json --sim --interpret --duration 0.1 \
   --fault 'nan:pivot_q[3]@5'
