@@ -460,5 +460,36 @@ TEST(RobotModelUr5e, ZeroConfigurationIsTheStretchedArm) {
   EXPECT_TRUE(near(data.X_BT.p, Vec3(-0.8172, -0.2329, 0.0628), 1e-12));
 }
 
+// robots/lift.jsonld: a prismatic lift carrying two revolute joints, the
+// robot of models/examples/lift; written by mospec, needs nothing from ../shared.
+const std::string kLiftRobotUrdf = std::string(MOSPEC_SOURCE_DIR) + "/robots/lift.urdf";
+const std::string kLiftRobotModel = std::string(MOSPEC_SOURCE_DIR) + "/robots/lift.jsonld";
+
+TEST(RobotModelLift, CommittedFileIsTheGeneratorsOutput) {
+  ChainJsonldOptions options;
+  options.base = kLiftBase;
+  const std::string generated =
+      chain_to_jsonld(chain_from_urdf_file(kLiftRobotUrdf, "", ""), options);
+  // MOSPEC_REGENERATE_ROBOTS=1 rewrites the committed file instead of comparing.
+  if (const char* regen = std::getenv("MOSPEC_REGENERATE_ROBOTS"); regen && *regen == '1') {
+    write_output(kLiftRobotModel, generated);
+  }
+  EXPECT_EQ(read_file(kLiftRobotModel), generated)
+      << "robots/lift.jsonld is stale: run this test with MOSPEC_REGENERATE_ROBOTS=1";
+}
+
+TEST(RobotModelLift, ReadsBackAsALiftAndTwoHinges) {
+  app::LoadOptions options;
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+  const app::LoadedModel model = app::load({kLiftRobotModel}, options);
+  for (const auto& d : model.diagnostics().diagnostics()) ADD_FAILURE() << format(d);
+  const Chain loaded = chain_from_rdf(model.flattened(), kLiftBase + "chain");
+  ASSERT_EQ(loaded.size(), 3);
+  EXPECT_EQ(loaded.segment(0).type, JointType::Prismatic);
+  EXPECT_EQ(loaded.segment(1).type, JointType::Revolute);
+  EXPECT_EQ(loaded.segment(2).type, JointType::Revolute);
+  expect_same_segments(loaded, chain_from_urdf_file(kLiftRobotUrdf, "", ""));
+}
+
 }  // namespace
 }  // namespace mospec::runtime
