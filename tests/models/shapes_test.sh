@@ -174,7 +174,7 @@ bad arm-behaviour mospec/solver.ttl 11 \
   '<https://ex.org/float>: a Float does not brake'
 
 good joints mospec/joints.ttl
-bad joints mospec/joints.ttl 14 \
+bad joints mospec/joints.ttl 11 \
   '<https://ex.org/q-deg>: a joint position has exactly one unit: RAD \(revolute joint\) or M' \
   '<https://ex.org/q-link>: a joint position is of exactly one joint' \
   '<https://ex.org/q-orphan>: a joint position is the output of exactly one solver' \
@@ -182,13 +182,18 @@ bad joints mospec/joints.ttl 14 \
   '<https://ex.org/qd-rad>: a joint velocity has exactly one unit: RAD-PER-SEC \(revolute joint\) or M-PER-SEC' \
   '<https://ex.org/tau-n>: the unit of a measured joint torque follows its joint: N-M on a revolute joint.*unit/N>' \
   '<https://ex.org/not-a-quantity>: a measured joint torque is a quantity' \
-  '<https://ex.org/lift-no-axis>: a prismatic joint translates along exactly one common-axis' \
-  '<https://ex.org/lift-not-a-joint>: a prismatic joint is a joint' \
-  '<https://ex.org/lift-and-hinge>: a joint is prismatic or revolute, not both' \
   '<https://ex.org/q-lift-rad>: the unit of a joint position follows its joint: RAD on a revolute joint, M on a prismatic joint.*unit/RAD>' \
   '<https://ex.org/qd-lift-rad>: the unit of a joint velocity follows its joint.*unit/RAD-PER-SEC>' \
   '<https://ex.org/f-lift-nm>: the unit of a measured joint torque follows its joint.*unit/N-M>' \
   '<https://ex.org/q-j4-m>: the unit of a joint position follows its joint.*unit/M>'
+
+good prismatic-joint mospec/prismatic-joint.ttl
+bad prismatic-joint mospec/prismatic-joint.ttl 5 \
+  '<https://ex.org/lift-no-axis>: a prismatic joint translates along exactly one common-axis.*MinCount' \
+  '<https://ex.org/lift-two-axes>: a prismatic joint translates along exactly one common-axis.*MaxCount' \
+  '<https://ex.org/lift-two-axes>: a prismatic joint translates along exactly one common-axis.*ex.org/point>' \
+  '<https://ex.org/lift-not-a-joint>: a prismatic joint is a joint' \
+  '<https://ex.org/lift-and-hinge>: a joint is prismatic or revolute, not both'
 
 good estimated-wrench mospec/estimated-wrench.ttl
 bad estimated-wrench mospec/estimated-wrench.ttl 2 \
