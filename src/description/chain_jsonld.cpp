@@ -144,13 +144,11 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
   add_link(graph, chain.root(), nullptr);
   std::vector<std::string> joints;
   std::string parent = chain.root();
+  bool prismatic = false;  // needs mospec's joint extension (mospec/joints.json)
   for (int i = 0; i < chain.size(); ++i) {
     const Segment& s = chain.segment(i);
-    if (s.type != JointType::Revolute) {
-      throw Error("unsupported-joint",
-                  "joint '" + s.joint +
-                      "': the published kinematic-chain vocabulary has no prismatic joint");
-    }
+    const bool slides = s.type == JointType::Prismatic;
+    prismatic = prismatic || slides;
     add_link(graph, s.link, &s.inertia);
     const std::string attachment = "frame-" + s.joint + "-attachment";
     Node a;
@@ -172,7 +170,7 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
     graph.push_back(axis);
     Node j;
     j.add("@id", quoted("joint-" + s.joint))
-        .add("@type", list(types({"Joint", "RevoluteJoint"})))
+        .add("@type", list(types({"Joint", slides ? "PrismaticJoint" : "RevoluteJoint"})))
         .add("between-attachments", list({quoted(attachment), quoted("frame-" + s.link)}))
         .add("common-axis", quoted("axis-" + s.joint));
     graph.push_back(j);
@@ -204,6 +202,7 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
                           "newtonian-rigid-body-dynamics/coordinates.json", "qudt.json"}) {
     out += "        " + quoted(mm + ctx) + ",\n";
   }
+  if (prismatic) out += "        " + quoted(mm + "mospec/joints.json") + ",\n";
   out += "        { \"@base\": " + quoted(options.base) + " }\n    ],\n";
   out += "    \"@id\": " + quoted(options.base) + ",\n";
   out += "    \"@graph\": [\n";

@@ -25,7 +25,7 @@ struct ChainJsonldOptions {
 // What it states (ids relative to the base):
 //   link-L, frame-L (origin point-L-origin)   every link on the chain and the
 //                                             root; frame-L is the URDF link frame
-//   joint-J: RevoluteJoint                    between-attachments
+//   joint-J: RevoluteJoint, or PrismaticJoint between-attachments
 //                                             {frame-J-attachment, frame-C}
 //                                             (C the child link), common-axis axis-J
 //   pose-J: Pose of frame-J-attachment w.r.t. and as seen by the parent link
@@ -38,8 +38,11 @@ struct ChainJsonldOptions {
 //           as seen by frame-L [KiloGM-M2] (folded links already merged)
 //   pose-T: the tip frame w.r.t. the last link frame, when they differ
 //   chain: KinematicChain with its joints.
-// Throws mospec::Error for a prismatic joint: the published vocabulary has no
-// term for one.
+// A prismatic joint is a mos-jnt:PrismaticJoint (mospec's joint extension,
+// metamodels/mospec/joints.json: the published vocabulary has no term for
+// one), translating along its common-axis; the document lists the extension's
+// context only when the chain has one, so an all-revolute chain's document
+// uses the published vocabulary alone.
 std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& options = {});
 
 }  // namespace mospec::description

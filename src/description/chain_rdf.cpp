@@ -37,6 +37,7 @@ enum class V : uint8_t {
   KinematicChain,
   joints,
   RevoluteJoint,
+  PrismaticJoint,  // mospec/joints
   between_attachments,
   common_axis,  // kc
   Pose,
@@ -81,6 +82,7 @@ const std::string& text(V v) {
     set(V::KinematicChain, vocab::kc_ent::ns, "KinematicChain");
     set(V::joints, vocab::kc_ent::ns, "joints");
     set(V::RevoluteJoint, vocab::kc_ent::ns, "RevoluteJoint");
+    set(V::PrismaticJoint, vocab::mospec_joints::ns, "PrismaticJoint");
     set(V::between_attachments, vocab::kc_ent::ns, "between-attachments");
     set(V::common_axis, vocab::kc_ent::ns, "common-axis");
     set(V::Pose, vocab::geom_rel::ns, "Pose");
@@ -326,12 +328,19 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
   }
   struct JointInfo {
     rdf::TermId joint, attachment, child, parent_frame, pose;
+    JointType type;
   };
   std::map<rdf::TermId, JointInfo> by_parent_frame;
   std::map<rdf::TermId, rdf::TermId> child_frames;  // child frame -> joint
   for (rdf::TermId j : r.objects(chain_id, V::joints)) {
-    if (!r.has_type(j, V::RevoluteJoint)) {
-      throw Error("invalid-robot-model", r.name(j) + ": only RevoluteJoint is supported");
+    const bool revolute = r.has_type(j, V::RevoluteJoint);
+    if (revolute == r.has_type(j, V::PrismaticJoint)) {
+      throw Error("invalid-robot-model",
+                  r.name(j) +
+                      (revolute ? ": is both a RevoluteJoint and a PrismaticJoint"
+                                : ": only RevoluteJoint and PrismaticJoint (mospec/joints) "
+                                  "are supported") +
+                      "; state exactly one of them");
     }
     const auto at = r.objects(j, V::between_attachments);
     if (at.size() != 2) {
@@ -344,7 +353,8 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
       throw Error("invalid-robot-model",
                   r.name(j) + ": exactly one attachment needs a Pose relative to its parent link");
     }
-    JointInfo info{j, p0 ? at[0] : at[1], p0 ? at[1] : at[0], {}, p0 ? *p0 : *p1};
+    JointInfo info{j, p0 ? at[0] : at[1], p0 ? at[1] : at[0], {}, p0 ? *p0 : *p1, {}};
+    info.type = revolute ? JointType::Revolute : JointType::Prismatic;
     info.parent_frame = r.one(info.pose, V::with_respect_to);
     if (!by_parent_frame.emplace(info.parent_frame, info).second) {
       throw Error("invalid-robot-model",
@@ -394,7 +404,7 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
     Segment s;
     s.joint = Reader::local_name(r.name(info.joint), "joint-");
     s.link = Reader::local_name(r.name(info.child), "frame-");
-    s.type = JointType::Revolute;
+    s.type = info.type;
     s.X_PJ = r.pose(info.pose);
     const rdf::TermId axis = r.one(info.joint, V::common_axis);
     s.axis_J = Vec3(r.number(axis, V::x), r.number(axis, V::y), r.number(axis, V::z));

@@ -110,8 +110,9 @@ std::optional<ArmOutput::What> joint_quantity(State& st, TermId o) {
 }
 
 // A joint position, velocity or measured torque the solver outputs: a scalar
-// of the joint its `of-joint` names, in RAD, RAD-PER-SEC or N-M (mospec's
-// chains have revolute joints only).
+// of the joint its `of-joint` names, in the units of the joint's type: RAD,
+// RAD-PER-SEC or N-M on a revolute joint; M, M-PER-SEC or N (a force) on a
+// prismatic one (mos-jnt:PrismaticJoint).
 template <class JointIndex>
 void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What what,
                         const JointIndex& joint_index, Step& kin) {
@@ -122,9 +123,6 @@ void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What wha
   const char* kind = what == ArmOutput::What::JointPosition   ? "joint position"
                      : what == ArmOutput::What::JointVelocity ? "joint velocity"
                                                               : "measured joint torque";
-  const char* unit = what == ArmOutput::What::JointPosition   ? "RAD"
-                     : what == ArmOutput::What::JointVelocity ? "RAD-PER-SEC"
-                                                              : "N-M";
   const auto joint = st.object(o, of_joint);
   if (!joint) {
     st.error(o, "missing-property",
@@ -143,10 +141,17 @@ void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What wha
                  "solver of that joint's chain");
     return;
   }
+  const bool prismatic = arm.chain.segment(j).type == runtime::JointType::Prismatic;
+  const char* unit = what == ArmOutput::What::JointPosition ? (prismatic ? "M" : "RAD")
+                     : what == ArmOutput::What::JointVelocity
+                         ? (prismatic ? "M-PER-SEC" : "RAD-PER-SEC")
+                     : prismatic ? "N"
+                                 : "N-M";
   if (dd.unit != unit) {
     st.error(o, "wrong-unit",
-             std::string("the ") + kind + " '" + dd.iri + "' of the revolute joint '" +
-                 st.str(*joint) + "' is in " + unit + ", not in '" + dd.unit + "'");
+             std::string("the ") + kind + " '" + dd.iri + "' of the " +
+                 (prismatic ? "prismatic" : "revolute") + " joint '" + st.str(*joint) + "' is in " +
+                 unit + ", not in '" + dd.unit + "'");
     return;
   }
   arm.outputs.push_back({what, j, d});
@@ -569,11 +574,14 @@ void lower_arm(State& st, TermId solver) {
       }
       jf.force = st.datum(*force, DataType::Scalar, spec, "force");
       const Data& f = st.program.data[static_cast<size_t>(jf.force)];
-      if (f.unit != "N-M") {
-        st.error(*force, "wrong-unit",
-                 "the joint force '" + f.iri + "' drives the revolute joint '" + st.str(*joint) +
-                     "' through '" + jf.iri + "', so it is a torque in N-M, not in '" + f.unit +
-                     "'");
+      // A revolute joint is driven by a torque, a prismatic one by a force.
+      const bool prismatic = arm.chain.segment(jf.joint).type == runtime::JointType::Prismatic;
+      if (f.unit != (prismatic ? "N" : "N-M")) {
+        st.error(
+            *force, "wrong-unit",
+            "the joint force '" + f.iri + "' drives the " + (prismatic ? "prismatic" : "revolute") +
+                " joint '" + st.str(*joint) + "' through '" + jf.iri + "', so it is " +
+                (prismatic ? "a force in N" : "a torque in N-M") + ", not in '" + f.unit + "'");
       }
       solve.in.push_back(jf.force);
       arm.joint_forces.push_back(jf);

@@ -174,14 +174,26 @@ bad arm-behaviour mospec/solver.ttl 11 \
   '<https://ex.org/float>: a Float does not brake'
 
 good joints mospec/joints.ttl
-bad joints mospec/joints.ttl 7 \
-  '<https://ex.org/q-deg>: a revolute joint.s position is an angle: exactly one unit, RAD' \
+bad joints mospec/joints.ttl 11 \
+  '<https://ex.org/q-deg>: a joint position has exactly one unit: RAD \(revolute joint\) or M' \
   '<https://ex.org/q-link>: a joint position is of exactly one joint' \
   '<https://ex.org/q-orphan>: a joint position is the output of exactly one solver' \
   '<https://ex.org/qd-rad>: a joint velocity is of exactly one joint' \
-  '<https://ex.org/qd-rad>: a revolute joint.s velocity is an angular velocity: exactly one unit, RAD-PER-SEC' \
-  '<https://ex.org/tau-n>: a revolute joint.s torque is in N-M' \
-  '<https://ex.org/not-a-quantity>: a measured joint torque is a quantity'
+  '<https://ex.org/qd-rad>: a joint velocity has exactly one unit: RAD-PER-SEC \(revolute joint\) or M-PER-SEC' \
+  '<https://ex.org/tau-n>: the unit of a measured joint torque follows its joint: N-M on a revolute joint.*unit/N>' \
+  '<https://ex.org/not-a-quantity>: a measured joint torque is a quantity' \
+  '<https://ex.org/q-lift-rad>: the unit of a joint position follows its joint: RAD on a revolute joint, M on a prismatic joint.*unit/RAD>' \
+  '<https://ex.org/qd-lift-rad>: the unit of a joint velocity follows its joint.*unit/RAD-PER-SEC>' \
+  '<https://ex.org/f-lift-nm>: the unit of a measured joint torque follows its joint.*unit/N-M>' \
+  '<https://ex.org/q-j4-m>: the unit of a joint position follows its joint.*unit/M>'
+
+good prismatic-joint mospec/prismatic-joint.ttl
+bad prismatic-joint mospec/prismatic-joint.ttl 5 \
+  '<https://ex.org/lift-no-axis>: a prismatic joint translates along exactly one common-axis.*MinCount' \
+  '<https://ex.org/lift-two-axes>: a prismatic joint translates along exactly one common-axis.*MaxCount' \
+  '<https://ex.org/lift-two-axes>: a prismatic joint translates along exactly one common-axis.*ex.org/point>' \
+  '<https://ex.org/lift-not-a-joint>: a prismatic joint is a joint' \
+  '<https://ex.org/lift-and-hinge>: a joint is prismatic or revolute, not both'
 
 good estimated-wrench mospec/estimated-wrench.ttl
 bad estimated-wrench mospec/estimated-wrench.ttl 2 \
@@ -216,12 +228,13 @@ bad monitors task/monitors.ttl 9 \
   "<https://ex.org/h>: a handler's monitors are monitors.*not-a-monitor"
 
 good joint-force task/joint-force-drivers.ttl
-bad joint-force task/joint-force-drivers.ttl 6 \
+bad joint-force task/joint-force-drivers.ttl 7 \
   '<https://ex.org/jf-none>: a joint-force specification applies exactly one joint force' \
   '<https://ex.org/jf-none>: a joint-force driver is attached to exactly one joint' \
   "<https://ex.org/jf-link>: nothing produces the joint force.*tau-nowhere" \
   '<https://ex.org/jf-link>: a joint-force driver is attached to exactly one joint' \
   '<https://ex.org/jf-unit>: a force on a revolute joint is a torque: its unit must be N-M' \
+  '<https://ex.org/jf-slide-unit>: a force on a prismatic joint is a force: its unit must be N.*unit/N-M>' \
   '<https://ex.org/drv>: a joint-force driver must be a joint-force specification.*not-a-driver'
 
 good wrench-transform newtonian-rigid-body-dynamics/operators.ttl

@@ -55,18 +55,6 @@ TEST(RobotModel, CommittedGen3FileIsTheGeneratorsOutput) {
       << "robots/kinova-gen3.jsonld is stale: run this test with MOSPEC_REGENERATE_ROBOTS=1";
 }
 
-TEST(RobotModel, PrismaticJointsHaveNoPublishedTerm) {
-  const Chain toy = chain_from_urdf(testing::kToyUrdf, "world", "tool");
-  try {
-    chain_to_jsonld(toy);
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    EXPECT_STREQ(e.what(),
-                 "mospec: error: joint 'j2': the published kinematic-chain vocabulary has no "
-                 "prismatic joint");
-  }
-}
-
 // mospec's own metamodels (metamodels/): the model needs nothing from ../shared.
 const std::string kOwnMetamodels = std::string(MOSPEC_SOURCE_DIR) + "/metamodels";
 
@@ -188,6 +176,145 @@ TEST(RobotModelOwnMetamodels, BuiltinFallbackGivesTheSameGraph) {
   const Chain b = chain_from_rdf(load_gen3(kOwnMetamodels).flattened(), kBase + "chain");
   EXPECT_EQ(builtin.dataset().size(), load_gen3(kOwnMetamodels).dataset().size());
   expect_same_chain(a, b, 0.0);
+}
+
+// Prismatic joints (mospec/joints: PrismaticJoint). A vertical lift carrying a
+// revolute wrist, written by the test: base -(lift, prismatic z)-> carriage
+// -(wrist, revolute, offset and tilted)-> hand -(fixed)-> tool.
+const std::string kLiftUrdf = R"(<robot name="lift">
+  <link name="base"/>
+  <link name="carriage"><inertial><origin xyz="0.02 0 0.05" rpy="0 0 0.3"/><mass value="4"/>
+    <inertia ixx="0.04" ixy="0.002" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial></link>
+  <joint name="lift" type="prismatic"><parent link="base"/><child link="carriage"/>
+    <origin xyz="0 0 0.3"/><axis xyz="0 0 1"/>
+    <limit lower="0" upper="0.5" effort="400" velocity="0.3"/></joint>
+  <link name="hand"><inertial><origin xyz="0.1 0 0"/><mass value="1.2"/>
+    <inertia ixx="0.002" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="wrist" type="revolute"><parent link="carriage"/><child link="hand"/>
+    <origin xyz="0.15 0 0.1" rpy="0 0.2 0"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="20" velocity="2"/></joint>
+  <link name="tool"/>
+  <joint name="tool_joint" type="fixed"><parent link="hand"/><child link="tool"/>
+    <origin xyz="0.2 0 0"/></joint>
+</robot>
+)";
+const std::string kLiftBase = "https://mospec.example/robots/lift/";
+
+// `chain` written as JSON-LD (base kLiftBase), loaded against mospec's
+// metamodels with every term defined, and read back.
+Chain round_trip(const Chain& chain, std::string* document = nullptr) {
+  ChainJsonldOptions options;
+  options.base = kLiftBase;
+  const std::string text = chain_to_jsonld(chain, options);
+  if (document != nullptr) *document = text;
+  const std::string path =
+      ::testing::TempDir() + "/mospec-prismatic-" + std::to_string(::getpid()) + ".jsonld";
+  write_output(path, text);
+  app::LoadOptions load;
+  load.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+  const app::LoadedModel model = app::load({path}, load);
+  for (const auto& d : model.diagnostics().diagnostics()) ADD_FAILURE() << format(d);
+  return chain_from_rdf(model.flattened(), kLiftBase + "chain");
+}
+
+// Joint types, axes, joint poses, inertias and the tip pose, to the 17
+// significant digits the document carries.
+void expect_same_segments(const Chain& loaded, const Chain& expected) {
+  ASSERT_EQ(loaded.size(), expected.size());
+  for (int i = 0; i < expected.size(); ++i) {
+    const Segment &a = loaded.segment(i), &b = expected.segment(i);
+    SCOPED_TRACE("segment " + b.link);
+    EXPECT_EQ(a.type, b.type);
+    EXPECT_TRUE(near(a.axis_J, b.axis_J, 1e-15));
+    EXPECT_TRUE(near(a.X_PJ.R, b.X_PJ.R, 1e-15));
+    EXPECT_TRUE(near(a.X_PJ.p, b.X_PJ.p, 1e-15));
+    EXPECT_NEAR(a.inertia.mass, b.inertia.mass, 1e-15);
+    EXPECT_TRUE(near(a.inertia.p_SoScm_S, b.inertia.p_SoScm_S, 1e-15));
+    EXPECT_TRUE(near(a.inertia.I_Scm_S, b.inertia.I_Scm_S, 1e-15));
+  }
+  EXPECT_TRUE(near(loaded.X_NT().R, expected.X_NT().R, 1e-15));
+  EXPECT_TRUE(near(loaded.X_NT().p, expected.X_NT().p, 1e-15));
+}
+
+TEST(RobotModelPrismatic, LiftReadsBackIntoTheSameChain) {
+  const Chain urdf = chain_from_urdf(kLiftUrdf, "base", "tool");
+  ASSERT_EQ(urdf.size(), 2);
+  ASSERT_EQ(urdf.segment(0).type, JointType::Prismatic);
+  std::string document;
+  const Chain loaded = round_trip(urdf, &document);
+  // The extension's context is listed, once, and the lift is a PrismaticJoint.
+  const std::string context = "\"https://comp-rob2b.github.io/metamodels/mospec/joints.json\"";
+  ASSERT_NE(document.find(context), std::string::npos);
+  EXPECT_EQ(document.find(context, document.find(context) + 1), std::string::npos);
+  EXPECT_NE(document.find("\"@type\": [ \"Joint\", \"PrismaticJoint\" ]"), std::string::npos);
+  EXPECT_EQ(loaded.root(), "base");
+  EXPECT_EQ(loaded.tip(), "tool");
+  EXPECT_EQ(loaded.segment(0).joint, "lift");
+  EXPECT_EQ(loaded.segment(1).joint, "wrist");
+  EXPECT_EQ(loaded.segment(0).type, JointType::Prismatic);
+  EXPECT_EQ(loaded.segment(1).type, JointType::Revolute);
+  expect_same_segments(loaded, urdf);
+  expect_same_chain(loaded, urdf, 1e-12);
+  // The lift raises the tool: q = (0.25 m, 0) puts it 0.25 m higher.
+  const AchdModel model(loaded);
+  AchdData data(model);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(2);
+  tip_jacobian(model, data, q);
+  const Vec3 p0 = data.X_BT.p;
+  q(0) = 0.25;
+  tip_jacobian(model, data, q);
+  EXPECT_TRUE(near(data.X_BT.p - p0, Vec3(0, 0, 0.25), 1e-15));
+}
+
+// The toy arm: a prismatic joint between revolute ones, off-axis and behind
+// folded fixed joints.
+TEST(RobotModelPrismatic, ToyArmReadsBackIntoTheSameChain) {
+  const Chain toy = chain_from_urdf(testing::kToyUrdf, "world", "tool");
+  const Chain loaded = round_trip(toy);
+  expect_same_segments(loaded, toy);
+  expect_same_chain(loaded, toy, 1e-12);
+}
+
+// An all-revolute chain's document uses the published vocabulary alone.
+TEST(RobotModelPrismatic, RevoluteChainsNeedNoExtension) {
+  Chain chain = chain_from_urdf(kLiftUrdf, "base", "tool");
+  Chain revolute("base");
+  for (int i = 0; i < chain.size(); ++i) {
+    Segment s = chain.segment(i);
+    s.type = JointType::Revolute;
+    revolute.add_segment(s);
+  }
+  EXPECT_EQ(chain_to_jsonld(revolute).find("mospec/joints"), std::string::npos);
+  EXPECT_EQ(chain_to_jsonld(revolute).find("PrismaticJoint"), std::string::npos);
+}
+
+// A joint of the chain that is neither or both kinds is refused, by name.
+TEST(RobotModelPrismatic, ReadingNamesAJointOfNeitherOrBothKinds) {
+  ChainJsonldOptions options;
+  options.base = kLiftBase;
+  const std::string text = chain_to_jsonld(chain_from_urdf(kLiftUrdf, "base", "tool"), options);
+  const std::string lift = "\"Joint\", \"PrismaticJoint\" ]";
+  const std::string cases[][2] = {
+      {"\"Joint\" ]", "only RevoluteJoint and PrismaticJoint (mospec/joints) are supported"},
+      {"\"Joint\", \"PrismaticJoint\", \"RevoluteJoint\" ]",
+       "is both a RevoluteJoint and a PrismaticJoint"}};
+  for (const auto& [type, message] : cases) {
+    std::string edited = text;
+    edited.replace(edited.find(lift), lift.size(), type);
+    const std::string path =
+        ::testing::TempDir() + "/mospec-lift-bad-" + std::to_string(::getpid()) + ".jsonld";
+    write_output(path, edited);
+    app::LoadOptions load;
+    load.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+    const rdf::Dataset graph = app::load({path}, load).flattened();
+    try {
+      chain_from_rdf(graph, kLiftBase + "chain");
+      ADD_FAILURE() << "no error for " << type;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), "mospec: error: " + kLiftBase + "joint-lift: " + message +
+                                           "; state exactly one of them");
+    }
+  }
 }
 
 TEST(RobotModel, ReadingNamesWhatIsWrong) {
@@ -331,6 +458,37 @@ TEST(RobotModelUr5e, ZeroConfigurationIsTheStretchedArm) {
   AchdData data(model);
   forward_kinematics(model, data, Eigen::VectorXd::Zero(6));
   EXPECT_TRUE(near(data.X_BT.p, Vec3(-0.8172, -0.2329, 0.0628), 1e-12));
+}
+
+// robots/lift.jsonld: a prismatic lift carrying two revolute joints, the
+// robot of models/examples/lift; written by mospec, needs nothing from ../shared.
+const std::string kLiftRobotUrdf = std::string(MOSPEC_SOURCE_DIR) + "/robots/lift.urdf";
+const std::string kLiftRobotModel = std::string(MOSPEC_SOURCE_DIR) + "/robots/lift.jsonld";
+
+TEST(RobotModelLift, CommittedFileIsTheGeneratorsOutput) {
+  ChainJsonldOptions options;
+  options.base = kLiftBase;
+  const std::string generated =
+      chain_to_jsonld(chain_from_urdf_file(kLiftRobotUrdf, "", ""), options);
+  // MOSPEC_REGENERATE_ROBOTS=1 rewrites the committed file instead of comparing.
+  if (const char* regen = std::getenv("MOSPEC_REGENERATE_ROBOTS"); regen && *regen == '1') {
+    write_output(kLiftRobotModel, generated);
+  }
+  EXPECT_EQ(read_file(kLiftRobotModel), generated)
+      << "robots/lift.jsonld is stale: run this test with MOSPEC_REGENERATE_ROBOTS=1";
+}
+
+TEST(RobotModelLift, ReadsBackAsALiftAndTwoHinges) {
+  app::LoadOptions options;
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+  const app::LoadedModel model = app::load({kLiftRobotModel}, options);
+  for (const auto& d : model.diagnostics().diagnostics()) ADD_FAILURE() << format(d);
+  const Chain loaded = chain_from_rdf(model.flattened(), kLiftBase + "chain");
+  ASSERT_EQ(loaded.size(), 3);
+  EXPECT_EQ(loaded.segment(0).type, JointType::Prismatic);
+  EXPECT_EQ(loaded.segment(1).type, JointType::Revolute);
+  EXPECT_EQ(loaded.segment(2).type, JointType::Revolute);
+  expect_same_segments(loaded, chain_from_urdf_file(kLiftRobotUrdf, "", ""));
 }
 
 }  // namespace
