@@ -24,18 +24,9 @@ expect "runs (interpreted)" 0 "" -- "$mospec" run "$app" --sim --interpret --dur
 
 z=cstr-pos-rightarm-ee-ceiling.value
 # The value of column NAME in the first row with t >= T.
-at() {
-  awk -F, -v name="$1" -v t="$2" '
-    NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    $c["t"] + 1e-9 >= t { print $c[name]; exit }' "$work/run.csv"
-}
+at() { csv_at "$work/run.csv" "$1" "$2"; }
 # The largest value of column NAME.
-peak() {
-  awk -F, -v name="$1" 'NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    NR==2 || $c[name] > m { m = $c[name] } END { print m }' "$work/run.csv"
-}
-# awk's verdict on a numeric condition, e.g. holds "0.39 < 0.4".
-holds() { awk "BEGIN { exit !($1) }"; }
+peak() { csv_range "$work/run.csv" "$1" 0 | cut -d' ' -f2; }
 
 check "the tip starts at 0.35 m" holds "$(at $z 0) < 0.351 && $(at $z 0) > 0.349"
 check "below the limit z moves freely: it has risen 4 cm by 0.35 s" holds "$(at $z 0.35) > 0.39"

@@ -29,12 +29,7 @@ worst() {
     $c["t"] + 1e-9 >= t { d = $c[a] - $c[b]; if (d < 0) d = -d; if (d > m) m = d }
     END { print m + 0 }' "$work/run.csv"
 }
-at() {
-  awk -F, -v name="$1" -v t="$2" '
-    NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    $c["t"] + 1e-9 >= t { print $c[name]; exit }' "$work/run.csv"
-}
-holds() { awk "BEGIN { exit !($1) }"; }
+at() { csv_at "$work/run.csv" "$1" "$2"; }
 
 check "the arm pushes with 20 N (the simulator's contact force)" \
   holds "$(at right_fx 1) < -19.9 && $(at right_fx 1) > -20.1"

@@ -65,11 +65,7 @@ check "the summary's verdict: failed, with each motion's ticks, end and guard" \
 if ! cmp -s "$work/timeline.txt" "$work/expected-timeline.txt"; then sed 's/^/  got: /' "$work/timeline.txt"; fi
 
 # The value of column NAME in the first row with t >= T.
-at() {
-  awk -F, -v name="$1" -v t="$2" '
-    NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    $c["t"] + 1e-9 >= t { print $c[name]; exit }' "$work/run.csv"
-}
+at() { csv_at "$work/run.csv" "$1" "$2"; }
 # How many rows have NAME != 0.
 rows() {
   awk -F, -v name="$1" 'NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next } $c[name] != 0 { n++ }

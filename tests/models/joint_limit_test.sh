@@ -26,21 +26,10 @@ expect "runs (interpreted)" 0 "" -- "$mospec" run "$app" --sim --interpret --dur
   --log "$work/run.csv" --summary "$work/run.json"
 
 # The value of column NAME in the first row with t >= T.
-at() {
-  awk -F, -v name="$1" -v t="$2" '
-    NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    $c["t"] + 1e-9 >= t { print $c[name]; exit }' "$work/run.csv"
-}
+at() { csv_at "$work/run.csv" "$1" "$2"; }
 # The largest / smallest value of column NAME.
-peak() {
-  awk -F, -v name="$1" 'NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    NR==2 || $c[name] > m { m = $c[name] } END { print m }' "$work/run.csv"
-}
-trough() {
-  awk -F, -v name="$1" 'NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    NR==2 || $c[name] < m { m = $c[name] } END { print m }' "$work/run.csv"
-}
-holds() { awk "BEGIN { exit !($1) }"; }
+peak() { csv_range "$work/run.csv" "$1" 0 | cut -d' ' -f2; }
+trough() { csv_range "$work/run.csv" "$1" 0 | cut -d' ' -f1; }
 
 q=cstr-q-rightarm-j4-limit.value
 check "joint 4 starts at the world file's q0 (-2.1654 rad)" \

@@ -16,7 +16,6 @@ first() {
   awk -F, -v name="$1" 'NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
     { print $c[name]; exit }' "$2"
 }
-holds() { awk "BEGIN { exit !($1) }"; }
 
 expect "sc0a as shipped" 0 "" -- "$mospec" run models/sc0a.json --sim --interpret --duration 0.01 \
   --log "$work/shipped.csv"

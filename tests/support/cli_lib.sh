@@ -64,7 +64,7 @@ csv_range() {
   awk -F, -v name="$2" -v t="$3" '
     NR==1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
     $c["t"] + 1e-9 >= t { v = $c[name] + 0; if (!n++ || v < lo) lo = v; if (n == 1 || v > hi) hi = v }
-    END { print lo, hi }' "$1"
+    END { printf "%.17g %.17g\n", lo, hi }' "$1"
 }
 csv_has() { head -1 "$1" | tr ',' '\n' | grep -qx -- "$2"; }
 holds() { awk "BEGIN { exit !($1) }"; }
