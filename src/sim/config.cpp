@@ -352,6 +352,12 @@ void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
     }
     const bool added = it == c.arms.end();
     if (added) {
+      // A robot of more arms is not plausible, and each costs a model load
+      // and a MuJoCo subtree: a bound keeps a hostile file from growing both.
+      constexpr size_t kMaxArms = 16;
+      if (c.arms.size() >= kMaxArms) {
+        r.fail(o.value(k), what + ": a robot has at most " + std::to_string(kMaxArms) + " arms");
+      }
       if (!a.find("robot") || !a.find("q") || !a.find("actuation")) {
         r.fail(o.value(k), what +
                                ": a new arm needs its `robot` (model and chain), `q` and "

@@ -344,6 +344,18 @@ TEST(WorldFile, ErrorsAreLocated) {
   EXPECT_EQ(error_of("{ \"arms\": { \"third\": { \"q\": [0] } } }"),
             "w.json:1:22: error: arms.third: a new arm needs its `robot` (model and chain), `q` "
             "and `actuation` (mospec's default robot has the arms right and left)");
+  {
+    // A hostile file cannot grow the robot without bound: the 17th arm is refused.
+    std::string many = "{ \"arms\": {";
+    for (int i = 0; i < 15; ++i) {
+      many += std::string(i ? ", " : " ") + "\"a" + std::to_string(i) +
+              "\": { \"robot\": { \"model\": \"x.jsonld\", \"chain\": \"c\" }, \"q\": [0], "
+              "\"actuation\": { \"effort_limit\": [1] } }";
+    }
+    many += " } }";
+    EXPECT_NE(error_of(many).find("arms.a14: a robot has at most 16 arms"), std::string::npos)
+        << error_of(many);
+  }
   EXPECT_EQ(error_of("{ \"arms\": { \"Right\": { \"q\": [0] } } }"),
             "w.json:1:13: error: arms.Right: an arm's name must be 1 to 32 lower-case letters and "
             "digits (it prefixes sensor names and log columns)");
