@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <type_traits>
 
 #include "runtime/operators.hpp"
 #include "support/diagnostics.hpp"
@@ -26,6 +27,82 @@ void require_weight(const char* field, int i, double v) {
     reject(std::string(field) + " of drive " + std::to_string(i) +
            " must be finite and >= 0, got " + exact_number(v));
   }
+}
+
+// The tick's products over the drive count: compiled with fixed sizes for the
+// paper's four-drive base (unrolled, as fast as when four was the only count)
+// and with runtime sizes for every other count. Both views read and write
+// KeloData's own storage, whose column-major layout for a runtime size of n
+// drives is exactly that of the fixed-size matrices.
+template <int N>
+struct Sized {
+  static constexpr int M = N == Eigen::Dynamic ? Eigen::Dynamic : 2 * N;
+  using Drive = Eigen::Map<Eigen::Matrix<double, M, 1>>;
+  using ConstDrive = Eigen::Map<const Eigen::Matrix<double, M, 1>>;
+  using Composition = Eigen::Map<Eigen::Matrix<double, 3, M>>;
+  using ConstComposition = Eigen::Map<const Eigen::Matrix<double, 3, M>>;
+  using Distribution = Eigen::Map<Eigen::Matrix<double, M, 3>>;
+  using ConstDistribution = Eigen::Map<const Eigen::Matrix<double, M, 3>>;
+  // A 2n x 3 value (no allocation either way): the right-hand side of the
+  // solve below is faster as a plain matrix than as a view.
+  using DistributionValue =
+      std::conditional_t<N == Eigen::Dynamic, KeloDistribution, Eigen::Matrix<double, M, 3>>;
+};
+
+// Runs `kernel.template operator()<N>()` with N = 4 for a four-drive base, else
+// Eigen::Dynamic.
+template <class Kernel>
+decltype(auto) for_drive_count(int drives, Kernel&& kernel) {
+  if (drives == 4) return kernel.template operator()<4>();
+  return kernel.template operator()<Eigen::Dynamic>();
+}
+
+template <int N>
+void set_pivots_sized(const KeloModel& model, KeloData& data) noexcept {
+  using S = Sized<N>;
+  const int m = 2 * model.drives;
+  typename S::Composition G(data.G.data(), 3, m);
+  for (int i = 0; i < model.drives; ++i) {
+    const double c = std::cos(data.q_pivot[i]), s = std::sin(data.q_pivot[i]);
+    const double x = model.config.geometry.p_PoAi_P[static_cast<size_t>(i)].x();
+    const double y = model.config.geometry.p_PoAi_P[static_cast<size_t>(i)].y();
+    G.col(2 * i) << c, s, x * s - y * c;
+    G.col(2 * i + 1) << -s, c, x * c + y * s;
+  }
+  // W^{-1} G^T (2n x 3), then (G W^{-1} G^T) and G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}.
+  const typename S::DistributionValue WinvGt =
+      typename S::ConstDrive(model.w_inv.data(), m).asDiagonal() * G.transpose();
+  const Mat3 GWGt = G * WinvGt;
+  data.llt_GWGt.compute(GWGt);
+  const typename S::DistributionValue G_pinv = data.llt_GWGt.solve(WinvGt.transpose()).transpose();
+  typename S::Distribution(data.G_pinv.data(), m, 3) = G_pinv;
+}
+
+template <int N>
+void distribute_sized(const KeloModel& model, KeloData& data, const Vec3& F_p) noexcept {
+  using S = Sized<N>;
+  const int m = 2 * model.drives;
+  const typename S::ConstComposition G(data.G.data(), 3, m);
+  const typename S::ConstDistribution G_pinv(data.G_pinv.data(), m, 3);
+  const typename S::ConstDrive ref(data.ref.data(), m);
+  typename S::Drive F_d_null(data.F_d_null.data(), m);
+  typename S::Drive F_d(data.F_d.data(), m);
+  // N F̄ = F̄ - G⁺ (G F̄), without forming the 2n x 2n N.
+  const Vec3 G_ref = G * ref;
+  F_d_null.noalias() = ref - G_pinv * G_ref;
+
+  if (model.config.rescale_reference) {
+    double max_ref = 0.0, max_null = 0.0;
+    for (int i = 0; i < model.drives; ++i) {
+      max_ref = std::max(max_ref, ref.template segment<2>(2 * i).norm());
+      max_null = std::max(max_null, F_d_null.template segment<2>(2 * i).norm());
+    }
+    data.alpha = max_null > 1e-9 * max_ref ? max_ref / max_null : 0.0;
+  } else {
+    data.alpha = 1.0;
+  }
+  F_d.noalias() = G_pinv * F_p;
+  F_d += data.alpha * F_d_null;
 }
 
 }  // namespace
@@ -86,7 +163,6 @@ KeloData::KeloData(const KeloModel& model) {
   qd_pivot = KeloPivotVector::Zero(n);
   G = KeloComposition::Zero(3, m);
   G_pinv = KeloDistribution::Zero(m, 3);
-  WinvGt = KeloDistribution::Zero(m, 3);
   for (KeloDriveVector* v :
        {&F_d_ref, &ref, &F_d_null, &F_d, &f_wheel, &tau_wheel, &u_pivot, &wheel_rates}) {
     *v = KeloDriveVector::Zero(m);
@@ -98,18 +174,7 @@ KeloData::KeloData(const KeloModel& model) {
 const KeloComposition& kelo_set_pivots(const KeloModel& model, KeloData& data,
                                        const KeloPivotVector& q_pivot) noexcept {
   data.q_pivot = q_pivot;
-  for (int i = 0; i < model.drives; ++i) {
-    const double c = std::cos(q_pivot[i]), s = std::sin(q_pivot[i]);
-    const double x = model.config.geometry.p_PoAi_P[i].x();
-    const double y = model.config.geometry.p_PoAi_P[i].y();
-    data.G.col(2 * i) << c, s, x * s - y * c;
-    data.G.col(2 * i + 1) << -s, c, x * c + y * s;
-  }
-  // W^{-1} G^T (2n x 3), then (G W^{-1} G^T) and G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}.
-  data.WinvGt.noalias() = model.w_inv.asDiagonal() * data.G.transpose();
-  const Mat3 GWGt = data.G * data.WinvGt;
-  data.llt_GWGt.compute(GWGt);
-  data.G_pinv = data.llt_GWGt.solve(data.WinvGt.transpose()).transpose();
+  for_drive_count(model.drives, [&]<int N>() { set_pivots_sized<N>(model, data); });
   return data.G;
 }
 
@@ -144,24 +209,10 @@ const KeloDriveVector& kelo_distribute(const KeloModel& model, KeloData& data, c
                                        const KeloDriveVector& F_d_ref) noexcept {
   // Disabled drives' references are ignored: N keeps a reference on a drive
   // that G⁺ never loads, so it must not enter at all.
-  KeloDriveVector& ref = data.ref;
-  for (int k = 0; k < 2 * model.drives; ++k) ref[k] = model.w_inv[k] > 0.0 ? F_d_ref[k] : 0.0;
-  // N F̄ = F̄ - G⁺ (G F̄), without forming the 2n x 2n N.
-  const Vec3 G_ref = data.G * ref;
-  data.F_d_null.noalias() = ref - data.G_pinv * G_ref;
-
-  if (model.config.rescale_reference) {
-    double max_ref = 0.0, max_null = 0.0;
-    for (int i = 0; i < model.drives; ++i) {
-      max_ref = std::max(max_ref, ref.segment<2>(2 * i).norm());
-      max_null = std::max(max_null, data.F_d_null.segment<2>(2 * i).norm());
-    }
-    data.alpha = max_null > 1e-9 * max_ref ? max_ref / max_null : 0.0;
-  } else {
-    data.alpha = 1.0;
+  for (int k = 0; k < 2 * model.drives; ++k) {
+    data.ref[k] = model.w_inv[k] > 0.0 ? F_d_ref[k] : 0.0;
   }
-  data.F_d.noalias() = data.G_pinv * F_p;
-  data.F_d += data.alpha * data.F_d_null;
+  for_drive_count(model.drives, [&]<int N>() { distribute_sized<N>(model, data, F_p); });
   return data.F_d;
 }
 
@@ -201,7 +252,12 @@ const Vec3& kelo_platform_twist(const KeloModel& model, KeloData& data,
     data.u_pivot[2 * i] = 0.5 * (vl + vr);
     data.u_pivot[2 * i + 1] = s_over_d * (vr - vl);
   }
-  data.xd_platform.noalias() = data.G_pinv.transpose() * data.u_pivot;
+  const int m = 2 * model.drives;
+  for_drive_count(model.drives, [&]<int N>() {
+    data.xd_platform.noalias() =
+        typename Sized<N>::ConstDistribution(data.G_pinv.data(), m, 3).transpose() *
+        typename Sized<N>::ConstDrive(data.u_pivot.data(), m);
+  });
   return data.xd_platform;
 }
 
@@ -209,7 +265,11 @@ const KeloDriveVector& kelo_wheel_rates(const KeloModel& model, KeloData& data,
                                         const Vec3& xd_p) noexcept {
   const double r = model.wheel_radius;
   const double s = model.config.geometry.castor_offset;
-  data.u_pivot.noalias() = data.G.transpose() * xd_p;
+  const int m = 2 * model.drives;
+  for_drive_count(model.drives, [&]<int N>() {
+    typename Sized<N>::Drive(data.u_pivot.data(), m).noalias() =
+        typename Sized<N>::ConstComposition(data.G.data(), 3, m).transpose() * xd_p;
+  });
   for (int i = 0; i < model.drives; ++i) {
     const double ux = data.u_pivot[2 * i], uy = data.u_pivot[2 * i + 1];
     // v_r - v_l = d u_y / s; the drive turns at (v_r - v_l)/d = u_y / s.

@@ -106,14 +106,14 @@ using KeloComposition =
     Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 2 * kMaxKeloDrives>;  // G, 3 x 2n
 using KeloDistribution =
     Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 2 * kMaxKeloDrives, 3>;  // G⁺, 2n x 3
-using KeloProjector = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
-                                    2 * kMaxKeloDrives, 2 * kMaxKeloDrives>;  // N, 2n x 2n
+using KeloProjector = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2 * kMaxKeloDrives,
+                                    2 * kMaxKeloDrives>;  // N, 2n x 2n
 
 struct KeloGeometry {
-  std::vector<Vec2> p_PoAi_P;  // pivot axis of drive i, seen by P [m]; one per drive
-  double wheel_radius = 0.0;                 // r [m]
-  double wheel_distance = 0.0;               // d: between the two wheels of a drive [m]
-  double castor_offset = 0.0;                // s: pivot axis to wheel axle [m]
+  std::vector<Vec2> p_PoAi_P;   // pivot axis of drive i, seen by P [m]; one per drive
+  double wheel_radius = 0.0;    // r [m]
+  double wheel_distance = 0.0;  // d: between the two wheels of a drive [m]
+  double castor_offset = 0.0;   // s: pivot axis to wheel axle [m]
   // No numbers here: a base's geometry and weights are model data, read from
   // the robot description a platform solver's `configuration` names
   // (description/base_rdf.hpp; the paper's base is robots/kelo-base.jsonld).
@@ -154,11 +154,10 @@ struct KeloData {
   // Every vector below is sized for the model's n drives here, once.
 
   // kelo_set_pivots
-  KeloPivotVector q_pivot;   // [rad]
-  KeloComposition G;         // F_p = G F_d
+  KeloPivotVector q_pivot;    // [rad]
+  KeloComposition G;          // F_p = G F_d
   Eigen::LLT<Mat3> llt_GWGt;  // G W^{-1} G^T, factorised
-  KeloDistribution G_pinv;   // G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}
-  KeloDistribution WinvGt;   // W^{-1} G^T (a workspace of kelo_set_pivots)
+  KeloDistribution G_pinv;    // G⁺ = W^{-1} G^T (G W^{-1} G^T)^{-1}
 
   // kelo_alignment_reference
   KeloDriveVector F_d_ref;  // F̄_d, seen by each D_i [N]
@@ -177,10 +176,10 @@ struct KeloData {
   KeloDriveVector tau_wheel;  // hub torques [N·m]
 
   // kelo_platform_twist / kelo_wheel_rates
-  KeloDriveVector u_pivot;      // pivot velocities, seen by D_i [m/s]
+  KeloDriveVector u_pivot;          // pivot velocities, seen by D_i [m/s]
   Vec3 xd_platform = Vec3::Zero();  // [v_x, v_y, ω_z]
-  KeloDriveVector wheel_rates;  // [rad/s]
-  KeloPivotVector qd_pivot;     // pivot rates that go with wheel_rates [rad/s]
+  KeloDriveVector wheel_rates;      // [rad/s]
+  KeloPivotVector qd_pivot;         // pivot rates that go with wheel_rates [rad/s]
 };
 
 // The platform wrench [f_x, f_y, m_z] of a spatial wrench F_Po_P (angular

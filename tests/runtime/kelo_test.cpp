@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include "kelo_base.hpp"
 #include "support/diagnostics.hpp"
@@ -116,7 +117,7 @@ TEST(KeloDistribution, NullspaceProjectorProperties) {
 KeloDriveVector kkt_solution(const KeloModel& model, const KeloComposition& G, const Vec3& F_p,
                              const KeloDriveVector& F_ref) {
   std::vector<int> active;
-  for (int k = 0; k < 2 * kKeloDrives; ++k) {
+  for (int k = 0; k < 2 * model.drives; ++k) {
     if (model.w_inv[k] > 0) active.push_back(k);
   }
   const int n = static_cast<int>(active.size());
@@ -130,9 +131,46 @@ KeloDriveVector kkt_solution(const KeloModel& model, const KeloComposition& G, c
   }
   rhs.tail<3>() = F_p;
   const Eigen::VectorXd x = K.fullPivLu().solve(rhs);
-  KeloDriveVector F_d = KeloDriveVector::Zero(kWheels);
+  KeloDriveVector F_d = KeloDriveVector::Zero(2 * model.drives);
   for (int a = 0; a < n; ++a) F_d[active[a]] = x[a];
   return F_d;
+}
+
+// Every drive count a model may give (four runs fixed-size kernels, the others
+// runtime-sized ones): the distribution is Eq. (2)'s minimiser, and the
+// velocity maps invert each other.
+TEST(KeloDistribution, EveryDriveCountSolvesTheWeightedLeastSquaresProblem) {
+  Random rnd(11);
+  for (int n = 2; n <= kMaxKeloDrives; ++n) {
+    SCOPED_TRACE("drives: " + std::to_string(n));
+    KeloConfig config = ::mospec::testing::paper_base();
+    config.geometry.p_PoAi_P.clear();
+    config.drive_weight.clear();
+    config.align_force_weight.assign(static_cast<size_t>(n), 1.0);
+    config.align_moment_weight.assign(static_cast<size_t>(n), 1.0);
+    for (int i = 0; i < n; ++i) {
+      const double a = 2.0 * kPi * i / n + 0.3;
+      config.geometry.p_PoAi_P.emplace_back(0.3 * std::cos(a), 0.2 * std::sin(a));
+      config.drive_weight.push_back(rnd.uniform(0.2, 3.0));
+    }
+    config.rescale_reference = false;  // α = 1: exactly Eq. (2)'s minimiser
+    const KeloModel model(config);
+    KeloData data(model);
+    for (int k = 0; k < 50; ++k) {
+      KeloPivotVector q(n);
+      for (int i = 0; i < n; ++i) q[i] = rnd.uniform(-kPi, kPi);
+      const Vec3 F_p = rnd.wrench();
+      KeloDriveVector ref(2 * n);
+      for (int j = 0; j < 2 * n; ++j) ref[j] = rnd.uniform(-50, 50);
+      kelo_set_pivots(model, data, q);
+      kelo_distribute(model, data, F_p, ref);
+      ASSERT_TRUE(near(data.F_d, kkt_solution(model, data.G, F_p, ref), 1e-9));
+      ASSERT_TRUE(near(data.G * data.F_d, F_p, 1e-10));
+      const Vec3 xd(rnd.uniform(-1, 1), rnd.uniform(-1, 1), rnd.uniform(-2, 2));
+      const KeloDriveVector w = kelo_wheel_rates(model, data, xd);
+      ASSERT_TRUE(near(kelo_platform_twist(model, data, w), xd, 1e-12));
+    }
+  }
 }
 
 TEST(KeloDistribution, SolvesTheWeightedLeastSquaresProblem) {
