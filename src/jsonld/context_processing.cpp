@@ -342,7 +342,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
     delta.used_base = result.used_base;
     if (delta.used_base) delta.base = in_base;
     if (!log.opaque) {
-      delta.deps = unique_deps(std::move(log.deps));
+      delta.deps = std::move(log.deps);
       delta.changes = result.overlay;
       delta.out_vocab = result.vocab;
       delta.out_language = result.language;
@@ -575,7 +575,7 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
     d.direction = in.direction;
     d.used_base = result.used_base;
     if (d.used_base) d.base = in.base;
-    d.deps = unique_deps(std::move(log.deps));
+    d.deps = std::move(log.deps);
     d.changes = result.overlay;
     d.out_vocab = result.vocab;
     d.out_language = result.language;

@@ -79,7 +79,9 @@ struct TermLayer {
   }
 
   const TermPtr* lookup(std::string_view term) const {
-    const HashedKey key{term, StringHash{}(term)};
+    return lookup(HashedKey{term, StringHash{}(term)});
+  }
+  const TermPtr* lookup(const HashedKey& key) const {
     const uint64_t bit = bloom_bit(key.hash);
     for (const TermLayer* l = this; l != nullptr; l = l->parent.get()) {
       if ((l->bloom & bit) == 0) continue;
@@ -98,13 +100,52 @@ struct Dep {
   std::string term;
   TermPtr def;  // null: not defined
   bool weak = false;
+  size_t hash = 0;  // StringHash of term
 };
 
-// Records the Deps of one processing run; `opaque` when processing depended on
-// the state in a way Deps do not capture (nothing is then stored).
+// Records the Deps of one processing run, one per term (a full answer wins
+// over a weak one) in first-lookup order; `opaque` when processing depended on
+// the state in a way Deps do not capture (nothing is then stored). A term is
+// looked up many times while a context is processed (every compact IRI looks
+// up its prefix), so repeats are merged as they are recorded, through a small
+// open-addressing table of positions in `deps`, instead of being copied into
+// the log and merged afterwards.
 struct DepLog {
   std::vector<Dep> deps;
   bool opaque = false;
+
+  void record(const HashedKey& key, const TermPtr* found, bool weak) {
+    TermPtr def = found != nullptr ? *found : nullptr;
+    const bool only_protection = weak && !(def && def->protected_);
+    if (2 * (deps.size() + 1) > slots_.size()) grow();
+    const size_t mask = slots_.size() - 1;
+    size_t i = key.hash & mask;
+    for (; slots_[i] != 0; i = (i + 1) & mask) {
+      Dep& d = deps[slots_[i] - 1];
+      if (d.hash != key.hash || d.term != key.text) continue;
+      if (d.weak && !only_protection) {
+        d.weak = false;
+        d.def = std::move(def);
+      }
+      return;
+    }
+    deps.push_back({std::string(key.text), only_protection ? nullptr : std::move(def),
+                    only_protection, key.hash});
+    slots_[i] = static_cast<uint32_t>(deps.size());
+  }
+
+ private:
+  std::vector<uint32_t> slots_;  // position in deps + 1; 0: empty
+
+  void grow() {
+    slots_.assign(std::max<size_t>(32, slots_.size() * 2), 0);
+    const size_t mask = slots_.size() - 1;
+    for (size_t n = 0; n < deps.size(); ++n) {
+      size_t i = deps[n].hash & mask;
+      while (slots_[i] != 0) i = (i + 1) & mask;
+      slots_[i] = static_cast<uint32_t>(n + 1);
+    }
+  }
 };
 
 // The result of one processing run as a change to the term state, valid for
@@ -335,16 +376,15 @@ struct Builder {
   detail::DepLog* deps = nullptr;
 
   const TermPtr* lookup(std::string_view term, bool weak = false) const {
-    auto it = overlay.find(term);
+    // Hashed once for the overlays, the layers and the dependency log.
+    return lookup(detail::HashedKey{term, detail::StringHash{}(term)}, weak);
+  }
+  const TermPtr* lookup(const detail::HashedKey& key, bool weak) const {
+    auto it = overlay.find(key);
     if (it != overlay.end()) return &it->second;
-    if (parent != nullptr) return parent->lookup(term, weak);
-    const TermPtr* p = layer ? layer->lookup(term) : nullptr;
-    if (deps != nullptr) {
-      TermPtr def = p != nullptr ? *p : nullptr;
-      const bool only_protection = weak && !(def && def->protected_);
-      deps->deps.push_back(
-          {std::string(term), only_protection ? nullptr : std::move(def), only_protection});
-    }
+    if (parent != nullptr) return parent->lookup(key, weak);
+    const TermPtr* p = layer ? layer->lookup(key) : nullptr;
+    if (deps != nullptr) deps->record(key, p, weak);
     return p;
   }
   // CTD 6: the previous definition of a term being defined, which matters
@@ -471,7 +511,8 @@ struct LocalCtx {
 // recorded on did: the same definition, or an equal unprotected one.
 inline bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* state) {
   for (const detail::Dep& d : deps) {
-    const TermPtr* p = state != nullptr ? state->lookup(d.term) : nullptr;
+    const TermPtr* p =
+        state != nullptr ? state->lookup(detail::HashedKey{d.term, d.hash}) : nullptr;
     const TermDefinition* now = p != nullptr ? p->get() : nullptr;
     if (d.weak) {
       if (now != nullptr && now->protected_) return false;
@@ -485,25 +526,6 @@ inline bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* sta
     }
   }
   return true;
-}
-
-// One Dep per term (a full answer wins over a weak one), in first-lookup order.
-inline std::vector<detail::Dep> unique_deps(std::vector<detail::Dep> deps) {
-  std::unordered_map<std::string_view, size_t> at;  // views of out's terms
-  at.reserve(deps.size());
-  std::vector<detail::Dep> out;
-  out.reserve(deps.size());  // never reallocates, so the views stay valid
-  for (detail::Dep& d : deps) {
-    auto it = at.find(d.term);
-    if (it == at.end()) {
-      out.push_back(std::move(d));
-      at.emplace(out.back().term, out.size() - 1);
-    } else if (out[it->second].weak && !d.weak) {
-      out[it->second].weak = false;
-      out[it->second].def = std::move(d.def);
-    }
-  }
-  return out;
 }
 
 // Applies a cached Delta to `b` (whose state the Delta's deps hold on) and

@@ -192,6 +192,16 @@ std::string_view keyword_of(const ActiveContext& ctx, const std::string& key) {
   return {};
 }
 
+// Whether a term definition's container mapping holds `c`. The mapping has at
+// most three entries, so a scan beats std::set::count, which would build a
+// std::string key for every lookup.
+bool has_container(const std::set<std::string>& container, std::string_view c) {
+  for (const std::string& entry : container) {
+    if (entry == c) return true;
+  }
+  return false;
+}
+
 // Visiting order of an object's members: insertion order, or code-point order
 // when `sorted`.
 std::vector<size_t> member_order(const Object& o, bool sorted) {
@@ -378,7 +388,7 @@ Value Expander::expand(const ContextPtr& active, ActiveProperty ap, const TermDe
   }
   // 5
   if (element.is_array()) {
-    const bool list_container = ap_def != nullptr && ap_def->container.count("@list") != 0;
+    const bool list_container = ap_def != nullptr && has_container(ap_def->container, "@list");
     Value out{Array{}};
     out.set_location(element.location());
     Array& result = out.as_array();
@@ -528,9 +538,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     // 13.5
     static const std::set<std::string> kNoContainer;
     const std::set<std::string>& container = def != nullptr ? def->container : kNoContainer;
-    auto has = [&container](std::string_view c) {
-      return !container.empty() && container.count(std::string(c)) != 0;
-    };
+    auto has = [&container](std::string_view c) { return has_container(container, c); };
     Value expanded_value;
     if (def != nullptr && def->type && *def->type == "@json"sv) {  // 13.6
       Object lit;
@@ -871,7 +879,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
   Value out{Array{}};
   out.set_location(value.location());
   const std::set<std::string>& container = def.container;
-  auto has = [&container](const char* c) { return container.count(c) != 0; };
+  auto has = [&container](std::string_view c) { return has_container(container, c); };
   const bool id_or_type = has("@id") || has("@type");
   const std::string index_key = def.index ? *def.index : std::string("@index");  // 13.8.2
   const Object& map = value.as_object();

@@ -444,6 +444,28 @@ TEST_F(ContextTest, DeltaCacheAppliesOnlyWhereTheStateAnswersAlike) {
   EXPECT_EQ(options.context_cache->stats().delta_hits, before + 1);
 }
 
+TEST_F(ContextTest, DeltaCacheKeepsTheFullAnswerForATermLookedUpTwice) {
+  options.context_cache = std::make_shared<ContextCache>();
+  // "ex" is first looked up only for its protection (CTD 6: its definition is
+  // then dropped as keyword-like) and then for its IRI (the prefix of "p").
+  // The delta recorded over a state without "ex" must therefore not apply
+  // where "ex" is defined: there CTD 6 removes it.
+  loader.add("http://ctx.org/w.jsonld",
+             R"({"@context": {"ex": {"@id": "@ignoreMe"}, "p": "ex:p"}})");
+  const std::string ref = R"("http://ctx.org/w.jsonld")";
+  ContextPtr without = process(R"({"other": "http://o/"})");
+  ContextPtr with = process(R"({"ex": "http://b/"})");
+  ContextPtr a = process(ref, without);
+  EXPECT_EQ(a->find("ex"), nullptr);
+  EXPECT_EQ(a->find("p")->iri, "ex:p");
+  const size_t hits = options.context_cache->stats().delta_hits;
+  ContextPtr b = process(ref, with);
+  EXPECT_EQ(options.context_cache->stats().delta_hits, hits);  // processed anew
+  EXPECT_EQ(b->find("ex"), nullptr);
+  EXPECT_EQ(b->find("p")->iri, "ex:p");
+  sink.clear();
+}
+
 }  // namespace
 }  // namespace mospec::jsonld
 
