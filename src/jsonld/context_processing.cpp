@@ -176,8 +176,9 @@ void Processor::process_item(Builder& result, const json::Value& context,
   LocalCtx lc(*ctx);
   for (size_t i = 0; i < ctx->size(); ++i) {
     const std::string& key = ctx->key(i);
-    if (key == "@base" || key == "@direction" || key == "@import" || key == "@language" ||
-        key == "@propagate" || key == "@protected" || key == "@version" || key == "@vocab") {
+    if (!key.empty() && key[0] == '@' &&
+        (key == "@base" || key == "@direction" || key == "@import" || key == "@language" ||
+         key == "@propagate" || key == "@protected" || key == "@version" || key == "@vocab")) {
       continue;
     }
     TermArgs args{base_url, protected_default, override_protected, &remote_contexts, validate};

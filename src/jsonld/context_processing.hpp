@@ -649,20 +649,26 @@ class Processor {
                                     bool vocab, LocalCtx* lc, const std::optional<TermArgs>& args);
 
   // A term definition's value as the map of CTD 7 - 9 without building it: a
-  // string or null value stands for {"@id": value}.
+  // string or null value stands for {"@id": value}. Its entries are picked out
+  // by one scan of the object rather than one search per keyword.
   struct TermValue {
     const json::Object* obj = nullptr;
-    const json::Value* id_only = nullptr;
-    const json::Value* find(std::string_view key) const {
-      if (obj != nullptr) return obj->find(key);
-      return key == "@id" ? id_only : nullptr;
-    }
-    bool contains(std::string_view key) const { return find(key) != nullptr; }
-    size_t size() const { return obj != nullptr ? obj->size() : 0; }
-    const std::string& key(size_t i) const { return obj->key(i); }
-    SourceLoc key_location(size_t i) const { return obj->key_location(i); }
-  };
+    const json::Value* id = nullptr;
+    const json::Value* reverse = nullptr;
+    const json::Value* container = nullptr;
+    const json::Value* context = nullptr;
+    const json::Value* direction = nullptr;
+    const json::Value* index = nullptr;
+    const json::Value* language = nullptr;
+    const json::Value* nest = nullptr;
+    const json::Value* prefix = nullptr;
+    const json::Value* protected_ = nullptr;
+    const json::Value* type = nullptr;
+    // The first member that is none of the above (CTD 26), or npos.
+    size_t unexpected = std::string::npos;
 
+    void scan(const json::Object& o);
+  };
   // Create Term Definition (4.2.2) for member `idx` of the local context.
   void create_term(Builder& active, LocalCtx& lc, size_t idx, const TermArgs& args);
 
