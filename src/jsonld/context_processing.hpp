@@ -65,6 +65,10 @@ struct TermLayer {
   TermMap defs;
   uint32_t depth = 1;
   size_t protected_count = 0;  // protected terms visible through this layer
+  // Terms visible through this layer whose IRI mapping is a keyword (aliases
+  // such as "id": "@id"). Without any, only a keyword itself expands to a
+  // keyword, which expansion's per-key keyword checks use to skip the lookup.
+  size_t keyword_aliases = 0;
   // One bit per term of `defs` (bloom_bit of its hash): a lookup skips a
   // layer whose filter lacks the term's bit without probing its map, which
   // matters because most lookups pass the few terms of the scoped-context
@@ -201,6 +205,10 @@ inline bool ends_with_gen_delim(std::string_view s) {
     default:
       return false;
   }
+}
+
+inline bool is_keyword_alias(const TermDefinition& def) {
+  return def.iri && is_keyword(*def.iri);
 }
 
 inline std::string quoted(std::string_view s) {
@@ -436,11 +444,14 @@ struct Builder {
   void freeze() {
     if (deps != nullptr) deps->opaque = true;
     size_t protected_count = layer ? layer->protected_count : 0;
+    size_t keyword_aliases = layer ? layer->keyword_aliases : 0;
     for (auto it = overlay.begin(); it != overlay.end();) {
       const TermPtr* below = layer ? layer->lookup(it->first) : nullptr;
       const bool below_defined = below != nullptr && *below;
       if (below_defined && (*below)->protected_) --protected_count;
       if (it->second && it->second->protected_) ++protected_count;
+      if (below_defined && is_keyword_alias(**below)) --keyword_aliases;
+      if (it->second && is_keyword_alias(*it->second)) ++keyword_aliases;
       if (!it->second && !below_defined) {
         it = overlay.erase(it);  // removing nothing
       } else {
@@ -452,6 +463,7 @@ struct Builder {
     l->defs = std::move(overlay);  // the nodes move; nothing is reallocated
     overlay = TermMap();
     l->protected_count = protected_count;
+    l->keyword_aliases = keyword_aliases;
     if (layer && layer->depth + 1 > kMaxLayerDepth) {
       // Flatten: upper layers first, so emplace keeps the visible definition.
       for (const TermLayer* p = layer.get(); p != nullptr; p = p->parent.get()) {

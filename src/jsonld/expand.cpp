@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "jsonld/context.hpp"
+#include "jsonld/context_processing.hpp"
 #include "jsonld/loader.hpp"
 #include "rdf/iri.hpp"
 #include "support/spelling.hpp"
@@ -172,12 +173,19 @@ Value string_at(std::string s, SourceLoc loc) {
   return v;
 }
 
+// Whether some term of `ctx` is a keyword alias. Contexts rarely have one, and
+// without one no term lookup can turn a key into a keyword.
+bool has_keyword_aliases(const ActiveContext& ctx) {
+  const LayerPtr& terms = ctx.impl().terms;
+  return terms && terms->keyword_aliases != 0;
+}
+
 // Whether `key` IRI-expands to `keyword` in `ctx`, without building the
 // expansion: only a keyword itself or a keyword alias can (IRI Expansion steps
 // 1, 2 and 4), which keeps this check off the allocator in the per-node scans.
 bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_view keyword) {
   if (key == keyword) return true;
-  if (is_keyword(key) || has_keyword_form(key)) return false;
+  if (is_keyword(key) || has_keyword_form(key) || !has_keyword_aliases(ctx)) return false;
   const TermDefinition* def = ctx.find(key);
   return def != nullptr && def->iri && *def->iri == keyword;
 }
@@ -186,7 +194,7 @@ bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_vi
 // alias of), or empty: expands_to for every keyword at once.
 std::string_view keyword_of(const ActiveContext& ctx, const std::string& key) {
   if (is_keyword(key)) return key;
-  if (has_keyword_form(key)) return {};
+  if (has_keyword_form(key) || !has_keyword_aliases(ctx)) return {};
   const TermDefinition* def = ctx.find(key);
   if (def != nullptr && def->iri && is_keyword(*def->iri)) return *def->iri;
   return {};

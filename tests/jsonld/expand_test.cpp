@@ -113,6 +113,22 @@ TEST_F(Expand, PropertyScopedContextPropagatesToNestedNodes) {
                  R"([{"http://ex/p": [{"http://p/q": [{"http://p/q": [{"@value": 1}]}]}]}])");
 }
 
+TEST_F(Expand, KeywordAliasesAddedOrRemovedByScopedAndEmbeddedContexts) {
+  // Aliases defined only in a property-scoped context, over contexts without any.
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "p": {"@context": {"kind": "@type", "val": "@value"}}},
+    "p": [{"kind": "T", "q": 1}, {"val": "v"}]})",
+                 R"([{"http://ex/p": [{"@type": ["http://ex/T"], "http://ex/q": [{"@value": 1}]},
+                                      {"@value": "v"}]}])");
+  // An alias of the outer context, mapped to null by an embedded context.
+  expect_expands(
+      R"({
+    "@context": {"@vocab": "http://ex/", "kind": "@type"},
+    "kind": "A", "r": {"@context": {"kind": null}, "kind": "B", "s": 2}})",
+      R"([{"@type": ["http://ex/A"], "http://ex/r": [{"http://ex/s": [{"@value": 2}]}]}])");
+  sink_.clear();
+}
+
 TEST_F(Expand, NestUnfoldsIntoTheNode) {
   expect_expands(R"({
     "@context": {"@vocab": "http://ex/", "meta": "@nest",
