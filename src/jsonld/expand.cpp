@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -291,12 +292,57 @@ class Expander {
       *opts_.property_prefix_seen = true;
   }
 
+  // process_context() for the scoped context of `def`, a term definition of
+  // `active`. With a context cache, the answer is remembered for this
+  // expansion: the cache would return the same context for the same inputs
+  // (`def` lives as long as `active`, which the memo keeps), and its own
+  // lookup costs a hash of the base URL and several comparisons, at most
+  // nodes of a document.
+  ContextPtr scoped_context(const ContextPtr& active, const TermDefinition& def,
+                            bool override_protected, bool propagate);
+
+  struct ScopedKey {
+    const ActiveContext* active;
+    const TermDefinition* def;
+    unsigned flags;
+    bool operator==(const ScopedKey&) const = default;
+  };
+  struct ScopedKeyHash {
+    size_t operator()(const ScopedKey& k) const noexcept {
+      const auto a = reinterpret_cast<uintptr_t>(k.active);
+      const auto d = reinterpret_cast<uintptr_t>(k.def);
+      return std::hash<uintptr_t>{}(a * 31 + d * 7 + k.flags);
+    }
+  };
+  struct ScopedEntry {
+    ContextPtr active;  // keeps the key's context, and so its definition, alive
+    ContextPtr result;
+  };
+  std::unordered_map<ScopedKey, ScopedEntry, ScopedKeyHash> scoped_;
+
   std::string file_name(SourceLoc loc) const;
   [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
   void flush(ObjectState& st, const Object& result, ActiveProperty ap) const;
 
   const Options& opts_;
 };
+
+ContextPtr Expander::scoped_context(const ContextPtr& active, const TermDefinition& def,
+                                    bool override_protected, bool propagate) {
+  // Without a cache every call processes the context again (and reports
+  // what it reports again), so there is nothing to remember.
+  if (!opts_.context_cache) {
+    return process_context(active, *def.local_context, def.base_url, opts_, nullptr,
+                           override_protected, propagate, true);
+  }
+  const ScopedKey key{active.get(), &def, (override_protected ? 1u : 0u) | (propagate ? 2u : 0u)};
+  auto it = scoped_.find(key);
+  if (it != scoped_.end()) return it->second.result;
+  ContextPtr result = process_context(active, *def.local_context, def.base_url, opts_, nullptr,
+                                      override_protected, propagate, true);
+  scoped_.emplace(key, ScopedEntry{active, result});
+  return result;
+}
 
 std::string Expander::file_name(SourceLoc loc) const {
   if (!loc.known()) return {};
@@ -388,9 +434,8 @@ Value Expander::expand(const ContextPtr& active, ActiveProperty ap, const TermDe
   if (element.is_scalar()) {
     if (!ap || *ap == kGraph) return Value();  // 4.1 free-floating scalar
     if (ap_def != nullptr && ap_def->local_context) {
-      const ContextPtr scoped =
-          process_context(active, *ap_def->local_context, ap_def->base_url, opts_);  // 4.2
-      return expand_value(*scoped, ap, element);                                     // 4.3
+      const ContextPtr scoped = scoped_context(active, *ap_def, false, true);  // 4.2
+      return expand_value(*scoped, ap, element);                               // 4.3
     }
     return expand_value(*active, ap_def, element);  // 4.3
   }
@@ -445,8 +490,7 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
   }
   // 8
   if (ap_def != nullptr) {
-    active = process_context(active, *ap_def->local_context, ap_def->base_url, opts_, nullptr, true,
-                             true, true);
+    active = scoped_context(active, *ap_def, true, true);
   }
   // 9
   if (const Value* ctx = obj.find("@context")) {
@@ -476,8 +520,7 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
   auto apply_type_scoped = [&](const std::string& term) {
     const TermDefinition* def = tsc->find(term);
     if (def != nullptr && def->local_context) {
-      active = process_context(active, *def->local_context, def->base_url, opts_, nullptr, false,
-                               false, true);
+      active = scoped_context(active, *def, false, false);
     }
   };
   for (size_t i : type_entries) {
@@ -634,8 +677,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
       ContextPtr nested_active = active;
       const TermDefinition* nk_def = active->find(nesting_key);
       if (nk_def != nullptr && nk_def->local_context) {
-        nested_active = process_context(active, *nk_def->local_context, nk_def->base_url, opts_,
-                                        nullptr, true, true, true);
+        nested_active = scoped_context(active, *nk_def, true, true);
       }
       expand_entries(nested_active, std::string_view(nesting_key), nested->as_object(), base_url,
                      st);
@@ -902,7 +944,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
       if (has("@type")) {
         const TermDefinition* idef = map_context->find(index);
         if (idef != nullptr && idef->local_context) {
-          map_context = process_context(map_context, *idef->local_context, idef->base_url, opts_);
+          map_context = scoped_context(map_context, *idef, false, true);
         }
       }
     }
