@@ -333,6 +333,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
   result.touched_base = false;
   std::vector<std::string> copy = remote_contexts;
   detail::DepLog log;
+  if (cacheable) log.reserve(member_count(*loaded));
   {
     DepRecording recording(result, cacheable ? &log : nullptr);
     ChainEntry in_chain(chain_, iri);
@@ -560,6 +561,7 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   std::vector<std::string> local_remote;
   std::vector<std::string>& remote = remote_contexts != nullptr ? *remote_contexts : local_remote;
   detail::DepLog log;
+  if (delta_cacheable) log.reserve(member_count(local_context));
   {
     DepRecording recording(result, delta_cacheable ? &log : nullptr);
     proc.process(result, &active, local_context, base_url, remote, override_protected, propagate,

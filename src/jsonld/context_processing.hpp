@@ -97,14 +97,23 @@ struct TermLayer {
 };
 
 // What processing a context read from the term definitions of the active
-// context it started from (the "state"): the answer it got for `term`. With
+// context it started from (the "state"): the answer it got for a term. With
 // `weak`, only whether that definition is protected mattered (Create Term
-// Definition looking for a previous definition to protect).
+// Definition looking for a previous definition to protect). The term's text
+// is kept in its DepList's `text`.
 struct Dep {
-  std::string term;
-  TermPtr def;  // null: not defined
+  uint32_t pos = 0, len = 0;  // the term in DepList::text
+  TermPtr def;                // null: not defined
   bool weak = false;
-  size_t hash = 0;  // StringHash of term
+  size_t hash = 0;  // StringHash of the term
+};
+
+// Every term of one processing run, its spelling back to back in one string
+// rather than one allocation per term.
+struct DepList {
+  std::vector<Dep> items;
+  std::string text;
+  std::string_view term(const Dep& d) const { return std::string_view(text).substr(d.pos, d.len); }
 };
 
 // Records the Deps of one processing run, one per term (a full answer wins
@@ -115,37 +124,53 @@ struct Dep {
 // open-addressing table of positions in `deps`, instead of being copied into
 // the log and merged afterwards.
 struct DepLog {
-  std::vector<Dep> deps;
+  DepList deps;
   bool opaque = false;
+
+  // Room for about `terms` terms (each term a context defines is looked up
+  // once for CTD 6), so that recording does not grow the log step by step.
+  void reserve(size_t terms) {
+    deps.items.reserve(terms);
+    deps.text.reserve(terms * 16);
+    size_t n = 32;
+    while (n < 2 * terms) n *= 2;
+    if (n > slots_.size()) rehash(n);
+  }
 
   void record(const HashedKey& key, const TermPtr* found, bool weak) {
     TermPtr def = found != nullptr ? *found : nullptr;
     const bool only_protection = weak && !(def && def->protected_);
-    if (2 * (deps.size() + 1) > slots_.size()) grow();
+    if (2 * (deps.items.size() + 1) > slots_.size())
+      rehash(std::max<size_t>(32, slots_.size() * 2));
     const size_t mask = slots_.size() - 1;
     size_t i = key.hash & mask;
     for (; slots_[i] != 0; i = (i + 1) & mask) {
-      Dep& d = deps[slots_[i] - 1];
-      if (d.hash != key.hash || d.term != key.text) continue;
+      Dep& d = deps.items[slots_[i] - 1];
+      if (d.hash != key.hash || deps.term(d) != key.text) continue;
       if (d.weak && !only_protection) {
         d.weak = false;
         d.def = std::move(def);
       }
       return;
     }
-    deps.push_back({std::string(key.text), only_protection ? nullptr : std::move(def),
-                    only_protection, key.hash});
-    slots_[i] = static_cast<uint32_t>(deps.size());
+    Dep& d = deps.items.emplace_back();
+    d.pos = static_cast<uint32_t>(deps.text.size());
+    d.len = static_cast<uint32_t>(key.text.size());
+    deps.text.append(key.text);
+    if (!only_protection) d.def = std::move(def);
+    d.weak = only_protection;
+    d.hash = key.hash;
+    slots_[i] = static_cast<uint32_t>(deps.items.size());
   }
 
  private:
-  std::vector<uint32_t> slots_;  // position in deps + 1; 0: empty
+  std::vector<uint32_t> slots_;  // position in deps.items + 1; 0: empty
 
-  void grow() {
-    slots_.assign(std::max<size_t>(32, slots_.size() * 2), 0);
+  void rehash(size_t size) {
+    slots_.assign(size, 0);
     const size_t mask = slots_.size() - 1;
-    for (size_t n = 0; n < deps.size(); ++n) {
-      size_t i = deps[n].hash & mask;
+    for (size_t n = 0; n < deps.items.size(); ++n) {
+      size_t i = deps.items[n].hash & mask;
       while (slots_[i] != 0) i = (i + 1) & mask;
       slots_[i] = static_cast<uint32_t>(n + 1);
     }
@@ -159,7 +184,7 @@ struct Delta {
   std::optional<std::string> vocab, language, direction;  // of the state
   bool used_base = false;
   std::string base;  // compared only when used_base
-  std::vector<Dep> deps;
+  DepList deps;
   TermMap changes;  // defined or (null) removed terms
   std::optional<std::string> out_vocab, out_language, out_direction;
 };
@@ -521,10 +546,10 @@ struct LocalCtx {
 
 // Whether `state` answers every lookup in `deps` as the state they were
 // recorded on did: the same definition, or an equal unprotected one.
-inline bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* state) {
-  for (const detail::Dep& d : deps) {
+inline bool deps_hold(const detail::DepList& deps, const TermLayer* state) {
+  for (const detail::Dep& d : deps.items) {
     const TermPtr* p =
-        state != nullptr ? state->lookup(detail::HashedKey{d.term, d.hash}) : nullptr;
+        state != nullptr ? state->lookup(detail::HashedKey{deps.term(d), d.hash}) : nullptr;
     const TermDefinition* now = p != nullptr ? p->get() : nullptr;
     if (d.weak) {
       if (now != nullptr && now->protected_) return false;
@@ -538,6 +563,19 @@ inline bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* sta
     }
   }
   return true;
+}
+
+// The number of members of a local context (summed over an array of them):
+// about how many terms processing it looks up.
+inline size_t member_count(const json::Value& local_context) {
+  if (local_context.is_object()) return local_context.as_object().size();
+  size_t n = 0;
+  if (local_context.is_array()) {
+    for (const json::Value& item : local_context.as_array()) {
+      if (item.is_object()) n += item.as_object().size();
+    }
+  }
+  return n;
 }
 
 // Applies a cached Delta to `b` (whose state the Delta's deps hold on) and
