@@ -436,7 +436,8 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
     if (auto it = cache->owners.find(&local_context); it != cache->owners.end()) {
       owner = it->second.def.lock();
       if (owner && owner->local_context && &*owner->local_context == &local_context) {
-        content_hash = it->second.hash;
+        if (!it->second.hash) it->second.hash = hash_json(local_context);
+        content_hash = *it->second.hash;
       } else {
         owner.reset();
       }

@@ -232,6 +232,12 @@ inline bool ends_with_gen_delim(std::string_view s) {
   }
 }
 
+// expand_iri(), also telling in *is_term (when given and the value is no
+// keyword) whether `value` is a term of `active`, which the caller would
+// otherwise look up a second time.
+std::optional<std::string> expand_iri(const ActiveContext& active, std::string_view value,
+                                      bool document_relative, bool vocab, bool* is_term);
+
 inline bool is_keyword_alias(const TermDefinition& def) {
   return def.iri && is_keyword(*def.iri);
 }
@@ -321,7 +327,9 @@ struct ContextCache::Impl {
   // `*def->local_context` is recognised by address instead of by content.
   struct Owner {
     std::weak_ptr<const TermDefinition> def;
-    size_t hash = 0;  // hash_json of its local context, computed once
+    // hash_json of its local context, computed when first needed (most
+    // scoped contexts of a remote context are never used by a document).
+    std::optional<size_t> hash;
   };
   std::unordered_map<const json::Value*, Owner> owners;
   size_t owners_purge_at = 1024;
@@ -369,7 +377,7 @@ struct ContextCache::Impl {
       std::erase_if(owners, [](const auto& kv) { return kv.second.def.expired(); });
       owners_purge_at = std::max<size_t>(1024, owners.size() * 2);
     }
-    owners[&*def->local_context] = Owner{def, hash_json(*def->local_context)};
+    owners[&*def->local_context] = Owner{def, std::nullopt};
   }
 };
 

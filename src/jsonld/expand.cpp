@@ -391,10 +391,11 @@ std::optional<Expander::Pending> Expander::malformed_id(const std::string& iri,
 std::optional<std::string> Expander::expand_type_iri(const ActiveContext& type_scoped,
                                                      const Value& v, ObjectState& st) {
   const std::string& s = v.as_string();
-  std::optional<std::string> iri = expand_iri(type_scoped, s, true, true);
+  bool is_term = false;
+  std::optional<std::string> iri = internal::expand_iri(type_scoped, s, true, true, &is_term);
   if (!iri) return iri;
   if (opts_.diagnostics != nullptr && s.find(':') == std::string::npos && !is_keyword(s) &&
-      type_scoped.find(s) == nullptr && !type_scoped.vocab()) {
+      !is_term && !type_scoped.vocab()) {
     st.pending.push_back({v.location(), "undefined-type",
                           "@type value \"" + s +
                               "\" is not a defined term and resolves against the base to <" + *iri +
