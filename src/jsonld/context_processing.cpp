@@ -176,8 +176,9 @@ void Processor::process_item(Builder& result, const json::Value& context,
   LocalCtx lc(*ctx);
   for (size_t i = 0; i < ctx->size(); ++i) {
     const std::string& key = ctx->key(i);
-    if (key == "@base" || key == "@direction" || key == "@import" || key == "@language" ||
-        key == "@propagate" || key == "@protected" || key == "@version" || key == "@vocab") {
+    if (!key.empty() && key[0] == '@' &&
+        (key == "@base" || key == "@direction" || key == "@import" || key == "@language" ||
+         key == "@propagate" || key == "@protected" || key == "@version" || key == "@vocab")) {
       continue;
     }
     TermArgs args{base_url, protected_default, override_protected, &remote_contexts, validate};
@@ -332,6 +333,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
   result.touched_base = false;
   std::vector<std::string> copy = remote_contexts;
   detail::DepLog log;
+  if (cacheable) log.reserve(member_count(*loaded));
   {
     DepRecording recording(result, cacheable ? &log : nullptr);
     ChainEntry in_chain(chain_, iri);
@@ -342,7 +344,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
     delta.used_base = result.used_base;
     if (delta.used_base) delta.base = in_base;
     if (!log.opaque) {
-      delta.deps = unique_deps(std::move(log.deps));
+      delta.deps = std::move(log.deps);
       delta.changes = result.overlay;
       delta.out_vocab = result.vocab;
       delta.out_language = result.language;
@@ -434,7 +436,8 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
     if (auto it = cache->owners.find(&local_context); it != cache->owners.end()) {
       owner = it->second.def.lock();
       if (owner && owner->local_context && &*owner->local_context == &local_context) {
-        content_hash = it->second.hash;
+        if (!it->second.hash) it->second.hash = hash_json(local_context);
+        content_hash = *it->second.hash;
       } else {
         owner.reset();
       }
@@ -559,6 +562,7 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   std::vector<std::string> local_remote;
   std::vector<std::string>& remote = remote_contexts != nullptr ? *remote_contexts : local_remote;
   detail::DepLog log;
+  if (delta_cacheable) log.reserve(member_count(local_context));
   {
     DepRecording recording(result, delta_cacheable ? &log : nullptr);
     proc.process(result, &active, local_context, base_url, remote, override_protected, propagate,
@@ -575,7 +579,7 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
     d.direction = in.direction;
     d.used_base = result.used_base;
     if (d.used_base) d.base = in.base;
-    d.deps = unique_deps(std::move(log.deps));
+    d.deps = std::move(log.deps);
     d.changes = result.overlay;
     d.out_vocab = result.vocab;
     d.out_language = result.language;

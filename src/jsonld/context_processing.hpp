@@ -65,6 +65,10 @@ struct TermLayer {
   TermMap defs;
   uint32_t depth = 1;
   size_t protected_count = 0;  // protected terms visible through this layer
+  // Terms visible through this layer whose IRI mapping is a keyword (aliases
+  // such as "id": "@id"). Without any, only a keyword itself expands to a
+  // keyword, which expansion's per-key keyword checks use to skip the lookup.
+  size_t keyword_aliases = 0;
   // One bit per term of `defs` (bloom_bit of its hash): a lookup skips a
   // layer whose filter lacks the term's bit without probing its map, which
   // matters because most lookups pass the few terms of the scoped-context
@@ -79,7 +83,9 @@ struct TermLayer {
   }
 
   const TermPtr* lookup(std::string_view term) const {
-    const HashedKey key{term, StringHash{}(term)};
+    return lookup(HashedKey{term, StringHash{}(term)});
+  }
+  const TermPtr* lookup(const HashedKey& key) const {
     const uint64_t bit = bloom_bit(key.hash);
     for (const TermLayer* l = this; l != nullptr; l = l->parent.get()) {
       if ((l->bloom & bit) == 0) continue;
@@ -91,20 +97,84 @@ struct TermLayer {
 };
 
 // What processing a context read from the term definitions of the active
-// context it started from (the "state"): the answer it got for `term`. With
+// context it started from (the "state"): the answer it got for a term. With
 // `weak`, only whether that definition is protected mattered (Create Term
-// Definition looking for a previous definition to protect).
+// Definition looking for a previous definition to protect). The term's text
+// is kept in its DepList's `text`.
 struct Dep {
-  std::string term;
-  TermPtr def;  // null: not defined
+  uint32_t pos = 0, len = 0;  // the term in DepList::text
+  TermPtr def;                // null: not defined
   bool weak = false;
+  size_t hash = 0;  // StringHash of the term
 };
 
-// Records the Deps of one processing run; `opaque` when processing depended on
-// the state in a way Deps do not capture (nothing is then stored).
+// Every term of one processing run, its spelling back to back in one string
+// rather than one allocation per term.
+struct DepList {
+  std::vector<Dep> items;
+  std::string text;
+  std::string_view term(const Dep& d) const { return std::string_view(text).substr(d.pos, d.len); }
+};
+
+// Records the Deps of one processing run, one per term (a full answer wins
+// over a weak one) in first-lookup order; `opaque` when processing depended on
+// the state in a way Deps do not capture (nothing is then stored). A term is
+// looked up many times while a context is processed (every compact IRI looks
+// up its prefix), so repeats are merged as they are recorded, through a small
+// open-addressing table of positions in `deps`, instead of being copied into
+// the log and merged afterwards.
 struct DepLog {
-  std::vector<Dep> deps;
+  DepList deps;
   bool opaque = false;
+
+  // Room for about `terms` terms (each term a context defines is looked up
+  // once for CTD 6), so that recording does not grow the log step by step.
+  void reserve(size_t terms) {
+    deps.items.reserve(terms);
+    deps.text.reserve(terms * 16);
+    size_t n = 32;
+    while (n < 2 * terms) n *= 2;
+    if (n > slots_.size()) rehash(n);
+  }
+
+  void record(const HashedKey& key, const TermPtr* found, bool weak) {
+    TermPtr def = found != nullptr ? *found : nullptr;
+    const bool only_protection = weak && !(def && def->protected_);
+    if (2 * (deps.items.size() + 1) > slots_.size())
+      rehash(std::max<size_t>(32, slots_.size() * 2));
+    const size_t mask = slots_.size() - 1;
+    size_t i = key.hash & mask;
+    for (; slots_[i] != 0; i = (i + 1) & mask) {
+      Dep& d = deps.items[slots_[i] - 1];
+      if (d.hash != key.hash || deps.term(d) != key.text) continue;
+      if (d.weak && !only_protection) {
+        d.weak = false;
+        d.def = std::move(def);
+      }
+      return;
+    }
+    Dep& d = deps.items.emplace_back();
+    d.pos = static_cast<uint32_t>(deps.text.size());
+    d.len = static_cast<uint32_t>(key.text.size());
+    deps.text.append(key.text);
+    if (!only_protection) d.def = std::move(def);
+    d.weak = only_protection;
+    d.hash = key.hash;
+    slots_[i] = static_cast<uint32_t>(deps.items.size());
+  }
+
+ private:
+  std::vector<uint32_t> slots_;  // position in deps.items + 1; 0: empty
+
+  void rehash(size_t size) {
+    slots_.assign(size, 0);
+    const size_t mask = slots_.size() - 1;
+    for (size_t n = 0; n < deps.items.size(); ++n) {
+      size_t i = deps.items[n].hash & mask;
+      while (slots_[i] != 0) i = (i + 1) & mask;
+      slots_[i] = static_cast<uint32_t>(n + 1);
+    }
+  }
 };
 
 // The result of one processing run as a change to the term state, valid for
@@ -114,7 +184,7 @@ struct Delta {
   std::optional<std::string> vocab, language, direction;  // of the state
   bool used_base = false;
   std::string base;  // compared only when used_base
-  std::vector<Dep> deps;
+  DepList deps;
   TermMap changes;  // defined or (null) removed terms
   std::optional<std::string> out_vocab, out_language, out_direction;
 };
@@ -160,6 +230,16 @@ inline bool ends_with_gen_delim(std::string_view s) {
     default:
       return false;
   }
+}
+
+// expand_iri(), also telling in *is_term (when given and the value is no
+// keyword) whether `value` is a term of `active`, which the caller would
+// otherwise look up a second time.
+std::optional<std::string> expand_iri(const ActiveContext& active, std::string_view value,
+                                      bool document_relative, bool vocab, bool* is_term);
+
+inline bool is_keyword_alias(const TermDefinition& def) {
+  return def.iri && is_keyword(*def.iri);
 }
 
 inline std::string quoted(std::string_view s) {
@@ -247,7 +327,9 @@ struct ContextCache::Impl {
   // `*def->local_context` is recognised by address instead of by content.
   struct Owner {
     std::weak_ptr<const TermDefinition> def;
-    size_t hash = 0;  // hash_json of its local context, computed once
+    // hash_json of its local context, computed when first needed (most
+    // scoped contexts of a remote context are never used by a document).
+    std::optional<size_t> hash;
   };
   std::unordered_map<const json::Value*, Owner> owners;
   size_t owners_purge_at = 1024;
@@ -295,7 +377,7 @@ struct ContextCache::Impl {
       std::erase_if(owners, [](const auto& kv) { return kv.second.def.expired(); });
       owners_purge_at = std::max<size_t>(1024, owners.size() * 2);
     }
-    owners[&*def->local_context] = Owner{def, hash_json(*def->local_context)};
+    owners[&*def->local_context] = Owner{def, std::nullopt};
   }
 };
 
@@ -335,16 +417,15 @@ struct Builder {
   detail::DepLog* deps = nullptr;
 
   const TermPtr* lookup(std::string_view term, bool weak = false) const {
-    auto it = overlay.find(term);
+    // Hashed once for the overlays, the layers and the dependency log.
+    return lookup(detail::HashedKey{term, detail::StringHash{}(term)}, weak);
+  }
+  const TermPtr* lookup(const detail::HashedKey& key, bool weak) const {
+    auto it = overlay.find(key);
     if (it != overlay.end()) return &it->second;
-    if (parent != nullptr) return parent->lookup(term, weak);
-    const TermPtr* p = layer ? layer->lookup(term) : nullptr;
-    if (deps != nullptr) {
-      TermPtr def = p != nullptr ? *p : nullptr;
-      const bool only_protection = weak && !(def && def->protected_);
-      deps->deps.push_back(
-          {std::string(term), only_protection ? nullptr : std::move(def), only_protection});
-    }
+    if (parent != nullptr) return parent->lookup(key, weak);
+    const TermPtr* p = layer ? layer->lookup(key) : nullptr;
+    if (deps != nullptr) deps->record(key, p, weak);
     return p;
   }
   // CTD 6: the previous definition of a term being defined, which matters
@@ -396,11 +477,14 @@ struct Builder {
   void freeze() {
     if (deps != nullptr) deps->opaque = true;
     size_t protected_count = layer ? layer->protected_count : 0;
+    size_t keyword_aliases = layer ? layer->keyword_aliases : 0;
     for (auto it = overlay.begin(); it != overlay.end();) {
       const TermPtr* below = layer ? layer->lookup(it->first) : nullptr;
       const bool below_defined = below != nullptr && *below;
       if (below_defined && (*below)->protected_) --protected_count;
       if (it->second && it->second->protected_) ++protected_count;
+      if (below_defined && is_keyword_alias(**below)) --keyword_aliases;
+      if (it->second && is_keyword_alias(*it->second)) ++keyword_aliases;
       if (!it->second && !below_defined) {
         it = overlay.erase(it);  // removing nothing
       } else {
@@ -412,6 +496,7 @@ struct Builder {
     l->defs = std::move(overlay);  // the nodes move; nothing is reallocated
     overlay = TermMap();
     l->protected_count = protected_count;
+    l->keyword_aliases = keyword_aliases;
     if (layer && layer->depth + 1 > kMaxLayerDepth) {
       // Flatten: upper layers first, so emplace keeps the visible definition.
       for (const TermLayer* p = layer.get(); p != nullptr; p = p->parent.get()) {
@@ -469,9 +554,10 @@ struct LocalCtx {
 
 // Whether `state` answers every lookup in `deps` as the state they were
 // recorded on did: the same definition, or an equal unprotected one.
-inline bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* state) {
-  for (const detail::Dep& d : deps) {
-    const TermPtr* p = state != nullptr ? state->lookup(d.term) : nullptr;
+inline bool deps_hold(const detail::DepList& deps, const TermLayer* state) {
+  for (const detail::Dep& d : deps.items) {
+    const TermPtr* p =
+        state != nullptr ? state->lookup(detail::HashedKey{deps.term(d), d.hash}) : nullptr;
     const TermDefinition* now = p != nullptr ? p->get() : nullptr;
     if (d.weak) {
       if (now != nullptr && now->protected_) return false;
@@ -487,23 +573,17 @@ inline bool deps_hold(const std::vector<detail::Dep>& deps, const TermLayer* sta
   return true;
 }
 
-// One Dep per term (a full answer wins over a weak one), in first-lookup order.
-inline std::vector<detail::Dep> unique_deps(std::vector<detail::Dep> deps) {
-  std::unordered_map<std::string_view, size_t> at;  // views of out's terms
-  at.reserve(deps.size());
-  std::vector<detail::Dep> out;
-  out.reserve(deps.size());  // never reallocates, so the views stay valid
-  for (detail::Dep& d : deps) {
-    auto it = at.find(d.term);
-    if (it == at.end()) {
-      out.push_back(std::move(d));
-      at.emplace(out.back().term, out.size() - 1);
-    } else if (out[it->second].weak && !d.weak) {
-      out[it->second].weak = false;
-      out[it->second].def = std::move(d.def);
+// The number of members of a local context (summed over an array of them):
+// about how many terms processing it looks up.
+inline size_t member_count(const json::Value& local_context) {
+  if (local_context.is_object()) return local_context.as_object().size();
+  size_t n = 0;
+  if (local_context.is_array()) {
+    for (const json::Value& item : local_context.as_array()) {
+      if (item.is_object()) n += item.as_object().size();
     }
   }
-  return out;
+  return n;
 }
 
 // Applies a cached Delta to `b` (whose state the Delta's deps hold on) and
@@ -627,20 +707,26 @@ class Processor {
                                     bool vocab, LocalCtx* lc, const std::optional<TermArgs>& args);
 
   // A term definition's value as the map of CTD 7 - 9 without building it: a
-  // string or null value stands for {"@id": value}.
+  // string or null value stands for {"@id": value}. Its entries are picked out
+  // by one scan of the object rather than one search per keyword.
   struct TermValue {
     const json::Object* obj = nullptr;
-    const json::Value* id_only = nullptr;
-    const json::Value* find(std::string_view key) const {
-      if (obj != nullptr) return obj->find(key);
-      return key == "@id" ? id_only : nullptr;
-    }
-    bool contains(std::string_view key) const { return find(key) != nullptr; }
-    size_t size() const { return obj != nullptr ? obj->size() : 0; }
-    const std::string& key(size_t i) const { return obj->key(i); }
-    SourceLoc key_location(size_t i) const { return obj->key_location(i); }
-  };
+    const json::Value* id = nullptr;
+    const json::Value* reverse = nullptr;
+    const json::Value* container = nullptr;
+    const json::Value* context = nullptr;
+    const json::Value* direction = nullptr;
+    const json::Value* index = nullptr;
+    const json::Value* language = nullptr;
+    const json::Value* nest = nullptr;
+    const json::Value* prefix = nullptr;
+    const json::Value* protected_ = nullptr;
+    const json::Value* type = nullptr;
+    // The first member that is none of the above (CTD 26), or npos.
+    size_t unexpected = std::string::npos;
 
+    void scan(const json::Object& o);
+  };
   // Create Term Definition (4.2.2) for member `idx` of the local context.
   void create_term(Builder& active, LocalCtx& lc, size_t idx, const TermArgs& args);
 

@@ -51,14 +51,13 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
   if (const TermPtr* p = active.lookup_previous(term)) previous = *p;
   if (previous) active.set(term, nullptr);
   // CTD 7 - 9
-  TermValue tv;
-  const TermValue* v = &tv;
+  TermValue v;
   bool simple_term = false;
   if (value.is_null() || value.is_string()) {
-    tv.id_only = &value;
+    v.id = &value;
     simple_term = value.is_string();
   } else if (value.is_object()) {
-    tv.obj = &value.as_object();
+    v.scan(value.as_object());
   } else {
     fail("invalid term definition", name() + " must be defined by a string, null or an object",
          value.location());
@@ -68,7 +67,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
   def->protected_ = args.protected_default;
   def->where = where;
   // CTD 11
-  if (const json::Value* p = v->find("@protected")) {
+  if (const json::Value* p = v.protected_) {
     if (json10_) {
       fail("invalid term definition", name() + ": @protected is not allowed in json-ld-1.0",
            p->location());
@@ -80,7 +79,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->protected_ = p->as_bool();
   }
   // CTD 12
-  if (const json::Value* t = v->find("@type")) {
+  if (const json::Value* t = v.type) {
     if (!t->is_string()) {
       fail("invalid type mapping", name() + ": @type must be a string", t->location());
     }
@@ -99,8 +98,8 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->type = std::move(type);
   }
   // CTD 13
-  if (const json::Value* r = v->find("@reverse")) {
-    if (v->contains("@id") || v->contains("@nest")) {
+  if (const json::Value* r = v.reverse) {
+    if (v.id != nullptr || v.nest != nullptr) {
       fail("invalid reverse property", name() + ": @reverse cannot be combined with @id or @nest",
            r->location());
     }
@@ -122,7 +121,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
            r->location());
     }
     def->iri = std::move(iri);
-    if (const json::Value* c = v->find("@container")) {
+    if (const json::Value* c = v.container) {
       if (!(c->is_null() ||
             (c->is_string() && (c->as_string() == "@set" || c->as_string() == "@index")))) {
         fail("invalid reverse property",
@@ -132,7 +131,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
       if (c->is_string()) def->container.insert(c->as_string());
     }
     def->reverse = true;
-  } else if (const json::Value* id = v->find("@id");
+  } else if (const json::Value* id = v.id;
              id != nullptr && !(id->is_string() && id->as_string() == term)) {
     // CTD 14
     if (id->is_null()) {
@@ -216,11 +215,11 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
          name() + " has no @id and there is no @vocab to derive its IRI from", where);
   }
   // CTD 19
-  if (const json::Value* c = v->find("@container"); c != nullptr && !def->reverse) {
+  if (const json::Value* c = v.container; c != nullptr && !def->reverse) {
     validate_container(term, *c, *def);
   }
   // CTD 20
-  if (const json::Value* ix = v->find("@index")) {
+  if (const json::Value* ix = v.index) {
     if (json10_ || !def->container.contains("@index")) {
       fail("invalid term definition",
            name() + ": @index requires json-ld-1.1 and an @index container", ix->location());
@@ -234,7 +233,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->index = ix->as_string();
   }
   // CTD 21
-  if (const json::Value* sc = v->find("@context")) {
+  if (const json::Value* sc = v.context) {
     if (json10_) {
       fail("invalid term definition", name() + ": scoped contexts require json-ld-1.1",
            sc->location());
@@ -264,7 +263,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->base_url = args.base_url;
   }
   // CTD 22
-  if (const json::Value* l = v->find("@language"); l != nullptr && !v->contains("@type")) {
+  if (const json::Value* l = v.language; l != nullptr && v.type == nullptr) {
     if (!l->is_null() && !l->is_string()) {
       fail("invalid language mapping", name() + ": @language must be a string or null",
            l->location());
@@ -272,7 +271,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->language = *l;
   }
   // CTD 23
-  if (const json::Value* d = v->find("@direction"); d != nullptr && !v->contains("@type")) {
+  if (const json::Value* d = v.direction; d != nullptr && v.type == nullptr) {
     if (!(d->is_null() ||
           (d->is_string() && (d->as_string() == "ltr" || d->as_string() == "rtl")))) {
       fail("invalid base direction", name() + ": @direction must be \"ltr\", \"rtl\" or null",
@@ -281,7 +280,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->direction = *d;
   }
   // CTD 24
-  if (const json::Value* n = v->find("@nest")) {
+  if (const json::Value* n = v.nest) {
     if (json10_) {
       fail("invalid term definition", name() + ": @nest requires json-ld-1.1", n->location());
     }
@@ -291,7 +290,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->nest = n->as_string();
   }
   // CTD 25
-  if (const json::Value* p = v->find("@prefix")) {
+  if (const json::Value* p = v.prefix) {
     if (json10_ || term.find(':') != std::string::npos || term.find('/') != std::string::npos) {
       fail("invalid term definition",
            name() + ": @prefix requires json-ld-1.1 and a term without ':' or '/'", p->location());
@@ -306,14 +305,10 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     }
   }
   // CTD 26
-  for (size_t i = 0; i < v->size(); ++i) {
-    const std::string& k = v->key(i);
-    if (k != "@id" && k != "@reverse" && k != "@container" && k != "@context" &&
-        k != "@direction" && k != "@index" && k != "@language" && k != "@nest" && k != "@prefix" &&
-        k != "@protected" && k != "@type") {
-      fail("invalid term definition", name() + ": unexpected entry " + quoted(k),
-           v->key_location(i));
-    }
+  if (v.unexpected != std::string::npos) {
+    fail("invalid term definition",
+         name() + ": unexpected entry " + quoted(v.obj->key(v.unexpected)),
+         v.obj->key_location(v.unexpected));
   }
   // CTD 27
   TermPtr final_def = def;
@@ -339,6 +334,59 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
   // CTD 28
   active.set(term, std::move(final_def));
   lc.state[idx] = LocalCtx::Defined;
+}
+
+void Processor::TermValue::scan(const json::Object& o) {
+  obj = &o;
+  for (size_t i = 0; i < o.size(); ++i) {
+    const std::string& k = o.key(i);
+    const json::Value** slot = nullptr;
+    // By length, so that a key is compared with at most three keywords.
+    switch (k.size()) {
+      case 3:
+        if (k == "@id") slot = &id;
+        break;
+      case 5:
+        if (k == "@type") {
+          slot = &type;
+        } else if (k == "@nest") {
+          slot = &nest;
+        }
+        break;
+      case 6:
+        if (k == "@index") slot = &index;
+        break;
+      case 7:
+        if (k == "@prefix") slot = &prefix;
+        break;
+      case 8:
+        if (k == "@context") {
+          slot = &context;
+        } else if (k == "@reverse") {
+          slot = &reverse;
+        }
+        break;
+      case 9:
+        if (k == "@language") slot = &language;
+        break;
+      case 10:
+        if (k == "@container") {
+          slot = &container;
+        } else if (k == "@direction") {
+          slot = &direction;
+        } else if (k == "@protected") {
+          slot = &protected_;
+        }
+        break;
+      default:
+        break;
+    }
+    if (slot != nullptr) {
+      *slot = &o.value(i);
+    } else if (unexpected == std::string::npos) {
+      unexpected = i;
+    }
+  }
 }
 
 void Processor::validate_container(std::string_view term, const json::Value& c,

@@ -8,10 +8,12 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "jsonld/context.hpp"
+#include "jsonld/context_processing.hpp"
 #include "jsonld/loader.hpp"
 #include "rdf/iri.hpp"
 #include "support/spelling.hpp"
@@ -172,12 +174,19 @@ Value string_at(std::string s, SourceLoc loc) {
   return v;
 }
 
+// Whether some term of `ctx` is a keyword alias. Contexts rarely have one, and
+// without one no term lookup can turn a key into a keyword.
+bool has_keyword_aliases(const ActiveContext& ctx) {
+  const LayerPtr& terms = ctx.impl().terms;
+  return terms && terms->keyword_aliases != 0;
+}
+
 // Whether `key` IRI-expands to `keyword` in `ctx`, without building the
 // expansion: only a keyword itself or a keyword alias can (IRI Expansion steps
 // 1, 2 and 4), which keeps this check off the allocator in the per-node scans.
 bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_view keyword) {
   if (key == keyword) return true;
-  if (is_keyword(key) || has_keyword_form(key)) return false;
+  if (is_keyword(key) || has_keyword_form(key) || !has_keyword_aliases(ctx)) return false;
   const TermDefinition* def = ctx.find(key);
   return def != nullptr && def->iri && *def->iri == keyword;
 }
@@ -186,10 +195,20 @@ bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_vi
 // alias of), or empty: expands_to for every keyword at once.
 std::string_view keyword_of(const ActiveContext& ctx, const std::string& key) {
   if (is_keyword(key)) return key;
-  if (has_keyword_form(key)) return {};
+  if (has_keyword_form(key) || !has_keyword_aliases(ctx)) return {};
   const TermDefinition* def = ctx.find(key);
   if (def != nullptr && def->iri && is_keyword(*def->iri)) return *def->iri;
   return {};
+}
+
+// Whether a term definition's container mapping holds `c`. The mapping has at
+// most three entries, so a scan beats std::set::count, which would build a
+// std::string key for every lookup.
+bool has_container(const std::set<std::string>& container, std::string_view c) {
+  for (const std::string& entry : container) {
+    if (entry == c) return true;
+  }
+  return false;
 }
 
 // Visiting order of an object's members: insertion order, or code-point order
@@ -273,12 +292,57 @@ class Expander {
       *opts_.property_prefix_seen = true;
   }
 
+  // process_context() for the scoped context of `def`, a term definition of
+  // `active`. With a context cache, the answer is remembered for this
+  // expansion: the cache would return the same context for the same inputs
+  // (`def` lives as long as `active`, which the memo keeps), and its own
+  // lookup costs a hash of the base URL and several comparisons, at most
+  // nodes of a document.
+  ContextPtr scoped_context(const ContextPtr& active, const TermDefinition& def,
+                            bool override_protected, bool propagate);
+
+  struct ScopedKey {
+    const ActiveContext* active;
+    const TermDefinition* def;
+    unsigned flags;
+    bool operator==(const ScopedKey&) const = default;
+  };
+  struct ScopedKeyHash {
+    size_t operator()(const ScopedKey& k) const noexcept {
+      const auto a = reinterpret_cast<uintptr_t>(k.active);
+      const auto d = reinterpret_cast<uintptr_t>(k.def);
+      return std::hash<uintptr_t>{}(a * 31 + d * 7 + k.flags);
+    }
+  };
+  struct ScopedEntry {
+    ContextPtr active;  // keeps the key's context, and so its definition, alive
+    ContextPtr result;
+  };
+  std::unordered_map<ScopedKey, ScopedEntry, ScopedKeyHash> scoped_;
+
   std::string file_name(SourceLoc loc) const;
   [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
   void flush(ObjectState& st, const Object& result, ActiveProperty ap) const;
 
   const Options& opts_;
 };
+
+ContextPtr Expander::scoped_context(const ContextPtr& active, const TermDefinition& def,
+                                    bool override_protected, bool propagate) {
+  // Without a cache every call processes the context again (and reports
+  // what it reports again), so there is nothing to remember.
+  if (!opts_.context_cache) {
+    return process_context(active, *def.local_context, def.base_url, opts_, nullptr,
+                           override_protected, propagate, true);
+  }
+  const ScopedKey key{active.get(), &def, (override_protected ? 1u : 0u) | (propagate ? 2u : 0u)};
+  auto it = scoped_.find(key);
+  if (it != scoped_.end()) return it->second.result;
+  ContextPtr result = process_context(active, *def.local_context, def.base_url, opts_, nullptr,
+                                      override_protected, propagate, true);
+  scoped_.emplace(key, ScopedEntry{active, result});
+  return result;
+}
 
 std::string Expander::file_name(SourceLoc loc) const {
   if (!loc.known()) return {};
@@ -327,10 +391,11 @@ std::optional<Expander::Pending> Expander::malformed_id(const std::string& iri,
 std::optional<std::string> Expander::expand_type_iri(const ActiveContext& type_scoped,
                                                      const Value& v, ObjectState& st) {
   const std::string& s = v.as_string();
-  std::optional<std::string> iri = expand_iri(type_scoped, s, true, true);
+  bool is_term = false;
+  std::optional<std::string> iri = internal::expand_iri(type_scoped, s, true, true, &is_term);
   if (!iri) return iri;
   if (opts_.diagnostics != nullptr && s.find(':') == std::string::npos && !is_keyword(s) &&
-      type_scoped.find(s) == nullptr && !type_scoped.vocab()) {
+      !is_term && !type_scoped.vocab()) {
     st.pending.push_back({v.location(), "undefined-type",
                           "@type value \"" + s +
                               "\" is not a defined term and resolves against the base to <" + *iri +
@@ -370,15 +435,14 @@ Value Expander::expand(const ContextPtr& active, ActiveProperty ap, const TermDe
   if (element.is_scalar()) {
     if (!ap || *ap == kGraph) return Value();  // 4.1 free-floating scalar
     if (ap_def != nullptr && ap_def->local_context) {
-      const ContextPtr scoped =
-          process_context(active, *ap_def->local_context, ap_def->base_url, opts_);  // 4.2
-      return expand_value(*scoped, ap, element);                                     // 4.3
+      const ContextPtr scoped = scoped_context(active, *ap_def, false, true);  // 4.2
+      return expand_value(*scoped, ap, element);                               // 4.3
     }
     return expand_value(*active, ap_def, element);  // 4.3
   }
   // 5
   if (element.is_array()) {
-    const bool list_container = ap_def != nullptr && ap_def->container.count("@list") != 0;
+    const bool list_container = ap_def != nullptr && has_container(ap_def->container, "@list");
     Value out{Array{}};
     out.set_location(element.location());
     Array& result = out.as_array();
@@ -427,8 +491,7 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
   }
   // 8
   if (ap_def != nullptr) {
-    active = process_context(active, *ap_def->local_context, ap_def->base_url, opts_, nullptr, true,
-                             true, true);
+    active = scoped_context(active, *ap_def, true, true);
   }
   // 9
   if (const Value* ctx = obj.find("@context")) {
@@ -458,8 +521,7 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
   auto apply_type_scoped = [&](const std::string& term) {
     const TermDefinition* def = tsc->find(term);
     if (def != nullptr && def->local_context) {
-      active = process_context(active, *def->local_context, def->base_url, opts_, nullptr, false,
-                               false, true);
+      active = scoped_context(active, *def, false, false);
     }
   };
   for (size_t i : type_entries) {
@@ -528,9 +590,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     // 13.5
     static const std::set<std::string> kNoContainer;
     const std::set<std::string>& container = def != nullptr ? def->container : kNoContainer;
-    auto has = [&container](std::string_view c) {
-      return !container.empty() && container.count(std::string(c)) != 0;
-    };
+    auto has = [&container](std::string_view c) { return has_container(container, c); };
     Value expanded_value;
     if (def != nullptr && def->type && *def->type == "@json"sv) {  // 13.6
       Object lit;
@@ -618,8 +678,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
       ContextPtr nested_active = active;
       const TermDefinition* nk_def = active->find(nesting_key);
       if (nk_def != nullptr && nk_def->local_context) {
-        nested_active = process_context(active, *nk_def->local_context, nk_def->base_url, opts_,
-                                        nullptr, true, true, true);
+        nested_active = scoped_context(active, *nk_def, true, true);
       }
       expand_entries(nested_active, std::string_view(nesting_key), nested->as_object(), base_url,
                      st);
@@ -871,7 +930,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
   Value out{Array{}};
   out.set_location(value.location());
   const std::set<std::string>& container = def.container;
-  auto has = [&container](const char* c) { return container.count(c) != 0; };
+  auto has = [&container](std::string_view c) { return has_container(container, c); };
   const bool id_or_type = has("@id") || has("@type");
   const std::string index_key = def.index ? *def.index : std::string("@index");  // 13.8.2
   const Object& map = value.as_object();
@@ -886,7 +945,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
       if (has("@type")) {
         const TermDefinition* idef = map_context->find(index);
         if (idef != nullptr && idef->local_context) {
-          map_context = process_context(map_context, *idef->local_context, idef->base_url, opts_);
+          map_context = scoped_context(map_context, *idef, false, true);
         }
       }
     }

@@ -70,6 +70,13 @@ using namespace internal;
 
 std::optional<std::string> expand_iri(const ActiveContext& active, std::string_view value,
                                       bool document_relative, bool vocab) {
+  return internal::expand_iri(active, value, document_relative, vocab, nullptr);
+}
+
+namespace internal {
+
+std::optional<std::string> expand_iri(const ActiveContext& active, std::string_view value,
+                                      bool document_relative, bool vocab, bool* is_term) {
   // IE 1
   if (!value.empty() && value[0] == '@') {
     if (is_keyword(value)) return std::string(value);
@@ -77,6 +84,7 @@ std::optional<std::string> expand_iri(const ActiveContext& active, std::string_v
     if (has_keyword_form(value)) return std::nullopt;
   }
   const TermDefinition* def = active.find(value);
+  if (is_term != nullptr) *is_term = def != nullptr;
   if (def != nullptr) {
     // IE 4
     if (def->iri && is_keyword(*def->iri)) return def->iri;
@@ -109,5 +117,7 @@ std::optional<std::string> expand_iri(const ActiveContext& active, std::string_v
   if (document_relative) return rdf::resolve_iri(active.base(), value);
   return std::string(value);
 }
+
+}  // namespace internal
 
 }  // namespace mospec::jsonld

@@ -113,19 +113,26 @@ std::string code_point(int u) {
 }  // namespace
 
 std::string MappedDocumentLoader::canonical_document_path(const std::string& path) const {
-  const fs::path p(path);
-  const fs::path name = p.filename();
+  // Split at the last '/' by hand: the directory is only canonicalised (and a
+  // memo key), so any spelling of it will do, and building std::filesystem
+  // paths cost more than the rest of the check.
+  const size_t slash = path.rfind('/');
+  const std::string_view name = slash == std::string::npos
+                                    ? std::string_view(path)
+                                    : std::string_view(path).substr(slash + 1);
   struct stat st {};
   if (!name.empty() && name != "." && name != ".." && ::lstat(path.c_str(), &st) == 0 &&
       !S_ISLNK(st.st_mode)) {
-    const std::string dir = p.parent_path().string();
+    const std::string dir = slash == std::string::npos ? std::string()
+                            : slash == 0               ? std::string("/")
+                                                       : path.substr(0, slash);
     auto it = canonical_dirs_.find(dir);
     if (it == canonical_dirs_.end()) {
       it = canonical_dirs_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string()).first;
     }
     std::string out = it->second;
     if (out.empty() || out.back() != '/') out += '/';
-    out += name.string();
+    out += name;
     return out;
   }
   return canonical_path(path).string();
@@ -153,17 +160,38 @@ void MappedDocumentLoader::allow(std::string dir) {
   allowed_.push_back(std::move(dir));
 }
 
+namespace {
+
+// Whether `path` is `root` or lies below it, by their spelling: true only when
+// is_within(path, root) is (root is an absolute path without a trailing '/'
+// and `path` continues it at a '/'), so a false answer is checked again by
+// is_within. Both are canonical paths, so this answers nearly every check
+// without building std::filesystem paths.
+bool plainly_within(std::string_view path, std::string_view root) {
+  if (root == "/") return path.starts_with('/');
+  if (root.size() < 2 || root[0] != '/' || root[1] == '/' || root.back() == '/') return false;
+  return path.starts_with(root) && (path.size() == root.size() || path[root.size()] == '/');
+}
+
+}  // namespace
+
 bool MappedDocumentLoader::inside_sandbox(const std::string& canonical) const {
-  const fs::path p(canonical);
-  for (const auto* table : {&prefixes_, &fallbacks_}) {
-    for (const auto& entry : *table) {
-      if (is_within(p, fs::path(root_paths_.at(entry.second)))) return true;
+  // Any root will do: first by spelling, then component by component.
+  auto any_root = [this](const auto& within) {
+    for (const auto* table : {&prefixes_, &fallbacks_}) {
+      for (const auto& entry : *table) {
+        if (within(root_paths_.at(entry.second))) return true;
+      }
     }
-  }
-  for (const std::string& dir : allowed_) {
-    if (is_within(p, fs::path(root_paths_.at(dir)))) return true;
-  }
-  return false;
+    for (const std::string& dir : allowed_) {
+      if (within(root_paths_.at(dir))) return true;
+    }
+    return false;
+  };
+  if (any_root([&canonical](const std::string& root) { return plainly_within(canonical, root); }))
+    return true;
+  const fs::path p(canonical);
+  return any_root([&p](const std::string& root) { return is_within(p, fs::path(root)); });
 }
 
 std::string MappedDocumentLoader::sandbox_roots() const {
@@ -183,6 +211,13 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
                                                       SourceLoc referenced_from,
                                                       std::string_view code,
                                                       std::string_view what) const {
+  return resolve_for_loading(iri, referenced_from, code, what, nullptr);
+}
+
+std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
+                                                      SourceLoc referenced_from,
+                                                      std::string_view code, std::string_view what,
+                                                      std::string* mapped) const {
   const std::string& ref_file = files_.path(referenced_from.file);
   auto fail = [&](const std::string& reason) -> Error {
     return Error(std::string(code),
@@ -217,8 +252,10 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
                  "); models may only load files inside it (pass --map IRI=DIR to add a "
                  "directory you trust)");
     }
+    if (mapped != nullptr) *mapped = std::move(path);
     return canonical;
   }
+  if (mapped != nullptr) *mapped = path;
   return path;
 }
 
@@ -261,9 +298,10 @@ RemoteDocument MappedDocumentLoader::load(std::string_view iri, SourceLoc refere
   // Confined, the file read is the checked canonical path (no link swapped in
   // between check and read changes which file that is); messages keep the
   // mapped path the user recognises.
-  const std::string read_path = resolve_for_loading(iri, referenced_from, code, what);
+  std::string path;
+  const std::string read_path = resolve_for_loading(iri, referenced_from, code, what, &path);
   try {
-    return load_path(resolve(iri), read_path, std::string(iri), confined_);
+    return load_path(path, read_path, std::string(iri), confined_);
   } catch (const Error& e) {
     if (e.code() != kDocumentFailed) throw;  // JSON syntax errors keep their own location
     // Re-issue at the reference, with the code the caller asked for.

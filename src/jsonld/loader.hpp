@@ -82,6 +82,10 @@ class MappedDocumentLoader : public DocumentLoader {
   // (the sandbox check computed it), so it keys the cache as it is.
   RemoteDocument load_path(const std::string& path, const std::string& read_path,
                            std::string document_url, bool read_path_is_canonical = false);
+  // resolve_for_loading(), also storing resolve()'s answer in *mapped.
+  std::string resolve_for_loading(std::string_view iri, SourceLoc referenced_from,
+                                  std::string_view code, std::string_view what,
+                                  std::string* mapped) const;
   bool inside_sandbox(const std::string& canonical) const;
   std::string sandbox_roots() const;
   // Records the canonical form of a sandbox root when it is added, so each

@@ -444,6 +444,53 @@ TEST_F(ContextTest, DeltaCacheAppliesOnlyWhereTheStateAnswersAlike) {
   EXPECT_EQ(options.context_cache->stats().delta_hits, before + 1);
 }
 
+TEST_F(ContextTest, TermDefinitionEntriesAreCheckedInTheSpecsOrder) {
+  // CTD 26 names the first entry that is no term-definition keyword, at its key.
+  EXPECT_EQ(error_of(R"({"t": {"@id": "http://e/t", "@idd": 1, "@other": 2}})"),
+            "invalid term definition");
+  EXPECT_EQ(last_error->diagnostic().message, "term \"t\": unexpected entry \"@idd\"");
+  EXPECT_EQ(last_error->diagnostic().line, 1u);
+  EXPECT_EQ(last_error->diagnostic().column, 29u);
+  // An invalid @type (CTD 12) is reported before an unexpected entry, wherever
+  // the entries are written.
+  EXPECT_EQ(error_of(R"({"t": {"x": 1, "@id": "http://e/t", "@type": 5}})"),
+            "invalid type mapping");
+  // Entries that are keywords of the right length but not of term definitions.
+  EXPECT_EQ(error_of(R"({"t": {"@id": "http://e/t", "@value": "v"}})"), "invalid term definition");
+  EXPECT_EQ(last_error->diagnostic().message, "term \"t\": unexpected entry \"@value\"");
+  // Every term-definition keyword is accepted.
+  ContextPtr c = process(R"({"ex": "http://e/", "t": {"@id": "ex:t", "@container": "@index",
+      "@index": "ex:i", "@context": {}, "@nest": "@nest", "@protected": true, "@prefix": false,
+      "@language": "en", "@direction": "ltr"}, "r": {"@reverse": "ex:r"}})");
+  EXPECT_EQ(c->find("t")->iri, "http://e/t");
+  EXPECT_EQ(c->find("t")->index, "ex:i");
+  EXPECT_EQ(c->find("t")->nest, "@nest");
+  EXPECT_TRUE(c->find("t")->protected_);
+  EXPECT_TRUE(c->find("r")->reverse);
+}
+
+TEST_F(ContextTest, DeltaCacheKeepsTheFullAnswerForATermLookedUpTwice) {
+  options.context_cache = std::make_shared<ContextCache>();
+  // "ex" is first looked up only for its protection (CTD 6: its definition is
+  // then dropped as keyword-like) and then for its IRI (the prefix of "p").
+  // The delta recorded over a state without "ex" must therefore not apply
+  // where "ex" is defined: there CTD 6 removes it.
+  loader.add("http://ctx.org/w.jsonld",
+             R"({"@context": {"ex": {"@id": "@ignoreMe"}, "p": "ex:p"}})");
+  const std::string ref = R"("http://ctx.org/w.jsonld")";
+  ContextPtr without = process(R"({"other": "http://o/"})");
+  ContextPtr with = process(R"({"ex": "http://b/"})");
+  ContextPtr a = process(ref, without);
+  EXPECT_EQ(a->find("ex"), nullptr);
+  EXPECT_EQ(a->find("p")->iri, "ex:p");
+  const size_t hits = options.context_cache->stats().delta_hits;
+  ContextPtr b = process(ref, with);
+  EXPECT_EQ(options.context_cache->stats().delta_hits, hits);  // processed anew
+  EXPECT_EQ(b->find("ex"), nullptr);
+  EXPECT_EQ(b->find("p")->iri, "ex:p");
+  sink.clear();
+}
+
 }  // namespace
 }  // namespace mospec::jsonld
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "jsonld/context.hpp"
 #include "jsonld/loader.hpp"
 
 namespace mospec::jsonld {
@@ -111,6 +112,53 @@ TEST_F(Expand, PropertyScopedContextPropagatesToNestedNodes) {
     "@context": {"@vocab": "http://ex/", "p": {"@context": {"q": "http://p/q"}}},
     "p": {"q": {"q": 1}}})",
                  R"([{"http://ex/p": [{"http://p/q": [{"http://p/q": [{"@value": 1}]}]}]}])");
+}
+
+TEST_F(Expand, KeywordAliasesAddedOrRemovedByScopedAndEmbeddedContexts) {
+  // Aliases defined only in a property-scoped context, over contexts without any.
+  expect_expands(R"({
+    "@context": {"@vocab": "http://ex/", "p": {"@context": {"kind": "@type", "val": "@value"}}},
+    "p": [{"kind": "T", "q": 1}, {"val": "v"}]})",
+                 R"([{"http://ex/p": [{"@type": ["http://ex/T"], "http://ex/q": [{"@value": 1}]},
+                                      {"@value": "v"}]}])");
+  // An alias of the outer context, mapped to null by an embedded context.
+  expect_expands(
+      R"({
+    "@context": {"@vocab": "http://ex/", "kind": "@type"},
+    "kind": "A", "r": {"@context": {"kind": null}, "kind": "B", "s": 2}})",
+      R"([{"@type": ["http://ex/A"], "http://ex/r": [{"http://ex/s": [{"@value": 2}]}]}])");
+  sink_.clear();
+}
+
+TEST_F(Expand, ScopedContextsMetAgainExpandAlikeWithAndWithoutACache) {
+  // Each node meets the same type-scoped and property-scoped contexts over the
+  // same active context, and the last one over another (its own @context,
+  // whose @vocab reaches only the key no scoped context defines).
+  const std::string doc = R"({
+    "@context": {"@vocab": "http://ex/",
+                 "T": {"@context": {"q": {"@id": "http://t/q", "@type": "@id"}}},
+                 "p": {"@context": {"r": {"@id": "http://p/r", "@type": "@id"}}}},
+    "@graph": [
+      {"@id": "n1", "@type": "T", "q": "a", "p": {"r": "b"}},
+      {"@id": "n2", "@type": "T", "q": "c", "p": {"r": "d"}},
+      {"@context": {"@vocab": "http://other/"}, "@id": "n3", "@type": "T", "q": "e",
+       "p": {"r": "f", "s": 1}}]})";
+  const std::string want = R"([
+    {"@id": "http://example.org/n1", "@type": ["http://ex/T"],
+     "http://t/q": [{"@id": "http://example.org/a"}],
+     "http://ex/p": [{"http://p/r": [{"@id": "http://example.org/b"}]}]},
+    {"@id": "http://example.org/n2", "@type": ["http://ex/T"],
+     "http://t/q": [{"@id": "http://example.org/c"}],
+     "http://ex/p": [{"http://p/r": [{"@id": "http://example.org/d"}]}]},
+    {"@id": "http://example.org/n3", "@type": ["http://ex/T"],
+     "http://t/q": [{"@id": "http://example.org/e"}],
+     "http://ex/p": [{"http://p/r": [{"@id": "http://example.org/f"}],
+                      "http://other/s": [{"@value": 1}]}]}])";
+  expect_expands(doc, want);
+  opts_.context_cache = std::make_shared<ContextCache>();
+  expect_expands(doc, want);
+  expect_expands(doc, want);  // and again, from the cache's earlier results
+  sink_.clear();
 }
 
 TEST_F(Expand, NestUnfoldsIntoTheNode) {

@@ -296,6 +296,18 @@ TEST_F(SandboxTest, AllowedDirectoriesAndFallbacksCount) {
   EXPECT_NO_THROW(loader_.load("https://meta.example/m.json", ref_, true));
 }
 
+// Roots spelled with a trailing '/' or as "/" itself still contain their files
+// (the check compares paths by spelling first, by components otherwise).
+TEST_F(SandboxTest, RootsWithATrailingSlashOrTheFileSystemRoot) {
+  const std::string sibling = "file://" + fs::canonical(dir("tree2/ok.json")).string();
+  loader_.allow(dir("tree2") + "/");
+  EXPECT_NO_THROW(loader_.load(sibling, ref_, true));
+  const std::string secret = "file://" + fs::canonical(dir("secret.json")).string();
+  EXPECT_NE(error_of(secret).find("outside the model tree"), std::string::npos);
+  loader_.allow("/");
+  EXPECT_NO_THROW(loader_.load(secret, ref_, true));
+}
+
 TEST_F(SandboxTest, ControlCharactersAreRefusedRawOrEncoded) {
   EXPECT_EQ(error_of("https://ex.org/ok.json%00.txt"),
             app_ +
