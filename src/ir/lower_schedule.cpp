@@ -60,7 +60,9 @@ void schedule(State& st) {
     }
     return;
   }
-  for (size_t i : order) st.program.steps.push_back(st.steps[i]);
+  // Moved: from here on only program.steps is read.
+  st.program.steps.reserve(n);
+  for (size_t i : order) st.program.steps.push_back(std::move(st.steps[i]));
 }
 
 void build_log(State& st) {

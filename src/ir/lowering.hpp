@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "ir/graph.hpp"
@@ -34,9 +35,16 @@ inline std::string vocab(std::string_view domain, std::string_view local) {
 inline const std::string kXsd(mospec::vocab::xsd::ns);
 inline const std::string kQudt(mospec::vocab::qudt::ns);
 
+// What follows the last '#' or '/' (a plain loop: find_last_of calls memchr
+// once per character).
+inline std::string_view local_view(std::string_view iri) {
+  for (size_t k = iri.size(); k > 0; --k) {
+    if (iri[k - 1] == '#' || iri[k - 1] == '/') return iri.substr(k);
+  }
+  return iri;
+}
 inline std::string local_name(std::string_view iri) {
-  const size_t k = iri.find_last_of("#/");
-  return std::string(k == std::string_view::npos ? iri : iri.substr(k + 1));
+  return std::string(local_view(iri));
 }
 
 // "a " or "an ", as messages put it before `word`.
@@ -46,10 +54,17 @@ inline std::string article(std::string_view word) {
              : "an ";
 }
 
+// ASCII letters and digits are kept (as std::isalnum does in the "C" locale
+// mospec runs in), anything else becomes '_'.
 inline std::string identifier(std::string_view s) {
+  const auto alnum = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+  };
   std::string out;
-  for (char c : s) out.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
-  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out.insert(0, "q_");
+  const bool digit_first = !s.empty() && s[0] >= '0' && s[0] <= '9';
+  out.reserve(s.size() + (s.empty() || digit_first ? 2 : 0));
+  if (s.empty() || digit_first) out = "q_";
+  for (char c : s) out.push_back(alnum(c) ? c : '_');
   return out;
 }
 
@@ -168,12 +183,14 @@ struct State {
   int datum(TermId e, DataType expected, TermId referenced_by, const std::string& role);
   int synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
                 const std::string& unit = {});
-  std::string unique_name(const std::string& base, std::set<std::string>& used) {
+  // `base` as an identifier, made unique among `used` by a suffix _2, _3, ...
+  std::string unique_name(std::string_view base, std::unordered_set<std::string>& used) {
     std::string n = identifier(base);
-    std::string candidate = n;
-    for (int k = 2; used.count(candidate); ++k) candidate = n + "_" + std::to_string(k);
-    used.insert(candidate);
-    return candidate;
+    if (used.insert(n).second) return n;
+    for (int k = 2;; ++k) {
+      std::string candidate = n + "_" + std::to_string(k);
+      if (used.insert(candidate).second) return candidate;
+    }
   }
   void fill_constant(Data& d, TermId e);
   void fill_inertia(Data& d, TermId e);
@@ -234,11 +251,11 @@ struct State {
   // several values where one is read (once per subject and property).
   mutable std::vector<Diagnostic> errors;
   mutable std::set<std::pair<uint32_t, std::string>> several_reported;
-  mutable std::optional<DatumTerms> datum_terms_;  // datum_terms(), once looked up
-  std::set<std::string> data_names, step_names;
-  std::unordered_map<uint32_t, int> data_of;  // model entity (term index) -> its datum
-  std::map<int, int> producer;                // datum -> the step that writes it
-  std::string pending_iri;                    // the entity being lowered, for messages
+  mutable std::optional<DatumTerms> datum_terms_;          // datum_terms(), once looked up
+  std::unordered_set<std::string> data_names, step_names;  // taken (unique_name)
+  std::unordered_map<uint32_t, int> data_of;               // model entity (term index) -> its datum
+  std::map<int, int> producer;                             // datum -> the step that writes it
+  std::string pending_iri;                                 // the entity being lowered, for messages
 
   // Tables one pass leaves for a later one (writer -> readers).
   // evaluators -> handlers: which Evaluate step checks a constraint.
