@@ -82,12 +82,7 @@ struct State {
   // The one value of a single-valued property. A second value (e.g. a
   // quantity given a value by two files) is never resolved by picking one:
   // it is a located error naming both (several_values).
-  std::optional<TermId> object(TermId s, const std::string& p) const {
-    const std::vector<TermId> all = graph.objects(s, term(p));
-    if (all.empty()) return std::nullopt;
-    if (all.size() > 1) several_values(s, p, all);
-    return all.front();
-  }
+  std::optional<TermId> object(TermId s, const std::string& p) const { return object(s, term(p)); }
   void several_values(TermId s, const std::string& p, const std::vector<TermId>& values) const;
   // For a reference to `e` that nothing defines: "; did you mean '<nearest>'?"
   // naming the defined entity of the same namespace nearest in spelling, or "".
@@ -168,11 +163,19 @@ struct State {
     TermId x, y, z, direction_cosine[3];
   };
   const DatumTerms& datum_terms() const;
-  // object(s, p) for a property given by its id.
+  // object(s, p) for a property given by its id. Only a property with
+  // several values is read as a sorted list (for the error and the first).
   std::optional<TermId> object(TermId s, TermId p) const {
+    bool several = false;
+    const TermId one = graph.single_object(s, p, several);
+    if (several) return several_of(s, p);
+    if (one.is_any()) return std::nullopt;
+    return one;
+  }
+  // The first of a property's several values, reported (several_values).
+  TermId several_of(TermId s, TermId p) const {
     const std::vector<TermId> all = graph.objects(s, p);
-    if (all.empty()) return std::nullopt;
-    if (all.size() > 1) several_values(s, str(p), all);
+    several_values(s, str(p), all);
     return all.front();
   }
   std::optional<double> number(TermId s, TermId p) const {
@@ -192,7 +195,6 @@ struct State {
       if (used.insert(candidate).second) return candidate;
     }
   }
-  void fill_constant(Data& d, TermId e);
   void fill_inertia(Data& d, TermId e);
 
   // --- steps --------------------------------------------------------------
