@@ -50,6 +50,16 @@ class Graph {
     SourceLoc where;
   };
   std::vector<Statement> statements(TermId s) const;
+  // statements(s) one by one, without building the list.
+  template <class Visit>
+  void each_statement(TermId s, Visit&& visit) const {
+    if (s.is_any()) return;
+    dataset_.scan(s, TermId::any(), TermId::any(), TermId::any(),
+                  [&](const rdf::Quad& q, uint32_t i) {
+                    visit(Statement{q.predicate, q.object, dataset_.location(i)});
+                    return true;
+                  });
+  }
   std::vector<TermId> objects(TermId s, TermId p) const;
   std::vector<TermId> subjects(TermId p, TermId o) const;
   std::vector<TermId> instances(TermId type) const;

@@ -189,12 +189,12 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
       ok = false;
     }
   }
-  std::set<std::string> seen;
-  for (const Graph::Statement& statement : st.graph.statements(c)) {
-    const std::string p = st.str(statement.predicate);
-    if (!p.starts_with(kind.vocabulary)) continue;
-    const std::string_view local = std::string_view(p).substr(kind.vocabulary.size());
-    if (read.count(local) || !seen.insert(p).second) continue;
+  std::set<std::string_view> seen;  // views of the term table's IRIs
+  st.graph.each_statement(c, [&](const Graph::Statement& statement) {
+    const std::string_view p = st.graph.str(statement.predicate);
+    if (!p.starts_with(kind.vocabulary)) return;
+    const std::string_view local = p.substr(kind.vocabulary.size());
+    if (read.count(local) || !seen.insert(p).second) return;
     std::string known;
     for (std::string_view r : read) known.append(known.empty() ? "" : ", ").append(r);
     st.error(statement.where.known() ? statement.where : st.where(c), "unsupported-property",
@@ -202,7 +202,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
                  std::string(kind.name) + " controller does not implement (it reads " + known +
                  "); remove it");
     ok = false;
-  }
+  });
 
   // The runtime's own check of the values (reported in its words). The step is
   // added even when something was refused, so that its control signal has its

@@ -6,6 +6,7 @@
 // and controllers refuse theirs through their registries (lower_operators.cpp,
 // lower_controllers.cpp). docs/ir.md ("What lowering does with each
 // property") lists the outcome of every property.
+#include <algorithm>
 #include <map>
 
 #include "ir/controllers.hpp"
@@ -164,14 +165,14 @@ void refuse_misplaced_guard_terms(State& st) {
         hdl + "Monitor", hdl + "LevelTriggeredMonitor", hdl + "EdgeTriggeredMonitor"}) {
     for (TermId e : st.instances(type)) {
       if (!seen.insert(e.index).second) continue;
-      std::set<std::string> reported;
-      for (const Graph::Statement& statement : st.graph.statements(e)) {
-        const std::string p = st.str(statement.predicate);
-        if (!p.starts_with(ns) || !reported.insert(p).second) continue;
-        const std::string local = p.substr(ns.size());
+      std::set<std::string_view> reported;  // views of the term table's IRIs
+      st.graph.each_statement(e, [&](const Graph::Statement& statement) {
+        const std::string_view p = st.graph.str(statement.predicate);
+        if (!p.starts_with(ns) || !reported.insert(p).second) return;
+        const std::string local(p.substr(ns.size()));
         const bool equality = st.has_type(e, cstr + "EqualityConstraint");
         const bool edge = st.has_type(e, hdl + "EdgeTriggeredMonitor");
-        if ((local == "tolerance" && equality) || (local == "edge" && edge)) continue;
+        if ((local == "tolerance" && equality) || (local == "edge" && edge)) return;
         std::string why;
         if (local == "tolerance")
           why =
@@ -191,7 +192,7 @@ void refuse_misplaced_guard_terms(State& st) {
         message.append("ignored; ").append(why).append("; remove it");
         st.error(statement.where.known() ? statement.where : st.where(e), "unsupported-property",
                  std::move(message));
-      }
+      });
     }
   }
 }
@@ -231,17 +232,24 @@ void refuse_unread_properties(State& st) {
       }
     }
     for (const Entity& e : entities) {
-      std::set<std::string_view> reads;
-      for (const Role* r : e.roles) reads.insert(r->reads.begin(), r->reads.end());
-      std::set<std::string_view> seen;  // views of the term table's IRIs
-      for (const Graph::Statement& statement : st.graph.statements(e.term)) {
+      const auto reads = [&](std::string_view local) {
+        for (const Role* r : e.roles) {
+          if (std::find(r->reads.begin(), r->reads.end(), local) != r->reads.end()) return true;
+        }
+        return false;
+      };
+      std::vector<std::string_view> seen;  // unread properties reported (views of the term table)
+      st.graph.each_statement(e.term, [&](const Graph::Statement& statement) {
         const std::string_view p = st.graph.str(statement.predicate);
-        if (!p.starts_with(ns)) continue;
+        if (!p.starts_with(ns)) return;
         const std::string_view local = p.substr(ns.size());
-        if (reads.count(local) || !seen.insert(p).second) continue;
+        if (reads(local) || std::find(seen.begin(), seen.end(), p) != seen.end()) return;
+        seen.push_back(p);
         const Role& role = *e.roles.front();
+        std::set<std::string_view> read;  // sorted, as the message lists them
+        for (const Role* r : e.roles) read.insert(r->reads.begin(), r->reads.end());
         std::string known;
-        for (std::string_view r : reads) known.append(known.empty() ? "" : ", ").append(r);
+        for (std::string_view r : read) known.append(known.empty() ? "" : ", ").append(r);
         st.error(statement.where.known() ? statement.where : st.where(e.term),
                  "unsupported-property",
                  "the " + std::string(role.what) + " '" + st.str(e.term) + "' states `" +
@@ -249,7 +257,7 @@ void refuse_unread_properties(State& st) {
                      article(role.what) + std::string(role.what) + " (it reads " +
                      (known.empty() ? std::string("nothing") : known) +
                      "), so it would be ignored; " + advice(role.type, local));
-      }
+      });
     }
   }
   refuse_misplaced_guard_terms(st);

@@ -29,8 +29,14 @@ namespace mospec::ir::lowering {
 
 using rdf::TermId;
 
+// mospec::vocab::metamodel_term(domain, local), built in one allocation (the
+// passes spell their vocabulary terms this way, hundreds of times a lowering).
 inline std::string vocab(std::string_view domain, std::string_view local) {
-  return mospec::vocab::metamodel_term(domain, local);
+  const std::string_view mm = mospec::vocab::kMetamodels;
+  std::string s;
+  s.reserve(mm.size() + domain.size() + 1 + local.size());
+  s.append(mm).append(domain).append("#").append(local);
+  return s;
 }
 inline const std::string kXsd(mospec::vocab::xsd::ns);
 inline const std::string kQudt(mospec::vocab::qudt::ns);
