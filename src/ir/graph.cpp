@@ -88,6 +88,7 @@ std::vector<Graph::TermId> Graph::sorted_unique(std::vector<TermId> terms) const
 std::vector<Graph::TermId> Graph::objects(TermId s, TermId p) const {
   std::vector<TermId> out;
   if (s.is_any() || p.is_any()) return out;
+  out.reserve(8);  // grown once for most lists, not four times
   dataset_.scan(s, p, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
     out.push_back(q.object);
     return true;
@@ -98,6 +99,7 @@ std::vector<Graph::TermId> Graph::objects(TermId s, TermId p) const {
 std::vector<Graph::TermId> Graph::subjects(TermId p, TermId o) const {
   std::vector<TermId> out;
   if (p.is_any() || o.is_any()) return out;
+  out.reserve(8);  // grown once for most lists, not four times
   dataset_.scan(TermId::any(), p, o, TermId::any(), [&](const rdf::Quad& q, uint32_t) {
     out.push_back(q.subject);
     return true;

@@ -35,9 +35,17 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   const std::string ctrl = "the controller '" + iri + "'";
   st.pending_iri = iri;
   bool ok = true;
+  // A property of the kind's vocabulary, by its local name (the IRI built in
+  // one allocation; absent when the model never states it).
+  const auto property_term = [&](std::string_view property) {
+    std::string iri;
+    iri.reserve(kind.vocabulary.size() + property.size());
+    iri.append(kind.vocabulary).append(property);
+    return st.term(iri);
+  };
   // The one value of a property (several: refused by State::object; none: nullopt).
   const auto value_of = [&](std::string_view property) {
-    return st.object(c, kind.property_iri(property));
+    return st.object(c, property_term(property));
   };
 
   // Signals: the scalar inputs, then the control signal.
@@ -76,11 +84,11 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
     const ControllerParameter& p = kind.parameters[f];
     if (p.source == ParameterSource::Fixed) continue;
     const std::string name(p.property);
-    if (!p.only_with.empty() && !st.has_type(c, kind.property_iri(p.only_with))) {
+    if (!p.only_with.empty() && !st.graph.has_type(c, property_term(p.only_with))) {
       // Stated without the class that gives it meaning: not read, so refused.
-      const std::vector<TermId> stated = st.objects(c, kind.property_iri(p.property));
+      const std::vector<TermId> stated = st.graph.objects(c, property_term(p.property));
       if (!stated.empty()) {
-        st.error(st.where(c, kind.property_iri(p.property), stated[0]), "unsupported-property",
+        st.error(st.graph.where(c, property_term(p.property), stated[0]), "unsupported-property",
                  ctrl + " states `" + name + "`, which only " + article(p.only_with) +
                      std::string(p.only_with) + " has; add that class or remove `" + name + "`");
         ok = false;
@@ -105,7 +113,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
       if (v) {
         s.parameters[f] = *v;
       } else if (st.graph.terms()[*term].is_literal()) {
-        st.error(st.where(c, kind.property_iri(p.property), *term), "invalid-number",
+        st.error(st.graph.where(c, property_term(p.property), *term), "invalid-number",
                  ctrl + " has " + name + " " + st.literal_text(*term) +
                      ", which is not a finite number of its datatype (xsd:double: e.g. 100, "
                      "+100.0, -1.5e2)");
@@ -182,8 +190,8 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   // What the kind refuses, and what it does not know.
   for (const RefusedProperty& r : kind.refused) {
     read.insert(r.property);
-    for (TermId o : st.objects(c, kind.property_iri(r.property))) {
-      st.error(st.where(c, kind.property_iri(r.property), o), std::string(r.code),
+    for (TermId o : st.graph.objects(c, property_term(r.property))) {
+      st.error(st.graph.where(c, property_term(r.property), o), std::string(r.code),
                ctrl + " states `" + std::string(r.property) + "` '" + st.str(o) +
                    "'; mospec cannot honour it: " + std::string(r.why));
       ok = false;

@@ -76,7 +76,14 @@ inline std::string identifier(std::string_view s) {
 
 struct State {
   State(const app::LoadedModel& loaded, const LowerOptions& lower_options)
-      : model(loaded), graph(loaded.dataset()), options(lower_options) {}
+      : model(loaded), graph(loaded.dataset()), options(lower_options) {
+    // Room for a model of sc1's size (about 150 data and 160 steps), so that
+    // growing these rarely moves every datum, step or name.
+    program.data.reserve(256);
+    steps.reserve(256);
+    data_names.reserve(256);
+    step_names.reserve(256);
+  }
 
   // --- graph access (ir/graph.hpp) ---------------------------------------
   TermId term(const std::string& iri) const { return graph.term(iri); }
