@@ -96,10 +96,20 @@ class Types {
  public:
   Types() = default;
   Types(std::initializer_list<DataType> types) {
-    for (DataType t : types) push_back(t);
+    if (types.size() <= inline_.size()) {
+      std::copy(types.begin(), types.end(), inline_.begin());
+      size_ = types.size();
+    } else {
+      for (DataType t : types) push_back(t);
+    }
   }
   Types(size_t n, DataType t) {
-    for (size_t k = 0; k < n; ++k) push_back(t);
+    if (n <= inline_.size()) {
+      std::fill_n(inline_.begin(), n, t);
+      size_ = n;
+    } else {
+      for (size_t k = 0; k < n; ++k) push_back(t);
+    }
   }
   void push_back(DataType t) {
     if (size_ < inline_.size()) {

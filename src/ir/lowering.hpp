@@ -10,6 +10,7 @@
 #pragma once
 
 #include <map>
+#include <memory_resource>
 #include <optional>
 #include <set>
 #include <string>
@@ -200,12 +201,13 @@ struct State {
   int synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
                 const std::string& unit = {});
   // `base` as an identifier, made unique among `used` by a suffix _2, _3, ...
-  std::string unique_name(std::string_view base, std::unordered_set<std::string>& used) {
+  using Names = std::pmr::unordered_set<std::pmr::string>;
+  std::string unique_name(std::string_view base, Names& used) {
     std::string n = identifier(base);
-    if (used.insert(n).second) return n;
+    if (used.emplace(std::string_view(n)).second) return n;
     for (int k = 2;; ++k) {
       std::string candidate = n + "_" + std::to_string(k);
-      if (used.insert(candidate).second) return candidate;
+      if (used.emplace(std::string_view(candidate)).second) return candidate;
     }
   }
   void fill_inertia(Data& d, TermId e);
@@ -266,24 +268,29 @@ struct State {
   // several values where one is read (once per subject and property).
   mutable std::vector<Diagnostic> errors;
   mutable std::set<std::pair<uint32_t, std::string>> several_reported;
-  mutable std::optional<DatumTerms> datum_terms_;          // datum_terms(), once looked up
-  std::unordered_set<std::string> data_names, step_names;  // taken (unique_name)
-  std::unordered_map<uint32_t, int> data_of;               // model entity (term index) -> its datum
-  std::map<int, int> producer;                             // datum -> the step that writes it
+  mutable std::optional<DatumTerms> datum_terms_;  // datum_terms(), once looked up
+  // The names and tables below live exactly as long as one lowering: their
+  // nodes (hundreds of them, each otherwise a malloc and a free) come from
+  // one arena, released at once when the State goes. Declared first, so it
+  // outlives them.
+  std::pmr::monotonic_buffer_resource arena{16 * 1024};
+  Names data_names{&arena}, step_names{&arena};            // taken (unique_name)
+  std::pmr::unordered_map<uint32_t, int> data_of{&arena};  // model entity (term index) -> its datum
+  std::pmr::map<int, int> producer{&arena};                // datum -> the step that writes it
   std::string pending_iri;                                 // the entity being lowered, for messages
 
   // Tables one pass leaves for a later one (writer -> readers).
   // evaluators -> handlers: which Evaluate step checks a constraint.
-  std::map<uint32_t, int> evaluator_of_constraint;
+  std::pmr::map<uint32_t, int> evaluator_of_constraint{&arena};
   // evaluators -> monitors, handlers: an evaluator's Evaluate step.
-  std::map<uint32_t, int> evaluate_step_of_evaluator;
+  std::pmr::map<uint32_t, int> evaluate_step_of_evaluator{&arena};
   // monitors -> handlers: a monitor's step.
-  std::map<uint32_t, int> monitor_step_of_monitor;
+  std::pmr::map<uint32_t, int> monitor_step_of_monitor{&arena};
   // handlers -> controllers: the flag that activates a controller.
-  std::map<uint32_t, int> active_of_controller;
+  std::pmr::map<uint32_t, int> active_of_controller{&arena};
   // evaluators -> log: a bilateral constraint's satisfied flag -> its lower
   // and upper threshold data.
-  std::map<int, std::pair<int, int>> bounds_of_satisfied;
+  std::pmr::map<int, std::pair<int, int>> bounds_of_satisfied{&arena};
 };
 
 // --- the passes, in the order lower.cpp runs them ---------------------------
