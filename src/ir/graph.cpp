@@ -112,9 +112,12 @@ std::vector<Graph::TermId> Graph::instances(TermId type) const {
 }
 
 std::optional<Graph::TermId> Graph::object(TermId s, TermId p) const {
-  auto o = objects(s, p);
-  if (o.empty()) return std::nullopt;
-  return o.front();
+  // The usual single value without building and sorting the list.
+  bool several = false;
+  const TermId one = single_object(s, p, several);
+  if (several) return objects(s, p).front();
+  if (one.is_any()) return std::nullopt;
+  return one;
 }
 
 bool Graph::has_type(TermId s, TermId type) const {

@@ -295,7 +295,8 @@ Signature signature(const Step& st, const Program& p) {
 // Collects the verifier's findings, each located at the model entity involved.
 class Findings {
  public:
-  Findings(const Program& p, const SourceFiles* files) : p_(p), files_(files) {}
+  Findings(const Program& p, const SourceFiles* files)
+      : p_(p), files_(files), n_data_(p.data.size()) {}
 
   void step(const Step& st, const std::string& what) {
     std::string msg = "IR step '";
@@ -319,7 +320,9 @@ class Findings {
     }
     out_.push_back(std::move(d));
   }
-  bool valid_datum(int d) const { return d >= 0 && static_cast<size_t>(d) < p_.data.size(); }
+  // (The count is kept: size() divides by sizeof(Data), and this runs for
+  // every input and output of every step after every pass.)
+  bool valid_datum(int d) const { return d >= 0 && static_cast<size_t>(d) < n_data_; }
   std::string describe(int d) const {
     if (!valid_datum(d)) return "datum " + std::to_string(d) + " (which does not exist)";
     const Data& dd = p_.data[static_cast<size_t>(d)];
@@ -330,6 +333,7 @@ class Findings {
  private:
   const Program& p_;
   const SourceFiles* files_;
+  const size_t n_data_;
   std::vector<Diagnostic> out_;
 };
 
@@ -392,8 +396,9 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
                          " values; a " + std::string(to_string(d.type)) + " constant has " +
                          std::to_string(need));
   }
-  std::vector<int> producer(p.data.size(), -1);  // step index; -2: a constant
-  for (size_t i = 0; i < p.data.size(); ++i) {
+  const size_t n_data = p.data.size();
+  std::vector<int> producer(n_data, -1);  // step index; -2: a constant
+  for (size_t i = 0; i < n_data; ++i) {
     if (!p.data[i].value.empty()) producer[i] = -2;
   }
   // Producers first, so an unscheduled program's reads can be checked for a
