@@ -2,6 +2,9 @@
 // controllers: lower_controllers.cpp).
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory_resource>
+#include <set>
 
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
@@ -336,20 +339,21 @@ void check_guard(State& st, TermId motion, const std::string& prop, TermId c,
 // The quantities each motion acts on (motion term -> data): those the
 // assignments of its handlers impose, and those of the constraints whose
 // errors its handlers' controllers read.
-std::map<uint32_t, std::set<int>> acted_on(State& st) {
+// (Its maps and sets come from the lowering's arena, as lower_handlers'.)
+std::pmr::map<uint32_t, std::pmr::set<int>> acted_on(State& st) {
   const std::string ch = "task/constraint-handler";
   // An error signal -> the quantity its evaluator's constraint constrains.
-  std::map<int, int> quantity_of_error;
+  std::pmr::map<int, int> quantity_of_error{&st.arena};
   for (const auto& [evaluator, step] : st.evaluate_step_of_evaluator) {
     const Step& ev = st.steps[static_cast<size_t>(step)];
     if (ev.constraint.kind != runtime::ConstraintKind::Assignment && ev.out.size() > 1)
       quantity_of_error[ev.out[1]] = ev.in[0];
   }
-  std::map<uint32_t, std::set<int>> acted;
+  std::pmr::map<uint32_t, std::pmr::set<int>> acted{&st.arena};
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     const auto m = st.graph.object(h, st.term(vocab(ch, "motion")));
     if (!m) continue;
-    std::set<int>& quantities = acted[m->index];
+    std::pmr::set<int>& quantities = acted[m->index];
     for (TermId e : st.objects(h, vocab(ch, "evaluators"))) {
       const auto it = st.evaluate_step_of_evaluator.find(e.index);
       if (it == st.evaluate_step_of_evaluator.end()) continue;
@@ -373,12 +377,14 @@ std::map<uint32_t, std::set<int>> acted_on(State& st) {
 void lower_handlers(State& st) {
   // The running flags of the motions whose handlers list each controller and
   // evaluator (in order of term, so the program is a function of the model).
-  std::map<TermId, std::set<int>> flags_of_controller, flags_of_evaluator, flags_of_monitor;
+  // (Scratch maps and sets: from the lowering's arena.)
+  std::pmr::map<TermId, std::pmr::set<int>> flags_of_controller{&st.arena},
+      flags_of_evaluator{&st.arena}, flags_of_monitor{&st.arena};
   const std::string ch = "task/constraint-handler";
   const std::string mot = "task/motion-specification";
-  std::map<uint32_t, int> active_of_motion;
-  std::set<uint32_t> handled;  // motions some handler names
-  const std::map<uint32_t, std::set<int>> acted = acted_on(st);
+  std::pmr::map<uint32_t, int> active_of_motion{&st.arena};
+  std::pmr::set<uint32_t> handled{&st.arena};  // motions some handler names
+  const std::pmr::map<uint32_t, std::pmr::set<int>> acted = acted_on(st);
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     st.pending_iri = st.str(h);
     auto m = st.object(h, vocab(ch, "motion"));
@@ -473,7 +479,7 @@ void lower_handlers(State& st) {
                  "ConstraintHandler whose `motion` is it, listing its evaluators and controllers");
   }
   // Listed by the handlers of several motions: active while any of them runs.
-  const auto any_of = [&](TermId entity, const std::set<int>& flags) {
+  const auto any_of = [&](TermId entity, const std::pmr::set<int>& flags) {
     if (flags.size() == 1) return *flags.begin();
     Step s = st.step_for(StepKind::AnyOf, entity);
     s.name += "_active";

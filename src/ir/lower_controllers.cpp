@@ -5,6 +5,8 @@
 // form one of the kind's accepted combinations, and whatever the model states
 // that the kind cannot honour is refused, located.
 #include <map>
+#include <memory_resource>
+#include <set>
 
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
@@ -70,7 +72,8 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   Step s = st.step_for(StepKind::Controller, c);
   s.controller = index;
   s.parameters = kind.defaults();
-  std::map<std::string_view, int> port_datum;  // unit port -> datum
+  // (Scratch maps and sets: from the lowering's arena.)
+  std::pmr::map<std::string_view, int> port_datum{&st.arena};  // unit port -> datum
   for (size_t i = 0; i < kind.in.size(); ++i) {
     s.in.push_back(st.datum(*signals[i], DataType::Scalar, c, std::string(kind.in[i])));
     port_datum[kind.in[i]] = s.in.back();
@@ -79,7 +82,8 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   port_datum[kind.out] = s.out[0];
 
   // Parameters.
-  std::set<std::string_view> read(signal_properties.begin(), signal_properties.end());
+  std::pmr::set<std::string_view> read(signal_properties.begin(), signal_properties.end(),
+                                       &st.arena);
   for (size_t f = 0; f < kind.parameters.size(); ++f) {
     const ControllerParameter& p = kind.parameters[f];
     if (p.source == ParameterSource::Fixed) continue;
@@ -197,7 +201,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
       ok = false;
     }
   }
-  std::set<std::string_view> seen;  // views of the term table's IRIs
+  std::pmr::set<std::string_view> seen{&st.arena};  // views of the term table's IRIs
   st.graph.each_statement(c, [&](const Graph::Statement& statement) {
     const std::string_view p = st.graph.str(statement.predicate);
     if (!p.starts_with(kind.vocabulary)) return;

@@ -8,6 +8,8 @@
 // property") lists the outcome of every property.
 #include <algorithm>
 #include <map>
+#include <memory_resource>
+#include <set>
 
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
@@ -202,7 +204,8 @@ void refuse_misplaced_guard_terms(State& st) {
 void refuse_unread_properties(State& st) {
   // Entities the controller registry checks (their class's vocabulary is
   // cstr-hdl too).
-  std::set<uint32_t> controllers;
+  // Its sets and lists are scratch: from the lowering's arena.
+  std::pmr::set<uint32_t> controllers{&st.arena};
   for (const ControllerKind& k : controller_kinds()) {
     for (TermId c : st.instances(k.class_iri())) controllers.insert(c.index);
   }
@@ -210,23 +213,23 @@ void refuse_unread_properties(State& st) {
   // roles it has.
   struct Entity {
     TermId term;
-    std::vector<const Role*> roles;
+    std::pmr::vector<const Role*> roles;
   };
   for (std::string_view ns :
        {mospec::vocab::cstr::ns, mospec::vocab::cstr_hdl::ns, mospec::vocab::mot::ns,
         mospec::vocab::slv::ns, mospec::vocab::map::ns, mospec::vocab::mospec_time::ns,
         mospec::vocab::mospec_solver::ns, mospec::vocab::mospec_joints::ns}) {
     std::vector<Entity> entities;
-    std::map<uint32_t, size_t> index;
+    std::pmr::map<uint32_t, size_t> index{&st.arena};
     for (const Family& f : families()) {
       if (f.ns != ns) continue;
-      std::set<uint32_t> placed;  // exclusive: entities given a role of this family
+      std::pmr::set<uint32_t> placed{&st.arena};  // exclusive: entities given a role of this family
       for (const Role& r : f.roles) {
         for (TermId e : st.instances(std::string(ns).append(r.type))) {
           if (f.exclusive && !placed.insert(e.index).second) continue;
           if (ns == mospec::vocab::cstr_hdl::ns && controllers.count(e.index)) continue;
           auto [it, fresh] = index.emplace(e.index, entities.size());
-          if (fresh) entities.push_back({e, {}});
+          if (fresh) entities.push_back({e, std::pmr::vector<const Role*>(&st.arena)});
           entities[it->second].roles.push_back(&r);
         }
       }
