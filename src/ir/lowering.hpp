@@ -67,11 +67,13 @@ inline std::string identifier(std::string_view s) {
   const auto alnum = [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
   };
-  std::string out;
   const bool digit_first = !s.empty() && s[0] >= '0' && s[0] <= '9';
-  out.reserve(s.size() + (s.empty() || digit_first ? 2 : 0));
-  if (s.empty() || digit_first) out = "q_";
-  for (char c : s) out.push_back(alnum(c) ? c : '_');
+  const size_t prefix = s.empty() || digit_first ? 2 : 0;
+  std::string out(prefix + s.size(), '_');
+  if (prefix) out[0] = 'q';
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (alnum(s[i])) out[prefix + i] = s[i];
+  }
   return out;
 }
 
