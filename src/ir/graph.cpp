@@ -22,11 +22,55 @@ Graph::Graph(const rdf::Dataset& dataset)
 std::vector<Graph::Statement> Graph::statements(TermId s) const {
   std::vector<Statement> out;
   if (s.is_any()) return out;
-  for (uint32_t i : dataset_.match(s, TermId::any(), TermId::any())) {
-    const rdf::Quad& q = dataset_.quads()[i];
-    out.push_back({q.predicate, q.object, dataset_.location(i)});
-  }
+  dataset_.scan(s, TermId::any(), TermId::any(), TermId::any(),
+                [&](const rdf::Quad& q, uint32_t i) {
+                  out.push_back({q.predicate, q.object, dataset_.location(i)});
+                  return true;
+                });
   return out;
+}
+
+Graph::TermId Graph::single_object(TermId s, TermId p, bool& several) const {
+  several = false;
+  TermId first = TermId::any();
+  if (s.is_any() || p.is_any()) return first;
+  dataset_.scan(s, p, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+    if (first.is_any()) {
+      first = q.object;
+      return true;
+    }
+    if (q.object == first) return true;  // the same triple in another graph
+    several = true;
+    return false;
+  });
+  return first;
+}
+
+Graph::Reading Graph::read(TermId s, std::span<const TermId> predicates, std::span<Value> values,
+                           std::span<const TermId> types) const {
+  Reading r;
+  for (Value& v : values) v = {};
+  if (s.is_any()) return r;
+  const size_t n = std::min(predicates.size(), values.size());
+  dataset_.scan(s, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+    r.defined = true;
+    if (q.predicate == rdf_type_ && !rdf_type_.is_any()) {
+      for (size_t k = 0; k < types.size() && k < 64; ++k) {
+        if (q.object == types[k] && !types[k].is_any()) r.types |= uint64_t{1} << k;
+      }
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (q.predicate != predicates[k] || predicates[k].is_any()) continue;
+      Value& v = values[k];
+      if (v.first.is_any()) {
+        v.first = q.object;
+      } else if (v.first != q.object) {
+        v.several = true;
+      }
+    }
+    return true;
+  });
+  return r;
 }
 
 std::vector<Graph::TermId> Graph::sorted_unique(std::vector<TermId> terms) const {
@@ -44,6 +88,7 @@ std::vector<Graph::TermId> Graph::sorted_unique(std::vector<TermId> terms) const
 std::vector<Graph::TermId> Graph::objects(TermId s, TermId p) const {
   std::vector<TermId> out;
   if (s.is_any() || p.is_any()) return out;
+  out.reserve(8);  // grown once for most lists, not four times
   dataset_.scan(s, p, TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t) {
     out.push_back(q.object);
     return true;
@@ -54,6 +99,7 @@ std::vector<Graph::TermId> Graph::objects(TermId s, TermId p) const {
 std::vector<Graph::TermId> Graph::subjects(TermId p, TermId o) const {
   std::vector<TermId> out;
   if (p.is_any() || o.is_any()) return out;
+  out.reserve(8);  // grown once for most lists, not four times
   dataset_.scan(TermId::any(), p, o, TermId::any(), [&](const rdf::Quad& q, uint32_t) {
     out.push_back(q.subject);
     return true;
@@ -66,9 +112,12 @@ std::vector<Graph::TermId> Graph::instances(TermId type) const {
 }
 
 std::optional<Graph::TermId> Graph::object(TermId s, TermId p) const {
-  auto o = objects(s, p);
-  if (o.empty()) return std::nullopt;
-  return o.front();
+  // The usual single value without building and sorting the list.
+  bool several = false;
+  const TermId one = single_object(s, p, several);
+  if (several) return objects(s, p).front();
+  if (one.is_any()) return std::nullopt;
+  return one;
 }
 
 bool Graph::has_type(TermId s, TermId type) const {

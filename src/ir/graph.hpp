@@ -15,7 +15,9 @@
 // The reader keeps a reference to the dataset, which must outlive it.
 #pragma once
 
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,11 +50,40 @@ class Graph {
     SourceLoc where;
   };
   std::vector<Statement> statements(TermId s) const;
+  // statements(s) one by one, without building the list.
+  template <class Visit>
+  void each_statement(TermId s, Visit&& visit) const {
+    if (s.is_any()) return;
+    dataset_.scan(s, TermId::any(), TermId::any(), TermId::any(),
+                  [&](const rdf::Quad& q, uint32_t i) {
+                    visit(Statement{q.predicate, q.object, dataset_.location(i)});
+                    return true;
+                  });
+  }
   std::vector<TermId> objects(TermId s, TermId p) const;
   std::vector<TermId> subjects(TermId p, TermId o) const;
   std::vector<TermId> instances(TermId type) const;
   // The first of objects(s, p), if any.
   std::optional<TermId> object(TermId s, TermId p) const;
+  // The one object of (s, p, ?o) without building objects(s, p): any() when
+  // there is none; `several` set (and the answer unspecified) when there are
+  // two or more distinct ones.
+  TermId single_object(TermId s, TermId p, bool& several) const;
+
+  // A subject read property by property (lowering's data): in one pass over
+  // its statements, for each of `predicates` its single_object() answer, and
+  // which of `types` it has (bit k: has_type(s, types[k]); at most 64 types).
+  // An absent `s` reads as nothing (not as has_type's "any subject").
+  struct Value {
+    TermId first = TermId::any();
+    bool several = false;
+  };
+  struct Reading {
+    bool defined = false;  // defined(s)
+    uint64_t types = 0;
+  };
+  Reading read(TermId s, std::span<const TermId> predicates, std::span<Value> values,
+               std::span<const TermId> types) const;
 
   // Whether (s rdf:type type) is stated (any subject when s is absent).
   bool has_type(TermId s, TermId type) const;

@@ -1,6 +1,8 @@
 #include "ir/ir.hpp"
 
 #include <algorithm>
+#include <array>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 
 #include "ir/controllers.hpp"
@@ -88,17 +90,57 @@ runtime::Pose constant_pose(const std::vector<double>& v) {
 
 namespace {
 
+// A list of data types, held inline up to 16 (every step kind's ports so far),
+// so that checking a step allocates nothing: the verifier runs after every pass.
+class Types {
+ public:
+  Types() = default;
+  Types(std::initializer_list<DataType> types) {
+    if (types.size() <= inline_.size()) {
+      std::copy(types.begin(), types.end(), inline_.begin());
+      size_ = types.size();
+    } else {
+      for (DataType t : types) push_back(t);
+    }
+  }
+  Types(size_t n, DataType t) {
+    if (n <= inline_.size()) {
+      std::fill_n(inline_.begin(), n, t);
+      size_ = n;
+    } else {
+      for (size_t k = 0; k < n; ++k) push_back(t);
+    }
+  }
+  void push_back(DataType t) {
+    if (size_ < inline_.size()) {
+      inline_[size_] = t;
+    } else {
+      if (overflow_.empty()) overflow_.assign(inline_.begin(), inline_.end());
+      overflow_.push_back(t);
+    }
+    ++size_;
+  }
+  size_t size() const { return size_; }
+  DataType operator[](size_t k) const {
+    return size_ <= inline_.size() ? inline_[k] : overflow_[k];
+  }
+
+ private:
+  std::array<DataType, 16> inline_{};
+  std::vector<DataType> overflow_;  // all of them, once there are more than 16
+  size_t size_ = 0;
+};
+
 // The data types each step kind takes and gives (expected), or why the step
 // has none (`problem`). Variadic kinds check their inputs themselves.
 struct Signature {
-  Signature(std::vector<DataType> i, std::vector<DataType> o, bool variadic = false,
-            std::string why = {})
+  Signature(Types i, Types o, bool variadic = false, std::string why = {})
       : in(std::move(i)),
         out(std::move(o)),
         variadic_in(variadic),
         variadic_out(variadic),
         problem(std::move(why)) {}
-  std::vector<DataType> in, out;
+  Types in, out;
   bool variadic_in = false, variadic_out = false;  // any number, of any type (checked elsewhere)
   std::string problem;
 };
@@ -139,7 +181,7 @@ Signature view_write_signature(const Step& st, const Program& p) {
             true,
             "writes a view of a " + std::string(to_string(super)) +
                 "; a view writes a twist or wrench"};
-  return {std::vector<T>(st.in.size(), T::Scalar), {super}};
+  return {Types(st.in.size(), T::Scalar), {super}};
 }
 
 Signature controller_signature(const Step& st, const Program&) {
@@ -151,7 +193,7 @@ Signature controller_signature(const Step& st, const Program&) {
             "names controller kind " + std::to_string(st.controller) + ", which does not exist"};
   // The signals, then (when its motion gates it) the running flag.
   const ControllerKind& k = kinds[static_cast<size_t>(st.controller)];
-  Signature s{std::vector<T>(k.in.size(), T::Scalar), {T::Scalar}};
+  Signature s{Types(k.in.size(), T::Scalar), {T::Scalar}};
   if (st.in.size() == k.in.size() + 1) s.in.push_back(T::Flag);
   return s;
 }
@@ -207,13 +249,13 @@ const KindEntry kStepKinds[] = {
       "ins: [when flags..., checked while flags..., until flags...]; outs: [running flag, "
       "ended event: 1 an until held, 2 a while was violated]"},
      [](const Step& st, const Program&) -> Signature {
-       return {std::vector<T>(st.in.size(), T::Flag), {T::Flag, T::Event}};
+       return {Types(st.in.size(), T::Flag), {T::Flag, T::Event}};
      }},
     {{StepKind::AnyOf, "any-of", std::nullopt,
       "cstr-hdl:ConstraintHandler (a controller or evaluator several motions' handlers list)",
       "ins: [running flags...]; out: [flag]: true while any of them is"},
      [](const Step& st, const Program&) -> Signature {
-       return {std::vector<T>(st.in.size(), T::Flag), {T::Flag}};
+       return {Types(st.in.size(), T::Flag), {T::Flag}};
      }},
     {{StepKind::Controller, "controller", std::nullopt,
       "the controller registry (controllers.hpp); state slots per controller kind",
@@ -253,7 +295,8 @@ Signature signature(const Step& st, const Program& p) {
 // Collects the verifier's findings, each located at the model entity involved.
 class Findings {
  public:
-  Findings(const Program& p, const SourceFiles* files) : p_(p), files_(files) {}
+  Findings(const Program& p, const SourceFiles* files)
+      : p_(p), files_(files), n_data_(p.data.size()) {}
 
   void step(const Step& st, const std::string& what) {
     std::string msg = "IR step '";
@@ -277,7 +320,9 @@ class Findings {
     }
     out_.push_back(std::move(d));
   }
-  bool valid_datum(int d) const { return d >= 0 && static_cast<size_t>(d) < p_.data.size(); }
+  // (The count is kept: size() divides by sizeof(Data), and this runs for
+  // every input and output of every step after every pass.)
+  bool valid_datum(int d) const { return d >= 0 && static_cast<size_t>(d) < n_data_; }
   std::string describe(int d) const {
     if (!valid_datum(d)) return "datum " + std::to_string(d) + " (which does not exist)";
     const Data& dd = p_.data[static_cast<size_t>(d)];
@@ -288,6 +333,7 @@ class Findings {
  private:
   const Program& p_;
   const SourceFiles* files_;
+  const size_t n_data_;
   std::vector<Diagnostic> out_;
 };
 
@@ -350,8 +396,9 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
                          " values; a " + std::string(to_string(d.type)) + " constant has " +
                          std::to_string(need));
   }
-  std::vector<int> producer(p.data.size(), -1);  // step index; -2: a constant
-  for (size_t i = 0; i < p.data.size(); ++i) {
+  const size_t n_data = p.data.size();
+  std::vector<int> producer(n_data, -1);  // step index; -2: a constant
+  for (size_t i = 0; i < n_data; ++i) {
     if (!p.data[i].value.empty()) producer[i] = -2;
   }
   // Producers first, so an unscheduled program's reads can be checked for a

@@ -2,6 +2,7 @@
 // priorities) and the clocks, and motions gate their arm's solve.
 #include <algorithm>
 #include <cmath>
+#include <memory_resource>
 
 #include "description/chain_rdf.hpp"
 #include "ir/controllers.hpp"
@@ -407,7 +408,7 @@ void lower_arm(State& st, TermId solver) {
   if (!drivers) {
     st.error(solver, "missing-property", "the solver '" + arm.iri + "' names no motion-drivers");
   } else {
-    std::map<uint32_t, int> level_of;
+    std::pmr::map<uint32_t, int> level_of{&st.arena};  // scratch (the arena)
     int level = 0;
     for (TermId head : st.objects(*drivers, vocab(slv, "prioritization-hierarchy"))) {
       for (TermId lv : st.list(head)) {
@@ -670,7 +671,7 @@ void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
       }
     }
     // Anything else upstream: look for an inequality feeding it indirectly.
-    std::set<int> seen;
+    std::pmr::set<int> seen{&st.arena};  // scratch, from the lowering's arena
     std::vector<int> todo{ac.energy};
     while (!todo.empty()) {
       const int d = todo.back();
@@ -760,7 +761,7 @@ void gate_arm_solves(State& st) {
   for (Step& solve : st.steps) {
     if (solve.kind != StepKind::ArmSolve && solve.kind != StepKind::BaseForceDistribution) continue;
     solve.n_drivers = static_cast<int>(solve.in.size());
-    std::set<int> gates, seen_data;
+    std::pmr::set<int> gates{&st.arena}, seen_data{&st.arena};  // scratch (the arena)
     std::vector<int> todo(solve.in.begin(), solve.in.end());
     while (!todo.empty()) {
       const int d = todo.back();

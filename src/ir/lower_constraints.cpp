@@ -2,6 +2,9 @@
 // controllers: lower_controllers.cpp).
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory_resource>
+#include <set>
 
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
@@ -28,27 +31,43 @@ std::optional<TermId> equality_without_tolerance(const State& st, const Step& ev
 void lower_evaluators(State& st) {
   const std::string ch = "task/constraint-handler";
   const std::string cs = "task/constraint";
+  // The vocabulary terms read below, looked up once.
+  const TermId error_evaluator = st.term(vocab(ch, "ErrorEvaluator")),
+               assignment_evaluator = st.term(vocab(ch, "AssignmentEvaluator")),
+               constraint_p = st.term(vocab(ch, "constraint")),
+               error_p = st.term(vocab(ch, "error")), quantity_p = st.term(vocab(cs, "quantity")),
+               lower_p = st.term(vocab(cs, "lower-threshold")),
+               upper_p = st.term(vocab(cs, "upper-threshold")),
+               threshold_p = st.term(vocab(cs, "threshold")),
+               reference_p = st.term(vocab(cs, "reference-value")),
+               tolerance_p = st.term(vocab(kGuards, "tolerance")),
+               bilateral = st.term(vocab(cs, "BilateralConstraint")),
+               greater_than = st.term(vocab(cs, "GreaterThanConstraint")),
+               less_than = st.term(vocab(cs, "LessThanConstraint")),
+               equality = st.term(vocab(cs, "EqualityConstraint")),
+               qudt_value = st.term(kQudt + "value");
+  const auto is = [&](TermId s, TermId type) { return st.graph.has_type(s, type); };
   // An evaluator that is also an assignment is lowered once, as an assignment
   // (its `error` is refused by lower_properties.cpp).
   std::vector<TermId> evals;
-  for (TermId e : st.instances(vocab(ch, "ErrorEvaluator")))
-    if (!st.has_type(e, vocab(ch, "AssignmentEvaluator"))) evals.push_back(e);
-  for (TermId a : st.instances(vocab(ch, "AssignmentEvaluator"))) evals.push_back(a);
+  for (TermId e : st.graph.instances(error_evaluator))
+    if (!is(e, assignment_evaluator)) evals.push_back(e);
+  for (TermId a : st.graph.instances(assignment_evaluator)) evals.push_back(a);
   for (TermId e : evals) {
     st.pending_iri = st.str(e);
-    const bool assignment = st.has_type(e, vocab(ch, "AssignmentEvaluator"));
-    auto c = st.object(e, vocab(ch, "constraint"));
+    const bool assignment = is(e, assignment_evaluator);
+    auto c = st.object(e, constraint_p);
     if (!c) {
       st.error(e, "missing-property", "the evaluator '" + st.str(e) + "' names no constraint");
       continue;
     }
     if (!st.defined(*c)) {
-      st.error(st.where(e, vocab(ch, "constraint"), *c), "undefined-constraint",
+      st.error(st.graph.where(e, constraint_p, *c), "undefined-constraint",
                "the evaluator '" + st.str(e) + "' evaluates '" + st.str(*c) +
                    "', which no model file defines");
       continue;
     }
-    auto q = st.object(*c, vocab(cs, "quantity"));
+    auto q = st.object(*c, quantity_p);
     if (!q) {
       st.error(*c, "missing-property", "the constraint '" + st.str(*c) + "' names no quantity");
       continue;
@@ -57,17 +76,15 @@ void lower_evaluators(State& st) {
     const int quantity = st.datum(*q, DataType::Scalar, *c, "quantity");
     const std::string unit = st.program.data[static_cast<size_t>(quantity)].unit;
     // A threshold/reference: a constant with the quantity's unit.
-    const auto constant = [&](const std::string& prop,
-                              const std::string& domain =
-                                  "task/constraint") -> std::optional<double> {
-      auto t = st.object(*c, vocab(domain, prop));
+    const auto constant = [&](const std::string& prop, TermId property) -> std::optional<double> {
+      auto t = st.object(*c, property);
       if (!t) return std::nullopt;
       const int d = st.datum(*t, DataType::Scalar, *c, prop);
       const Data& dd = st.program.data[static_cast<size_t>(d)];
       if (dd.value.empty()) {
-        const auto lit = st.object(*t, kQudt + "value");
+        const auto lit = st.object(*t, qudt_value);
         if (lit && st.graph.terms()[*lit].is_literal()) {
-          st.error(st.where(*t, kQudt + "value", *lit), "invalid-number",
+          st.error(st.graph.where(*t, qudt_value, *lit), "invalid-number",
                    "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has the value " +
                        st.literal_text(*lit) + ", which is not a finite number of its datatype");
         } else if (st.defined(*t)) {  // else undefined-quantity said it
@@ -86,14 +103,13 @@ void lower_evaluators(State& st) {
     };
     runtime::ConstraintSpec spec;
     std::optional<int> reference_datum;
-    if (st.has_type(*c, vocab(cs, "BilateralConstraint"))) {
+    if (is(*c, bilateral)) {
       spec.kind = runtime::ConstraintKind::Bilateral;
-      auto lo = constant("lower-threshold"), hi = constant("upper-threshold");
+      auto lo = constant("lower-threshold", lower_p), hi = constant("upper-threshold", upper_p);
       if (!lo || !hi) {
         // An invalid threshold has been reported by constant(); only a
         // missing one is reported here.
-        if (!st.object(*c, vocab(cs, "lower-threshold")) ||
-            !st.object(*c, vocab(cs, "upper-threshold")))
+        if (!st.object(*c, lower_p) || !st.object(*c, upper_p))
           st.error(
               *c, "missing-property",
               "the bilateral constraint '" + st.str(*c) + "' needs a lower and an upper threshold");
@@ -106,14 +122,12 @@ void lower_evaluators(State& st) {
                  "the bilateral constraint '" + st.str(*c) + "' needs lower < upper");
         continue;
       }
-    } else if (st.has_type(*c, vocab(cs, "GreaterThanConstraint")) ||
-               st.has_type(*c, vocab(cs, "LessThanConstraint"))) {
-      spec.kind = st.has_type(*c, vocab(cs, "GreaterThanConstraint"))
-                      ? runtime::ConstraintKind::GreaterThan
-                      : runtime::ConstraintKind::LessThan;
-      auto t = constant("threshold");
+    } else if (is(*c, greater_than) || is(*c, less_than)) {
+      spec.kind = is(*c, greater_than) ? runtime::ConstraintKind::GreaterThan
+                                       : runtime::ConstraintKind::LessThan;
+      auto t = constant("threshold", threshold_p);
       if (!t) {
-        if (!st.object(*c, vocab(cs, "threshold")))
+        if (!st.object(*c, threshold_p))
           st.error(*c, "missing-property", "the constraint '" + st.str(*c) + "' needs a threshold");
         continue;
       }
@@ -122,31 +136,30 @@ void lower_evaluators(State& st) {
       // grows. A threshold <= 0 s is decided before the first tick (a
       // greater-than constraint holds at once, a less-than never does).
       if (!(spec.threshold > 0.0) && st.is_clock_time(*q)) {
-        const TermId th = *st.object(*c, vocab(cs, "threshold"));
-        const auto lit = st.object(th, kQudt + "value");
-        st.error(lit ? st.where(th, kQudt + "value", *lit) : st.where(th), "invalid-timeout",
+        const TermId th = *st.object(*c, threshold_p);
+        const auto lit = st.object(th, qudt_value);
+        st.error(lit ? st.graph.where(th, qudt_value, *lit) : st.where(th), "invalid-timeout",
                  "the timeout '" + st.str(th) + "' of '" + st.str(*c) + "' is " +
                      exact_number(spec.threshold) + " s; a threshold on the clock's time '" +
                      st.str(*q) + "' must be > 0 s");
         continue;
       }
-    } else if (st.has_type(*c, vocab(cs, "EqualityConstraint"))) {
+    } else if (is(*c, equality)) {
       spec.kind =
           assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
-      auto r = constant("reference-value");
+      auto r = constant("reference-value", reference_p);
       if (!r) {
-        if (!st.object(*c, vocab(cs, "reference-value")))
+        if (!st.object(*c, reference_p))
           st.error(*c, "missing-property",
                    "the equality constraint '" + st.str(*c) + "' needs a reference-value");
         continue;
       }
       spec.reference = *r;
-      if (auto t = st.object(*c, vocab(cs, "reference-value")))
-        reference_datum = st.data_of.at(t->index);
+      if (auto t = st.object(*c, reference_p)) reference_datum = st.data_of.at(t->index);
       // The model's tolerance (mos-grd:tolerance): satisfied while |error| <= it.
-      if (auto tol = st.object(*c, vocab(kGuards, "tolerance"))) {
+      if (auto tol = st.object(*c, tolerance_p)) {
         if (assignment) {
-          st.error(st.where(*c, vocab(kGuards, "tolerance"), *tol), "unsupported-property",
+          st.error(st.graph.where(*c, tolerance_p, *tol), "unsupported-property",
                    "the equality constraint '" + st.str(*c) +
                        "' states `tolerance`, but the "
                        "assignment evaluator '" +
@@ -155,7 +168,7 @@ void lower_evaluators(State& st) {
                        "never checks it, so the tolerance would be ignored; remove `tolerance`");
           continue;
         }
-        const auto t = constant("tolerance", kGuards);
+        const auto t = constant("tolerance", tolerance_p);
         if (!t) continue;
         if (!(*t >= 0.0)) {
           st.error(*tol, "invalid-constraint",
@@ -181,9 +194,8 @@ void lower_evaluators(State& st) {
         st.synthetic(st.str(*c) + "#satisfied", local_name(st.str(*c)) + "_satisfied",
                      DataType::Flag, st.where(*c));
     if (spec.kind == runtime::ConstraintKind::Bilateral) {
-      st.bounds_of_satisfied[satisfied] = {
-          st.data_of.at(st.object(*c, vocab(cs, "lower-threshold"))->index),
-          st.data_of.at(st.object(*c, vocab(cs, "upper-threshold"))->index)};
+      st.bounds_of_satisfied[satisfied] = {st.data_of.at(st.object(*c, lower_p)->index),
+                                           st.data_of.at(st.object(*c, upper_p)->index)};
     }
     if (assignment) {
       // The quantity is what the evaluator writes: the reference value.
@@ -191,7 +203,7 @@ void lower_evaluators(State& st) {
       s.out = {satisfied, quantity};
     } else {
       int err = -1;
-      if (auto eo = st.object(e, vocab(ch, "error"))) {
+      if (auto eo = st.object(e, error_p)) {
         err = st.datum(*eo, DataType::Scalar, e, "error");
         s.has_error_output = true;
       } else {
@@ -327,20 +339,21 @@ void check_guard(State& st, TermId motion, const std::string& prop, TermId c,
 // The quantities each motion acts on (motion term -> data): those the
 // assignments of its handlers impose, and those of the constraints whose
 // errors its handlers' controllers read.
-std::map<uint32_t, std::set<int>> acted_on(State& st) {
+// (Its maps and sets come from the lowering's arena, as lower_handlers'.)
+std::pmr::map<uint32_t, std::pmr::set<int>> acted_on(State& st) {
   const std::string ch = "task/constraint-handler";
   // An error signal -> the quantity its evaluator's constraint constrains.
-  std::map<int, int> quantity_of_error;
+  std::pmr::map<int, int> quantity_of_error{&st.arena};
   for (const auto& [evaluator, step] : st.evaluate_step_of_evaluator) {
     const Step& ev = st.steps[static_cast<size_t>(step)];
     if (ev.constraint.kind != runtime::ConstraintKind::Assignment && ev.out.size() > 1)
       quantity_of_error[ev.out[1]] = ev.in[0];
   }
-  std::map<uint32_t, std::set<int>> acted;
+  std::pmr::map<uint32_t, std::pmr::set<int>> acted{&st.arena};
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     const auto m = st.graph.object(h, st.term(vocab(ch, "motion")));
     if (!m) continue;
-    std::set<int>& quantities = acted[m->index];
+    std::pmr::set<int>& quantities = acted[m->index];
     for (TermId e : st.objects(h, vocab(ch, "evaluators"))) {
       const auto it = st.evaluate_step_of_evaluator.find(e.index);
       if (it == st.evaluate_step_of_evaluator.end()) continue;
@@ -348,12 +361,12 @@ std::map<uint32_t, std::set<int>> acted_on(State& st) {
       if (ev.constraint.kind == runtime::ConstraintKind::Assignment) quantities.insert(ev.out[1]);
     }
     for (TermId k : st.objects(h, vocab(ch, "controllers"))) {
-      for (const Graph::Statement& s : st.graph.statements(k)) {
+      st.graph.each_statement(k, [&](const Graph::Statement& s) {
         const auto d = st.data_of.find(s.object.index);
-        if (d == st.data_of.end()) continue;
+        if (d == st.data_of.end()) return;
         if (const auto q = quantity_of_error.find(d->second); q != quantity_of_error.end())
           quantities.insert(q->second);
-      }
+      });
     }
   }
   return acted;
@@ -364,12 +377,14 @@ std::map<uint32_t, std::set<int>> acted_on(State& st) {
 void lower_handlers(State& st) {
   // The running flags of the motions whose handlers list each controller and
   // evaluator (in order of term, so the program is a function of the model).
-  std::map<TermId, std::set<int>> flags_of_controller, flags_of_evaluator, flags_of_monitor;
+  // (Scratch maps and sets: from the lowering's arena.)
+  std::pmr::map<TermId, std::pmr::set<int>> flags_of_controller{&st.arena},
+      flags_of_evaluator{&st.arena}, flags_of_monitor{&st.arena};
   const std::string ch = "task/constraint-handler";
   const std::string mot = "task/motion-specification";
-  std::map<uint32_t, int> active_of_motion;
-  std::set<uint32_t> handled;  // motions some handler names
-  const std::map<uint32_t, std::set<int>> acted = acted_on(st);
+  std::pmr::map<uint32_t, int> active_of_motion{&st.arena};
+  std::pmr::set<uint32_t> handled{&st.arena};  // motions some handler names
+  const std::pmr::map<uint32_t, std::pmr::set<int>> acted = acted_on(st);
   for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
     st.pending_iri = st.str(h);
     auto m = st.object(h, vocab(ch, "motion"));
@@ -464,7 +479,7 @@ void lower_handlers(State& st) {
                  "ConstraintHandler whose `motion` is it, listing its evaluators and controllers");
   }
   // Listed by the handlers of several motions: active while any of them runs.
-  const auto any_of = [&](TermId entity, const std::set<int>& flags) {
+  const auto any_of = [&](TermId entity, const std::pmr::set<int>& flags) {
     if (flags.size() == 1) return *flags.begin();
     Step s = st.step_for(StepKind::AnyOf, entity);
     s.name += "_active";

@@ -5,6 +5,8 @@
 // form one of the kind's accepted combinations, and whatever the model states
 // that the kind cannot honour is refused, located.
 #include <map>
+#include <memory_resource>
+#include <set>
 
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
@@ -35,9 +37,17 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   const std::string ctrl = "the controller '" + iri + "'";
   st.pending_iri = iri;
   bool ok = true;
+  // A property of the kind's vocabulary, by its local name (the IRI built in
+  // one allocation; absent when the model never states it).
+  const auto property_term = [&](std::string_view property) {
+    std::string iri;
+    iri.reserve(kind.vocabulary.size() + property.size());
+    iri.append(kind.vocabulary).append(property);
+    return st.term(iri);
+  };
   // The one value of a property (several: refused by State::object; none: nullopt).
   const auto value_of = [&](std::string_view property) {
-    return st.object(c, kind.property_iri(property));
+    return st.object(c, property_term(property));
   };
 
   // Signals: the scalar inputs, then the control signal.
@@ -62,7 +72,8 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   Step s = st.step_for(StepKind::Controller, c);
   s.controller = index;
   s.parameters = kind.defaults();
-  std::map<std::string_view, int> port_datum;  // unit port -> datum
+  // (Scratch maps and sets: from the lowering's arena.)
+  std::pmr::map<std::string_view, int> port_datum{&st.arena};  // unit port -> datum
   for (size_t i = 0; i < kind.in.size(); ++i) {
     s.in.push_back(st.datum(*signals[i], DataType::Scalar, c, std::string(kind.in[i])));
     port_datum[kind.in[i]] = s.in.back();
@@ -71,16 +82,17 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   port_datum[kind.out] = s.out[0];
 
   // Parameters.
-  std::set<std::string_view> read(signal_properties.begin(), signal_properties.end());
+  std::pmr::set<std::string_view> read(signal_properties.begin(), signal_properties.end(),
+                                       &st.arena);
   for (size_t f = 0; f < kind.parameters.size(); ++f) {
     const ControllerParameter& p = kind.parameters[f];
     if (p.source == ParameterSource::Fixed) continue;
     const std::string name(p.property);
-    if (!p.only_with.empty() && !st.has_type(c, kind.property_iri(p.only_with))) {
+    if (!p.only_with.empty() && !st.graph.has_type(c, property_term(p.only_with))) {
       // Stated without the class that gives it meaning: not read, so refused.
-      const std::vector<TermId> stated = st.objects(c, kind.property_iri(p.property));
+      const std::vector<TermId> stated = st.graph.objects(c, property_term(p.property));
       if (!stated.empty()) {
-        st.error(st.where(c, kind.property_iri(p.property), stated[0]), "unsupported-property",
+        st.error(st.graph.where(c, property_term(p.property), stated[0]), "unsupported-property",
                  ctrl + " states `" + name + "`, which only " + article(p.only_with) +
                      std::string(p.only_with) + " has; add that class or remove `" + name + "`");
         ok = false;
@@ -105,7 +117,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
       if (v) {
         s.parameters[f] = *v;
       } else if (st.graph.terms()[*term].is_literal()) {
-        st.error(st.where(c, kind.property_iri(p.property), *term), "invalid-number",
+        st.error(st.graph.where(c, property_term(p.property), *term), "invalid-number",
                  ctrl + " has " + name + " " + st.literal_text(*term) +
                      ", which is not a finite number of its datatype (xsd:double: e.g. 100, "
                      "+100.0, -1.5e2)");
@@ -182,19 +194,19 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   // What the kind refuses, and what it does not know.
   for (const RefusedProperty& r : kind.refused) {
     read.insert(r.property);
-    for (TermId o : st.objects(c, kind.property_iri(r.property))) {
-      st.error(st.where(c, kind.property_iri(r.property), o), std::string(r.code),
+    for (TermId o : st.graph.objects(c, property_term(r.property))) {
+      st.error(st.graph.where(c, property_term(r.property), o), std::string(r.code),
                ctrl + " states `" + std::string(r.property) + "` '" + st.str(o) +
                    "'; mospec cannot honour it: " + std::string(r.why));
       ok = false;
     }
   }
-  std::set<std::string> seen;
-  for (const Graph::Statement& statement : st.graph.statements(c)) {
-    const std::string p = st.str(statement.predicate);
-    if (!p.starts_with(kind.vocabulary)) continue;
-    const std::string_view local = std::string_view(p).substr(kind.vocabulary.size());
-    if (read.count(local) || !seen.insert(p).second) continue;
+  std::pmr::set<std::string_view> seen{&st.arena};  // views of the term table's IRIs
+  st.graph.each_statement(c, [&](const Graph::Statement& statement) {
+    const std::string_view p = st.graph.str(statement.predicate);
+    if (!p.starts_with(kind.vocabulary)) return;
+    const std::string_view local = p.substr(kind.vocabulary.size());
+    if (read.count(local) || !seen.insert(p).second) return;
     std::string known;
     for (std::string_view r : read) known.append(known.empty() ? "" : ", ").append(r);
     st.error(statement.where.known() ? statement.where : st.where(c), "unsupported-property",
@@ -202,7 +214,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
                  std::string(kind.name) + " controller does not implement (it reads " + known +
                  "); remove it");
     ok = false;
-  }
+  });
 
   // The runtime's own check of the values (reported in its words). The step is
   // added even when something was refused, so that its control signal has its

@@ -58,12 +58,12 @@ void lower_operators(State& st) {
 // TransformWrenchToProximal's `at-index` into an array of wrenches) would be
 // ignored: refuse it instead.
 void refuse_unknown_properties(State& st, TermId e, const OperatorKind& kind) {
-  std::set<std::string> seen;
-  for (const Graph::Statement& stmt : st.graph.statements(e)) {
-    const std::string p = st.str(stmt.predicate);
-    if (!p.starts_with(kind.vocabulary)) continue;
-    const std::string_view local = std::string_view(p).substr(kind.vocabulary.size());
-    if (kind.port(local) >= 0 || !seen.insert(p).second) continue;
+  std::set<std::string_view> seen;  // views of the term table's IRIs
+  st.graph.each_statement(e, [&](const Graph::Statement& stmt) {
+    const std::string_view p = st.graph.str(stmt.predicate);
+    if (!p.starts_with(kind.vocabulary)) return;
+    const std::string_view local = p.substr(kind.vocabulary.size());
+    if (kind.port(local) >= 0 || !seen.insert(p).second) return;
     std::string ports;
     for (const OperatorPort& port : kind.in) ports.append(port.property).append(", ");
     ports.append(kind.out.property);
@@ -73,7 +73,7 @@ void refuse_unknown_properties(State& st, TermId e, const OperatorKind& kind) {
                  " does not implement (it reads only " + ports +
                  "); remove it or model the "
                  "computation another way");
-  }
+  });
 }
 
 // An axis the model names (geom-op:x, y or z): a unit-vector constant.

@@ -6,7 +6,10 @@
 // and controllers refuse theirs through their registries (lower_operators.cpp,
 // lower_controllers.cpp). docs/ir.md ("What lowering does with each
 // property") lists the outcome of every property.
+#include <algorithm>
 #include <map>
+#include <memory_resource>
+#include <set>
 
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
@@ -164,14 +167,14 @@ void refuse_misplaced_guard_terms(State& st) {
         hdl + "Monitor", hdl + "LevelTriggeredMonitor", hdl + "EdgeTriggeredMonitor"}) {
     for (TermId e : st.instances(type)) {
       if (!seen.insert(e.index).second) continue;
-      std::set<std::string> reported;
-      for (const Graph::Statement& statement : st.graph.statements(e)) {
-        const std::string p = st.str(statement.predicate);
-        if (!p.starts_with(ns) || !reported.insert(p).second) continue;
-        const std::string local = p.substr(ns.size());
+      std::set<std::string_view> reported;  // views of the term table's IRIs
+      st.graph.each_statement(e, [&](const Graph::Statement& statement) {
+        const std::string_view p = st.graph.str(statement.predicate);
+        if (!p.starts_with(ns) || !reported.insert(p).second) return;
+        const std::string local(p.substr(ns.size()));
         const bool equality = st.has_type(e, cstr + "EqualityConstraint");
         const bool edge = st.has_type(e, hdl + "EdgeTriggeredMonitor");
-        if ((local == "tolerance" && equality) || (local == "edge" && edge)) continue;
+        if ((local == "tolerance" && equality) || (local == "edge" && edge)) return;
         std::string why;
         if (local == "tolerance")
           why =
@@ -191,7 +194,7 @@ void refuse_misplaced_guard_terms(State& st) {
         message.append("ignored; ").append(why).append("; remove it");
         st.error(statement.where.known() ? statement.where : st.where(e), "unsupported-property",
                  std::move(message));
-      }
+      });
     }
   }
 }
@@ -201,7 +204,8 @@ void refuse_misplaced_guard_terms(State& st) {
 void refuse_unread_properties(State& st) {
   // Entities the controller registry checks (their class's vocabulary is
   // cstr-hdl too).
-  std::set<uint32_t> controllers;
+  // Its sets and lists are scratch: from the lowering's arena.
+  std::pmr::set<uint32_t> controllers{&st.arena};
   for (const ControllerKind& k : controller_kinds()) {
     for (TermId c : st.instances(k.class_iri())) controllers.insert(c.index);
   }
@@ -209,39 +213,46 @@ void refuse_unread_properties(State& st) {
   // roles it has.
   struct Entity {
     TermId term;
-    std::vector<const Role*> roles;
+    std::pmr::vector<const Role*> roles;
   };
   for (std::string_view ns :
        {mospec::vocab::cstr::ns, mospec::vocab::cstr_hdl::ns, mospec::vocab::mot::ns,
         mospec::vocab::slv::ns, mospec::vocab::map::ns, mospec::vocab::mospec_time::ns,
         mospec::vocab::mospec_solver::ns, mospec::vocab::mospec_joints::ns}) {
     std::vector<Entity> entities;
-    std::map<uint32_t, size_t> index;
+    std::pmr::map<uint32_t, size_t> index{&st.arena};
     for (const Family& f : families()) {
       if (f.ns != ns) continue;
-      std::set<uint32_t> placed;  // exclusive: entities given a role of this family
+      std::pmr::set<uint32_t> placed{&st.arena};  // exclusive: entities given a role of this family
       for (const Role& r : f.roles) {
         for (TermId e : st.instances(std::string(ns).append(r.type))) {
           if (f.exclusive && !placed.insert(e.index).second) continue;
           if (ns == mospec::vocab::cstr_hdl::ns && controllers.count(e.index)) continue;
           auto [it, fresh] = index.emplace(e.index, entities.size());
-          if (fresh) entities.push_back({e, {}});
+          if (fresh) entities.push_back({e, std::pmr::vector<const Role*>(&st.arena)});
           entities[it->second].roles.push_back(&r);
         }
       }
     }
     for (const Entity& e : entities) {
-      std::set<std::string_view> reads;
-      for (const Role* r : e.roles) reads.insert(r->reads.begin(), r->reads.end());
-      std::set<std::string_view> seen;  // views of the term table's IRIs
-      for (const Graph::Statement& statement : st.graph.statements(e.term)) {
+      const auto reads = [&](std::string_view local) {
+        for (const Role* r : e.roles) {
+          if (std::find(r->reads.begin(), r->reads.end(), local) != r->reads.end()) return true;
+        }
+        return false;
+      };
+      std::vector<std::string_view> seen;  // unread properties reported (views of the term table)
+      st.graph.each_statement(e.term, [&](const Graph::Statement& statement) {
         const std::string_view p = st.graph.str(statement.predicate);
-        if (!p.starts_with(ns)) continue;
+        if (!p.starts_with(ns)) return;
         const std::string_view local = p.substr(ns.size());
-        if (reads.count(local) || !seen.insert(p).second) continue;
+        if (reads(local) || std::find(seen.begin(), seen.end(), p) != seen.end()) return;
+        seen.push_back(p);
         const Role& role = *e.roles.front();
+        std::set<std::string_view> read;  // sorted, as the message lists them
+        for (const Role* r : e.roles) read.insert(r->reads.begin(), r->reads.end());
         std::string known;
-        for (std::string_view r : reads) known.append(known.empty() ? "" : ", ").append(r);
+        for (std::string_view r : read) known.append(known.empty() ? "" : ", ").append(r);
         st.error(statement.where.known() ? statement.where : st.where(e.term),
                  "unsupported-property",
                  "the " + std::string(role.what) + " '" + st.str(e.term) + "' states `" +
@@ -249,7 +260,7 @@ void refuse_unread_properties(State& st) {
                      article(role.what) + std::string(role.what) + " (it reads " +
                      (known.empty() ? std::string("nothing") : known) +
                      "), so it would be ignored; " + advice(role.type, local));
-      }
+      });
     }
   }
   refuse_misplaced_guard_terms(st);

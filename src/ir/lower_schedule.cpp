@@ -2,6 +2,8 @@
 // writes) and the log.
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <queue>
 
 #include "ir/lowering.hpp"
 
@@ -24,29 +26,42 @@ void check_inputs(State& st) {
 
 void schedule(State& st) {
   const size_t n = st.steps.size();
-  std::vector<std::vector<size_t>> next(n);
+  // The edges producer -> reader, grouped by producer (offsets into `next`),
+  // each group in the order of its readers.
+  std::vector<size_t> from;  // per edge: the producing step
+  std::vector<size_t> to;    // per edge: the reading step
   std::vector<int> waiting(n, 0);
   for (size_t i = 0; i < n; ++i) {
     for (int d : st.steps[i].in) {
       auto it = st.producer.find(d);
       if (it == st.producer.end() || it->second < 0) continue;
-      next[static_cast<size_t>(it->second)].push_back(i);
+      from.push_back(static_cast<size_t>(it->second));
+      to.push_back(i);
       ++waiting[i];
     }
   }
+  std::vector<size_t> offset(n + 1, 0);
+  for (size_t p : from) ++offset[p + 1];
+  for (size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
+  std::vector<size_t> next(from.size());
+  {
+    std::vector<size_t> fill(offset.begin(), offset.end() - 1);
+    for (size_t e = 0; e < from.size(); ++e) next[fill[from[e]]++] = to[e];
+  }
   // Kahn's algorithm, always taking the earliest-declared ready step: the
   // order is a function of the model only.
-  std::set<size_t> ready;
+  std::priority_queue<size_t, std::vector<size_t>, std::greater<>> ready;
   for (size_t i = 0; i < n; ++i) {
-    if (waiting[i] == 0) ready.insert(i);
+    if (waiting[i] == 0) ready.push(i);
   }
   std::vector<size_t> order;
+  order.reserve(n);
   while (!ready.empty()) {
-    const size_t i = *ready.begin();
-    ready.erase(ready.begin());
+    const size_t i = ready.top();
+    ready.pop();
     order.push_back(i);
-    for (size_t j : next[i]) {
-      if (--waiting[j] == 0) ready.insert(j);
+    for (size_t k = offset[i]; k < offset[i + 1]; ++k) {
+      if (--waiting[next[k]] == 0) ready.push(next[k]);
     }
   }
   if (order.size() != n) {
@@ -60,7 +75,9 @@ void schedule(State& st) {
     }
     return;
   }
-  for (size_t i : order) st.program.steps.push_back(st.steps[i]);
+  // Moved: from here on only program.steps is read.
+  st.program.steps.reserve(n);
+  for (size_t i : order) st.program.steps.push_back(std::move(st.steps[i]));
 }
 
 void build_log(State& st) {

@@ -40,12 +40,19 @@ void lower_views(State& st) {
     int index = 0;
     DataType super_type = DataType::Pose;
   };
+  // The vocabulary terms read below, looked up once.
+  const TermId superobject = st.term(vocab(map, "superobject")),
+               subobject = st.term(vocab(map, "subobject")),
+               subspace = st.term(vocab(map, "subspace")), axis_p = st.term(vocab(map, "axis")),
+               pose_view = st.term(vocab(map, "PoseCoordinateView")),
+               twist_view = st.term(vocab(map, "VelocityTwistCoordinateView")),
+               wrench_view = st.term(vocab(map, "WrenchCoordinateView"));
   std::vector<ViewInfo> views;
   for (TermId v : st.instances(vocab(map, "View"))) {
-    auto super = st.object(v, vocab(map, "superobject"));
-    auto sub = st.object(v, vocab(map, "subobject"));
-    auto space = st.object(v, vocab(map, "subspace"));
-    auto axis = st.object(v, vocab(map, "axis"));
+    auto super = st.object(v, superobject);
+    auto sub = st.object(v, subobject);
+    auto space = st.object(v, subspace);
+    auto axis = st.object(v, axis_p);
     if (!super || !sub || !space || !axis) {
       st.error(v, "missing-property",
                "the view '" + st.str(v) + "' needs superobject, subobject, subspace and axis");
@@ -55,13 +62,13 @@ void lower_views(State& st) {
     const std::string sp = local_name(st.str(*space)), ax = local_name(st.str(*axis));
     const int a = ax == "x" ? 0 : ax == "y" ? 1 : ax == "z" ? 2 : -1;
     int base = -1;
-    if (st.has_type(v, vocab(map, "PoseCoordinateView"))) {
+    if (st.graph.has_type(v, pose_view)) {
       info.super_type = DataType::Pose;
       base = sp == "orientation" || sp == "rotation" ? 0 : sp == "position" ? 3 : -1;
-    } else if (st.has_type(v, vocab(map, "VelocityTwistCoordinateView"))) {
+    } else if (st.graph.has_type(v, twist_view)) {
       info.super_type = DataType::Twist;
       base = sp == "angular-velocity" ? 0 : sp == "linear-velocity" ? 3 : -1;
-    } else if (st.has_type(v, vocab(map, "WrenchCoordinateView"))) {
+    } else if (st.graph.has_type(v, wrench_view)) {
       info.super_type = DataType::Wrench;
       base = sp == "torque" || sp == "moment" ? 0 : sp == "force" ? 3 : -1;
     }

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <array>
 #include <cstdio>
 
 #include "support/spelling.hpp"
@@ -104,43 +105,105 @@ const State::DatumTerms& State::datum_terms() const {
   return datum_terms_.emplace(t);
 }
 
-std::optional<DataType> State::type_of(TermId e) const {
-  const DatumTerms& t = datum_terms();
-  const auto is = [&](TermId type) { return graph.has_type(e, type); };
-  if (is(t.pose) || is(t.pose_coordinate)) return DataType::Pose;
-  if (is(t.twist) || is(t.twist_coordinate)) return DataType::Twist;
-  if (is(t.wrench) || is(t.wrench_coordinate)) return DataType::Wrench;
-  if (is(t.rigid_body_inertia) || is(t.rigid_body_inertia_coordinate)) return DataType::Inertia;
-  if (is(t.direction_coordinate) || is(t.position) || is(t.position_coordinate))
+namespace {
+
+// What type_of() and datum() ask of an entity, in one pass over its statements
+// (Graph::read): these types (their order is kTypeOrder's) and properties.
+enum DatumType {
+  kPose,
+  kPoseCoordinate,
+  kTwist,
+  kTwistCoordinate,
+  kWrench,
+  kWrenchCoordinate,
+  kInertia,
+  kInertiaCoordinate,
+  kDirectionCoordinate,
+  kPosition,
+  kPositionCoordinate,
+  kQuantity,
+  kLinearDistance,
+  kDatumTypes
+};
+enum DatumProperty {
+  kOf,
+  kWithRespectTo,
+  kReferencePoint,
+  kDynReferencePoint,
+  kOfBody,
+  kAbout,
+  kAsSeenBy,
+  kDynAsSeenBy,
+  kQuantityKind,
+  kUnit,
+  kValue,
+  kX,
+  kY,
+  kZ,
+  kDirectionCosine0,  // ..2
+  kDatumProperties = kDirectionCosine0 + 3
+};
+
+std::array<TermId, kDatumTypes> datum_types(const State::DatumTerms& t) {
+  return {t.pose,
+          t.pose_coordinate,
+          t.twist,
+          t.twist_coordinate,
+          t.wrench,
+          t.wrench_coordinate,
+          t.rigid_body_inertia,
+          t.rigid_body_inertia_coordinate,
+          t.direction_coordinate,
+          t.position,
+          t.position_coordinate,
+          t.quantity,
+          t.linear_distance};
+}
+
+// The data type an entity's classes (bit k: it has type k of DatumType) and
+// a quantity kind make it; the first match in this order.
+std::optional<DataType> type_from(uint64_t types, bool has_quantity_kind) {
+  const auto is = [&](DatumType k) { return (types >> k) & 1U; };
+  if (is(kPose) || is(kPoseCoordinate)) return DataType::Pose;
+  if (is(kTwist) || is(kTwistCoordinate)) return DataType::Twist;
+  if (is(kWrench) || is(kWrenchCoordinate)) return DataType::Wrench;
+  if (is(kInertia) || is(kInertiaCoordinate)) return DataType::Inertia;
+  if (is(kDirectionCoordinate) || is(kPosition) || is(kPositionCoordinate))
     return DataType::Vector3;
-  if (is(t.quantity) || is(t.linear_distance) || !graph.objects(e, t.has_quantity_kind).empty())
-    return DataType::Scalar;
+  if (is(kQuantity) || is(kLinearDistance) || has_quantity_kind) return DataType::Scalar;
   return std::nullopt;
 }
 
-void State::fill_constant(Data& d, TermId e) {
-  const DatumTerms& t = datum_terms();
+// A constant's value, from the entity's properties as `value(k)` gives them
+// (State::object's answer for property k of DatumProperty, read only when
+// needed, so that a property with several values is reported only if read).
+template <class Value>
+void fill_constant(State& st, Data& d, TermId e, const Value& value) {
+  const auto number = [&](DatumProperty k) -> std::optional<double> {
+    auto o = value(k);
+    return o ? st.number(*o) : std::nullopt;
+  };
   switch (d.type) {
     case DataType::Scalar:
-      if (auto v = number(e, t.value)) d.value = {*v};
+      if (auto v = number(kValue)) d.value = {*v};
       break;
     case DataType::Vector3: {
-      auto x = number(e, t.x), y = number(e, t.y), z = number(e, t.z);
+      auto x = number(kX), y = number(kY), z = number(kZ);
       if (x && y && z) d.value = {*x, *y, *z};
       break;
     }
     case DataType::Pose: {
-      auto x = number(e, t.x), y = number(e, t.y), z = number(e, t.z);
+      auto x = number(kX), y = number(kY), z = number(kZ);
       std::array<std::vector<double>, 3> cols;
       bool ok = x && y && z;
       for (int c = 0; c < 3 && ok; ++c) {
-        auto head = object(e, t.direction_cosine[c]);
+        auto head = value(static_cast<DatumProperty>(kDirectionCosine0 + c));
         if (!head) {
           ok = false;
           break;
         }
-        for (TermId t : list(*head)) {
-          if (auto v = number(t)) cols[static_cast<size_t>(c)].push_back(*v);
+        for (TermId t : st.list(*head)) {
+          if (auto v = st.number(t)) cols[static_cast<size_t>(c)].push_back(*v);
         }
         ok = cols[static_cast<size_t>(c)].size() == 3;
       }
@@ -152,9 +215,9 @@ void State::fill_constant(Data& d, TermId e) {
         for (int r = 0; r < 3; ++r) R(r, c) = cols[static_cast<size_t>(c)][static_cast<size_t>(r)];
       if (!((R.transpose() * R - runtime::Mat3::Identity()).cwiseAbs().maxCoeff() < 1e-6) ||
           R.determinant() < 0) {
-        error(e, "invalid-pose",
-              "the direction cosines of '" + d.iri +
-                  "' are not a rotation (orthonormal, right-handed to 1e-6)");
+        st.error(e, "invalid-pose",
+                 "the direction cosines of '" + d.iri +
+                     "' are not a rotation (orthonormal, right-handed to 1e-6)");
         break;
       }
       // Direction cosines are written to a few digits: use the nearest
@@ -168,11 +231,22 @@ void State::fill_constant(Data& d, TermId e) {
       break;
     }
     case DataType::Inertia:
-      if (defined(e)) fill_inertia(d, e);
+      if (st.defined(e)) st.fill_inertia(d, e);
       break;
     default:
       break;
   }
+}
+
+}  // namespace
+
+std::optional<DataType> State::type_of(TermId e) const {
+  const DatumTerms& t = datum_terms();
+  const std::array<TermId, kDatumTypes> types = datum_types(t);
+  const TermId kind[1] = {t.has_quantity_kind};
+  Graph::Value kind_value[1];
+  const Graph::Reading r = graph.read(e, kind, kind_value, types);
+  return type_from(r.types, !kind_value[0].first.is_any());
 }
 
 // A rigid-body inertia is always a constant: its ten numbers are read here, and
@@ -274,7 +348,39 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
   d.iri = str(e);
   d.type = expected;
   d.where = where(e);
-  if (!defined(e)) {
+  // Everything below is read in one pass over e's statements; a property with
+  // several values is read (and reported) by State::object when it is used.
+  const DatumTerms& t = datum_terms();
+  std::array<TermId, kDatumProperties> properties{};
+  properties[kOf] = t.of;
+  properties[kWithRespectTo] = t.with_respect_to;
+  properties[kReferencePoint] = t.reference_point;
+  properties[kDynReferencePoint] = t.dyn_reference_point;
+  properties[kOfBody] = t.of_body;
+  properties[kAbout] = t.about;
+  properties[kAsSeenBy] = t.as_seen_by;
+  properties[kDynAsSeenBy] = t.dyn_as_seen_by;
+  properties[kQuantityKind] = t.has_quantity_kind;
+  properties[kUnit] = t.unit;
+  properties[kValue] = t.value;
+  properties[kX] = t.x;
+  properties[kY] = t.y;
+  properties[kZ] = t.z;
+  for (int c = 0; c < 3; ++c) properties[kDirectionCosine0 + c] = t.direction_cosine[c];
+  std::array<Graph::Value, kDatumProperties> values;
+  const Graph::Reading read = graph.read(e, properties, values, datum_types(t));
+  const auto value = [&](DatumProperty k) -> std::optional<TermId> {
+    if (values[k].several) return several_of(e, properties[k]);
+    if (values[k].first.is_any()) return std::nullopt;
+    return values[k].first;
+  };
+  // All values of a property, sorted (Graph::objects).
+  const auto all = [&](DatumProperty k) -> std::vector<TermId> {
+    if (values[k].several) return graph.objects(e, properties[k]);
+    if (values[k].first.is_any()) return {};
+    return {values[k].first};
+  };
+  if (!read.defined) {
     std::string msg = "'";
     msg.append(str(referenced_by))
         .append("' names '")
@@ -284,26 +390,26 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
         .append(", but no model file defines it")
         .append(did_you_mean(e));
     error(where(referenced_by), "undefined-quantity", msg);
-  } else if (auto t = type_of(e); t && *t != expected) {
-    type_mismatch(d.iri, *t);
+  } else if (auto ty = type_from(read.types, !values[kQuantityKind].first.is_any());
+             ty && *ty != expected) {
+    type_mismatch(d.iri, *ty);
   }
-  const DatumTerms& t = datum_terms();
-  if (auto o = object(e, t.of)) d.of = str(*o);
-  if (auto o = object(e, t.with_respect_to)) d.with_respect_to = str(*o);
-  if (auto o = object(e, t.reference_point)) d.reference_point = str(*o);
-  if (auto o = object(e, t.dyn_reference_point)) d.reference_point = str(*o);
+  if (auto o = value(kOf)) d.of = str(*o);
+  if (auto o = value(kWithRespectTo)) d.with_respect_to = str(*o);
+  if (auto o = value(kReferencePoint)) d.reference_point = str(*o);
+  if (auto o = value(kDynReferencePoint)) d.reference_point = str(*o);
   if (d.type == DataType::Inertia) {
-    if (auto o = object(e, t.of_body)) d.of = str(*o);
-    if (auto o = object(e, t.about)) d.reference_point = str(*o);
+    if (auto o = value(kOfBody)) d.of = str(*o);
+    if (auto o = value(kAbout)) d.reference_point = str(*o);
   }
-  if (auto o = object(e, t.as_seen_by)) d.as_seen_by = str(*o);
-  if (auto o = object(e, t.dyn_as_seen_by)) d.as_seen_by = str(*o);
-  std::vector<std::string> kinds, units;
-  for (TermId k : graph.objects(e, t.has_quantity_kind)) kinds.push_back(local_name(str(k)));
-  for (TermId u : graph.objects(e, t.unit)) units.push_back(local_name(str(u)));
-  for (size_t i = 0; i < kinds.size(); ++i) d.quantity_kind.append(i ? "," : "").append(kinds[i]);
-  for (size_t i = 0; i < units.size(); ++i) d.unit.append(i ? "," : "").append(units[i]);
-  fill_constant(d, e);
+  if (auto o = value(kAsSeenBy)) d.as_seen_by = str(*o);
+  if (auto o = value(kDynAsSeenBy)) d.as_seen_by = str(*o);
+  const std::vector<TermId> kinds = all(kQuantityKind), units = all(kUnit);
+  for (size_t i = 0; i < kinds.size(); ++i)
+    d.quantity_kind.append(i ? "," : "").append(local_view(graph.str(kinds[i])));
+  for (size_t i = 0; i < units.size(); ++i)
+    d.unit.append(i ? "," : "").append(local_view(graph.str(units[i])));
+  fill_constant(*this, d, e, value);
   d.name = unique_name(local_name(d.iri), data_names);
   d.slot = program.slots[static_cast<size_t>(d.type)]++;
   const int index = static_cast<int>(program.data.size());

@@ -10,11 +10,13 @@
 #pragma once
 
 #include <map>
+#include <memory_resource>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "ir/graph.hpp"
@@ -28,15 +30,28 @@ namespace mospec::ir::lowering {
 
 using rdf::TermId;
 
+// mospec::vocab::metamodel_term(domain, local), built in one allocation (the
+// passes spell their vocabulary terms this way, hundreds of times a lowering).
 inline std::string vocab(std::string_view domain, std::string_view local) {
-  return mospec::vocab::metamodel_term(domain, local);
+  const std::string_view mm = mospec::vocab::kMetamodels;
+  std::string s;
+  s.reserve(mm.size() + domain.size() + 1 + local.size());
+  s.append(mm).append(domain).append("#").append(local);
+  return s;
 }
 inline const std::string kXsd(mospec::vocab::xsd::ns);
 inline const std::string kQudt(mospec::vocab::qudt::ns);
 
+// What follows the last '#' or '/' (a plain loop: find_last_of calls memchr
+// once per character).
+inline std::string_view local_view(std::string_view iri) {
+  for (size_t k = iri.size(); k > 0; --k) {
+    if (iri[k - 1] == '#' || iri[k - 1] == '/') return iri.substr(k);
+  }
+  return iri;
+}
 inline std::string local_name(std::string_view iri) {
-  const size_t k = iri.find_last_of("#/");
-  return std::string(k == std::string_view::npos ? iri : iri.substr(k + 1));
+  return std::string(local_view(iri));
 }
 
 // "a " or "an ", as messages put it before `word`.
@@ -46,16 +61,32 @@ inline std::string article(std::string_view word) {
              : "an ";
 }
 
+// ASCII letters and digits are kept (as std::isalnum does in the "C" locale
+// mospec runs in), anything else becomes '_'.
 inline std::string identifier(std::string_view s) {
-  std::string out;
-  for (char c : s) out.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
-  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out.insert(0, "q_");
+  const auto alnum = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+  };
+  const bool digit_first = !s.empty() && s[0] >= '0' && s[0] <= '9';
+  const size_t prefix = s.empty() || digit_first ? 2 : 0;
+  std::string out(prefix + s.size(), '_');
+  if (prefix) out[0] = 'q';
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (alnum(s[i])) out[prefix + i] = s[i];
+  }
   return out;
 }
 
 struct State {
   State(const app::LoadedModel& loaded, const LowerOptions& lower_options)
-      : model(loaded), graph(loaded.dataset()), options(lower_options) {}
+      : model(loaded), graph(loaded.dataset()), options(lower_options) {
+    // Room for a model of sc1's size (about 150 data and 160 steps), so that
+    // growing these rarely moves every datum, step or name.
+    program.data.reserve(256);
+    steps.reserve(256);
+    data_names.reserve(256);
+    step_names.reserve(256);
+  }
 
   // --- graph access (ir/graph.hpp) ---------------------------------------
   TermId term(const std::string& iri) const { return graph.term(iri); }
@@ -67,12 +98,7 @@ struct State {
   // The one value of a single-valued property. A second value (e.g. a
   // quantity given a value by two files) is never resolved by picking one:
   // it is a located error naming both (several_values).
-  std::optional<TermId> object(TermId s, const std::string& p) const {
-    const std::vector<TermId> all = graph.objects(s, term(p));
-    if (all.empty()) return std::nullopt;
-    if (all.size() > 1) several_values(s, p, all);
-    return all.front();
-  }
+  std::optional<TermId> object(TermId s, const std::string& p) const { return object(s, term(p)); }
   void several_values(TermId s, const std::string& p, const std::vector<TermId>& values) const;
   // For a reference to `e` that nothing defines: "; did you mean '<nearest>'?"
   // naming the defined entity of the same namespace nearest in spelling, or "".
@@ -153,11 +179,19 @@ struct State {
     TermId x, y, z, direction_cosine[3];
   };
   const DatumTerms& datum_terms() const;
-  // object(s, p) for a property given by its id.
+  // object(s, p) for a property given by its id. Only a property with
+  // several values is read as a sorted list (for the error and the first).
   std::optional<TermId> object(TermId s, TermId p) const {
+    bool several = false;
+    const TermId one = graph.single_object(s, p, several);
+    if (several) return several_of(s, p);
+    if (one.is_any()) return std::nullopt;
+    return one;
+  }
+  // The first of a property's several values, reported (several_values).
+  TermId several_of(TermId s, TermId p) const {
     const std::vector<TermId> all = graph.objects(s, p);
-    if (all.empty()) return std::nullopt;
-    if (all.size() > 1) several_values(s, str(p), all);
+    several_values(s, str(p), all);
     return all.front();
   }
   std::optional<double> number(TermId s, TermId p) const {
@@ -168,14 +202,16 @@ struct State {
   int datum(TermId e, DataType expected, TermId referenced_by, const std::string& role);
   int synthetic(const std::string& iri, const std::string& name, DataType type, SourceLoc loc,
                 const std::string& unit = {});
-  std::string unique_name(const std::string& base, std::set<std::string>& used) {
+  // `base` as an identifier, made unique among `used` by a suffix _2, _3, ...
+  using Names = std::pmr::unordered_set<std::pmr::string>;
+  std::string unique_name(std::string_view base, Names& used) {
     std::string n = identifier(base);
-    std::string candidate = n;
-    for (int k = 2; used.count(candidate); ++k) candidate = n + "_" + std::to_string(k);
-    used.insert(candidate);
-    return candidate;
+    if (used.emplace(std::string_view(n)).second) return n;
+    for (int k = 2;; ++k) {
+      std::string candidate = n + "_" + std::to_string(k);
+      if (used.emplace(std::string_view(candidate)).second) return candidate;
+    }
   }
-  void fill_constant(Data& d, TermId e);
   void fill_inertia(Data& d, TermId e);
 
   // --- steps --------------------------------------------------------------
@@ -235,23 +271,28 @@ struct State {
   mutable std::vector<Diagnostic> errors;
   mutable std::set<std::pair<uint32_t, std::string>> several_reported;
   mutable std::optional<DatumTerms> datum_terms_;  // datum_terms(), once looked up
-  std::set<std::string> data_names, step_names;
-  std::unordered_map<uint32_t, int> data_of;  // model entity (term index) -> its datum
-  std::map<int, int> producer;                // datum -> the step that writes it
-  std::string pending_iri;                    // the entity being lowered, for messages
+  // The names and tables below live exactly as long as one lowering: their
+  // nodes (hundreds of them, each otherwise a malloc and a free) come from
+  // one arena, released at once when the State goes. Declared first, so it
+  // outlives them.
+  std::pmr::monotonic_buffer_resource arena{16 * 1024};
+  Names data_names{&arena}, step_names{&arena};            // taken (unique_name)
+  std::pmr::unordered_map<uint32_t, int> data_of{&arena};  // model entity (term index) -> its datum
+  std::pmr::map<int, int> producer{&arena};                // datum -> the step that writes it
+  std::string pending_iri;                                 // the entity being lowered, for messages
 
   // Tables one pass leaves for a later one (writer -> readers).
   // evaluators -> handlers: which Evaluate step checks a constraint.
-  std::map<uint32_t, int> evaluator_of_constraint;
+  std::pmr::map<uint32_t, int> evaluator_of_constraint{&arena};
   // evaluators -> monitors, handlers: an evaluator's Evaluate step.
-  std::map<uint32_t, int> evaluate_step_of_evaluator;
+  std::pmr::map<uint32_t, int> evaluate_step_of_evaluator{&arena};
   // monitors -> handlers: a monitor's step.
-  std::map<uint32_t, int> monitor_step_of_monitor;
+  std::pmr::map<uint32_t, int> monitor_step_of_monitor{&arena};
   // handlers -> controllers: the flag that activates a controller.
-  std::map<uint32_t, int> active_of_controller;
+  std::pmr::map<uint32_t, int> active_of_controller{&arena};
   // evaluators -> log: a bilateral constraint's satisfied flag -> its lower
   // and upper threshold data.
-  std::map<int, std::pair<int, int>> bounds_of_satisfied;
+  std::pmr::map<int, std::pair<int, int>> bounds_of_satisfied{&arena};
 };
 
 // --- the passes, in the order lower.cpp runs them ---------------------------

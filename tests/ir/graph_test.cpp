@@ -110,6 +110,55 @@ TEST(IrGraph, AnswersAsTheFlattenedUnion) {
   EXPECT_TRUE(g.instances(g.term(kEx + "Missing")).empty());
 }
 
+// single_object() and read() (lowering's one-pass reads) answer as objects(),
+// has_type() and defined() do: a triple restated in another file is one value,
+// two distinct objects are "several".
+TEST(IrGraph, OnePassReadsAnswerAsObjects) {
+  rdf::Dataset d = model();
+  const TermId lone = d.terms().iri(kEx + "lone"), p = d.terms().iri(kEx + "p");
+  const TermId q = d.terms().iri(kEx + "q");
+  d.add(Quad{d.terms().iri(kEx + "s0"), lone, d.terms().iri(kEx + "o1"), TermId::default_graph()},
+        {});
+  const Graph g(d);
+  const TermId even = g.term(kEx + "Even"), odd = g.term(kEx + "Odd");
+  const TermId missing = g.term(kEx + "Missing");  // any(): never stated
+  const TermId predicates[4] = {p, q, lone, missing};
+  const TermId types[3] = {odd, even, missing};
+  for (int i = 0; i < 31; ++i) {
+    const TermId s = g.term(kEx + "s" + std::to_string(i));  // s30: not in the model
+    SCOPED_TRACE(i);
+    Graph::Value values[4];
+    const Graph::Reading r = g.read(s, predicates, values, types);
+    EXPECT_EQ(r.defined, g.defined(s));
+    if (s.is_any()) {
+      EXPECT_EQ(r.types, 0U);  // has_type(any(), t) asks for any instance; read() says nothing
+    } else {
+      EXPECT_EQ(r.types, (g.has_type(s, odd) ? 1U : 0U) | (g.has_type(s, even) ? 2U : 0U));
+    }
+    for (int k = 0; k < 4; ++k) {
+      const std::vector<TermId> all = g.objects(s, predicates[k]);
+      bool several = true;
+      const TermId one = g.single_object(s, predicates[k], several);
+      EXPECT_EQ(several, all.size() > 1) << k;
+      EXPECT_EQ(values[k].several, all.size() > 1) << k;
+      if (all.size() == 1) {
+        EXPECT_EQ(one, all[0]) << k;
+        EXPECT_EQ(values[k].first, all[0]) << k;
+      }
+      if (all.empty()) {
+        EXPECT_TRUE(one.is_any()) << k;
+        EXPECT_TRUE(values[k].first.is_any()) << k;
+      }
+    }
+  }
+  // s0's `lone` is one value, and each `q` one number; every `p` has several.
+  bool several = true;
+  EXPECT_EQ(g.single_object(g.term(kEx + "s0"), lone, several), g.term(kEx + "o1"));
+  EXPECT_FALSE(several);
+  g.single_object(g.term(kEx + "s3"), p, several);
+  EXPECT_TRUE(several);
+}
+
 TEST(IrGraph, WhereOfATripleSkipsRestatements) {
   const rdf::Dataset d = model();
   const Graph g(d);
