@@ -221,6 +221,18 @@ TEST(ToRdf, DocumentsNeverShareBlankNodes) {
   EXPECT_NE(a.subject, a.object);
 }
 
+// A document's own labels may be the very labels handed out fresh ("_:b1"
+// is relabeled b0, "_:b0" b1): every mention keeps naming its own node.
+TEST(ToRdf, DocumentLabelsThatLookFreshKeepTheirNodes) {
+  rdf::Dataset d = convert(R"([
+    {"@id": "_:b1", "http://ex/p": [{"@id": "_:b0"}], "http://ex/q": [{"@id": "_:b1"}]},
+    {"@id": "_:b0", "http://ex/p": [{"@id": "_:b1"}]}])");
+  EXPECT_EQ(rdf::to_nquads(d),
+            "_:b0 <http://ex/p> _:b1 .\n"
+            "_:b0 <http://ex/q> _:b0 .\n"
+            "_:b1 <http://ex/p> _:b0 .\n");
+}
+
 TEST(ToRdf, QuadsRecordWhereTheNodeIdIsWritten) {
   rdf::Dataset d = convert("[{\"http://ex/p\": [{\"@value\": 1}],\n  \"@id\": \"http://ex/s\"}]");
   ASSERT_EQ(d.size(), 1u);
