@@ -96,18 +96,25 @@ void Dataset::rebuild_indexes() {
   for (int pos = 0; pos < 4; ++pos) {
     PostingIndex& index = index_[pos];
     // Counting sort by term id; filling in quad order keeps each list in
-    // insertion order.
-    std::vector<uint32_t> offsets(n_terms + 1, 0);
-    for (const Quad& q : quads_) ++offsets[at(q, pos).index + 1];
-    for (size_t t = 0; t < n_terms; ++t) offsets[t + 1] += offsets[t];
-    std::vector<uint32_t> entries(quads_.size());
-    std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (uint32_t i = 0; i < quads_.size(); ++i) entries[fill[at(quads_[i], pos).index]++] = i;
-    index.offsets = std::move(offsets);
-    index.entries = std::move(entries);
-    index.first.assign(n_terms, PostingIndex::kNone);
-    index.last.assign(n_terms, PostingIndex::kNone);
-    index.count.assign(n_terms, 0);
+    // insertion order. Counts go two slots up so that filling moves each
+    // term's start one slot down, onto where offsets[t] must end up.
+    // The position's field, picked once (at() would branch per quad).
+    static constexpr TermId Quad::*kField[] = {&Quad::subject, &Quad::predicate, &Quad::object,
+                                               &Quad::graph};
+    const TermId Quad::*field = kField[pos];
+    std::vector<uint32_t>& offsets = index.offsets;
+    offsets.assign(n_terms + 2, 0);
+    for (const Quad& q : quads_) ++offsets[(q.*field).index + 2];
+    for (size_t t = 2; t < n_terms + 2; ++t) offsets[t] += offsets[t - 1];
+    index.entries.resize(quads_.size());
+    const auto n_quads = static_cast<uint32_t>(quads_.size());
+    for (uint32_t i = 0; i < n_quads; ++i)
+      index.entries[offsets[(quads_[i].*field).index + 1]++] = i;
+    offsets.pop_back();  // [offsets[t], offsets[t + 1]) are now the quads of t
+    // No chained quads are left; chain() sizes these again when one comes.
+    index.first.clear();
+    index.last.clear();
+    index.count.clear();
     index.next.clear();
   }
   frozen_ = static_cast<uint32_t>(quads_.size());
