@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -92,18 +93,65 @@ std::string integer_lexical(double d) {
 // "9.229595559999999E-2", and the upstream corpus expects exactly that.
 std::string double_lexical_exact(double d);
 
+// GCC and Clang's 128-bit integers (__extension__: not ISO C++).
+__extension__ using Uint128 = unsigned __int128;
+
+int bit_width(Uint128 v) {
+  const auto hi = static_cast<uint64_t>(v >> 64);
+  return hi != 0 ? 64 + std::bit_width(hi) : std::bit_width(static_cast<uint64_t>(v));
+}
+
+// The sign of x - t * 10^p (-1, 0 or 1), exactly, for a finite x > 0 and
+// t < 10^17; 2 when the exponents are beyond what 128 bits hold (the caller
+// then takes the slow exact path). x = m * 2^q with m < 2^53, and both sides
+// are scaled to integers: m * 5^r * 2^(q + r) against t when p = -r < 0,
+// m * 2^(q - p) against t * 5^p otherwise; every product stays below 2^123.
+int compare_exact(double x, uint64_t t, int p) {
+  int e2 = 0;
+  const double fraction = std::frexp(x, &e2);  // x = fraction * 2^e2, fraction in [0.5, 1)
+  Uint128 lhs = static_cast<uint64_t>(std::ldexp(fraction, 53));
+  int q = e2 - 53;
+  Uint128 rhs = t;
+  auto pow5 = [](int n) {
+    Uint128 v = 1;
+    for (int i = 0; i < n; ++i) v *= 5;
+    return v;
+  };
+  if (p >= 0) {
+    if (p > 27) return 2;  // t * 5^27 < 2^120
+    rhs *= pow5(p);
+    q -= p;
+  } else {
+    if (-p > 30) return 2;  // m * 5^30 < 2^123
+    lhs *= pow5(-p);
+    q -= p;
+  }
+  // Compare lhs * 2^q with rhs (both below 2^123); a shift that would pass
+  // 2^127 decides the comparison by itself.
+  if (q >= 0) {
+    if (bit_width(lhs) + q > 127) return 1;
+    lhs <<= q;
+  } else {
+    if (bit_width(rhs) - q > 127) return -1;
+    rhs <<= -q;
+  }
+  return lhs < rhs ? -1 : lhs > rhs ? 1 : 0;
+}
+
 std::string double_lexical(double d) {
   if (!std::isfinite(d) || d == 0) return double_lexical_exact(d);
   // 17 correctly rounded significant digits ("d.dddddddddddddddde±XX"). Unless
-  // the 17th is a 5 (a possible tie, left to double_lexical_exact), rounding
-  // them to 16 gives what rounding the exact value to 16 digits gives: every
-  // 16-digit rounding boundary is a 17-digit number ending in 5, and correct
-  // rounding to 17 digits keeps the value on the same side of it.
+  // the 17th is a 5 (a possible tie), rounding them to 16 gives what rounding
+  // the exact value to 16 digits gives: every 16-digit rounding boundary is a
+  // 17-digit number ending in 5, and correct rounding to 17 digits keeps the
+  // value on the same side of it. When the 17th is a 5, those 17 digits are
+  // the boundary itself, and an exact comparison of the value with them says
+  // which way to round (up on a tie, as ECMAScript does).
   char buf[48];
+  const double magnitude = std::fabs(d);
   const auto written =
-      std::to_chars(buf, buf + sizeof buf, std::fabs(d), std::chars_format::scientific, 16);
-  if (written.ec != std::errc() || written.ptr - buf < 20 || buf[1] != '.' || buf[18] != 'e' ||
-      buf[17] == '5') {
+      std::to_chars(buf, buf + sizeof buf, magnitude, std::chars_format::scientific, 16);
+  if (written.ec != std::errc() || written.ptr - buf < 20 || buf[1] != '.' || buf[18] != 'e') {
     return double_lexical_exact(d);
   }
   char digits[16];
@@ -117,7 +165,16 @@ std::string double_lexical(double d) {
     for (; p < written.ptr; ++p) exponent = exponent * 10 + (*p - '0');
     if (negative_exponent) exponent = -exponent;
   }
-  if (buf[17] > '5') {
+  bool round_up = buf[17] > '5';
+  if (buf[17] == '5') {
+    uint64_t boundary = 0;  // the 17 digits as an integer
+    for (char c : digits) boundary = boundary * 10 + static_cast<uint64_t>(c - '0');
+    boundary = boundary * 10 + 5;
+    const int sign = compare_exact(magnitude, boundary, exponent - 16);
+    if (sign == 2) return double_lexical_exact(d);
+    round_up = sign >= 0;
+  }
+  if (round_up) {
     int i = 15;
     while (i >= 0 && digits[i] == '9') digits[i--] = '0';
     if (i < 0) {
