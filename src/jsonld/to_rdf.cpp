@@ -285,22 +285,26 @@ class Symbols {
  public:
   static constexpr uint32_t kNone = UINT32_MAX;
 
-  explicit Symbols(Arena* arena) : text_(arena) {}
+  explicit Symbols(Arena* arena) : text_(arena), hash_(arena) {}
   uint32_t intern(std::string_view s) {
     const uint64_t hash = rdf::detail::hash_text(s);
     const uint32_t found = index_.find(hash, [&](uint32_t id) { return text_[id] == s; });
     if (found != kNone) return found;
     const auto id = static_cast<uint32_t>(text_.size());
     text_.push_back(s);
+    hash_.push_back(hash);
     index_.insert(hash, id);
     return id;
   }
   std::string_view text(uint32_t id) const { return text_[id]; }
+  // rdf::detail::hash_text(text(id)), kept for the term table.
+  uint64_t hash(uint32_t id) const { return hash_[id]; }
   size_t size() const { return text_.size(); }
 
  private:
   rdf::detail::IdHashSet index_;
   std::pmr::vector<std::string_view> text_;
+  std::pmr::vector<uint64_t> hash_;
 };
 
 struct Item {
@@ -643,7 +647,7 @@ class Converter {
       // Every "_:" key is a relabeled one, whose term relabel() set; this is
       // only a fallback.
       term = is_blank_id(text) ? out_.terms().blank(text.substr(2))
-                               : out_.terms().well_formed_iri(text);
+                               : out_.terms().well_formed_iri(text, symbols_.hash(id));
     }
     return term;
   }

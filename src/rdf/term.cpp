@@ -14,15 +14,20 @@ constexpr size_t kBlockSize = 64 * 1024;
 
 using detail::hash_text;
 
-uint64_t hash_term(const Term& t) {
+// value_hash: hash_text(t.value).
+uint64_t hash_term(const Term& t, uint64_t value_hash) {
   uint64_t h = detail::mix64(static_cast<uint64_t>(t.kind));
-  h = detail::combine(h, hash_text(t.value));
+  h = detail::combine(h, value_hash);
   if (t.kind == TermKind::Literal) {
     h = detail::combine(h, t.datatype.index);
     if (!t.language.empty()) h = detail::combine(h, hash_text(t.language));
     if (!t.direction.empty()) h = detail::combine(h, hash_text(t.direction));
   }
   return h;
+}
+
+uint64_t hash_term(const Term& t) {
+  return hash_term(t, hash_text(t.value));
 }
 
 bool same_term(const Term& a, const Term& b) {
@@ -103,8 +108,12 @@ TermId TermTable::iri(std::string_view iri) {
 }
 
 TermId TermTable::well_formed_iri(std::string_view iri) {
+  return well_formed_iri(iri, hash_text(iri));
+}
+
+TermId TermTable::well_formed_iri(std::string_view iri, uint64_t text_hash) {
   const Term key{TermKind::Iri, iri, {}, {}, {}};
-  const uint64_t hash = hash_term(key);
+  const uint64_t hash = hash_term(key, text_hash);
   TermId id = lookup(key, hash);
   if (!id.is_any() && id.index < well_formed_.size() && well_formed_[id.index]) return id;
   if (!is_well_formed_iri(iri)) return TermId::any();

@@ -70,6 +70,9 @@ class TermTable {
   // distinct IRI is checked once per table however often it is asked for, so
   // a loader converting many documents that share a vocabulary checks it once.
   TermId well_formed_iri(std::string_view iri);
+  // Same, for a caller that has hashed the IRI already (text_hash must be
+  // detail::hash_text(iri)): the table does not hash it again.
+  TermId well_formed_iri(std::string_view iri, uint64_t text_hash);
   TermId blank(std::string_view label);
   // A blank node whose label is unused in this table ("b0", "b1", ...).
   TermId fresh_blank();

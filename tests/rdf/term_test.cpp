@@ -148,6 +148,12 @@ TEST(TermTable, WellFormedIriInternsOnlyWellFormedIris) {
   EXPECT_EQ(t.find_iri("http://ex.org/{bad}"), bad);
   TermId good = t.iri("http://ex.org/good");
   EXPECT_EQ(t.well_formed_iri("http://ex.org/good"), good);
+  // With the caller's hash: the same terms.
+  EXPECT_EQ(t.well_formed_iri("http://ex.org/good", detail::hash_text("http://ex.org/good")), good);
+  TermId c = t.well_formed_iri("http://ex.org/c", detail::hash_text("http://ex.org/c"));
+  EXPECT_EQ(t.iri("http://ex.org/c"), c);
+  EXPECT_TRUE(
+      t.well_formed_iri("http://ex.org/{c}", detail::hash_text("http://ex.org/{c}")).is_any());
   // Many IRIs: the per-term record grows with the table.
   for (int i = 0; i < 300; ++i) {
     const std::string iri = numbered("http://ex.org/n", i);
