@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -9,12 +10,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
-#include <functional>
 #include <map>
 #include <memory_resource>
-#include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "jsonld/context.hpp"
@@ -37,11 +35,6 @@ constexpr std::string_view kRdfJson = vocab::rdf::JSON;
 constexpr std::string_view kXsdBoolean = vocab::xsd::boolean;
 constexpr std::string_view kXsdDouble = vocab::xsd::double_;
 constexpr std::string_view kXsdInteger = vocab::xsd::integer;
-
-struct StringHash {
-  using is_transparent = void;
-  size_t operator()(std::string_view s) const noexcept { return rdf::detail::hash_text(s); }
-};
 
 std::string rdf_iri(std::string_view local) {
   return std::string(kRdf) + std::string(local);
@@ -100,18 +93,65 @@ std::string integer_lexical(double d) {
 // "9.229595559999999E-2", and the upstream corpus expects exactly that.
 std::string double_lexical_exact(double d);
 
+// GCC and Clang's 128-bit integers (__extension__: not ISO C++).
+__extension__ using Uint128 = unsigned __int128;
+
+int bit_width(Uint128 v) {
+  const auto hi = static_cast<uint64_t>(v >> 64);
+  return hi != 0 ? 64 + std::bit_width(hi) : std::bit_width(static_cast<uint64_t>(v));
+}
+
+// The sign of x - t * 10^p (-1, 0 or 1), exactly, for a finite x > 0 and
+// t < 10^17; 2 when the exponents are beyond what 128 bits hold (the caller
+// then takes the slow exact path). x = m * 2^q with m < 2^53, and both sides
+// are scaled to integers: m * 5^r * 2^(q + r) against t when p = -r < 0,
+// m * 2^(q - p) against t * 5^p otherwise; every product stays below 2^123.
+int compare_exact(double x, uint64_t t, int p) {
+  int e2 = 0;
+  const double fraction = std::frexp(x, &e2);  // x = fraction * 2^e2, fraction in [0.5, 1)
+  Uint128 lhs = static_cast<uint64_t>(std::ldexp(fraction, 53));
+  int q = e2 - 53;
+  Uint128 rhs = t;
+  auto pow5 = [](int n) {
+    Uint128 v = 1;
+    for (int i = 0; i < n; ++i) v *= 5;
+    return v;
+  };
+  if (p >= 0) {
+    if (p > 27) return 2;  // t * 5^27 < 2^120
+    rhs *= pow5(p);
+    q -= p;
+  } else {
+    if (-p > 30) return 2;  // m * 5^30 < 2^123
+    lhs *= pow5(-p);
+    q -= p;
+  }
+  // Compare lhs * 2^q with rhs (both below 2^123); a shift that would pass
+  // 2^127 decides the comparison by itself.
+  if (q >= 0) {
+    if (bit_width(lhs) + q > 127) return 1;
+    lhs <<= q;
+  } else {
+    if (bit_width(rhs) - q > 127) return -1;
+    rhs <<= -q;
+  }
+  return lhs < rhs ? -1 : lhs > rhs ? 1 : 0;
+}
+
 std::string double_lexical(double d) {
   if (!std::isfinite(d) || d == 0) return double_lexical_exact(d);
   // 17 correctly rounded significant digits ("d.dddddddddddddddde±XX"). Unless
-  // the 17th is a 5 (a possible tie, left to double_lexical_exact), rounding
-  // them to 16 gives what rounding the exact value to 16 digits gives: every
-  // 16-digit rounding boundary is a 17-digit number ending in 5, and correct
-  // rounding to 17 digits keeps the value on the same side of it.
+  // the 17th is a 5 (a possible tie), rounding them to 16 gives what rounding
+  // the exact value to 16 digits gives: every 16-digit rounding boundary is a
+  // 17-digit number ending in 5, and correct rounding to 17 digits keeps the
+  // value on the same side of it. When the 17th is a 5, those 17 digits are
+  // the boundary itself, and an exact comparison of the value with them says
+  // which way to round (up on a tie, as ECMAScript does).
   char buf[48];
+  const double magnitude = std::fabs(d);
   const auto written =
-      std::to_chars(buf, buf + sizeof buf, std::fabs(d), std::chars_format::scientific, 16);
-  if (written.ec != std::errc() || written.ptr - buf < 20 || buf[1] != '.' || buf[18] != 'e' ||
-      buf[17] == '5') {
+      std::to_chars(buf, buf + sizeof buf, magnitude, std::chars_format::scientific, 16);
+  if (written.ec != std::errc() || written.ptr - buf < 20 || buf[1] != '.' || buf[18] != 'e') {
     return double_lexical_exact(d);
   }
   char digits[16];
@@ -125,7 +165,16 @@ std::string double_lexical(double d) {
     for (; p < written.ptr; ++p) exponent = exponent * 10 + (*p - '0');
     if (negative_exponent) exponent = -exponent;
   }
-  if (buf[17] > '5') {
+  bool round_up = buf[17] > '5';
+  if (buf[17] == '5') {
+    uint64_t boundary = 0;  // the 17 digits as an integer
+    for (char c : digits) boundary = boundary * 10 + static_cast<uint64_t>(c - '0');
+    boundary = boundary * 10 + 5;
+    const int sign = compare_exact(magnitude, boundary, exponent - 16);
+    if (sign == 2) return double_lexical_exact(d);
+    round_up = sign >= 0;
+  }
+  if (round_up) {
     int i = 15;
     while (i >= 0 && digits[i] == '9') digits[i--] = '0';
     if (i < 0) {
@@ -220,9 +269,6 @@ std::string double_lexical_exact(double d) {
 // ---------------------------------------------------------------------------
 // Node map (API spec 7.2.2), kept in typed form: each entry remembers the
 // expanded value it came from and where its subject was written.
-
-// Node-map keys (IRIs and "_:" labels) are views of strings that outlive the
-// conversion: the expanded document's, or labels owned by the Converter.
 //
 // The node map is built and dropped whole within one conversion, so its
 // containers draw from one monotonic arena (the Converter's): a few large
@@ -230,11 +276,42 @@ std::string double_lexical_exact(double d) {
 // frees one by one.
 using Arena = std::pmr::monotonic_buffer_resource;
 
+// Node-map keys (IRIs, "_:" labels, properties, types) as dense numbers. Each
+// key is hashed once, where generate() meets it; the node map and emit() then
+// index arrays by symbol instead of hashing the (long, shared-prefix) IRI
+// strings again. Texts are views of strings that outlive the conversion: the
+// expanded document's, or labels in the Converter's arena.
+class Symbols {
+ public:
+  static constexpr uint32_t kNone = UINT32_MAX;
+
+  explicit Symbols(Arena* arena) : text_(arena), hash_(arena) {}
+  uint32_t intern(std::string_view s) {
+    const uint64_t hash = rdf::detail::hash_text(s);
+    const uint32_t found = index_.find(hash, [&](uint32_t id) { return text_[id] == s; });
+    if (found != kNone) return found;
+    const auto id = static_cast<uint32_t>(text_.size());
+    text_.push_back(s);
+    hash_.push_back(hash);
+    index_.insert(hash, id);
+    return id;
+  }
+  std::string_view text(uint32_t id) const { return text_[id]; }
+  // rdf::detail::hash_text(text(id)), kept for the term table.
+  uint64_t hash(uint32_t id) const { return hash_[id]; }
+  size_t size() const { return text_.size(); }
+
+ private:
+  rdf::detail::IdHashSet index_;
+  std::pmr::vector<std::string_view> text_;
+  std::pmr::vector<uint64_t> hash_;
+};
+
 struct Item {
   enum class Kind : uint8_t { Value, Ref, List };
   Kind kind = Kind::Value;
+  uint32_t id = Symbols::kNone;        // Kind::Ref: node map key
   const json::Value* value = nullptr;  // Kind::Value: the value object
-  std::string_view id;                 // Kind::Ref: node map key (IRI or "_:" label)
   std::pmr::vector<Item> list;         // Kind::List (given the arena when made)
   SourceLoc where;                     // the subject node object's "@id" (or the object)
 };
@@ -242,15 +319,15 @@ struct Item {
 struct Node {
   explicit Node(Arena* arena) : types(arena), properties(arena) {}
   SourceLoc where;
-  std::pmr::vector<std::pair<std::string_view, SourceLoc>> types;
+  std::pmr::vector<std::pair<uint32_t, SourceLoc>> types;
   // In the order first met; emit() visits them ordered by property. A node
   // has a handful, so a scan finds one faster than a map would.
-  std::pmr::vector<std::pair<std::string_view, std::pmr::vector<Item>>> properties;
+  std::pmr::vector<std::pair<uint32_t, std::pmr::vector<Item>>> properties;
   const json::Value* index = nullptr;
 
   // The index of `property` in `properties`, added if new (its value list in
   // the node's arena).
-  size_t slot(std::string_view property) {
+  size_t slot(uint32_t property) {
     for (size_t i = 0; i < properties.size(); ++i) {
       if (properties[i].first == property) return i;
     }
@@ -259,36 +336,49 @@ struct Node {
   }
 };
 
-// The nodes of one graph by subject, hashed; emit() visits them ordered by
+// The nodes of one graph, by subject symbol; emit() visits them ordered by
 // subject.
 class Graph {
  public:
   explicit Graph(Arena* arena) : arena_(arena), nodes_(arena), ids_(arena), by_id_(arena) {}
   bool empty() const { return nodes_.empty(); }
   // The node of `id` and whether it was created now. Nodes never move.
-  std::pair<Node*, bool> try_emplace(std::string_view id) {
-    auto [it, fresh] = by_id_.try_emplace(id, static_cast<uint32_t>(nodes_.size()));
+  std::pair<Node*, bool> try_emplace(uint32_t id) {
+    if (id >= by_id_.size()) by_id_.resize(std::max<size_t>(id + 1, 2 * by_id_.size()), kNone);
+    uint32_t& n = by_id_[id];
+    const bool fresh = n == kNone;
     if (fresh) {
+      n = static_cast<uint32_t>(nodes_.size());
       nodes_.emplace_back(arena_);
       ids_.push_back(id);
     }
-    return {&nodes_[it->second], fresh};
+    return {&nodes_[n], fresh};
   }
   // Node indexes ordered by subject.
-  std::vector<uint32_t> order() const {
+  std::vector<uint32_t> order(const Symbols& symbols) const {
     std::vector<uint32_t> out(ids_.size());
     for (uint32_t i = 0; i < out.size(); ++i) out[i] = i;
-    std::sort(out.begin(), out.end(), [this](uint32_t a, uint32_t b) { return ids_[a] < ids_[b]; });
+    std::sort(out.begin(), out.end(), [&](uint32_t a, uint32_t b) {
+      return symbols.text(ids_[a]) < symbols.text(ids_[b]);
+    });
     return out;
   }
-  std::string_view id(uint32_t i) const { return ids_[i]; }
+  uint32_t id(uint32_t i) const { return ids_[i]; }
   Node& node(uint32_t i) { return nodes_[i]; }
 
  private:
+  static constexpr uint32_t kNone = UINT32_MAX;
   Arena* arena_;
   std::pmr::deque<Node> nodes_;
-  std::pmr::vector<std::string_view> ids_;
-  std::pmr::unordered_map<std::string_view, uint32_t, StringHash> by_id_;
+  std::pmr::vector<uint32_t> ids_;
+  std::pmr::vector<uint32_t> by_id_;  // by symbol: index in nodes_, or kNone
+};
+
+// A graph of the node map with the symbol of its name (kNone: the default graph).
+struct NamedGraph {
+  NamedGraph(Arena* arena, uint32_t name_symbol) : name(name_symbol), graph(arena) {}
+  uint32_t name;
+  Graph graph;
 };
 
 struct Triple {
@@ -296,21 +386,56 @@ struct Triple {
   SourceLoc where;
 };
 
+// A term of the output table resolved on first use, so terms are interned in
+// the order the conversion first needs them (as with a plain lookup each time).
+class LazyIri {
+ public:
+  explicit constexpr LazyIri(std::string_view iri) : iri_(iri) {}
+  rdf::TermId get(rdf::TermTable& terms) {
+    if (id_.is_any()) id_ = terms.iri(iri_);
+    return id_;
+  }
+
+ private:
+  std::string_view iri_;
+  rdf::TermId id_ = rdf::TermId::any();
+};
+
 class Converter {
  public:
   Converter(rdf::Dataset& out, const Options& options) : out_(out), options_(options) {}
 
   void run(const json::Value& expanded) {
-    generate(expanded, graph_named("@default"), nullptr, nullptr, {}, nullptr, SourceLoc{});
+    generate(expanded, graph_named("@default"sv, Symbols::kNone), nullptr, nullptr, Symbols::kNone,
+             nullptr, SourceLoc{});
     emit();
   }
 
  private:
+  // Per symbol: what it stands for once converted, and (for a document's
+  // blank-node label) the fresh label it was given.
+  struct SymbolInfo {
+    rdf::TermId term = kUnresolved;  // kUnresolved, TermId::any() (ill-formed), or the term
+    uint32_t relabeled = Symbols::kNone;
+  };
+  static constexpr rdf::TermId kUnresolved{UINT32_MAX - 1};
+
+  uint32_t symbol(std::string_view text) {
+    const uint32_t id = symbols_.intern(text);
+    if (id >= info_.size()) info_.resize(symbols_.size());
+    return id;
+  }
+  // The symbol of a node-map key written in the document: blank-node labels
+  // are replaced by fresh ones.
+  uint32_t key(std::string_view text) {
+    return is_blank_id(text) ? relabel(symbol(text)) : symbol(text);
+  }
+
   // Where a value of the active property goes: the property's values of the
   // active subject, created on first use (an empty property adds no entry).
   struct Target {
     Node* subject = nullptr;
-    std::string_view property;
+    uint32_t property = Symbols::kNone;
     size_t slot = SIZE_MAX;  // in subject->properties, once created
     explicit operator bool() const { return subject != nullptr; }
     std::pmr::vector<Item>& get() {
@@ -323,17 +448,21 @@ class Converter {
 
   // Generate Blank Node Identifier: labels are drawn fresh from the output
   // dataset, so documents loaded into one dataset never share a blank node.
-  std::string_view relabel(std::string_view label) {
-    if (!label.empty()) {
-      auto it = identifiers_.find(label);
-      if (it != identifiers_.end()) return it->second;
+  // `label`: the symbol of the document's label, or kNone for a node without one.
+  uint32_t relabel(uint32_t label) {
+    if (label != Symbols::kNone && info_[label].relabeled != Symbols::kNone) {
+      return info_[label].relabeled;
     }
-    rdf::TermId fresh = out_.terms().fresh_blank();
-    std::string key = "_:";
-    key += out_.terms()[fresh].value;
-    std::string_view stored = blank_terms_.emplace(std::move(key), fresh).first->first;
-    if (!label.empty()) identifiers_.emplace(std::string(label), stored);
-    return stored;
+    const rdf::TermId fresh = out_.terms().fresh_blank();
+    const std::string_view name = out_.terms()[fresh].value;
+    auto* text = static_cast<char*>(arena_.allocate(name.size() + 2, 1));
+    text[0] = '_';
+    text[1] = ':';
+    std::memcpy(text + 2, name.data(), name.size());
+    const uint32_t key = symbol({text, name.size() + 2});
+    info_[key].term = fresh;
+    if (label != Symbols::kNone) info_[label].relabeled = key;
+    return key;
   }
 
   std::string file_of(SourceLoc loc) const {
@@ -345,8 +474,8 @@ class Converter {
   }
 
   // The node map of the graph named `name` (created empty).
-  Graph& graph_named(std::string_view name) {
-    return graphs_.try_emplace(name, &arena_).first->second;
+  Graph& graph_named(std::string_view name, uint32_t name_symbol) {
+    return graphs_.try_emplace(name, &arena_, name_symbol).first->second.graph;
   }
 
   void add_to(std::pmr::vector<Item>& values, Item item) {
@@ -361,11 +490,11 @@ class Converter {
     values.push_back(std::move(item));
   }
 
-  // `target`: where values of the active property go (unset: no active
+  // `target`: where values of the active property goes (unset: no active
   // subject or property). `reverse_subject`: set instead when a reverse
   // property is being processed (then `reverse_property` names it).
   void generate(const json::Value& element, Graph& graph, std::pmr::vector<Item>* list,
-                const Item* reverse_subject, std::string_view reverse_property, Target* target,
+                const Item* reverse_subject, uint32_t reverse_property, Target* target,
                 SourceLoc subject_where) {
     if (element.is_array()) {
       for (const json::Value& item : element.as_array()) {
@@ -409,7 +538,7 @@ class Converter {
     }
 
     if (value_kw != nullptr) {
-      Item item{Item::Kind::Value, &element, {}, {}, subject_where};
+      Item item{Item::Kind::Value, Symbols::kNone, &element, {}, subject_where};
       if (list != nullptr) {
         list->push_back(std::move(item));
       } else if (target != nullptr && *target) {
@@ -418,7 +547,8 @@ class Converter {
       return;
     }
     if (const json::Value* list_members = list_kw) {
-      Item result{Item::Kind::List, nullptr, {}, std::pmr::vector<Item>(&arena_), subject_where};
+      Item result{Item::Kind::List, Symbols::kNone, nullptr, std::pmr::vector<Item>(&arena_),
+                  subject_where};
       generate(*list_members, graph, &result.list, reverse_subject, reverse_property, target,
                subject_where);
       if (list != nullptr) {
@@ -432,15 +562,13 @@ class Converter {
     // A node object.
     const SourceLoc where =
         id_kw != nullptr && id_kw->location().known() ? id_kw->location() : element.location();
-    std::string_view id;
+    uint32_t id;
     if (const json::Value* v = id_kw) {
       // A non-string @id (only possible for ignored keyword-like values) stays
       // empty: never well-formed, so its triples are dropped.
-      if (v->is_string())
-        id = is_blank_id(v->as_string()) ? relabel(v->as_string())
-                                         : std::string_view(v->as_string());
+      id = key(v->is_string() ? std::string_view(v->as_string()) : std::string_view());
     } else {
-      id = relabel({});
+      id = relabel(Symbols::kNone);
     }
     auto [node_ptr, created] = graph.try_emplace(id);
     Node& node = *node_ptr;
@@ -450,23 +578,20 @@ class Converter {
     }
 
     if (reverse_subject != nullptr) {
-      if (!reverse_property.empty()) {
+      if (!symbols_.text(reverse_property).empty()) {
         Item ref = *reverse_subject;
         ref.where = where;
         node.properties[node.slot(reverse_property)].second.push_back(std::move(ref));
       }
     } else if (list != nullptr) {
-      list->push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
+      list->push_back(Item{Item::Kind::Ref, id, nullptr, {}, subject_where});
     } else if (target != nullptr && *target) {
-      target->get().push_back(Item{Item::Kind::Ref, nullptr, id, {}, subject_where});
+      target->get().push_back(Item{Item::Kind::Ref, id, nullptr, {}, subject_where});
     }
 
     if (const json::Value* types = type_kw) {
       auto add_type = [&](const json::Value& t) {
-        if (!t.is_string()) return;
-        std::string_view type =
-            is_blank_id(t.as_string()) ? relabel(t.as_string()) : std::string_view(t.as_string());
-        node.types.emplace_back(type, where);
+        if (t.is_string()) node.types.emplace_back(key(t.as_string()), where);
       };
       if (types->is_array()) {
         for (const json::Value& t : types->as_array()) add_type(t);
@@ -479,7 +604,7 @@ class Converter {
       if (node.index != nullptr && !(*node.index == *index)) {
         SourceLoc at = index->location();
         throw Error("conflicting indexes",
-                    "node <" + std::string(id) + "> has conflicting @index values " +
+                    "node <" + std::string(symbols_.text(id)) + "> has conflicting @index values " +
                         json::dump(*node.index) + " and " + json::dump(*index),
                     file_of(at), at.line, at.column);
       }
@@ -487,101 +612,91 @@ class Converter {
     }
 
     if (const json::Value* reverse = reverse_kw; reverse && reverse->is_object()) {
-      Item referenced{Item::Kind::Ref, nullptr, id, {}, where};
+      Item referenced{Item::Kind::Ref, id, nullptr, {}, where};
       const json::Object& map = reverse->as_object();
-      for (std::string_view key : map.sorted_keys()) {
-        std::string_view prop = is_blank_id(key) ? relabel(key) : key;
-        generate(*map.find(key), graph, nullptr, &referenced, prop, nullptr, where);
+      for (std::string_view property : map.sorted_keys()) {
+        generate(*map.find(property), graph, nullptr, &referenced, key(property), nullptr, where);
       }
     }
 
     if (const json::Value* g = graph_kw) {
-      generate(*g, graph_named(id), nullptr, nullptr, {}, nullptr, where);
+      generate(*g, graph_named(symbols_.text(id), id), nullptr, nullptr, Symbols::kNone, nullptr,
+               where);
     }
     if (const json::Value* included = included_kw) {
-      generate(*included, graph, nullptr, nullptr, {}, nullptr, where);
+      generate(*included, graph, nullptr, nullptr, Symbols::kNone, nullptr, where);
     }
 
     std::sort(properties.begin(), properties.end(),
               [&members](size_t a, size_t b) { return members.key(a) < members.key(b); });
     for (size_t i : properties) {
-      std::string_view key = members.key(i);
-      Target values{&node, is_blank_id(key) ? relabel(key) : key};
-      generate(members.value(i), graph, nullptr, nullptr, {}, &values, where);
+      Target values{&node, key(members.key(i))};
+      generate(members.value(i), graph, nullptr, nullptr, Symbols::kNone, &values, where);
     }
   }
 
   // ---------------------------------------------------------------------------
   // Deserialize JSON-LD to RDF (API spec 8.1.2).
 
-  // The RDF term for a node-map key, or nullopt when it is not well-formed.
-  std::optional<rdf::TermId> resource(std::string_view key) {
-    if (is_blank_id(key)) {
-      auto it = blank_terms_.find(key);
-      if (it != blank_terms_.end()) return it->second;
-      return out_.terms().blank(key.substr(2));
+  // The RDF term of a node-map key, TermId::any() when it is not a
+  // well-formed IRI (resolved once per symbol).
+  rdf::TermId resource(uint32_t id) {
+    rdf::TermId& term = info_[id].term;
+    if (term == kUnresolved) {
+      const std::string_view text = symbols_.text(id);
+      // Every "_:" key is a relabeled one, whose term relabel() set; this is
+      // only a fallback.
+      term = is_blank_id(text) ? out_.terms().blank(text.substr(2))
+                               : out_.terms().well_formed_iri(text, symbols_.hash(id));
     }
-    const rdf::TermId iri = well_formed_iri(key);
-    if (iri.is_any()) return std::nullopt;
-    return iri;
-  }
-
-  // The term of an IRI, TermId::any() when it is not well-formed (memoised).
-  rdf::TermId well_formed_iri(std::string_view iri) {
-    auto [it, fresh] = iri_terms_.try_emplace(iri, rdf::TermId::any());
-    if (fresh && rdf::is_well_formed_iri(iri)) it->second = out_.terms().iri(iri);
-    return it->second;
-  }
-
-  // The term of an IRI known to be well-formed (memoised like resource()).
-  rdf::TermId iri_term(std::string_view iri) {
-    auto [it, fresh] = iri_terms_.try_emplace(iri, rdf::TermId::any());
-    if (fresh) it->second = out_.terms().iri(iri);
-    return it->second;
+    return term;
   }
 
   void emit() {
     rdf::TermTable& terms = out_.terms();
-    const rdf::TermId rdf_type = terms.iri(rdf_iri("type"));
-    for (auto& [graph_name, graph] : graphs_) {
+    const rdf::TermId rdf_type = terms.iri(vocab::rdf::type);
+    for (auto& [graph_name, named] : graphs_) {
+      Graph& graph = named.graph;
       if (graph.empty()) continue;  // nothing was put in it
       rdf::TermId graph_term = rdf::TermId::default_graph();
-      if (graph_name == "@default"sv) {
+      if (named.name == Symbols::kNone) {
         if (!options_.default_graph.empty()) graph_term = terms.iri(options_.default_graph);
       } else {
-        std::optional<rdf::TermId> g = resource(graph_name);
-        if (!g) continue;
-        graph_term = *g;
+        graph_term = resource(named.name);
+        if (graph_term.is_any()) continue;
       }
-      for (uint32_t n : graph.order()) {
+      for (uint32_t n : graph.order(symbols_)) {
         Node& node = graph.node(n);
-        std::optional<rdf::TermId> subject = resource(graph.id(n));
-        if (!subject) continue;
+        const rdf::TermId subject = resource(graph.id(n));
+        if (subject.is_any()) continue;
         for (const auto& [type, where] : node.types) {
-          if (std::optional<rdf::TermId> t = resource(type)) {
-            out_.add({*subject, rdf_type, *t, graph_term}, where);
+          if (const rdf::TermId t = resource(type); !t.is_any()) {
+            out_.add({subject, rdf_type, t, graph_term}, where);
           }
         }
         std::sort(node.properties.begin(), node.properties.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
+                  [this](const auto& a, const auto& b) {
+                    return symbols_.text(a.first) < symbols_.text(b.first);
+                  });
         for (const auto& [property, values] : node.properties) {
-          if (is_blank_id(property) && !options_.produce_generalized_rdf) continue;
-          std::optional<rdf::TermId> predicate = resource(property);
-          if (!predicate) continue;
+          if (is_blank_id(symbols_.text(property)) && !options_.produce_generalized_rdf) continue;
+          const rdf::TermId predicate = resource(property);
+          if (predicate.is_any()) continue;
           for (const Item& item : values) {
-            std::vector<Triple> list_triples;
-            if (std::optional<rdf::TermId> object = object_to_rdf(item, list_triples)) {
-              out_.add({*subject, *predicate, *object, graph_term}, item.where);
+            list_triples_.clear();
+            if (const rdf::TermId object = object_to_rdf(item, list_triples_); !object.is_any()) {
+              out_.add({subject, predicate, object, graph_term}, item.where);
             }
-            for (const Triple& t : list_triples) out_.add({t.s, t.p, t.o, graph_term}, t.where);
+            for (const Triple& t : list_triples_) out_.add({t.s, t.p, t.o, graph_term}, t.where);
           }
         }
       }
     }
   }
 
-  // Object to RDF Conversion (API spec 8.1.3); nullopt means "drop the triple".
-  std::optional<rdf::TermId> object_to_rdf(const Item& item, std::vector<Triple>& list_triples) {
+  // Object to RDF Conversion (API spec 8.1.3); TermId::any() means "drop the
+  // triple".
+  rdf::TermId object_to_rdf(const Item& item, std::vector<Triple>& list_triples) {
     switch (item.kind) {
       case Item::Kind::Ref:
         return resource(item.id);
@@ -590,58 +705,79 @@ class Converter {
       case Item::Kind::Value:
         break;
     }
+    constexpr rdf::TermId kDrop = rdf::TermId::any();
     rdf::TermTable& terms = out_.terms();
-    const json::Value& object = *item.value;
-    const json::Value& value = *object.get("@value");
-    const json::Value* type = object.get("@type");
-    const json::Value* language = object.get("@language");
-    const json::Value* direction = object.get("@direction");
-
-    std::optional<std::string_view> datatype;
-    if (type != nullptr) {
-      if (!type->is_string()) return std::nullopt;
-      if (type->as_string() != "@json"sv && well_formed_iri(type->as_string()).is_any()) {
-        return std::nullopt;
+    // One pass over the value object's members (expansion left at most these).
+    const json::Value *value_ptr = nullptr, *type = nullptr, *language = nullptr,
+                      *direction = nullptr;
+    const json::Object& object = item.value->as_object();
+    for (size_t i = 0; i < object.size(); ++i) {
+      const std::string_view key = object.key(i);
+      if (key == "@value"sv) {
+        value_ptr = &object.value(i);
+      } else if (key == "@type"sv) {
+        type = &object.value(i);
+      } else if (key == "@language"sv) {
+        language = &object.value(i);
+      } else if (key == "@direction"sv) {
+        direction = &object.value(i);
       }
-      datatype = type->as_string();
+    }
+    const json::Value& value = *value_ptr;
+
+    // The datatype's term when @type gives one (resolved by symbol, like node
+    // keys); a default from the value's kind otherwise.
+    rdf::TermId datatype = kUnresolved;
+    bool json_literal = false;
+    if (type != nullptr) {
+      if (!type->is_string()) return kDrop;
+      if (type->as_string() == "@json"sv) {
+        json_literal = true;
+      } else {
+        datatype = resource(symbol(type->as_string()));
+        if (datatype.is_any()) return kDrop;
+      }
     }
     if (language != nullptr &&
         (!language->is_string() || !is_well_formed_language(language->as_string()))) {
-      return std::nullopt;
+      return kDrop;
     }
 
-    std::string lexical_storage;
     std::string_view lexical;
-    if (datatype == "@json"sv) {
+    if (json_literal) {
       try {
-        lexical = lexical_storage = json::canonicalize(value);
+        lexical_storage_ = json::canonicalize(value);
       } catch (const Error& e) {
         // canonicalize() knows the line and column, not the file.
         const Diagnostic& d = e.diagnostic();
         throw Error(e.code(), d.message, d.file.empty() ? file_of(value.location()) : d.file,
                     d.line, d.column);
       }
-      datatype = kRdfJson;
+      lexical = lexical_storage_;
+      datatype = rdf_json_.get(terms);
     } else if (value.is_bool()) {
       lexical = value.as_bool() ? "true" : "false";
-      if (!datatype) datatype = kXsdBoolean;
+      if (datatype == kUnresolved) datatype = xsd_boolean_.get(terms);
     } else if (value.is_number()) {
-      double d = value.as_number();
+      const double d = value.as_number();
       // A JSON *string* typed xsd:double keeps its lexical form; only JSON
       // numbers are put in canonical form.
       if (std::fmod(d, 1.0) != 0 || std::fabs(d) >= 1e21 || !std::isfinite(d) ||
-          datatype == kXsdDouble) {
-        lexical = lexical_storage = double_lexical(d);
-        if (!datatype) datatype = kXsdDouble;
+          (datatype != kUnresolved && terms[datatype].value == kXsdDouble)) {
+        lexical = lexical_storage_ = double_lexical(d);
+        if (datatype == kUnresolved) datatype = xsd_double_.get(terms);
       } else {
-        lexical = lexical_storage = integer_lexical(d);
-        if (!datatype) datatype = kXsdInteger;
+        lexical = lexical_storage_ = integer_lexical(d);
+        if (datatype == kUnresolved) datatype = xsd_integer_.get(terms);
       }
     } else if (value.is_string()) {
       lexical = value.as_string();
-      if (!datatype) datatype = language != nullptr ? rdf::kRdfLangString : rdf::kXsdString;
+      if (datatype == kUnresolved) {
+        datatype =
+            language != nullptr ? rdf::TermTable::rdf_lang_string() : rdf::TermTable::xsd_string();
+      }
     } else {
-      return std::nullopt;  // arrays/objects/null need @json; expansion rejects them
+      return kDrop;  // arrays/objects/null need @json; expansion rejects them
     }
 
     if (direction != nullptr && direction->is_string() &&
@@ -653,7 +789,7 @@ class Converter {
         return terms.literal(lexical, dt);
       }
       rdf::TermId literal = terms.fresh_blank();
-      const rdf::TermId xsd_string = terms.iri(rdf::kXsdString);
+      const rdf::TermId xsd_string = rdf::TermTable::xsd_string();
       list_triples.push_back(
           {literal, terms.iri(rdf_iri("value")), terms.literal(lexical, xsd_string), item.where});
       if (language != nullptr) {
@@ -664,27 +800,25 @@ class Converter {
                               terms.literal(direction->as_string(), xsd_string), item.where});
       return literal;
     }
-    if (language != nullptr) {
-      return terms.literal(lexical, iri_term(*datatype), language->as_string());
-    }
-    return terms.literal(lexical, iri_term(*datatype));
+    if (language != nullptr) return terms.literal(lexical, datatype, language->as_string());
+    return terms.literal(lexical, datatype);
   }
 
   // List to RDF Conversion (API spec 8.1.4).
   rdf::TermId list_to_rdf(const Item& list, std::vector<Triple>& list_triples) {
     rdf::TermTable& terms = out_.terms();
-    if (list.list.empty()) return terms.iri(rdf_iri("nil"));
+    if (list.list.empty()) return rdf_nil_.get(terms);
     std::vector<rdf::TermId> bnodes;
     bnodes.reserve(list.list.size());
     for (size_t i = 0; i < list.list.size(); ++i) bnodes.push_back(terms.fresh_blank());
-    const rdf::TermId first = terms.iri(rdf_iri("first"));
-    const rdf::TermId rest = terms.iri(rdf_iri("rest"));
-    const rdf::TermId nil = terms.iri(rdf_iri("nil"));
+    const rdf::TermId first = rdf_first_.get(terms);
+    const rdf::TermId rest = rdf_rest_.get(terms);
+    const rdf::TermId nil = rdf_nil_.get(terms);
     for (size_t i = 0; i < list.list.size(); ++i) {
       const Item& item = list.list[i];
       std::vector<Triple> embedded;
-      if (std::optional<rdf::TermId> object = object_to_rdf(item, embedded)) {
-        list_triples.push_back({bnodes[i], first, *object, item.where});
+      if (const rdf::TermId object = object_to_rdf(item, embedded); !object.is_any()) {
+        list_triples.push_back({bnodes[i], first, object, item.where});
       }
       list_triples.push_back(
           {bnodes[i], rest, i + 1 < bnodes.size() ? bnodes[i + 1] : nil, item.where});
@@ -697,13 +831,14 @@ class Converter {
   const Options& options_;
   // Declared first: destroyed after everything that draws from it.
   Arena arena_{16 * 1024};
-  std::pmr::map<std::string_view, Graph> graphs_{&arena_};  // ordered by graph name
-  // IRI -> its term, TermId::any() when not well-formed.
-  std::pmr::unordered_map<std::string_view, rdf::TermId, StringHash> iri_terms_{&arena_};
-  // Document label -> key (a view of a blank_terms_ key).
-  std::unordered_map<std::string, std::string_view, StringHash, std::equal_to<>> identifiers_;
-  // Key -> fresh blank node (node-based: the keys never move).
-  std::unordered_map<std::string, rdf::TermId, StringHash, std::equal_to<>> blank_terms_;
+  Symbols symbols_{&arena_};
+  std::pmr::vector<SymbolInfo> info_{&arena_};                   // by symbol
+  std::pmr::map<std::string_view, NamedGraph> graphs_{&arena_};  // ordered by graph name
+  std::vector<Triple> list_triples_;  // emit()'s scratch, reused per value
+  std::string lexical_storage_;       // object_to_rdf()'s scratch
+  LazyIri xsd_boolean_{kXsdBoolean}, xsd_double_{kXsdDouble}, xsd_integer_{kXsdInteger},
+      rdf_json_{kRdfJson}, rdf_first_{vocab::rdf::first}, rdf_rest_{vocab::rdf::rest},
+      rdf_nil_{vocab::rdf::nil};
 };
 
 }  // namespace

@@ -13,10 +13,12 @@ constexpr size_t kMinTail = 512;
 }  // namespace
 
 uint64_t Dataset::hash_quad(const Quad& q) {
-  uint64_t h = detail::mix64(q.subject.index);
-  h = detail::combine(h, q.predicate.index);
-  h = detail::combine(h, q.object.index);
-  return detail::combine(h, q.graph.index);
+  // Two words of two ids each, mixed: a third of the cost of mixing each id
+  // on its own, and term ids are small and dense, so a full mix is needed
+  // only once per word.
+  const uint64_t sp = (static_cast<uint64_t>(q.subject.index) << 32) | q.predicate.index;
+  const uint64_t og = (static_cast<uint64_t>(q.object.index) << 32) | q.graph.index;
+  return detail::mix64(detail::mix64(sp) ^ og);
 }
 
 uint32_t Dataset::find(const Quad& q) const {
@@ -44,6 +46,18 @@ bool Dataset::add(const Quad& q, SourceLoc where) {
   quads_.push_back(q);
   locations_.push_back(where);
   position_.insert(h, id);
+  if (!auto_compact_) return true;  // indexed by compact(), or by a later add()
+  const size_t tail = quads_.size() - frozen_;
+  if (tail > kMinTail && tail * 2 > frozen_) {
+    rebuild_indexes();
+  } else {
+    while (chained_ < quads_.size()) chain(chained_);
+  }
+  return true;
+}
+
+void Dataset::chain(uint32_t id) {
+  const Quad& q = quads_[id];
   for (int pos = 0; pos < 4; ++pos) {
     PostingIndex& index = index_[pos];
     const uint32_t t = at(q, pos).index;
@@ -64,9 +78,13 @@ bool Dataset::add(const Quad& q, SourceLoc where) {
     index.last[t] = id;
     ++index.count[t];
   }
-  const size_t tail = quads_.size() - frozen_;
-  if (auto_compact_ && tail > kMinTail && tail * 2 > frozen_) rebuild_indexes();
-  return true;
+  chained_ = id + 1;
+}
+
+void Dataset::reserve(size_t quads) {
+  quads_.reserve(quads);
+  locations_.reserve(quads);
+  position_.reserve(quads);
 }
 
 void Dataset::compact() {
@@ -78,21 +96,29 @@ void Dataset::rebuild_indexes() {
   for (int pos = 0; pos < 4; ++pos) {
     PostingIndex& index = index_[pos];
     // Counting sort by term id; filling in quad order keeps each list in
-    // insertion order.
-    std::vector<uint32_t> offsets(n_terms + 1, 0);
-    for (const Quad& q : quads_) ++offsets[at(q, pos).index + 1];
-    for (size_t t = 0; t < n_terms; ++t) offsets[t + 1] += offsets[t];
-    std::vector<uint32_t> entries(quads_.size());
-    std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (uint32_t i = 0; i < quads_.size(); ++i) entries[fill[at(quads_[i], pos).index]++] = i;
-    index.offsets = std::move(offsets);
-    index.entries = std::move(entries);
-    index.first.assign(n_terms, PostingIndex::kNone);
-    index.last.assign(n_terms, PostingIndex::kNone);
-    index.count.assign(n_terms, 0);
+    // insertion order. Counts go two slots up so that filling moves each
+    // term's start one slot down, onto where offsets[t] must end up.
+    // The position's field, picked once (at() would branch per quad).
+    static constexpr TermId Quad::*kField[] = {&Quad::subject, &Quad::predicate, &Quad::object,
+                                               &Quad::graph};
+    const TermId Quad::*field = kField[pos];
+    std::vector<uint32_t>& offsets = index.offsets;
+    offsets.assign(n_terms + 2, 0);
+    for (const Quad& q : quads_) ++offsets[(q.*field).index + 2];
+    for (size_t t = 2; t < n_terms + 2; ++t) offsets[t] += offsets[t - 1];
+    index.entries.resize(quads_.size());
+    const auto n_quads = static_cast<uint32_t>(quads_.size());
+    for (uint32_t i = 0; i < n_quads; ++i)
+      index.entries[offsets[(quads_[i].*field).index + 1]++] = i;
+    offsets.pop_back();  // [offsets[t], offsets[t + 1]) are now the quads of t
+    // No chained quads are left; chain() sizes these again when one comes.
+    index.first.clear();
+    index.last.clear();
+    index.count.clear();
     index.next.clear();
   }
   frozen_ = static_cast<uint32_t>(quads_.size());
+  chained_ = frozen_;
 }
 
 std::vector<uint32_t> Dataset::match(TermId s, TermId p, TermId o, TermId g) const {

@@ -14,6 +14,9 @@
 // they are folded in; folding happens inside add() when that tail grows past a
 // fraction of the dataset, so adding stays amortised O(1) and every const
 // member is a pure read (safe to call from several threads at once).
+// While automatic compaction is off (a bulk load), add() indexes nothing: the
+// quads added since are scanned one by one by lookups until compact() folds
+// them, or until add() chains them once compaction is back on.
 #pragma once
 
 #include <array>
@@ -83,10 +86,14 @@ class Dataset {
 
   // Folds every recently added quad into the compact indexes now.
   void compact();
-  // While off, add() never folds (the chained tail keeps answering lookups):
-  // a loader that adds thousands of quads and then compacts once saves the
-  // folds in between. Turning it back on does not fold by itself.
+  // While off, add() neither folds nor indexes (lookups scan the quads added
+  // since, which stay correct but cost their number): a loader that adds
+  // thousands of quads, looks nothing up in between and then compacts once
+  // saves the per-quad index updates and the folds in between. Turning it back
+  // on does not fold by itself; the next add() indexes what is pending.
   void set_auto_compact(bool on) { auto_compact_ = on; }
+  // Room for `quads` quads in all, so a loader that knows its size grows once.
+  void reserve(size_t quads);
   // Approximate heap use (terms, quads, locations, indexes).
   size_t memory_bytes() const;
 
@@ -128,13 +135,16 @@ class Dataset {
   }
   static uint64_t hash_quad(const Quad& q);
   void rebuild_indexes();
+  // Appends quad `id` (the next one not chained) to its terms' chains.
+  void chain(uint32_t id);
 
   TermTable terms_;
   std::vector<Quad> quads_;
   std::vector<SourceLoc> locations_;
   detail::IdHashSet position_;  // quad -> index, for deduplication and contains()
   std::array<PostingIndex, 4> index_;
-  uint32_t frozen_ = 0;  // quads below this index are in the compact arrays
+  uint32_t frozen_ = 0;   // quads below this index are in the compact arrays
+  uint32_t chained_ = 0;  // quads in [frozen_, chained_) are chained; later ones are not indexed
   bool auto_compact_ = true;
 };
 
@@ -165,21 +175,26 @@ void Dataset::scan(TermId s, TermId p, TermId o, TermId g, Visit&& visit) const 
       best_size = n;
     }
   }
-  if (best_size == 0) return;
-  auto matches = [&](const Quad& q) {
+  const auto n_quads = static_cast<uint32_t>(quads_.size());
+  if (best_size == 0 && chained_ == n_quads) return;
+  auto matches = [&](const Quad& q, int skip) {
     for (int pos = 0; pos < 4; ++pos)
-      if (pos != best && !pattern[pos].is_any() && at(q, pos) != pattern[pos]) return false;
+      if (pos != skip && !pattern[pos].is_any() && at(q, pos) != pattern[pos]) return false;
     return true;
   };
   const PostingIndex& index = index_[best];
   for (uint32_t i : index.frozen(pattern[best])) {
     const Quad& q = quads_[i];
-    if (matches(q) && !visit(q, i)) return;
+    if (matches(q, best) && !visit(q, i)) return;
   }
   for (uint32_t i = index.recent_first(pattern[best]); i != PostingIndex::kNone;
        i = index.next[i - frozen_]) {
     const Quad& q = quads_[i];
-    if (matches(q) && !visit(q, i)) return;
+    if (matches(q, best) && !visit(q, i)) return;
+  }
+  for (uint32_t i = chained_; i < n_quads; ++i) {  // added while not indexing
+    const Quad& q = quads_[i];
+    if (matches(q, -1) && !visit(q, i)) return;
   }
 }
 

@@ -36,6 +36,11 @@ class IdHashSet {
     ++count_;
   }
 
+  // Room for `n` ids without growing.
+  void reserve(size_t n) {
+    while (n * 10 > slots_.size() * 7) grow();
+  }
+
   size_t size() const { return count_; }
   void clear() {
     slots_.clear();

@@ -1,7 +1,10 @@
 #include "rdf/term.hpp"
 
+#include <charconv>
 #include <cstring>
 #include <functional>
+
+#include "rdf/iri.hpp"
 
 namespace mospec::rdf {
 
@@ -11,15 +14,20 @@ constexpr size_t kBlockSize = 64 * 1024;
 
 using detail::hash_text;
 
-uint64_t hash_term(const Term& t) {
+// value_hash: hash_text(t.value).
+uint64_t hash_term(const Term& t, uint64_t value_hash) {
   uint64_t h = detail::mix64(static_cast<uint64_t>(t.kind));
-  h = detail::combine(h, hash_text(t.value));
+  h = detail::combine(h, value_hash);
   if (t.kind == TermKind::Literal) {
     h = detail::combine(h, t.datatype.index);
     if (!t.language.empty()) h = detail::combine(h, hash_text(t.language));
     if (!t.direction.empty()) h = detail::combine(h, hash_text(t.direction));
   }
   return h;
+}
+
+uint64_t hash_term(const Term& t) {
+  return hash_term(t, hash_text(t.value));
 }
 
 bool same_term(const Term& a, const Term& b) {
@@ -70,6 +78,10 @@ TermId TermTable::lookup(const Term& t, uint64_t hash) const {
 TermId TermTable::intern(const Term& t) {
   const uint64_t hash = hash_term(t);
   if (TermId existing = lookup(t, hash); !existing.is_any()) return existing;
+  return insert(t, hash);
+}
+
+TermId TermTable::insert(const Term& t, uint64_t hash) {
   Term stored = t;
   stored.value = store(t.value);
   stored.language = store(t.language);
@@ -95,16 +107,33 @@ TermId TermTable::iri(std::string_view iri) {
   return intern(Term{TermKind::Iri, iri, {}, {}, {}});
 }
 
+TermId TermTable::well_formed_iri(std::string_view iri) {
+  return well_formed_iri(iri, hash_text(iri));
+}
+
+TermId TermTable::well_formed_iri(std::string_view iri, uint64_t text_hash) {
+  const Term key{TermKind::Iri, iri, {}, {}, {}};
+  const uint64_t hash = hash_term(key, text_hash);
+  TermId id = lookup(key, hash);
+  if (!id.is_any() && id.index < well_formed_.size() && well_formed_[id.index]) return id;
+  if (!is_well_formed_iri(iri)) return TermId::any();
+  if (id.is_any()) id = insert(key, hash);
+  if (id.index >= well_formed_.size()) well_formed_.resize(terms_.size());
+  well_formed_[id.index] = true;
+  return id;
+}
+
 TermId TermTable::blank(std::string_view label) {
   return intern(Term{TermKind::Blank, label, {}, {}, {}});
 }
 
 TermId TermTable::fresh_blank() {
   for (;;) {
-    // Appending (rather than "b" + ...) sidesteps GCC 12's false -Wrestrict.
-    std::string label(1, 'b');
-    label += std::to_string(next_fresh_++);
-    if (find_blank(label).is_any()) return blank(label);
+    char label[24] = {'b'};
+    const char* end = std::to_chars(label + 1, label + sizeof label, next_fresh_++).ptr;
+    const Term key{TermKind::Blank, std::string_view(label, end - label), {}, {}, {}};
+    const uint64_t hash = hash_term(key);
+    if (lookup(key, hash).is_any()) return insert(key, hash);
   }
 }
 
@@ -198,6 +227,7 @@ TermId TermTable::import(const TermTable& other, TermId id) {
 
 size_t TermTable::memory_bytes() const {
   return text_bytes_ + terms_.capacity() * sizeof(Term) + index_.memory_bytes() +
+         well_formed_.capacity() / 8 +
          blank_stems_.size() * (sizeof(std::string_view) + 2 * sizeof(void*)) +
          blocks_.capacity() * sizeof(void*);
 }

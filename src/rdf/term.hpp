@@ -65,6 +65,14 @@ class TermTable {
   static constexpr TermId rdf_dir_lang_string() { return TermId{3}; }
 
   TermId iri(std::string_view iri);
+  // The id of `iri` (interned now if new), or TermId::any(), interning
+  // nothing, when it is not a well-formed IRI (rdf::is_well_formed_iri). Each
+  // distinct IRI is checked once per table however often it is asked for, so
+  // a loader converting many documents that share a vocabulary checks it once.
+  TermId well_formed_iri(std::string_view iri);
+  // Same, for a caller that has hashed the IRI already (text_hash must be
+  // detail::hash_text(iri)): the table does not hash it again.
+  TermId well_formed_iri(std::string_view iri, uint64_t text_hash);
   TermId blank(std::string_view label);
   // A blank node whose label is unused in this table ("b0", "b1", ...).
   TermId fresh_blank();
@@ -100,6 +108,8 @@ class TermTable {
   std::string_view store(std::string_view text);
   TermId intern(const Term& t);
   TermId lookup(const Term& t, uint64_t hash) const;
+  // Adds a term known to be absent (hash: its hash_term).
+  TermId insert(const Term& t, uint64_t hash);
   Term literal_key(std::string_view lexical, TermId datatype, std::string_view language,
                    std::string_view direction) const;
 
@@ -111,6 +121,8 @@ class TermTable {
 
   std::vector<Term> terms_;
   detail::IdHashSet index_;
+  // By term id (sized lazily): IRIs that well_formed_iri() has checked.
+  std::vector<bool> well_formed_;
   // For every blank label containing '_', the part up to and including the
   // first '_' (so fresh_blank_prefix can prove a prefix unused in O(1)).
   std::unordered_set<std::string_view> blank_stems_;

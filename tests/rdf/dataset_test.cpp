@@ -145,6 +145,26 @@ TEST(Dataset, EveryPatternMatchesBruteForceWithoutAutoCompaction) {
   check_all_patterns(d, pools, rng);
 }
 
+// Quads added while automatic compaction is off are not indexed; lookups must
+// still see them after it is turned back on, and the next add() must index
+// them (chained behind earlier compacted quads) without losing any.
+TEST(Dataset, QuadsAddedWithoutIndexingAreFoundAndIndexedLater) {
+  Dataset d;
+  Pools pools = make_pools(d.terms());
+  std::mt19937 rng(17);
+  add_random(d, pools, rng, 2000);  // compacted, plus a chained tail
+  d.set_auto_compact(false);
+  add_random(d, pools, rng, 100);  // not indexed
+  check_all_patterns(d, pools, rng);
+  d.set_auto_compact(true);
+  check_all_patterns(d, pools, rng);
+  add_random(d, pools, rng, 1);  // indexes the 100 pending quads first
+  check_all_patterns(d, pools, rng);
+  d.reserve(d.size() + 1000);
+  add_random(d, pools, rng, 1000);
+  check_all_patterns(d, pools, rng);
+}
+
 TEST(Dataset, UnknownTermsMatchNothing) {
   Dataset d;
   TermTable& t = d.terms();

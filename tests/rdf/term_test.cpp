@@ -128,6 +128,42 @@ TEST(TermTable, FindDoesNotIntern) {
   EXPECT_EQ(t.find_literal("v", TermId::default_graph(), "en"), lit);
 }
 
+// well_formed_iri interns a well-formed IRI (once) and nothing else; an IRI
+// interned by iri() without a check is still checked on its first ask.
+TEST(TermTable, WellFormedIriInternsOnlyWellFormedIris) {
+  TermTable t;
+  const size_t n = t.size();
+  EXPECT_TRUE(t.well_formed_iri("http://ex.org/a b").is_any());
+  EXPECT_TRUE(t.well_formed_iri("no-scheme").is_any());
+  EXPECT_TRUE(t.well_formed_iri("").is_any());
+  EXPECT_EQ(t.size(), n);
+  TermId a = t.well_formed_iri("http://ex.org/a");
+  EXPECT_EQ(t.size(), n + 1);
+  EXPECT_EQ(t.find_iri("http://ex.org/a"), a);
+  EXPECT_EQ(t.well_formed_iri("http://ex.org/a"), a);
+  EXPECT_EQ(t.iri("http://ex.org/a"), a);
+  TermId bad = t.iri("http://ex.org/{bad}");
+  EXPECT_TRUE(t.well_formed_iri("http://ex.org/{bad}").is_any());
+  EXPECT_TRUE(t.well_formed_iri("http://ex.org/{bad}").is_any());
+  EXPECT_EQ(t.find_iri("http://ex.org/{bad}"), bad);
+  TermId good = t.iri("http://ex.org/good");
+  EXPECT_EQ(t.well_formed_iri("http://ex.org/good"), good);
+  // With the caller's hash: the same terms.
+  EXPECT_EQ(t.well_formed_iri("http://ex.org/good", detail::hash_text("http://ex.org/good")), good);
+  TermId c = t.well_formed_iri("http://ex.org/c", detail::hash_text("http://ex.org/c"));
+  EXPECT_EQ(t.iri("http://ex.org/c"), c);
+  EXPECT_TRUE(
+      t.well_formed_iri("http://ex.org/{c}", detail::hash_text("http://ex.org/{c}")).is_any());
+  // Many IRIs: the per-term record grows with the table.
+  for (int i = 0; i < 300; ++i) {
+    const std::string iri = numbered("http://ex.org/n", i);
+    const TermId id = t.well_formed_iri(iri);
+    EXPECT_FALSE(id.is_any()) << iri;
+    EXPECT_EQ(t.find_iri(iri), id) << iri;
+    EXPECT_EQ(t.well_formed_iri(iri), id) << iri;
+  }
+}
+
 TEST(TermTable, FreshBlankNeverCollides) {
   TermTable t;
   t.blank("b0");
