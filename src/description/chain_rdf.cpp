@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <span>
@@ -64,54 +65,65 @@ enum class V : uint8_t {
   iyz,
   izz,
   mass,  // dyn-coord
+  UNITLESS,
+  M,
+  KiloGM_M2,
+  KiloGM,  // qudt units
   count
 };
 constexpr size_t kVocabSize = static_cast<size_t>(V::count);
 
-const std::string& text(V v) {
-  static const std::array<std::string, kVocabSize> iris = [] {
-    std::array<std::string, kVocabSize> a;
-    const auto set = [&](V k, std::string_view ns, std::string_view local) {
-      a[static_cast<size_t>(k)] = iri(ns, local);
-    };
-    set(V::type, kRdf, "type");
-    set(V::first, kRdf, "first");
-    set(V::rest, kRdf, "rest");
-    set(V::nil, kRdf, "nil");
-    set(V::unit, vocab::qudt::ns, "unit");
-    set(V::KinematicChain, vocab::kc_ent::ns, "KinematicChain");
-    set(V::joints, vocab::kc_ent::ns, "joints");
-    set(V::RevoluteJoint, vocab::kc_ent::ns, "RevoluteJoint");
-    set(V::PrismaticJoint, vocab::mospec_joints::ns, "PrismaticJoint");
-    set(V::between_attachments, vocab::kc_ent::ns, "between-attachments");
-    set(V::common_axis, vocab::kc_ent::ns, "common-axis");
-    set(V::Pose, vocab::geom_rel::ns, "Pose");
-    set(V::Position, vocab::geom_rel::ns, "Position");
-    set(V::of, vocab::geom_rel::ns, "of");
-    set(V::with_respect_to, vocab::geom_rel::ns, "with-respect-to");
-    set(V::x, vocab::geom_coord::ns, "x");
-    set(V::y, vocab::geom_coord::ns, "y");
-    set(V::z, vocab::geom_coord::ns, "z");
-    set(V::direction_cosine_x, vocab::geom_coord::ns, "direction-cosine-x");
-    set(V::direction_cosine_y, vocab::geom_coord::ns, "direction-cosine-y");
-    set(V::direction_cosine_z, vocab::geom_coord::ns, "direction-cosine-z");
-    set(V::origin, vocab::geom_ent::ns, "origin");
-    set(V::simplices, vocab::geom_ent::ns, "simplices");
-    set(V::RotationalInertia, vocab::dyn_ent::ns, "RotationalInertia");
-    set(V::about, vocab::dyn_ent::ns, "about");
-    set(V::of_body, vocab::dyn_ent::ns, "of-body");
-    set(V::Mass, vocab::dyn_ent::ns, "Mass");
-    set(V::as_seen_by, vocab::dyn_coord::ns, "as-seen-by");
-    set(V::ixx, vocab::dyn_coord::ns, "ixx");
-    set(V::ixy, vocab::dyn_coord::ns, "ixy");
-    set(V::ixz, vocab::dyn_coord::ns, "ixz");
-    set(V::iyy, vocab::dyn_coord::ns, "iyy");
-    set(V::iyz, vocab::dyn_coord::ns, "iyz");
-    set(V::izz, vocab::dyn_coord::ns, "izz");
-    set(V::mass, vocab::dyn_coord::ns, "mass");
-    return a;
-  }();
-  return iris[static_cast<size_t>(v)];
+// Each term's namespace and local name, in V's order: the IRI is spelled
+// (into a stack buffer) only when looked up once per Reader, or for an error.
+struct Term {
+  std::string_view ns, local;
+};
+constexpr std::array<Term, kVocabSize> kTerms{{
+    {kRdf, "type"},
+    {kRdf, "first"},
+    {kRdf, "rest"},
+    {kRdf, "nil"},
+    {vocab::qudt::ns, "unit"},
+    {vocab::kc_ent::ns, "KinematicChain"},
+    {vocab::kc_ent::ns, "joints"},
+    {vocab::kc_ent::ns, "RevoluteJoint"},
+    {vocab::mospec_joints::ns, "PrismaticJoint"},
+    {vocab::kc_ent::ns, "between-attachments"},
+    {vocab::kc_ent::ns, "common-axis"},
+    {vocab::geom_rel::ns, "Pose"},
+    {vocab::geom_rel::ns, "Position"},
+    {vocab::geom_rel::ns, "of"},
+    {vocab::geom_rel::ns, "with-respect-to"},
+    {vocab::geom_coord::ns, "x"},
+    {vocab::geom_coord::ns, "y"},
+    {vocab::geom_coord::ns, "z"},
+    {vocab::geom_coord::ns, "direction-cosine-x"},
+    {vocab::geom_coord::ns, "direction-cosine-y"},
+    {vocab::geom_coord::ns, "direction-cosine-z"},
+    {vocab::geom_ent::ns, "origin"},
+    {vocab::geom_ent::ns, "simplices"},
+    {vocab::dyn_ent::ns, "RotationalInertia"},
+    {vocab::dyn_ent::ns, "about"},
+    {vocab::dyn_ent::ns, "of-body"},
+    {vocab::dyn_ent::ns, "Mass"},
+    {vocab::dyn_coord::ns, "as-seen-by"},
+    {vocab::dyn_coord::ns, "ixx"},
+    {vocab::dyn_coord::ns, "ixy"},
+    {vocab::dyn_coord::ns, "ixz"},
+    {vocab::dyn_coord::ns, "iyy"},
+    {vocab::dyn_coord::ns, "iyz"},
+    {vocab::dyn_coord::ns, "izz"},
+    {vocab::dyn_coord::ns, "mass"},
+    {kUnit, "UNITLESS"},
+    {kUnit, "M"},
+    {kUnit, "KiloGM-M2"},
+    {kUnit, "KiloGM"},
+}};
+const Term& term(V v) {
+  return kTerms[static_cast<size_t>(v)];
+}
+std::string text(V v) {
+  return iri(term(v).ns, term(v).local);
 }
 
 // Reads a chain from a dataset: all of it, or (filtered) only the union of
@@ -130,7 +142,18 @@ class Reader {
   rdf::TermId id(std::string_view iri_text) const { return g_.terms().find_iri(iri_text); }
   rdf::TermId id(V v) const {
     rdf::TermId& t = ids_[static_cast<size_t>(v)];
-    if (t == kUnknown) t = id(text(v));
+    if (t == kUnknown) {
+      // Every IRI of kTerms is short; a longer one is looked up as a string.
+      const Term& w = term(v);
+      std::array<char, 128> buf;
+      if (w.ns.size() + w.local.size() > buf.size()) {
+        t = id(text(v));
+      } else {
+        std::copy(w.ns.begin(), w.ns.end(), buf.begin());
+        std::copy(w.local.begin(), w.local.end(), buf.begin() + w.ns.size());
+        t = id(std::string_view(buf.data(), w.ns.size() + w.local.size()));
+      }
+    }
     return t;
   }
 
@@ -166,11 +189,38 @@ class Reader {
     const rdf::TermId p = id(V::type), t = id(type);
     if (p.is_any() || t.is_any()) return false;
     if (!filtered_) return g_.count(s, p, t, rdf::TermId::any(), 1) > 0;
-    for (rdf::TermId g : graphs_)
-      if (g_.count(s, p, t, g, 1) > 0) return true;
-    return false;
+    // One scan over the subject's type statements, not one lookup per graph read.
+    bool found = false;
+    g_.scan(s, p, t, rdf::TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      found = read(q);
+      return !found;
+    });
+    return found;
+  }
+  // The object of (s, p) when objects(s, p) would list exactly one; else
+  // any(). Reads in place: most statements read are single-valued.
+  rdf::TermId single_object(rdf::TermId s, V p) const {
+    const rdf::TermId pid = id(p);
+    rdf::TermId first = rdf::TermId::any();
+    if (pid.is_any()) return first;
+    bool several = false;
+    g_.scan(s, pid, rdf::TermId::any(), rdf::TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      if (!read(q)) return true;
+      if (first.is_any()) {
+        first = q.object;
+        return true;
+      }
+      // objects() lists a triple stated in several graphs read once, and
+      // (unfiltered) every statement.
+      if (filtered_ && q.object == first) return true;
+      several = true;
+      return false;
+    });
+    return several ? rdf::TermId::any() : first;
   }
   rdf::TermId one(rdf::TermId s, V p) const {
+    if (const rdf::TermId o = single_object(s, p); !o.is_any()) return o;
+    // None or several: the list, for the count in the error.
     const auto os = objects(s, p);
     if (os.size() != 1) {
       throw Error("invalid-robot-model", name(s) + ": expected exactly one <" + text(p) +
@@ -179,6 +229,41 @@ class Reader {
     return os.front();
   }
   double number(rdf::TermId s, V p) const { return to_double(s, p, one(s, p)); }
+
+  // Several single-valued properties of one subject, read in one scan (a
+  // subject has a handful of statements; each one() would scan them again).
+  struct Value {
+    rdf::TermId first = rdf::TermId::any();
+    bool several = false;  // objects() would list more than one
+  };
+  template <size_t N>
+  std::array<Value, N> values(rdf::TermId s, const std::array<V, N>& ps) const {
+    std::array<Value, N> out;
+    std::array<rdf::TermId, N> ids;
+    for (size_t k = 0; k < N; ++k) ids[k] = id(ps[k]);
+    g_.scan(s, rdf::TermId::any(), rdf::TermId::any(), rdf::TermId::any(),
+            [&](const rdf::Quad& q, uint32_t) {
+              if (!read(q)) return true;
+              for (size_t k = 0; k < N; ++k) {
+                if (q.predicate != ids[k] || ids[k].is_any()) continue;
+                Value& v = out[k];
+                if (v.first.is_any()) {
+                  v.first = q.object;
+                } else if (!filtered_ || q.object != v.first) {
+                  v.several = true;  // as objects() counts: see single_object
+                }
+              }
+              return true;
+            });
+    return out;
+  }
+  // The value read for (s, p), or one(s, p)'s error when there is none or several.
+  rdf::TermId take(rdf::TermId s, V p, const Value& v) const {
+    return v.first.is_any() || v.several ? one(s, p) : v.first;
+  }
+  double take_number(rdf::TermId s, V p, const Value& v) const {
+    return to_double(s, p, take(s, p, v));
+  }
   double to_double(rdf::TermId s, V p, rdf::TermId o) const {
     const auto& term = g_.terms()[o];
     double v = 0.0;
@@ -188,22 +273,53 @@ class Reader {
     }
     throw Error("invalid-robot-model", name(s) + ": <" + text(p) + "> is not a number");
   }
-  std::vector<double> number_list(rdf::TermId s, V p) const {
-    std::vector<double> out;
+  // The numbers of the RDF list that `head` (read for (s, p)) starts, into
+  // `out`; how many (reading stops after 17: enough to report a wrong length).
+  using NumberList = std::array<double, 17>;
+  size_t number_list(rdf::TermId s, V p, const Value& head, NumberList& out) const {
+    size_t n = 0;
     const rdf::TermId nil = id(V::nil);
-    for (rdf::TermId node = one(s, p); node != nil; node = one(node, V::rest)) {
-      out.push_back(to_double(s, p, one(node, V::first)));
-      if (out.size() > 16) break;
+    for (rdf::TermId node = take(s, p, head); node != nil;) {
+      const auto v = values(node, std::array{V::first, V::rest});
+      out[n++] = to_double(s, p, take(node, V::first, v[0]));
+      if (n == out.size()) break;
+      node = take(node, V::rest, v[1]);
     }
-    return out;
+    return n;
+  }
+  // Whether objects(s, unit) lists exactly the terms of `want` (distinct),
+  // each once: then require_units passes. Compares ids, builds no strings.
+  bool units_are(rdf::TermId s, std::initializer_list<V> want) const {
+    const rdf::TermId pid = id(V::unit);
+    if (pid.is_any()) return false;
+    std::array<rdf::TermId, 4> seen;
+    size_t n = 0;
+    bool ok = true;
+    g_.scan(s, pid, rdf::TermId::any(), rdf::TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      if (!read(q)) return true;
+      const bool repeat = std::find(seen.begin(), seen.begin() + n, q.object) != seen.begin() + n;
+      if (repeat && filtered_) return true;  // objects() lists it once
+      const bool wanted = std::any_of(want.begin(), want.end(), [&](V w) {
+        const rdf::TermId t = id(w);
+        return !t.is_any() && t == q.object;
+      });
+      if (repeat || !wanted || n == seen.size()) {
+        ok = false;
+        return false;
+      }
+      seen[n++] = q.object;
+      return true;
+    });
+    return ok && n == want.size();
   }
   // The QUDT units of `s` must be exactly `want` (a set).
-  void require_units(rdf::TermId s, std::vector<std::string_view> want) const {
+  void require_units(rdf::TermId s, std::initializer_list<V> want) const {
+    if (units_are(s, want)) return;
     std::vector<std::string> got;
     for (rdf::TermId u : objects(s, V::unit)) got.push_back(name(u));
     std::sort(got.begin(), got.end());
     std::vector<std::string> expected;
-    for (auto w : want) expected.push_back(iri(kUnit, w));
+    for (V w : want) expected.push_back(text(w));
     std::sort(expected.begin(), expected.end());
     expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
     if (got != expected) {
@@ -217,19 +333,22 @@ class Reader {
   }
 
   Pose pose(rdf::TermId p) const {
-    require_units(p, {"UNITLESS", "M"});
+    require_units(p, {V::UNITLESS, V::M});
     Pose X;
     const char* keys[] = {"direction-cosine-x", "direction-cosine-y", "direction-cosine-z"};
-    const V columns[] = {V::direction_cosine_x, V::direction_cosine_y, V::direction_cosine_z};
+    constexpr std::array columns{V::direction_cosine_x, V::direction_cosine_y,
+                                 V::direction_cosine_z};
+    const auto v = values(p, std::array{V::direction_cosine_x, V::direction_cosine_y,
+                                        V::direction_cosine_z, V::x, V::y, V::z});
     for (int c = 0; c < 3; ++c) {
-      const auto col = number_list(p, columns[c]);
-      if (col.size() != 3) {
-        throw Error("invalid-robot-model", name(p) + ": " + keys[c] + " must have 3 entries, got " +
-                                               std::to_string(col.size()));
+      NumberList col;
+      if (const size_t n = number_list(p, columns[c], v[c], col); n != 3) {
+        throw Error("invalid-robot-model",
+                    name(p) + ": " + keys[c] + " must have 3 entries, got " + std::to_string(n));
       }
       X.R.col(c) = Vec3(col[0], col[1], col[2]);
     }
-    X.p = Vec3(number(p, V::x), number(p, V::y), number(p, V::z));
+    X.p = Vec3(take_number(p, V::x, v[3]), take_number(p, V::y, v[4]), take_number(p, V::z, v[5]));
     return X;
   }
 
@@ -248,26 +367,31 @@ class Reader {
     RigidInertia I;
     for (rdf::TermId r : subjects(V::as_seen_by, frame)) {
       if (!has_type(r, V::RotationalInertia)) continue;
-      require_units(r, {"KiloGM-M2"});
-      const auto c = [&](V k) { return number(r, k); };
+      require_units(r, {V::KiloGM_M2});
+      constexpr std::array ps{V::ixx, V::ixy, V::ixz, V::iyy, V::iyz, V::izz, V::about, V::of_body};
+      const auto v = values(r, ps);
+      const auto at = [&](V k) { return size_t(std::find(ps.begin(), ps.end(), k) - ps.begin()); };
+      const auto c = [&](V k) { return take_number(r, k, v[at(k)]); };
       I.I_Scm_S << c(V::ixx), c(V::ixy), c(V::ixz), c(V::ixy), c(V::iyy), c(V::iyz), c(V::ixz),
           c(V::iyz), c(V::izz);
-      const rdf::TermId com = one(r, V::about);
+      const rdf::TermId com = take(r, V::about, v[at(V::about)]);
       bool found = false;
       for (rdf::TermId p : subjects(V::of, com)) {
         if (!has_type(p, V::Position)) continue;
-        require_units(p, {"M"});
-        I.p_SoScm_S = Vec3(number(p, V::x), number(p, V::y), number(p, V::z));
+        require_units(p, {V::M});
+        const auto xyz = values(p, std::array{V::x, V::y, V::z});
+        I.p_SoScm_S = Vec3(take_number(p, V::x, xyz[0]), take_number(p, V::y, xyz[1]),
+                           take_number(p, V::z, xyz[2]));
         found = true;
       }
       if (!found) {
         throw Error("invalid-robot-model", name(r) + ": no Position of its point " + name(com));
       }
-      const rdf::TermId body = one(r, V::of_body);
+      const rdf::TermId body = take(r, V::of_body, v[at(V::of_body)]);
       found = false;
       for (rdf::TermId m : subjects(V::of_body, body)) {
         if (!has_type(m, V::Mass)) continue;
-        require_units(m, {"KiloGM"});
+        require_units(m, {V::KiloGM});
         I.mass = number(m, V::mass);
         found = true;
       }
@@ -282,10 +406,38 @@ class Reader {
     return !filtered_ || std::find(graphs_.begin(), graphs_.end(), q.graph) != graphs_.end();
   }
 
-  static std::string local_name(const std::string& iri_text, std::string_view prefix) {
-    std::string s = iri_text.substr(iri_text.find_last_of("/#") + 1);
-    if (s.rfind(prefix, 0) == 0) s = s.substr(prefix.size());
-    return s;
+  static std::string local_name(std::string_view iri_text, std::string_view prefix) {
+    std::string_view s = iri_text.substr(iri_text.find_last_of("/#") + 1);
+    if (s.substr(0, prefix.size()) == prefix) s.remove_prefix(prefix.size());
+    return std::string(s);
+  }
+  // local_name of name(t), without building name(t) for an IRI.
+  std::string local_name(rdf::TermId t, std::string_view prefix) const {
+    const auto& term = g_.terms()[t];
+    return term.is_iri() ? local_name(term.value, prefix) : local_name(name(t), prefix);
+  }
+
+  // The term at the free position (subject or object, the one given as
+  // any()) of the statements read matching (s, p, o), when they all agree
+  // on it; else any(). Sorting and deduplicating subjects() or objects() and
+  // taking a list of one gives the same.
+  rdf::TermId only(rdf::TermId s, V p, rdf::TermId o) const {
+    const rdf::TermId pid = id(p);
+    rdf::TermId found = rdf::TermId::any();
+    if (pid.is_any()) return found;
+    bool several = false;
+    g_.scan(s, pid, o, rdf::TermId::any(), [&](const rdf::Quad& q, uint32_t) {
+      if (!read(q)) return true;
+      const rdf::TermId t = s.is_any() ? q.subject : q.object;
+      if (found.is_any()) {
+        found = t;
+      } else if (t != found) {
+        several = true;
+        return false;
+      }
+      return true;
+    });
+    return several ? rdf::TermId::any() : found;
   }
 
  private:
@@ -372,27 +524,24 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
                                            std::to_string(roots.size()) +
                                            " chains; expected one serial chain");
   }
-  ChainDescription out{Chain(Reader::local_name(r.name(roots.front()), "frame-")), {}};
+  ChainDescription out{Chain(r.local_name(roots.front(), "frame-")), {}};
   Chain& chain = out.chain;
   // A frame's origin point and the body it is attached to, by the model's
   // relations: the frame's `origin`; the simplicial complex (link) whose
   // `simplices` hold the frame, else the body whose inertia the frame sees.
-  const auto unique = [](std::vector<rdf::TermId> v) {
-    std::sort(v.begin(), v.end(), [](rdf::TermId a, rdf::TermId b) { return a.index < b.index; });
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    return v;
-  };
+  // Each is the only distinct term found, or none (several or no candidates).
+  const rdf::TermId any = rdf::TermId::any();
   const auto origin_of = [&](rdf::TermId f) {
-    const auto o = unique(r.objects(f, V::origin));
-    return o.size() == 1 ? r.name(o.front()) : std::string();
+    const rdf::TermId o = r.only(f, V::origin, any);
+    return o.is_any() ? std::string() : r.name(o);
   };
   const auto body_of = [&](rdf::TermId f) {
-    const auto complexes = unique(r.subjects(V::simplices, f));
-    if (complexes.size() == 1) return r.name(complexes.front());
+    if (const rdf::TermId complex = r.only(any, V::simplices, f); !complex.is_any()) {
+      return r.name(complex);
+    }
     for (rdf::TermId i : r.subjects(V::as_seen_by, f)) {
       if (!r.has_type(i, V::RotationalInertia)) continue;
-      const auto bodies = unique(r.objects(i, V::of_body));
-      if (bodies.size() == 1) return r.name(bodies.front());
+      if (const rdf::TermId body = r.only(i, V::of_body, any); !body.is_any()) return r.name(body);
     }
     return std::string();
   };
@@ -402,12 +551,14 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
        it = by_parent_frame.find(frame)) {
     const JointInfo& info = it->second;
     Segment s;
-    s.joint = Reader::local_name(r.name(info.joint), "joint-");
-    s.link = Reader::local_name(r.name(info.child), "frame-");
+    s.joint = r.local_name(info.joint, "joint-");
+    s.link = r.local_name(info.child, "frame-");
     s.type = info.type;
     s.X_PJ = r.pose(info.pose);
     const rdf::TermId axis = r.one(info.joint, V::common_axis);
-    s.axis_J = Vec3(r.number(axis, V::x), r.number(axis, V::y), r.number(axis, V::z));
+    const auto xyz = r.values(axis, std::array{V::x, V::y, V::z});
+    s.axis_J = Vec3(r.take_number(axis, V::x, xyz[0]), r.take_number(axis, V::y, xyz[1]),
+                    r.take_number(axis, V::z, xyz[2]));
     s.inertia = r.inertia(info.child);
     chain.add_segment(std::move(s));
     out.frames.segments.push_back(
@@ -430,7 +581,7 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
   }
   if (!tips.empty()) {
     const rdf::TermId tip = r.one(tips.front(), V::of);
-    chain.add_fixed(Reader::local_name(r.name(tip), "frame-"), r.pose(tips.front()), {});
+    chain.add_fixed(r.local_name(tip, "frame-"), r.pose(tips.front()), {});
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +22,8 @@
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
 #include "test_robots.hpp"
+#include "vocab/metamodels.hpp"
+#include "vocab/w3c.hpp"
 
 namespace mospec::runtime {
 namespace {
@@ -453,6 +456,124 @@ TEST(RobotModelUr5e, ForwardKinematicsIsThePublishedDhChain) {
 
 // The published DH table at zero: the arm stretched along -x of the base, the
 // flange at (-(0.425 + 0.3922), -(0.1333 + 0.0996), 0.1625 - 0.0997).
+// Lowering reads a chain in place from some graphs of the dataset
+// (describe_chain with graphs): a triple stated in two of the graphs read
+// counts once there, while reading the whole dataset counts every statement
+// (the errors below). Each case restates the statements of one property of
+// the UR5e in a second graph; `via` first follows a property to a list node.
+TEST(RobotModelUr5e, RestatedPropertiesCountOnceAmongTheGraphsRead) {
+  app::LoadOptions options;
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+  using vocab::term;
+  const std::string z = term(vocab::geom_coord::ns, "z"), x = term(vocab::geom_coord::ns, "x");
+  const std::string unit = term(vocab::qudt::ns, "unit"), u = "http://qudt.org/vocab/unit/";
+  const std::string dcx = term(vocab::geom_coord::ns, "direction-cosine-x");
+  struct Case {
+    std::string subject, via, predicate, unfiltered_error;  // error empty: reads the same
+  };
+  const Case cases[] = {
+      {"axis-shoulder_pan_joint", "", z,
+       "axis-shoulder_pan_joint: expected exactly one <" + z + ">, found 2"},
+      {"pose-shoulder_pan_joint", "", x,
+       "pose-shoulder_pan_joint: expected exactly one <" + x + ">, found 2"},
+      {"pose-shoulder_pan_joint", "", unit,
+       "pose-shoulder_pan_joint: unit must be {" + u + "M, " + u + "UNITLESS}, got {" + u + "M, " +
+           u + "M, " + u + "UNITLESS, " + u + "UNITLESS}"},
+      {"pose-shoulder_pan_joint", dcx, std::string(vocab::rdf::first),
+       ": expected exactly one <" + std::string(vocab::rdf::first) + ">, found 2"},
+      {"inertia-shoulder_link", "", term(vocab::dyn_coord::ns, "ixx"),
+       "inertia-shoulder_link: expected exactly one <" + term(vocab::dyn_coord::ns, "ixx") +
+           ">, found 2"},
+      {"mass-shoulder_link", "", unit,
+       "mass-shoulder_link: unit must be {" + u + "KiloGM}, got {" + u + "KiloGM, " + u +
+           "KiloGM}"},
+      {"joint-shoulder_pan_joint", "", term(vocab::kc_ent::ns, "common-axis"),
+       "joint-shoulder_pan_joint: expected exactly one <" + term(vocab::kc_ent::ns, "common-axis") +
+           ">, found 2"},
+      {"frame-shoulder_link", "", term(vocab::geom_ent::ns, "origin"), ""},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.subject + " " + c.via + " " + c.predicate);
+    app::LoadedModel model = app::load({kUr5eModel}, options);
+    rdf::Dataset& ds = model.dataset();
+    std::vector<rdf::TermId> graphs;
+    for (const rdf::Quad& q : ds.quads()) {
+      if (std::find(graphs.begin(), graphs.end(), q.graph) == graphs.end())
+        graphs.push_back(q.graph);
+    }
+    const ChainDescription before = describe_chain(ds, graphs, kUr5eBase + "chain");
+    rdf::TermId s = ds.terms().find_iri(kUr5eBase + c.subject);
+    if (!c.via.empty()) {
+      const auto head = ds.match(s, ds.terms().find_iri(c.via), rdf::TermId::any());
+      ASSERT_FALSE(head.empty());
+      s = ds.quads()[head[0]].object;
+    }
+    std::vector<rdf::Quad> restated;
+    for (uint32_t i : ds.match(s, ds.terms().find_iri(c.predicate), rdf::TermId::any())) {
+      restated.push_back(ds.quads()[i]);
+    }
+    ASSERT_FALSE(restated.empty());
+    const rdf::TermId again = ds.terms().iri("https://mospec.example/restated");
+    for (rdf::Quad q : restated) {
+      q.graph = again;
+      ASSERT_TRUE(ds.add(q));
+    }
+    graphs.push_back(again);
+    const ChainDescription after = describe_chain(ds, graphs, kUr5eBase + "chain");
+    expect_same_chain(after.chain, before.chain, 0.0);
+    EXPECT_EQ(after.frames.root.origin, before.frames.root.origin);
+    ASSERT_EQ(after.frames.segments.size(), before.frames.segments.size());
+    for (size_t i = 0; i < before.frames.segments.size(); ++i) {
+      EXPECT_EQ(after.frames.segments[i].origin, before.frames.segments[i].origin);
+      EXPECT_EQ(after.frames.segments[i].body, before.frames.segments[i].body);
+    }
+    if (c.unfiltered_error.empty()) {
+      const ChainDescription all = describe_chain(ds, kUr5eBase + "chain");
+      expect_same_chain(all.chain, before.chain, 0.0);
+      EXPECT_EQ(all.frames.segments[0].origin, before.frames.segments[0].origin);
+      continue;
+    }
+    try {
+      describe_chain(ds, kUr5eBase + "chain");
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      if (c.via.empty()) {
+        EXPECT_EQ(what, "mospec: error: " + kUr5eBase + c.unfiltered_error);
+      } else {  // the list node is a blank node
+        EXPECT_NE(what.find(c.unfiltered_error), std::string::npos) << what;
+      }
+    }
+  }
+}
+
+// A property with two different values is an error however the chain is read.
+TEST(RobotModelUr5e, APropertyGivenTwiceIsNamedWithItsCount) {
+  app::LoadOptions options;
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+  app::LoadedModel model = app::load({kUr5eModel}, options);
+  rdf::Dataset& ds = model.dataset();
+  const std::string z = vocab::term(vocab::geom_coord::ns, "z");
+  const rdf::TermId axis = ds.terms().find_iri(kUr5eBase + "axis-elbow_joint");
+  const auto stated = ds.match(axis, ds.terms().find_iri(z), rdf::TermId::any());
+  ASSERT_EQ(stated.size(), 1u);
+  rdf::Quad q = ds.quads()[stated[0]];
+  const rdf::TermId graph = q.graph;
+  q.object = ds.terms().literal("2", "http://www.w3.org/2001/XMLSchema#integer");
+  ASSERT_TRUE(ds.add(q));
+  const std::string message =
+      "mospec: error: " + kUr5eBase + "axis-elbow_joint: expected exactly one <" + z + ">, found 2";
+  for (bool whole : {true, false}) {
+    try {
+      whole ? describe_chain(ds, kUr5eBase + "chain")
+            : describe_chain(ds, std::span(&graph, 1), kUr5eBase + "chain");
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), message);
+    }
+  }
+}
+
 TEST(RobotModelUr5e, ZeroConfigurationIsTheStretchedArm) {
   const AchdModel model(ur5e_from_jsonld());
   AchdData data(model);
