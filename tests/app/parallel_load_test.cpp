@@ -151,7 +151,7 @@ std::vector<std::string> sc1_imports() {
 // https://mospec.example/ maps to the source tree and https://t.example/ to
 // the directory itself.
 class Fixture : public ::testing::Test {
- protected:
+ public:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
            ("mospec-parallel-load-" +
@@ -219,22 +219,15 @@ TEST_F(Fixture, ABrokenDocumentOnEachThreadFailsWithTheFirst) {
   expect_same_either_way(app("top.json", imports), /*expect_error=*/true);
 }
 
+// A nested app (its own import list) inserted `at` into sc1's imports.
+void nested_app_at(Fixture& f, std::ptrdiff_t at);
+
 TEST_F(Fixture, ANestedAppOnTheWorkerLoadsAsOnOneThread) {
-  write("extra.json", R"({"@id": "https://t.example/extra", "@type": "https://t.example/Thing"})");
-  app("nested.json",
-      {"https://t.example/extra.json", "https://mospec.example/models/sc1/07-scenario.json"});
-  std::vector<std::string> imports = sc1_imports();
-  imports.insert(imports.end() - 4, "https://t.example/nested.json");
-  expect_same_either_way(app("top.json", imports), /*expect_error=*/false);
+  nested_app_at(*this, -4);
 }
 
 TEST_F(Fixture, ANestedAppOnTheMainThreadLoadsAsOnOneThread) {
-  write("extra.json", R"({"@id": "https://t.example/extra", "@type": "https://t.example/Thing"})");
-  app("nested.json",
-      {"https://t.example/extra.json", "https://mospec.example/models/sc1/07-scenario.json"});
-  std::vector<std::string> imports = sc1_imports();
-  imports.insert(imports.begin(), "https://t.example/nested.json");
-  expect_same_either_way(app("top.json", imports), /*expect_error=*/false);
+  nested_app_at(*this, 0);
 }
 
 TEST_F(Fixture, WarningsOfBothThreadsComeInImportOrder) {
@@ -256,6 +249,17 @@ TEST_F(Fixture, WarningsOfBothThreadsComeInImportOrder) {
   ASSERT_NE(first, std::string::npos) << all;
   ASSERT_NE(second, std::string::npos) << all;
   EXPECT_LT(first, second) << all;
+}
+
+void nested_app_at(Fixture& f, std::ptrdiff_t at) {
+  f.write("extra.json",
+          R"({"@id": "https://t.example/extra", "@type": "https://t.example/Thing"})");
+  f.app("nested.json",
+        {"https://t.example/extra.json", "https://mospec.example/models/sc1/07-scenario.json"});
+  std::vector<std::string> imports = sc1_imports();
+  imports.insert(at < 0 ? imports.end() + at : imports.begin() + at,
+                 "https://t.example/nested.json");
+  f.expect_same_either_way(f.app("top.json", imports), /*expect_error=*/false);
 }
 
 }  // namespace
