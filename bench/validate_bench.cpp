@@ -31,8 +31,7 @@ namespace {
 
 const fs::path kUpstream = fs::path(MOSPEC_SHARED_DIR) / "upstream" / "motion-spec-ral";
 
-// Load + shapes + compile + validate, as `mospec validate APP` runs it (wall
-// clock: loading uses a second thread).
+// Load + shapes + compile + validate, as `mospec validate APP` runs it.
 void BM_Validate(benchmark::State& state, const char* app_file) {
   if (!fs::exists(kUpstream / "models" / app_file)) {
     state.SkipWithError("../shared/upstream is absent; nothing to validate");
@@ -52,10 +51,8 @@ void BM_Validate(benchmark::State& state, const char* app_file) {
   state.counters["results"] = static_cast<double>(results);
   state.counters["quads"] = static_cast<double>(quads);
 }
-BENCHMARK_CAPTURE(BM_Validate, sc1, "sc1.json")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_Validate, sc0a, "sc0a-right-arm.json")
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_Validate, sc1, "sc1.json")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Validate, sc0a, "sc0a-right-arm.json")->Unit(benchmark::kMillisecond);
 
 // The pieces of BM_Validate/sc1: shapes read + compiled, and validation alone.
 void BM_ValidateStages(benchmark::State& state, int stage) {

@@ -2,11 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <exception>
 #include <filesystem>
-#include <optional>
-#include <span>
-#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -47,41 +43,16 @@ std::string join_root(const LoadOptions& options, const std::string& path) {
   return (fs::path(*options.root) / path).generic_string();
 }
 
-constexpr std::string_view kDocumentFailed = "loading document failed";
-
-// Thrown inside a forked loader when a document uses the app vocabulary: a
-// nested app can change how the imports after it resolve (its iri-map), so the
-// fork's share is loaded again, in order, by the main loader.
-struct AppInFork {};
-
-// The imports of an app from some index on, loaded by a forked loader on a
-// worker thread while the main loader loads the ones before. Terms and file
-// ids here are the fork's own until absorbed.
-struct ImportRun {
-  std::optional<jsonld::MappedDocumentLoader> docs;  // dropped by the worker when done
-  SourceFiles files_table;                           // docs->files(), kept
-  uint32_t files_at_fork = 0;                        // ids below this are the same in both loaders
-  rdf::Dataset dataset;
-  std::vector<ModelFile> files;
-  std::vector<AppInfo> apps;  // stays empty (AppInFork)
-  DiagnosticSink diagnostics;
-  std::vector<Error> missing;
-  std::exception_ptr error;  // the first error that is not a missing document
-  bool met_app = false;
-};
-
 class Loader {
  public:
   Loader(const LoadOptions& options, jsonld::MappedDocumentLoader& docs, rdf::Dataset& dataset,
-         std::vector<ModelFile>& files, std::vector<AppInfo>& apps, DiagnosticSink& diagnostics,
-         size_t* forked_documents)
+         std::vector<ModelFile>& files, std::vector<AppInfo>& apps, DiagnosticSink& diagnostics)
       : options_(options),
         docs_(docs),
         dataset_(dataset),
         files_(files),
         apps_(apps),
-        diagnostics_(diagnostics),
-        forked_documents_(forked_documents) {
+        diagnostics_(diagnostics) {
     for (const auto& [prefix, dir] : options.maps) {
       docs_.map(prefix, dir);
       maps_.emplace_back(prefix, dir);
@@ -94,19 +65,6 @@ class Loader {
     docs_.confine();
     if (options.root) docs_.allow(*options.root);
   }
-
-  // A loader for an ImportRun: this one's configuration, maps and loaded set as
-  // they are now, and state of its own (documents, contexts, dataset, warnings).
-  Loader(const Loader& parent, ImportRun& run)
-      : options_(parent.options_),
-        docs_(*run.docs),
-        dataset_(run.dataset),
-        files_(run.files),
-        apps_(run.apps),
-        diagnostics_(run.diagnostics),
-        maps_(parent.maps_),
-        loaded_(parent.loaded_),
-        forked_(true) {}
 
   void load_input(const std::string& path) {
     docs_.allow(fs::path(path).has_parent_path() ? fs::path(path).parent_path().string() : ".");
@@ -136,7 +94,6 @@ class Loader {
     opts.property_prefix = kAppNs;
     opts.property_prefix_seen = &mentions_app_property;
     const json::Value expanded = jsonld::expand(*doc.document, opts);
-    if (forked_ && mentions_app_property) throw AppInFork{};
     ModelFile file{doc.document_url, path, doc.file_id, false, imported_at};
     if (!mentions_app_property) {
       // No app:* property, so not an app: its quads go straight into the
@@ -244,161 +201,15 @@ class Loader {
     // A missing import does not stop the others from loading, so the error can
     // name what the rest of the model points at in it.
     std::vector<Error> missing;
-    const std::span<const std::string> imports(unique);
-    const std::span<const SourceLoc> locs(unique_locs);
-    const size_t fork_at = fork_point(imports);
-    if (fork_at == imports.size()) {
-      load_imports(imports, locs, missing);
-    } else {
-      load_imports_forked(imports, locs, fork_at, missing);
-    }
-    if (!missing.empty()) throw with_dangling_references(missing);
-  }
-
-  void load_imports(std::span<const std::string> imports, std::span<const SourceLoc> locs,
-                    std::vector<Error>& missing) {
-    for (size_t i = 0; i < imports.size(); ++i) {
+    for (size_t i = 0; i < unique.size(); ++i) {
       try {
-        load_import(imports[i], locs[i]);
+        load_import(unique[i], unique_locs[i]);
       } catch (const Error& e) {
-        if (e.code() != kDocumentFailed) throw;
+        if (e.code() != "loading document failed") throw;
         missing.push_back(e);
       }
     }
-  }
-
-  // Where a worker's share of an app's imports starts: the suffix after the
-  // first kMainShare of their bytes, or imports.size() when they are too few
-  // or too small to pay for a thread. Where the split falls changes nothing
-  // in the result (see absorb()), only the time.
-  size_t fork_point(std::span<const std::string> imports) const {
-    constexpr size_t kMinImports = 4;
-    constexpr uintmax_t kMinBytes = 32 * 1024;
-    // The worker also parses and processes every remote context its documents
-    // use, which the main loader does as well.
-    constexpr double kMainShare = 0.5;
-    if (!options_.parallel || forked_ || imports.size() < kMinImports) return imports.size();
-    std::vector<uintmax_t> bytes;
-    bytes.reserve(imports.size());
-    uintmax_t total = 0;
-    for (const std::string& iri : imports) {
-      std::error_code ec;
-      const std::string path = docs_.resolve(iri);
-      uintmax_t size = path.empty() ? 0 : fs::file_size(path, ec);
-      if (ec) size = 0;
-      bytes.push_back(size);
-      total += size;
-    }
-    if (total < kMinBytes) return imports.size();
-    uintmax_t prefix = 0;
-    for (size_t i = 0; i + 1 < imports.size(); ++i) {
-      prefix += bytes[i];
-      if (static_cast<double>(prefix) >= kMainShare * static_cast<double>(total)) return i + 1;
-    }
-    return imports.size();
-  }
-
-  // Loads imports[0, fork_at) here while a forked loader loads the rest on a
-  // worker thread, then takes the fork's quads, files and warnings in as if
-  // this loader had loaded them in order.
-  void load_imports_forked(std::span<const std::string> imports, std::span<const SourceLoc> locs,
-                           size_t fork_at, std::vector<Error>& missing) {
-    ImportRun run;
-    run.docs.emplace(docs_);
-    run.files_at_fork = static_cast<uint32_t>(docs_.files().size());
-    const auto tail = imports.subspan(fork_at);
-    const auto tail_locs = locs.subspan(fork_at);
-    std::optional<Loader> fork(std::in_place, *this, run);
-    auto work = [&fork, &run, tail, tail_locs] {
-      fork->run_imports(run, tail, tail_locs);
-      run.files_table = run.docs->files();
-      fork.reset();  // its contexts and parsed documents are freed on its thread
-      run.docs.reset();
-    };
-    std::optional<std::jthread> worker;
-    try {
-      worker.emplace(work);
-    } catch (const std::system_error&) {
-      // No thread to be had: the fork's share runs here, after ours.
-    }
-    const size_t apps_before = apps_.size();
-    load_imports(imports.first(fork_at), locs.first(fork_at), missing);  // a throw joins
-    if (worker) {
-      worker->join();
-    } else {
-      work();
-    }
-    if (run.met_app || apps_.size() != apps_before) {
-      // A nested app's iri-map may change what the later imports resolve to.
-      load_imports(tail, tail_locs, missing);
-      return;
-    }
-    if (run.error) std::rethrow_exception(run.error);
-    absorb(run, tail);
-    missing.insert(missing.end(), run.missing.begin(), run.missing.end());
-  }
-
-  void run_imports(ImportRun& run, std::span<const std::string> imports,
-                   std::span<const SourceLoc> locs) {
-    dataset_.set_auto_compact(false);
-    try {
-      load_imports(imports, locs, run.missing);
-    } catch (const AppInFork&) {
-      run.met_app = true;
-    } catch (...) {
-      run.error = std::current_exception();
-    }
-  }
-
-  // Appends a fork's results as if they had been loaded here, in order. The
-  // fork's terms are interned in its id order, the order it first met them:
-  // a term already here keeps its id and a new one gets the id a sequential
-  // load would have given it, fresh blank nodes included. File ids are
-  // renumbered the same way.
-  void absorb(const ImportRun& run, std::span<const std::string> imports) {
-    std::vector<uint32_t> file_ids(run.files_table.size());
-    for (uint32_t i = 0; i < file_ids.size(); ++i) {
-      file_ids[i] = i < run.files_at_fork ? i : docs_.files().add(run.files_table.path(i));
-    }
-    auto located = [&](SourceLoc loc) {
-      loc.file = loc.file < file_ids.size() ? file_ids[loc.file] : 0;
-      return loc;
-    };
-    const rdf::TermTable& from = run.dataset.terms();
-    rdf::TermTable& to = dataset_.terms();
-    std::vector<rdf::TermId> ids(from.size());
-    for (uint32_t i = 0; i < from.size(); ++i) {
-      const rdf::Term& t = from[rdf::TermId{i}];
-      switch (t.kind) {
-        case rdf::TermKind::DefaultGraph:
-          ids[i] = rdf::TermId::default_graph();
-          break;
-        case rdf::TermKind::Iri:
-          ids[i] = to.iri(t.value);
-          break;
-        case rdf::TermKind::Blank:
-          ids[i] = to.fresh_blank();
-          break;
-        case rdf::TermKind::Literal:
-          ids[i] = to.literal(t.value, ids[t.datatype.index], t.language, t.direction);
-          break;
-      }
-    }
-    const auto quads = run.dataset.quads();
-    for (size_t i = 0; i < quads.size(); ++i) {
-      const rdf::Quad& q = quads[i];
-      dataset_.add(
-          {ids[q.subject.index], ids[q.predicate.index], ids[q.object.index], ids[q.graph.index]},
-          located(run.dataset.location(i)));
-    }
-    for (ModelFile f : run.files) {
-      f.file_id = file_ids[f.file_id];
-      f.imported_at = located(f.imported_at);
-      files_.push_back(std::move(f));
-    }
-    for (const Diagnostic& d : run.diagnostics.diagnostics()) diagnostics_.report(d);
-    for (const std::string& iri : imports) loaded_.insert(iri);
-    if (forked_documents_ != nullptr) *forked_documents_ += run.files.size();
+    if (!missing.empty()) throw with_dangling_references(missing);
   }
 
   // An app's iri-map may only name directories inside the tree its relative
@@ -479,8 +290,6 @@ class Loader {
   std::vector<std::pair<std::string, std::string>> maps_;
   std::unordered_set<std::string> loaded_;
   std::shared_ptr<jsonld::ContextCache> context_cache_ = std::make_shared<jsonld::ContextCache>();
-  bool forked_ = false;
-  size_t* forked_documents_ = nullptr;  // LoadedModel::forked_documents()
 };
 
 }  // namespace
@@ -495,22 +304,11 @@ std::string builtin_metamodels_dir() {
 LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& options) {
   LoadedModel model;
   Loader loader(options, model.loader_, model.dataset_, model.files_, model.apps_,
-                model.diagnostics_, &model.forked_documents_);
+                model.diagnostics_);
   // The indexes are folded once, when every file is in.
   model.dataset_.set_auto_compact(false);
   for (const std::string& input : inputs) loader.load_input(input);
   model.dataset_.compact();
-  // A warning is reported once, where it first arises: a context processed
-  // again (by a loader on another thread, or for another active context)
-  // reports the same thing at the same place.
-  std::vector<Diagnostic> all = model.diagnostics_.diagnostics();
-  model.diagnostics_.clear();
-  std::unordered_set<std::string> seen;
-  for (Diagnostic& d : all) {
-    std::string key = format(d);
-    key.append(1, '\0').append(d.code);
-    if (seen.insert(std::move(key)).second) model.diagnostics_.report(std::move(d));
-  }
   model.dataset_.set_auto_compact(true);
   return model;
 }

@@ -31,9 +31,6 @@ struct LoadOptions {
   // Resolve the metamodel base (vocab::kMetamodels) to mospec's own metamodels
   // (builtin_metamodels_dir()) wherever no --map or iri-map entry covers it.
   bool builtin_metamodels = true;
-  // Load a large app's imports on two threads (the result is the same either
-  // way; off, everything loads on the calling thread).
-  bool parallel = true;
 };
 
 // One loaded JSON-LD document.
@@ -67,9 +64,6 @@ class LoadedModel {
   const std::vector<AppInfo>& apps() const { return apps_; }
   const DiagnosticSink& diagnostics() const { return diagnostics_; }
   DiagnosticSink& diagnostics() { return diagnostics_; }
-  // How many documents a second thread loaded (LoadOptions::parallel); the
-  // model is the same as if none had been.
-  size_t forked_documents() const { return forked_documents_; }
 
   // Where an entity's "@id" is first written (the first quad with it as subject).
   std::optional<SourceLoc> where(rdf::TermId subject) const;
@@ -82,7 +76,6 @@ class LoadedModel {
   std::vector<ModelFile> files_;
   std::vector<AppInfo> apps_;
   DiagnosticSink diagnostics_;
-  size_t forked_documents_ = 0;
 };
 
 inline constexpr std::string_view kMetamodelsIri = vocab::kMetamodels;
