@@ -107,8 +107,15 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
       after_pass(pass, p, model.files());
     };
   }
+  DiagnosticSink lower_warnings;
+  options.warnings = &lower_warnings;
   try {
     ir::Program program = ir::lower(model, options);
+    if (const size_t n = print_diagnostics(lower_warnings); n > 0 && flags.load.strict) {
+      std::cerr << "mospec: " << n << " finding(s) under --strict; nothing was generated\n";
+      exit_code = kExitFindings;
+      return std::nullopt;
+    }
     if (files) *files = model.files();
     exit_code = kExitOk;
     return program;

@@ -75,6 +75,53 @@ const PassInfo kPasses[] = {
 
 }  // namespace
 
+namespace {
+
+// Reports lowering's warnings, located as its errors are.
+struct Warnings {
+  const app::LoadedModel& model;
+  DiagnosticSink& sink;
+  void warn(SourceLoc loc, std::string code, std::string message) const {
+    Diagnostic d;
+    d.severity = Severity::Warning;
+    if (loc.known()) {
+      d.file = model.files().path(loc.file);
+      d.line = loc.line;
+      d.column = loc.column;
+    }
+    d.code = std::move(code);
+    d.message = std::move(message);
+    sink.report(std::move(d));
+  }
+};
+
+// A controller whose output no step reads (no acceleration constraint of a
+// solver's motion drivers names it as its energy, no operator or controller
+// takes it) runs every tick and moves nothing: the model asked for a control
+// law that has no effect, which is said at the controller.
+void warn_unread_controllers(const Program& program, const Warnings& w) {
+  std::vector<char> read(program.data.size(), 0);
+  for (const Step& step : program.steps) {
+    for (int i : step.in) read[static_cast<size_t>(i)] = 1;
+  }
+  for (const Step& step : program.steps) {
+    if (step.kind != StepKind::Controller) continue;
+    for (int o : step.out) {
+      if (read[static_cast<size_t>(o)]) continue;
+      w.warn(step.where, "unread-controller-output",
+             "the controller '" + step.iri + "' drives '" +
+                 program.data[static_cast<size_t>(o)].iri +
+                 "', which nothing reads: no acceleration constraint of a solver's motion "
+                 "drivers takes it as its acceleration-energy (and no operator or controller "
+                 "takes it), so the controller runs every tick and moves nothing; name it in an "
+                 "acceleration constraint that a solver uses, or leave the controller out of "
+                 "the app");
+    }
+  }
+}
+
+}  // namespace
+
 Program lower(const app::LoadedModel& model, const LowerOptions& options) {
   State st(model, options);
   for (const app::ModelFile& f : model.model_files()) {
@@ -106,6 +153,9 @@ Program lower(const app::LoadedModel& model, const LowerOptions& options) {
     }
   }
   if (!st.errors.empty()) throw LowerError(std::move(st.errors));
+  if (options.warnings != nullptr) {
+    warn_unread_controllers(st.program, Warnings{model, *options.warnings});
+  }
   return std::move(st.program);
 }
 

@@ -37,6 +37,11 @@ struct LowerOptions {
   // Called after each pass (lowering_passes()) with the program so far: its
   // steps in declaration order until the "schedule" pass orders them.
   std::function<void(std::string_view pass, const Program&)> after_pass;
+  // Where lowering reports what a model says that has no effect in the
+  // program it lowers to ("unread-controller-output": a controller whose
+  // output no step reads). The CLI prints them; --strict refuses them.
+  // nullptr: not collected.
+  DiagnosticSink* warnings = nullptr;
 };
 
 // The names of lowering's passes, in the order they run. Each reads the model

@@ -7,9 +7,9 @@
 
 #include "app/app.hpp"
 #include "ir/lower.hpp"
-#include "validation/model_validation.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
+#include "validation/model_validation.hpp"
 
 namespace fs = std::filesystem;
 
@@ -134,11 +134,13 @@ Expectations parse_expectations(const std::string& text, const fs::path& case_di
     }
     rest = trim(rest);
     const size_t close = rest.find("]:");
-    if (rest.rfind("error[", 0) != 0 || close == std::string::npos) {
-      fail("expected `error[CODE]: MESSAGE` after the location");
+    e.warning = rest.rfind("warning[", 0) == 0;
+    if ((!e.warning && rest.rfind("error[", 0) != 0) || close == std::string::npos) {
+      fail("expected `error[CODE]: MESSAGE` or `warning[CODE]: MESSAGE` after the location");
       continue;
     }
-    e.code = rest.substr(6, close - 6);
+    const size_t open = e.warning ? 8 : 6;
+    e.code = rest.substr(open, close - open);
     e.text = trim(rest.substr(close + 2));
     if (e.code.empty() || e.text.empty()) {
       fail("a code and a message substring are both needed");
@@ -184,11 +186,15 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     validation_clean =
         v.report.count(shacl::Level::Violation) == 0 && v.report.count(shacl::Level::Other) == 0;
     if (!validation_clean) validation_text = shacl::to_text(v.report, &model.files());
+    DiagnosticSink warnings;
+    ir::LowerOptions lower_options;
+    lower_options.warnings = &warnings;
     try {
-      ir::lower(model);
+      ir::lower(model, lower_options);
     } catch (const ir::LowerError& e) {
       got = e.diagnostics();
     }
+    got.insert(got.end(), warnings.diagnostics().begin(), warnings.diagnostics().end());
   } catch (const Error& e) {
     result.report = name + ": the case does not load: " + e.what() + "\n";
     return result;
@@ -214,6 +220,7 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     const bool anchored = e.text[0] == '^';
     const size_t at = d.message.find(anchored ? e.text.substr(1) : e.text);
     if (d.code != e.code || at == std::string::npos || (anchored && at != 0)) return false;
+    if (e.warning != (d.severity == Severity::Warning)) return false;
     if (e.file.empty()) return d.file.empty();
     return !d.file.empty() && canonical_or_same(d.file) == e.file && d.line == e.line;
   };
@@ -264,11 +271,13 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
 
   for (const std::string& m : matched) report << "  ok          " << m << "\n";
   for (const ExpectedDiagnostic* e : missing) {
-    report << "  MISSING     " << show_location(e->file, e->line, case_dir) << ": error[" << e->code
-           << "]: ..." << e->text << "...   (expected.txt:" << e->source_line << ")\n";
+    report << "  MISSING     " << show_location(e->file, e->line, case_dir) << ": "
+           << (e->warning ? "warning[" : "error[") << e->code << "]: ..." << e->text
+           << "...   (expected.txt:" << e->source_line << ")\n";
   }
   for (const Diagnostic* d : unexpected) {
-    report << "  UNEXPECTED  " << show_location(d->file, d->line, case_dir) << ": error[" << d->code
+    report << "  UNEXPECTED  " << show_location(d->file, d->line, case_dir) << ": "
+           << (d->severity == Severity::Warning ? "warning[" : "error[") << d->code
            << "]: " << d->message << "\n";
   }
   result.ok = ok;
@@ -296,46 +305,47 @@ std::set<std::string> lowering_codes(const fs::path& dir) {
     const std::string ext = entry.path().extension().string();
     if (!entry.is_regular_file() || (ext != ".cpp" && ext != ".hpp")) continue;
     const std::string src = read_file(entry.path().string());
-    for (size_t at = src.find("error("); at != std::string::npos; at = src.find("error(", at + 1)) {
-      // A call, not `foo_error(` or `LowerError(`.
-      if (at > 0 && (std::isalnum(static_cast<unsigned char>(src[at - 1])) || src[at - 1] == '_'))
-        continue;
-      // The first top-level comma of the argument list; then a string literal.
-      int depth = 0;
-      size_t k = at + 6;
-      bool in_string = false;
-      for (; k < src.size(); ++k) {
-        const char c = src[k];
-        if (in_string) {
-          if (c == '\\')
-            ++k;
-          else if (c == '"')
-            in_string = false;
+    for (const std::string_view call : {"error(", "warn("})
+      for (size_t at = src.find(call); at != std::string::npos; at = src.find(call, at + 1)) {
+        // A call, not `foo_error(` or `LowerError(`.
+        if (at > 0 && (std::isalnum(static_cast<unsigned char>(src[at - 1])) || src[at - 1] == '_'))
           continue;
+        // The first top-level comma of the argument list; then a string literal.
+        int depth = 0;
+        size_t k = at + call.size();
+        bool in_string = false;
+        for (; k < src.size(); ++k) {
+          const char c = src[k];
+          if (in_string) {
+            if (c == '\\')
+              ++k;
+            else if (c == '"')
+              in_string = false;
+            continue;
+          }
+          if (c == '"')
+            in_string = true;
+          else if (c == '(')
+            ++depth;
+          else if (c == ')') {
+            if (depth-- == 0) break;
+          } else if (c == ',' && depth == 0) {
+            break;
+          } else if (c == ';' || c == '{') {
+            break;
+          }
         }
-        if (c == '"')
-          in_string = true;
-        else if (c == '(')
-          ++depth;
-        else if (c == ')') {
-          if (depth-- == 0) break;
-        } else if (c == ',' && depth == 0) {
-          break;
-        } else if (c == ';' || c == '{') {
-          break;
-        }
+        if (k >= src.size() || src[k] != ',') continue;
+        ++k;
+        while (k < src.size() && std::isspace(static_cast<unsigned char>(src[k]))) ++k;
+        if (k >= src.size() || src[k] != '"') continue;
+        const size_t end = src.find('"', k + 1);
+        if (end == std::string::npos) continue;
+        const std::string code = src.substr(k + 1, end - k - 1);
+        if (!code.empty() && std::all_of(code.begin(), code.end(),
+                                         [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; }))
+          codes.insert(code);
       }
-      if (k >= src.size() || src[k] != ',') continue;
-      ++k;
-      while (k < src.size() && std::isspace(static_cast<unsigned char>(src[k]))) ++k;
-      if (k >= src.size() || src[k] != '"') continue;
-      const size_t end = src.find('"', k + 1);
-      if (end == std::string::npos) continue;
-      const std::string code = src.substr(k + 1, end - k - 1);
-      if (!code.empty() && std::all_of(code.begin(), code.end(),
-                                       [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; }))
-        codes.insert(code);
-    }
   }
   return codes;
 }

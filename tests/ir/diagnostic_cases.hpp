@@ -7,7 +7,11 @@
 //   validation: clean
 //   model.json:{{"@id": "compose",}}: error[missing-property]: names no `in2`
 //   model.json:17: error[type-mismatch]: must be a pose
+//   model.json:30: warning[unread-controller-output]: nothing reads
 //   -: error[some-code]: a diagnostic with no file:line
+//
+// `error[...]` is an error lowering throws (ir::LowerError), `warning[...]` a
+// warning it reports through LowerOptions::warnings.
 //
 // `validation:` says what `mospec ir` would do before lowering: `clean` (the
 // app's shapes accept the model, so the CLI reaches this diagnostic) or
@@ -30,9 +34,10 @@ struct ExpectedDiagnostic {
   std::filesystem::path file;  // empty: not located
   uint32_t line = 0;
   std::string code;
-  std::string text;     // a substring of the message
-  std::string spelled;  // the line as written in expected.txt
-  int source_line = 0;  // its line number in expected.txt
+  bool warning = false;  // warning[CODE] rather than error[CODE]
+  std::string text;      // a substring of the message
+  std::string spelled;   // the line as written in expected.txt
+  int source_line = 0;   // its line number in expected.txt
 };
 
 struct Expectations {
@@ -60,7 +65,8 @@ CaseResult check_case(const std::filesystem::path& source_dir,
 std::vector<std::filesystem::path> list_cases(const std::filesystem::path& cases_dir);
 
 // Every diagnostic code lowering can report: the string literal passed as the
-// second argument of each `error(...)` call in the C++ sources under `dir`.
+// second argument of each `error(...)` or `warn(...)` call in the C++ sources
+// under `dir`.
 std::set<std::string> lowering_codes(const std::filesystem::path& dir);
 
 }  // namespace mospec::test

@@ -128,7 +128,8 @@ TEST(DiagnosticCases, IllFormedExpectationsFail) {
       {"validation: refused\nmodel.json:{{\"@id\": \"frame-}}: error[x]: y\n",
        "3 lines of model.json contain"},
       {"validation: refused\nmodel.json: error[x]: y\n", "a line number or {{TEXT}}"},
-      {"validation: refused\nmodel.json:26: warning[x]: y\n", "expected `error[CODE]: MESSAGE`"},
+      {"validation: refused\nmodel.json:26: note[x]: y\n",
+       "expected `error[CODE]: MESSAGE` or `warning[CODE]: MESSAGE`"},
       {"validation: refused\nmodel.json:26: error[x]:\n", "a code and a message substring"},
       {"validation: refused\nmodel.json:{{compose: error[x]: y\n", "ends with `}}:`"},
   };
@@ -173,12 +174,12 @@ TEST(DiagnosticCases, EveryLoweringCodeHasACase) {
   }
   for (const std::string& code : codes) {
     EXPECT_TRUE(covered.count(code))
-        << "lowering reports error[" << code << "] (src/ir), but no case under "
+        << "lowering reports [" << code << "] (src/ir), but no case under "
         << "tests/ir/diagnostics/ expects it; add one (docs/testing.md)";
   }
   for (const auto& [code, cases] : covered) {
-    EXPECT_TRUE(codes.count(code)) << "case " << cases.front() << " expects error[" << code
-                                   << "], which nothing in src/ir reports";
+    EXPECT_TRUE(codes.count(code))
+        << "case " << cases.front() << " expects [" << code << "], which nothing in src/ir reports";
   }
 }
 

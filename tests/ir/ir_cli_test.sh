@@ -25,6 +25,19 @@ check "sc1's force distribution has one driver" grep -q '"drivers": 1' <<< "$bas
 check "sc1's force distribution is gated by both whisker motions" \
   test "$(grep -cE '^ +[0-9]+,?$' <<< "$base_step")" -eq 3
 
+# The ceiling example imports the right arm's shared controllers but replaces
+# the vertical constraint with its own: the right arm's vertical-velocity PID
+# then drives nothing, which lowering says at the controller; --strict refuses.
+expect "a controller whose output nothing reads is reported at it" 0 \
+  "05-constraint-handler.json:125:[0-9]+: warning: the controller '[^']*ctrl-linvel-rightarm-ee-vertical' drives '[^']*eacc-rightarm-ee-lin-z', which nothing reads" \
+  -- "$mospec" ir models/examples/ceiling.json -o "$work/ceiling.json"
+check "... and the program is lowered all the same" test -s "$work/ceiling.json"
+expect "... --strict refuses it" 1 "1 finding\(s\) under --strict; nothing was generated" \
+  -- "$mospec" ir --strict models/examples/ceiling.json -o "$work/ceiling-strict.json"
+check "... and writes nothing" test ! -e "$work/ceiling-strict.json"
+expect "sc1's controllers all drive something" 0 "" -- "$mospec" ir models/sc1.json -o "$work/sc1.4.json"
+check "... so it warns about none" test ! -s "$work/stderr.txt"
+
 D="$SRC/tests/ir/data"
 expect "tiny lowers" 0 "" -- "$mospec" ir --root "$D" "$D/tiny.json" -o "$work/tiny.json"
 order=$(grep -o '"kind": "[a-z-]*"' "$work/tiny.json" | sed 's/"kind": //; s/"//g' | tr '\n' ' ')
