@@ -95,28 +95,33 @@ struct Warnings {
   }
 };
 
-// A controller whose output no step reads (no acceleration constraint of a
-// solver's motion drivers names it as its energy, no operator or controller
-// takes it) runs every tick and moves nothing: the model asked for a control
-// law that has no effect, which is said at the controller.
+// A controller whose output reaches no solver (no acceleration constraint or
+// force of a solver's motion drivers depends on it, through any chain of
+// operators, views and other controllers) runs every tick and moves nothing:
+// the model asked for a control law that has no effect, which is said at the
+// controller. Steps are in schedule order, so one backward pass finds every
+// step whose output a solver reads, directly or not.
 void warn_unread_controllers(const Program& program, const Warnings& w) {
-  std::vector<char> read(program.data.size(), 0);
-  for (const Step& step : program.steps) {
-    for (int i : step.in) read[static_cast<size_t>(i)] = 1;
+  std::vector<char> reaches(program.data.size(), 0);  // a solver depends on it
+  std::vector<char> effective(program.steps.size(), 0);
+  for (size_t s = program.steps.size(); s-- > 0;) {
+    const Step& step = program.steps[s];
+    bool live = step.kind == StepKind::ArmSolve || step.kind == StepKind::BaseForceDistribution;
+    for (int o : step.out) live = live || reaches[static_cast<size_t>(o)];
+    if (!live) continue;
+    effective[s] = 1;
+    for (int i : step.in) reaches[static_cast<size_t>(i)] = 1;
   }
-  for (const Step& step : program.steps) {
-    if (step.kind != StepKind::Controller) continue;
-    for (int o : step.out) {
-      if (read[static_cast<size_t>(o)]) continue;
-      w.warn(step.where, "unread-controller-output",
-             "the controller '" + step.iri + "' drives '" +
-                 program.data[static_cast<size_t>(o)].iri +
-                 "', which nothing reads: no acceleration constraint of a solver's motion "
-                 "drivers takes it as its acceleration-energy (and no operator or controller "
-                 "takes it), so the controller runs every tick and moves nothing; name it in an "
-                 "acceleration constraint that a solver uses, or leave the controller out of "
-                 "the app");
-    }
+  for (size_t s = 0; s < program.steps.size(); ++s) {
+    const Step& step = program.steps[s];
+    if (step.kind != StepKind::Controller || effective[s] || step.out.empty()) continue;
+    w.warn(step.where, "controller-reaches-no-solver",
+           "the controller '" + step.iri + "' drives '" +
+               program.data[static_cast<size_t>(step.out.front())].iri +
+               "', which reaches no solver: no acceleration constraint or force of a solver's "
+               "motion drivers depends on it, so the controller runs every tick and moves "
+               "nothing; name it in an acceleration constraint (or the wrench of a force) that "
+               "a solver uses, or leave the controller out of the app");
   }
 }
 

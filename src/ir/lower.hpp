@@ -38,8 +38,8 @@ struct LowerOptions {
   // steps in declaration order until the "schedule" pass orders them.
   std::function<void(std::string_view pass, const Program&)> after_pass;
   // Where lowering reports what a model says that has no effect in the
-  // program it lowers to ("unread-controller-output": a controller whose
-  // output no step reads). The CLI prints them; --strict refuses them.
+  // program it lowers to ("controller-reaches-no-solver": a controller whose
+  // output no solver depends on). The CLI prints them; --strict refuses them.
   // nullptr: not collected.
   DiagnosticSink* warnings = nullptr;
 };

@@ -7,7 +7,7 @@
 //   validation: clean
 //   model.json:{{"@id": "compose",}}: error[missing-property]: names no `in2`
 //   model.json:17: error[type-mismatch]: must be a pose
-//   model.json:30: warning[unread-controller-output]: nothing reads
+//   model.json:30: warning[controller-reaches-no-solver]: reaches no solver
 //   -: error[some-code]: a diagnostic with no file:line
 //
 // `error[...]` is an error lowering throws (ir::LowerError), `warning[...]` a

@@ -29,7 +29,7 @@ check "sc1's force distribution is gated by both whisker motions" \
 # the vertical constraint with its own: the right arm's vertical-velocity PID
 # then drives nothing, which lowering says at the controller; --strict refuses.
 expect "a controller whose output nothing reads is reported at it" 0 \
-  "05-constraint-handler.json:125:[0-9]+: warning: the controller '[^']*ctrl-linvel-rightarm-ee-vertical' drives '[^']*eacc-rightarm-ee-lin-z', which nothing reads" \
+  "05-constraint-handler.json:125:[0-9]+: warning: the controller '[^']*ctrl-linvel-rightarm-ee-vertical' drives '[^']*eacc-rightarm-ee-lin-z', which reaches no solver" \
   -- "$mospec" ir models/examples/ceiling.json -o "$work/ceiling.json"
 check "... and the program is lowered all the same" test -s "$work/ceiling.json"
 expect "... --strict refuses it" 1 "1 finding\(s\) under --strict; nothing was generated" \
