@@ -82,16 +82,8 @@ struct Warnings {
   const app::LoadedModel& model;
   DiagnosticSink& sink;
   void warn(SourceLoc loc, std::string code, std::string message) const {
-    Diagnostic d;
-    d.severity = Severity::Warning;
-    if (loc.known()) {
-      d.file = model.files().path(loc.file);
-      d.line = loc.line;
-      d.column = loc.column;
-    }
-    d.code = std::move(code);
-    d.message = std::move(message);
-    sink.report(std::move(d));
+    sink.report(
+        located(Severity::Warning, loc, model.files(), std::move(code), std::move(message)));
   }
 };
 

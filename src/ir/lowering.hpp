@@ -144,16 +144,8 @@ struct State {
 
   // --- diagnostics --------------------------------------------------------
   void error(SourceLoc loc, std::string code, std::string message) const {
-    Diagnostic d;
-    d.severity = Severity::Error;
-    if (loc.known()) {
-      d.file = model.files().path(loc.file);
-      d.line = loc.line;
-      d.column = loc.column;
-    }
-    d.code = std::move(code);
-    d.message = std::move(message);
-    errors.push_back(std::move(d));
+    errors.push_back(
+        located(Severity::Error, loc, model.files(), std::move(code), std::move(message)));
   }
   // "file:line" of an entity, for a message that names a second place.
   std::string place(SourceLoc loc) const {

@@ -16,6 +16,20 @@ uint32_t SourceFiles::add(std::string path) {
   return static_cast<uint32_t>(paths_.size() - 1);
 }
 
+Diagnostic located(Severity severity, SourceLoc loc, const SourceFiles& files, std::string code,
+                   std::string message) {
+  Diagnostic d;
+  d.severity = severity;
+  if (loc.known()) {
+    d.file = files.path(loc.file);
+    d.line = loc.line;
+    d.column = loc.column;
+  }
+  d.code = std::move(code);
+  d.message = std::move(message);
+  return d;
+}
+
 const std::string& SourceFiles::path(uint32_t id) const {
   return id < paths_.size() ? paths_[id] : paths_[0];
 }

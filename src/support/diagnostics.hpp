@@ -47,6 +47,10 @@ struct Diagnostic {
   std::string message;
 };
 
+// A diagnostic at `loc` (file, line and column when known; unlocated otherwise).
+Diagnostic located(Severity severity, SourceLoc loc, const SourceFiles& files, std::string code,
+                   std::string message);
+
 // "file:line:col: warning: message" (omits the parts that are unknown; a
 // diagnostic with no file starts with "mospec:").
 std::string format(const Diagnostic&);

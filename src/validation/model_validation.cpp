@@ -476,16 +476,7 @@ std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& sha
   std::vector<Diagnostic> out;
   const SourceFiles& files = model.files();
   auto located = [&](SourceLoc loc, std::string code, std::string message) {
-    Diagnostic d;
-    d.severity = Severity::Warning;
-    if (loc.known()) {
-      d.file = files.path(loc.file);
-      d.line = loc.line;
-      d.column = loc.column;
-    }
-    d.code = std::move(code);
-    d.message = std::move(message);
-    return d;
+    return mospec::located(Severity::Warning, loc, files, std::move(code), std::move(message));
   };
 
   // Shapes with targets that select nothing.
