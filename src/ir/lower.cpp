@@ -73,10 +73,6 @@ const PassInfo kPasses[] = {
     {"log", &lowering::build_log},
 };
 
-}  // namespace
-
-namespace {
-
 // Reports lowering's warnings, located as its errors are.
 struct Warnings {
   const app::LoadedModel& model;
@@ -93,7 +89,7 @@ struct Warnings {
 // the model asked for a control law that has no effect, which is said at the
 // controller. Steps are in schedule order, so one backward pass finds every
 // step whose output a solver reads, directly or not.
-void warn_unread_controllers(const Program& program, const Warnings& w) {
+void warn_controllers_reaching_no_solver(const Program& program, const Warnings& w) {
   std::vector<char> reaches(program.data.size(), 0);  // a solver depends on it
   std::vector<char> effective(program.steps.size(), 0);
   for (size_t s = program.steps.size(); s-- > 0;) {
@@ -151,7 +147,7 @@ Program lower(const app::LoadedModel& model, const LowerOptions& options) {
   }
   if (!st.errors.empty()) throw LowerError(std::move(st.errors));
   if (options.warnings != nullptr) {
-    warn_unread_controllers(st.program, Warnings{model, *options.warnings});
+    warn_controllers_reaching_no_solver(st.program, Warnings{model, *options.warnings});
   }
   return std::move(st.program);
 }

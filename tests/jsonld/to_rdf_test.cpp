@@ -52,6 +52,19 @@ std::string xsd(std::string_view local) {
   return std::string(kXsd) + std::string(local);
 }
 
+// The xsd:double canonical form JSON-LD gives a number: "%.15E" with the
+// mantissa's trailing zeros dropped (one kept after the point) and the
+// exponent without sign padding or leading zeros.
+std::string canonical_double(double v) {
+  char printed[64];
+  std::snprintf(printed, sizeof printed, "%.15E", v);
+  const std::string text = printed;
+  const size_t e = text.find('E');
+  std::string mantissa = text.substr(0, e);
+  while (mantissa.back() == '0' && mantissa[mantissa.size() - 2] != '.') mantissa.pop_back();
+  return mantissa + "E" + std::to_string(std::stoi(text.substr(e + 1)));
+}
+
 rdf::Dataset one_value(std::string_view value_object, const Options& options = {}) {
   return convert(R"([{"@id": "http://ex/s", "http://ex/p": [)" + std::string(value_object) + "]}]",
                  options);
@@ -111,13 +124,7 @@ TEST(ToRdf, DoubleFormMatchesCorrectRoundingOverTheRange) {
     if (!std::isfinite(v) || v == 0 || (std::trunc(v) == v && std::fabs(v) < 1e21)) continue;
     char json[64];
     std::snprintf(json, sizeof json, "%.17g", v);
-    char printed[64];
-    std::snprintf(printed, sizeof printed, "%.15E", v);
-    std::string text = printed;
-    const size_t e = text.find('E');
-    std::string mantissa = text.substr(0, e);
-    while (mantissa.back() == '0' && mantissa[mantissa.size() - 2] != '.') mantissa.pop_back();
-    const std::string expected = mantissa + "E" + std::to_string(std::stoi(text.substr(e + 1)));
+    const std::string expected = canonical_double(v);
     rdf::Dataset d = one_value(std::string(R"({"@value": )") + json + "}");
     ASSERT_EQ(literal_of(d, "http://ex/p").lexical, expected) << json;
     ++checked;
@@ -150,13 +157,7 @@ TEST(ToRdf, DoubleFormOfShortDecimalsRoundsFromTheExactValue) {
       if (w.find_first_not_of('0', 18) == w.find('e')) continue;  // an exact tie
       ++boundaries;
     }
-    char printed[64];
-    std::snprintf(printed, sizeof printed, "%.15E", v);
-    std::string expected = printed;
-    const size_t e = expected.find('E');
-    std::string mantissa = expected.substr(0, e);
-    while (mantissa.back() == '0' && mantissa[mantissa.size() - 2] != '.') mantissa.pop_back();
-    expected = mantissa + "E" + std::to_string(std::stoi(expected.substr(e + 1)));
+    const std::string expected = canonical_double(v);
     rdf::Dataset d = one_value(std::string(R"({"@value": )") + text + "}");
     ASSERT_EQ(literal_of(d, "http://ex/p").lexical, expected) << text;
   }
