@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <memory_resource>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -17,6 +18,10 @@ namespace mospec::app {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The first block of a document's expansion arena; a larger document's arena
+// grows geometrically from it.
+constexpr size_t kExpandedArenaBytes = 32 * 1024;
 
 std::string app_term(std::string_view local) {
   return std::string(kAppNs) + std::string(local);
@@ -93,7 +98,10 @@ class Loader {
     bool mentions_app_property = false;
     opts.property_prefix = kAppNs;
     opts.property_prefix_seen = &mentions_app_property;
-    const json::Value expanded = jsonld::expand(*doc.document, opts);
+    // The expanded tree is walked once by toRdf and dropped: it lives in an
+    // arena for this document (sized like the parsed text it comes from).
+    std::pmr::monotonic_buffer_resource arena(kExpandedArenaBytes);
+    const json::Value expanded = jsonld::expand(*doc.document, opts, &arena);
     ModelFile file{doc.document_url, path, doc.file_id, false, imported_at};
     if (!mentions_app_property) {
       // No app:* property, so not an app: its quads go straight into the

@@ -9,6 +9,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <span>
 #include <system_error>
 
 #include "support/utf8.hpp"
@@ -34,7 +35,7 @@ class KeyIndex {
   }
 
   // The position of `key` in `members`, or kNone.
-  size_t find(const std::vector<Object::Member>& members, std::string_view key) const {
+  size_t find(std::span<const Object::Member> members, std::string_view key) const {
     if (slots_.empty()) {
       for (size_t i = 0; i < members.size(); ++i) {
         if (members[i].key == key) return i;
@@ -50,7 +51,7 @@ class KeyIndex {
   }
 
   // Records members.back(), which find() did not find.
-  void added(const std::vector<Object::Member>& members) {
+  void added(std::span<const Object::Member> members) {
     if (slots_.empty()) {
       if (members.size() > kScanLimit) rebuild(members);
       return;
@@ -63,7 +64,7 @@ class KeyIndex {
   }
 
   // Indexes `members` afresh (after an erase or a bulk append).
-  void rebuild(const std::vector<Object::Member>& members) {
+  void rebuild(std::span<const Object::Member> members) {
     clear();
     if (members.size() <= kScanLimit) return;
     size_t capacity = 64;
@@ -132,20 +133,19 @@ Value* Object::find(std::string_view key) {
   return const_cast<Value*>(static_cast<const Object&>(*this).find(key));
 }
 
-Value& Object::set(std::string key, Value v) {
+Value& Object::set(std::string_view key, Value v) {
   if (Value* slot = find(key)) {
     *slot = std::move(v);
     return *slot;
   }
-  return append_new(std::move(key), std::move(v));
+  return append_new(key, std::move(v));
 }
 
-Value& Object::append_new(std::string key, Value v) {
+Value& Object::append_new(std::string_view key, Value v) {
   // Built in place: a temporary Member would cost a move and a destruction of
-  // its key and value. (Default-constructed, then filled: clang < 16 has no
-  // parenthesised aggregate initialisation for emplace_back(key, value, loc).)
-  Member& m = members_.emplace_back();
-  m.key = std::move(key);
+  // its key and value. The key is built in the object's resource (a Member
+  // is not allocator-aware, so emplace_back does not pass it on).
+  Member& m = members_.emplace_back(Member{String(key, members_.get_allocator()), Value(), {}});
   m.value = std::move(v);
   if (!index_.p && members_.size() > KeyIndex::kScanLimit) index_.p = std::make_unique<KeyIndex>();
   if (index_.p) index_.p->added(members_);
@@ -230,8 +230,8 @@ constexpr std::array<bool, 256> kEndsRun = [] {
 
 class Parser {
  public:
-  Parser(std::string_view text, uint32_t file_id, std::string_view file_name)
-      : text_(text), file_id_(file_id), file_name_(file_name) {}
+  Parser(std::string_view text, uint32_t file_id, std::string_view file_name, Resource* resource)
+      : text_(text), file_id_(file_id), file_name_(file_name), resource_(resource) {}
 
   Value parse_document() {
     // RFC 8259 section 8.1: a parser may ignore a leading byte order mark.
@@ -251,6 +251,7 @@ class Parser {
   std::string_view text_;
   uint32_t file_id_;
   std::string_view file_name_;
+  Resource* resource_;
   size_t pos_ = 0;
   uint32_t line_ = 1;
   size_t line_start_ = 0;
@@ -312,7 +313,7 @@ class Parser {
         parse_array(out, depth);
         break;
       case '"':
-        out.emplace_string() = parse_string();
+        parse_string(out.emplace_string(resource_));
         break;
       case 't':
         expect_literal("true");
@@ -372,7 +373,7 @@ class Parser {
     skip_ws();
     if (!at_end() && peek() == '}') {
       ++pos_;
-      out.emplace_object();
+      out.emplace_object(resource_);
       return;
     }
     scratch_at(member_scratch_, depth).clear();
@@ -381,7 +382,8 @@ class Parser {
       if (at_end()) fail("unexpected end of input; expected a string key in object");
       if (peek() != '"') fail("expected a string key in object, found " + describe(peek()));
       const SourceLoc key_loc = here();
-      std::string key = parse_string();
+      String key(resource_);
+      parse_string(key);
       skip_ws();
       if (at_end() || peek() != ':') fail("expected ':' after object key");
       ++pos_;
@@ -399,9 +401,9 @@ class Parser {
         m.value = std::move(v);
         m.key_loc = key_loc;
       } else {
-        Object::Member& m = members.emplace_back();
-        m.key = std::move(key);
-        m.key_loc = key_loc;
+        // The key moves in with its resource (assigning it to a default
+        // member's key would copy it to the heap).
+        Object::Member& m = members.emplace_back(Object::Member{std::move(key), Value(), key_loc});
         index.added(members);
         Value* slot = &m.value;
         parse_value(*slot, depth + 1);
@@ -412,8 +414,8 @@ class Parser {
       if (c == '}') {
         ++pos_;
         std::vector<Object::Member>& done = member_scratch_[static_cast<size_t>(depth)];
-        out.emplace_object().append_members(std::make_move_iterator(done.begin()),
-                                            std::make_move_iterator(done.end()));
+        out.emplace_object(resource_).append_members(std::make_move_iterator(done.begin()),
+                                                     std::make_move_iterator(done.end()));
         done.clear();
         return;
       }
@@ -431,7 +433,7 @@ class Parser {
     skip_ws();
     if (!at_end() && peek() == ']') {
       ++pos_;
-      out.emplace_array();
+      out.emplace_array(resource_);
       return;
     }
     scratch_at(element_scratch_, depth).clear();
@@ -446,8 +448,8 @@ class Parser {
       if (c == ']') {
         ++pos_;
         std::vector<Value>& elements = element_scratch_[static_cast<size_t>(depth)];
-        out.emplace_array().assign(std::make_move_iterator(elements.begin()),
-                                   std::make_move_iterator(elements.end()));
+        out.emplace_array(resource_).assign(std::make_move_iterator(elements.begin()),
+                                            std::make_move_iterator(elements.end()));
         elements.clear();
         return;
       }
@@ -556,10 +558,21 @@ class Parser {
     return n;
   }
 
-  std::string parse_string() {
+  // Parses the string at pos_ into `out` (empty, in the document's resource).
+  void parse_string(String& out) {
     const size_t open = pos_;
     ++pos_;  // opening quote
-    std::string out;
+    {
+      // Most strings are one run of ordinary bytes: sized once.
+      const auto* bytes = reinterpret_cast<const unsigned char*>(text_.data());
+      size_t end = pos_;
+      while (end < text_.size() && !kEndsRun[bytes[end]]) ++end;
+      if (end < text_.size() && text_[end] == '"') {
+        out.assign(text_.data() + pos_, end - pos_);
+        pos_ = end + 1;
+        return;
+      }
+    }
     for (;;) {
       // Copy the longest run of ordinary bytes in one go.
       const size_t run = pos_;
@@ -570,7 +583,7 @@ class Parser {
       const auto c = static_cast<unsigned char>(peek());
       if (c == '"') {
         ++pos_;
-        return out;
+        return;
       }
       if (c < 0x20) {
         char buf[64];
@@ -655,8 +668,9 @@ class Parser {
 
 }  // namespace
 
-Value parse(std::string_view text, uint32_t file_id, std::string_view file_name) {
-  Parser p(text, file_id, file_name);
+Value parse(std::string_view text, uint32_t file_id, std::string_view file_name,
+            Resource* resource) {
+  Parser p(text, file_id, file_name, resource);
   return p.parse_document();
 }
 

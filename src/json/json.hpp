@@ -4,10 +4,20 @@
 // double), (b) the source position of each value so diagnostics and quads can
 // point at file:line:col, and (c) stable member order for deterministic output.
 // Objects keep their members in insertion order with unique keys.
+//
+// Strings, arrays and objects allocate from a std::pmr::memory_resource: the
+// heap unless a value was built for an arena (parse(), the emplace_*
+// functions and the constructors that take a Resource). A document parsed or
+// expanded into a monotonic arena costs a bump of a pointer per string, array
+// and object instead of a malloc, and is freed at once. Copies always go to
+// the heap (std::pmr containers copy with the default resource), so a copy
+// never outlives an arena by accident; a moved value keeps its resource, so a
+// value built in an arena must not be moved into anything that outlives it.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <memory_resource>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -18,7 +28,9 @@
 namespace mospec::json {
 
 class Value;
-using Array = std::vector<Value>;
+using Resource = std::pmr::memory_resource;
+using String = std::pmr::string;
+using Array = std::pmr::vector<Value>;
 
 namespace detail {
 class KeyIndex;  // json.cpp
@@ -30,6 +42,8 @@ class Object {
   // Value, which holds an Object, so these cannot be implicit (clang needs
   // ~vector<Member> at the point they would be generated).
   inline Object();
+  // An empty object whose members (keys included) live in `resource`.
+  inline explicit Object(Resource* resource);
   inline ~Object();
   inline Object(const Object&);
   inline Object(Object&&) noexcept;
@@ -40,17 +54,20 @@ class Object {
   // instantiates std::vector members eagerly in inline bodies).
   inline size_t size() const;
   inline bool empty() const;
+  // Where the members live (the heap unless built for an arena).
+  Resource* resource() const { return members_.get_allocator().resource(); }
   inline void reserve(size_t n);
   const Value* find(std::string_view key) const;
   Value* find(std::string_view key);
   bool contains(std::string_view key) const { return find(key) != nullptr; }
-  // Inserts or replaces; returns the stored value.
-  Value& set(std::string key, Value v);
+  // Inserts or replaces; returns the stored value. A new key is copied into
+  // the object's resource.
+  Value& set(std::string_view key, Value v);
   // Appends without looking for an existing member: the caller guarantees the
   // key is new (saves set()'s linear search when building large objects).
-  Value& append_new(std::string key, Value v);
+  Value& append_new(std::string_view key, Value v);
   bool erase(std::string_view key);
-  inline const std::string& key(size_t i) const;
+  inline std::string_view key(size_t i) const;
   inline const Value& value(size_t i) const;
   inline Value& value(size_t i);
   // Keys in code-point (byte) order, as the JSON-LD algorithms iterate them.
@@ -80,7 +97,7 @@ class Object {
   };
   void reindex();
 
-  std::vector<Member> members_;
+  std::pmr::vector<Member> members_;
   IndexPtr index_;
 };
 
@@ -93,9 +110,12 @@ class Value {
   Value(bool b) : data_(b) {}
   Value(double d) : data_(d) {}
   Value(int i) : data_(static_cast<double>(i)) {}
-  Value(std::string s) : data_(std::move(s)) {}
-  Value(std::string_view s) : data_(std::string(s)) {}
-  Value(const char* s) : data_(std::string(s)) {}
+  Value(String s) : data_(std::move(s)) {}
+  Value(const std::string& s) : data_(std::in_place_type<String>, s) {}
+  Value(std::string_view s) : data_(std::in_place_type<String>, s) {}
+  Value(const char* s) : data_(std::in_place_type<String>, s) {}
+  // A string whose bytes live in `resource`.
+  Value(std::string_view s, Resource* resource) : data_(std::in_place_type<String>, s, resource) {}
   Value(Array a) : data_(std::move(a)) {}
   Value(Object o) : data_(std::move(o)) {}
 
@@ -110,18 +130,27 @@ class Value {
 
   bool as_bool() const { return std::get<bool>(data_); }
   double as_number() const { return std::get<double>(data_); }
-  const std::string& as_string() const { return std::get<std::string>(data_); }
-  std::string& as_string() { return std::get<std::string>(data_); }
+  // The string's bytes (whatever resource holds them); mutable_string() to
+  // change them in place.
+  std::string_view as_string() const { return std::get<String>(data_); }
+  String& mutable_string() { return std::get<String>(data_); }
   const Array& as_array() const { return std::get<Array>(data_); }
   Array& as_array() { return std::get<Array>(data_); }
   const Object& as_object() const { return std::get<Object>(data_); }
   Object& as_object() { return std::get<Object>(data_); }
 
-  // Makes this an empty object, array or string and returns it, to be filled
-  // in place (the parser builds each value where it will stay).
-  Object& emplace_object() { return data_.emplace<Object>(); }
-  Array& emplace_array() { return data_.emplace<Array>(); }
-  std::string& emplace_string() { return data_.emplace<std::string>(); }
+  // Makes this an empty object, array or string in `resource` and returns
+  // it, to be filled in place (the parser builds each value where it will
+  // stay).
+  Object& emplace_object(Resource* resource = std::pmr::get_default_resource()) {
+    return data_.emplace<Object>(resource);
+  }
+  Array& emplace_array(Resource* resource = std::pmr::get_default_resource()) {
+    return data_.emplace<Array>(resource);
+  }
+  String& emplace_string(Resource* resource = std::pmr::get_default_resource()) {
+    return data_.emplace<String>(resource);
+  }
 
   // Convenience for objects: member lookup (nullptr if not an object or absent).
   const Value* get(std::string_view key) const {
@@ -142,17 +171,18 @@ class Value {
   friend bool operator==(const Value& a, const Value& b);
 
  private:
-  std::variant<std::nullptr_t, bool, double, std::string, Array, Object> data_{nullptr};
+  std::variant<std::nullptr_t, bool, double, String, Array, Object> data_{nullptr};
   SourceLoc loc_{};
 };
 
 struct Object::Member {
-  std::string key;
+  String key;
   Value value;
   SourceLoc key_loc{};
 };
 
 inline Object::Object() = default;
+inline Object::Object(Resource* resource) : members_(resource) {}
 inline Object::~Object() = default;
 inline Object::Object(const Object&) = default;
 inline Object::Object(Object&&) noexcept = default;
@@ -174,7 +204,7 @@ void Object::append_members(It first, It last) {
   reindex();
 }
 
-inline const std::string& Object::key(size_t i) const {
+inline std::string_view Object::key(size_t i) const {
   return members_[i].key;
 }
 inline const Value& Object::value(size_t i) const {
@@ -193,8 +223,10 @@ inline void Object::set_key_location(size_t i, SourceLoc l) {
 // Parses RFC 8259 JSON. Errors throw mospec::Error with code "invalid json"
 // (the JSON-LD "loading document failed" family is decided by the caller) and the
 // file name, line and column of the offending character. Duplicate keys: the last
-// wins (as in JavaScript). Records locations with `file_id`.
-Value parse(std::string_view text, uint32_t file_id = 0, std::string_view file_name = "<input>");
+// wins (as in JavaScript). Records locations with `file_id`. The value's
+// strings, arrays and objects live in `resource` (the heap by default).
+Value parse(std::string_view text, uint32_t file_id = 0, std::string_view file_name = "<input>",
+            Resource* resource = std::pmr::get_default_resource());
 
 // Serialises compactly (no whitespace) or with `indent` spaces per level.
 // Numbers are written as JavaScript does (shortest round-trip form; integers

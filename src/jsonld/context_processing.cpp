@@ -175,7 +175,7 @@ void Processor::process_item(Builder& result, const json::Value& context,
   // CP 5.12, 5.13
   LocalCtx lc(*ctx);
   for (size_t i = 0; i < ctx->size(); ++i) {
-    const std::string& key = ctx->key(i);
+    const std::string_view key = ctx->key(i);
     if (!key.empty() && key[0] == '@' &&
         (key == "@base" || key == "@direction" || key == "@import" || key == "@language" ||
          key == "@propagate" || key == "@protected" || key == "@version" || key == "@vocab")) {
@@ -186,9 +186,9 @@ void Processor::process_item(Builder& result, const json::Value& context,
   }
 }
 
-std::string Processor::resolve_context_iri(const std::string& base_url, const std::string& ref,
+std::string Processor::resolve_context_iri(const std::string& base_url, std::string_view ref,
                                            SourceLoc loc) const {
-  if (rdf::is_absolute_iri(ref)) return ref;
+  if (rdf::is_absolute_iri(ref)) return std::string(ref);
   if (!rdf::is_absolute_iri(base_url)) {
     fail("loading document failed",
          "relative context reference " + quoted(ref) + " without a base IRI", loc);

@@ -675,7 +675,7 @@ class Processor {
                     std::vector<std::string>& remote_contexts, bool override_protected,
                     bool propagate, bool validate, bool in_remote);
 
-  std::string resolve_context_iri(const std::string& base_url, const std::string& ref,
+  std::string resolve_context_iri(const std::string& base_url, std::string_view ref,
                                   SourceLoc loc) const;
 
   // CP 5.2.4, 5.2.5: the remote document (dereferenced at most once).

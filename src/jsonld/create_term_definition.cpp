@@ -4,7 +4,7 @@
 namespace mospec::jsonld::internal {
 
 void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const TermArgs& args) {
-  const std::string& term = lc.obj->key(idx);
+  const std::string_view term = lc.obj->key(idx);
   const SourceLoc where = lc.obj->key_location(idx);
   const json::Value& value = lc.obj->value(idx);
   // Only error paths need the display name.
@@ -40,7 +40,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     }
   } else if (is_keyword(term)) {
     // CTD 5
-    fail("keyword redefinition", "keyword " + term + " cannot be redefined", where);
+    fail("keyword redefinition", "keyword " + std::string(term) + " cannot be redefined", where);
   } else if (has_keyword_form(term)) {
     warn(name() + " has the form of a keyword and is ignored", where);
     lc.state[idx] = LocalCtx::Defined;
@@ -107,7 +107,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
       fail("invalid IRI mapping", name() + ": @reverse must be a string", r->location());
     }
     if (has_keyword_form(r->as_string())) {
-      warn(name() + ": @reverse value " + r->as_string() +
+      warn(name() + ": @reverse value " + std::string(r->as_string()) +
                " has the form of a keyword; the definition is ignored",
            r->location());
       lc.state[idx] = LocalCtx::Defined;
@@ -128,7 +128,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
              name() + ": a reverse property's @container must be @set, @index or null",
              c->location());
       }
-      if (c->is_string()) def->container.insert(c->as_string());
+      if (c->is_string()) def->container.emplace(c->as_string());
     }
     def->reverse = true;
   } else if (const json::Value* id = v.id;
@@ -140,10 +140,11 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
       if (!id->is_string()) {
         fail("invalid IRI mapping", name() + ": @id must be a string or null", id->location());
       }
-      const std::string& idv = id->as_string();
+      const std::string_view idv = id->as_string();
       // CTD 14.2.2
       if (!is_keyword(idv) && has_keyword_form(idv)) {
-        warn(name() + ": @id " + idv + " has the form of a keyword; the definition is ignored",
+        warn(name() + ": @id " + std::string(idv) +
+                 " has the form of a keyword; the definition is ignored",
              id->location());
         lc.state[idx] = LocalCtx::Defined;
         return;
@@ -209,7 +210,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     def->iri = "@type";
   } else if (active.vocab) {
     // CTD 18
-    def->iri = *active.vocab + term;
+    def->iri = *active.vocab + std::string(term);
   } else {
     fail("invalid IRI mapping",
          name() + " has no @id and there is no @vocab to derive its IRI from", where);
@@ -339,7 +340,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
 void Processor::TermValue::scan(const json::Object& o) {
   obj = &o;
   for (size_t i = 0; i < o.size(); ++i) {
-    const std::string& k = o.key(i);
+    const std::string_view k = o.key(i);
     const json::Value** slot = nullptr;
     // By length, so that a key is compared with at most three keywords.
     switch (k.size()) {
@@ -397,9 +398,9 @@ void Processor::validate_container(std::string_view term, const json::Value& c,
   // CTD 19.2
   if (json10_) {
     if (!c.is_string()) bad("@container must be a string in json-ld-1.0");
-    const std::string& s = c.as_string();
+    const std::string_view s = c.as_string();
     if (s == "@graph" || s == "@id" || s == "@type")
-      bad("@container " + s + " requires json-ld-1.1");
+      bad("@container " + std::string(s) + " requires json-ld-1.1");
   }
   std::set<std::string> values;
   auto add = [&](const json::Value& e) {
@@ -409,7 +410,7 @@ void Processor::validate_container(std::string_view term, const json::Value& c,
         std::find(kContainers.begin(), kContainers.end(), e.as_string()) == kContainers.end()) {
       bad("@container values must be @graph, @id, @index, @language, @list, @set or @type");
     }
-    values.insert(e.as_string());
+    values.emplace(e.as_string());
   };
   if (c.is_array()) {
     for (const auto& e : c.as_array()) add(e);

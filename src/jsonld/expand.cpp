@@ -68,7 +68,7 @@ bool is_graph_object(const Value& v) {
   if (!v.is_object() || !has_key(v, "@graph")) return false;
   const Object& o = v.as_object();
   for (size_t i = 0; i < o.size(); ++i) {
-    const std::string& k = o.key(i);
+    const std::string_view k = o.key(i);
     if (k != "@graph"sv && k != "@id"sv && k != "@index"sv) return false;
   }
   return true;
@@ -110,39 +110,43 @@ bool is_node_object(const Value& v) {
   return v.is_object() && !has_key(v, "@value") && !has_key(v, "@list") && !has_key(v, "@set");
 }
 
-// Moves `v` into an array (null becomes the empty array), keeping the location.
-Value to_array(Value v) {
+// Moves `v` into an array (null becomes the empty array), keeping the
+// location; a new array lives in `mem`.
+Value to_array(Value v, json::Resource* mem) {
   if (v.is_array()) return v;
   SourceLoc loc = v.location();
-  Array a;
-  if (!v.is_null()) a.push_back(std::move(v));
-  Value out(std::move(a));
+  Value out;
+  Array& a = out.emplace_array(mem);
+  if (!v.is_null()) {
+    a.reserve(1);
+    a.push_back(std::move(v));
+  }
   out.set_location(loc);
   return out;
 }
 
 // Inserts `v` under `key` (new or replaced) and records where the key was written.
-Value& put(Object& obj, std::string key, Value v, SourceLoc key_loc) {
+Value& put(Object& obj, std::string_view key, Value v, SourceLoc key_loc) {
   const size_t before = obj.size();
-  Value& slot = obj.set(std::move(key), std::move(v));
+  Value& slot = obj.set(key, std::move(v));
   if (obj.size() > before) obj.set_key_location(obj.size() - 1, key_loc);
   return slot;
 }
 
 // The spec's "add value" with `as array` true: values of an array are appended
-// one by one.
-void add_value(Object& obj, std::string key, Value v, SourceLoc key_loc) {
+// one by one. New arrays live where `obj` does.
+void add_value(Object& obj, std::string_view key, Value v, SourceLoc key_loc) {
   Value* slot = obj.find(key);
   if (slot == nullptr) {
     // A new key: an array value becomes its array as it is; anything else a
     // one-element array, built in the new member.
-    Value& values = obj.append_new(std::move(key), Value());
+    Value& values = obj.append_new(key, Value());
     obj.set_key_location(obj.size() - 1, key_loc);
     if (v.is_array()) {
       values = std::move(v);
     } else {
       const SourceLoc loc = v.location();
-      Array& a = values.emplace_array();
+      Array& a = values.emplace_array(obj.resource());
       a.reserve(1);
       a.push_back(std::move(v));
       values.set_location(loc);
@@ -150,7 +154,7 @@ void add_value(Object& obj, std::string key, Value v, SourceLoc key_loc) {
     return;
   }
   if (!slot->is_array()) {
-    *slot = to_array(std::move(*slot));
+    *slot = to_array(std::move(*slot), obj.resource());
   }
   Array& arr = slot->as_array();
   if (v.is_array()) {
@@ -161,17 +165,50 @@ void add_value(Object& obj, std::string key, Value v, SourceLoc key_loc) {
 }
 
 // Concatenates `existing` (made an array) followed by `added` (made an array).
-Value concat(Value existing, Value added) {
-  Value out = to_array(std::move(existing));
-  Value tail = to_array(std::move(added));
+Value concat(Value existing, Value added, json::Resource* mem) {
+  Value out = to_array(std::move(existing), mem);
+  Value tail = to_array(std::move(added), mem);
   for (Value& item : tail.as_array()) out.as_array().push_back(std::move(item));
   return out;
 }
 
-Value string_at(std::string s, SourceLoc loc) {
-  Value v(std::move(s));
+Value string_at(std::string_view s, SourceLoc loc, json::Resource* mem) {
+  Value v(s, mem);
   v.set_location(loc);
   return v;
+}
+
+// A deep copy of `v` (an input value kept in the output) in `mem`.
+Value copy_to(const Value& v, json::Resource* mem) {
+  Value out;
+  switch (v.kind()) {
+    case json::Kind::Null:
+    case json::Kind::Boolean:
+    case json::Kind::Number:
+      out = v;
+      break;
+    case json::Kind::String:
+      out.emplace_string(mem) = v.as_string();
+      break;
+    case json::Kind::Array: {
+      Array& a = out.emplace_array(mem);
+      a.reserve(v.as_array().size());
+      for (const Value& item : v.as_array()) a.push_back(copy_to(item, mem));
+      break;
+    }
+    case json::Kind::Object: {
+      const Object& o = v.as_object();
+      Object& c = out.emplace_object(mem);
+      c.reserve(o.size());
+      for (size_t i = 0; i < o.size(); ++i) {
+        c.append_new(o.key(i), copy_to(o.value(i), mem));
+        c.set_key_location(i, o.key_location(i));
+      }
+      break;
+    }
+  }
+  out.set_location(v.location());
+  return out;
 }
 
 // Whether some term of `ctx` is a keyword alias. Contexts rarely have one, and
@@ -184,7 +221,7 @@ bool has_keyword_aliases(const ActiveContext& ctx) {
 // Whether `key` IRI-expands to `keyword` in `ctx`, without building the
 // expansion: only a keyword itself or a keyword alias can (IRI Expansion steps
 // 1, 2 and 4), which keeps this check off the allocator in the per-node scans.
-bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_view keyword) {
+bool expands_to(const ActiveContext& ctx, std::string_view key, std::string_view keyword) {
   if (key == keyword) return true;
   if (is_keyword(key) || has_keyword_form(key) || !has_keyword_aliases(ctx)) return false;
   const TermDefinition* def = ctx.find(key);
@@ -193,7 +230,7 @@ bool expands_to(const ActiveContext& ctx, const std::string& key, std::string_vi
 
 // The keyword `key` IRI-expands to in `ctx` (itself, or the keyword it is an
 // alias of), or empty: expands_to for every keyword at once.
-std::string_view keyword_of(const ActiveContext& ctx, const std::string& key) {
+std::string_view keyword_of(const ActiveContext& ctx, std::string_view key) {
   if (is_keyword(key)) return key;
   if (has_keyword_form(key) || !has_keyword_aliases(ctx)) return {};
   const TermDefinition* def = ctx.find(key);
@@ -224,7 +261,8 @@ std::vector<size_t> member_order(const Object& o, bool sorted) {
 
 class Expander {
  public:
-  explicit Expander(const Options& options) : opts_(options) {}
+  // The output's strings, arrays and objects live in `mem`.
+  Expander(const Options& options, json::Resource* mem) : opts_(options), mem_(mem) {}
 
   // The Expansion Algorithm (5.1.2).
   // `active` is taken by reference: most elements are scalars and arrays,
@@ -250,6 +288,9 @@ class Expander {
 
   // Shared state of steps 13 and 14 for one element (nested values included).
   struct ObjectState {
+    // The result is built where the output lives (assigning an object built
+    // elsewhere would copy it there).
+    explicit ObjectState(json::Resource* mem) : result(mem) {}
     ContextPtr type_scoped;
     bool input_type_json = false;  // step 12's input type is @json
     Object result;
@@ -261,15 +302,14 @@ class Expander {
                       const Value& element, const std::string& base_url, bool from_map);
   void expand_entries(const ContextPtr& active, ActiveProperty ap, const Object& element,
                       const std::string& base_url, ObjectState& st);
-  void expand_keyword(const ContextPtr& active, ActiveProperty ap, const std::string& key,
-                      SourceLoc key_loc, const std::string& expanded_property, const Value& value,
+  void expand_keyword(const ContextPtr& active, ActiveProperty ap, std::string_view key,
+                      SourceLoc key_loc, std::string_view expanded_property, const Value& value,
                       const std::string& base_url, ObjectState& st,
                       std::vector<std::pair<std::string, SourceLoc>>& nests);
   Value expand_language_map(const ActiveContext& active, const TermDefinition* def,
                             const Value& value);
-  Value expand_index_map(const ContextPtr& active, const std::string& key,
-                         const TermDefinition& def, const Value& value, const std::string& base_url,
-                         ObjectState& st);
+  Value expand_index_map(const ContextPtr& active, std::string_view key, const TermDefinition& def,
+                         const Value& value, const std::string& base_url, ObjectState& st);
   Value expand_value(const ActiveContext& active, ActiveProperty ap, const Value& value) {
     return expand_value(active, ap ? active.find(*ap) : nullptr, value);
   }
@@ -279,9 +319,9 @@ class Expander {
 
   std::optional<std::string> expand_type_iri(const ActiveContext& type_scoped, const Value& v,
                                              ObjectState& st);
-  void note_dropped_key(const ActiveContext& active, const std::string& key, SourceLoc loc,
+  void note_dropped_key(const ActiveContext& active, std::string_view key, SourceLoc loc,
                         ObjectState& st);
-  static std::string did_you_mean(const ActiveContext& active, const std::string& word);
+  static std::string did_you_mean(const ActiveContext& active, std::string_view word);
   // The warning for an @id (or @id-coerced value) that expands to a malformed
   // IRI, which toRdf drops with its triples; nullopt when `iri` is fine.
   std::optional<Pending> malformed_id(const std::string& iri, const Value& value) const;
@@ -324,7 +364,18 @@ class Expander {
   [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
   void flush(ObjectState& st, const Object& result, ActiveProperty ap) const;
 
+  // Output helpers: values built in mem_.
+  Value array_of(Value v) const { return to_array(std::move(v), mem_); }
+  Value string_at(std::string_view s, SourceLoc loc) const {
+    return jsonld::string_at(s, loc, mem_);
+  }
+  Value concat(Value existing, Value added) const {
+    return jsonld::concat(std::move(existing), std::move(added), mem_);
+  }
+  Value copy(const Value& v) const { return copy_to(v, mem_); }
+
   const Options& opts_;
+  json::Resource* mem_;
 };
 
 ContextPtr Expander::scoped_context(const ContextPtr& active, const TermDefinition& def,
@@ -357,17 +408,17 @@ void Expander::fail(std::string code, std::string message, SourceLoc loc) const 
   throw Error(std::move(code), std::move(message), file_name(loc), loc.line, loc.column);
 }
 
-void Expander::note_dropped_key(const ActiveContext& active, const std::string& key, SourceLoc loc,
+void Expander::note_dropped_key(const ActiveContext& active, std::string_view key, SourceLoc loc,
                                 ObjectState& st) {
   if (opts_.diagnostics == nullptr) return;
-  st.pending.push_back(
-      {loc, "dropped-key",
-       "key \"" + key + "\" expands to no IRI and is dropped" + did_you_mean(active, key)});
+  st.pending.push_back({loc, "dropped-key",
+                        "key \"" + std::string(key) + "\" expands to no IRI and is dropped" +
+                            did_you_mean(active, key)});
 }
 
 // "; did you mean \"term\"?" naming the active context's term nearest to a
 // word that is none of them (a typo of a property or type), or "".
-std::string Expander::did_you_mean(const ActiveContext& active, const std::string& word) {
+std::string Expander::did_you_mean(const ActiveContext& active, std::string_view word) {
   Nearest nearest(word);
   active.for_each_term([&](std::string_view term) { nearest.offer(term); });
   if (nearest.best().empty()) return "";
@@ -390,14 +441,14 @@ std::optional<Expander::Pending> Expander::malformed_id(const std::string& iri,
 // becomes a document-relative IRI; that is reported as "undefined-type".
 std::optional<std::string> Expander::expand_type_iri(const ActiveContext& type_scoped,
                                                      const Value& v, ObjectState& st) {
-  const std::string& s = v.as_string();
+  const std::string_view s = v.as_string();
   bool is_term = false;
   std::optional<std::string> iri = internal::expand_iri(type_scoped, s, true, true, &is_term);
   if (!iri) return iri;
   if (opts_.diagnostics != nullptr && s.find(':') == std::string::npos && !is_keyword(s) &&
       !is_term && !type_scoped.vocab()) {
     st.pending.push_back({v.location(), "undefined-type",
-                          "@type value \"" + s +
+                          "@type value \"" + std::string(s) +
                               "\" is not a defined term and resolves against the base to <" + *iri +
                               ">" + did_you_mean(type_scoped, s)});
   }
@@ -409,8 +460,9 @@ void Expander::flush(ObjectState& st, const Object& result, ActiveProperty ap) c
   std::string node;
   const Value* id = result.find("@id");
   if (id != nullptr && id->is_string()) {
-    const std::string& s = id->as_string();
-    node = s.rfind("_:", 0) == 0 ? " (node " + s + ")" : " (node <" + s + ">)";
+    const std::string_view s = id->as_string();
+    node = s.rfind("_:", 0) == 0 ? " (node " + std::string(s) + ")"
+                                 : " (node <" + std::string(s) + ">)";
   } else if (ap && *ap == kReverse) {
     // The keys of an @reverse map belong to the enclosing node, reported at them.
     node = " (in @reverse)";
@@ -443,7 +495,8 @@ Value Expander::expand(const ContextPtr& active, ActiveProperty ap, const TermDe
   // 5
   if (element.is_array()) {
     const bool list_container = ap_def != nullptr && has_container(ap_def->container, "@list");
-    Value out{Array{}};
+    Value out;
+    out.emplace_array(mem_);
     out.set_location(element.location());
     Array& result = out.as_array();
     result.reserve(element.as_array().size());
@@ -451,7 +504,7 @@ Value Expander::expand(const ContextPtr& active, ActiveProperty ap, const TermDe
       Value expanded = expand(active, ap, ap_def, item, base_url, from_map);  // 5.2.1
       if (list_container && expanded.is_array()) {                            // 5.2.2
         SourceLoc loc = expanded.location();
-        Object list;
+        Object list(mem_);
         list.append_new("@list", std::move(expanded));
         expanded = Value(std::move(list));
         expanded.set_location(loc);
@@ -498,7 +551,7 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
     active = process_context(active, *ctx, base_url, opts_);
   }
 
-  ObjectState st;
+  ObjectState st(mem_);
   // 10
   st.type_scoped = active;
   // 11, 12: keys are visited in code-point order; every @type entry applies the
@@ -518,7 +571,7 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
   std::sort(type_entries.begin(), type_entries.end(),
             [&obj](size_t a, size_t b) { return obj.key(a) < obj.key(b); });
   if (type_entries.empty() && single_type != obj.size()) type_entries.push_back(single_type);
-  auto apply_type_scoped = [&](const std::string& term) {
+  auto apply_type_scoped = [&](std::string_view term) {
     const TermDefinition* def = tsc->find(term);
     if (def != nullptr && def->local_context) {
       active = scoped_context(active, *def, false, false);
@@ -529,13 +582,12 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
     if (v.is_string()) {
       apply_type_scoped(v.as_string());
     } else if (v.is_array()) {
-      std::vector<const std::string*> terms;
+      std::vector<std::string_view> terms;
       for (const Value& t : v.as_array()) {
-        if (t.is_string()) terms.push_back(&t.as_string());
+        if (t.is_string()) terms.push_back(t.as_string());
       }
-      std::sort(terms.begin(), terms.end(),
-                [](const std::string* a, const std::string* b) { return *a < *b; });
-      for (const std::string* term : terms) apply_type_scoped(*term);
+      std::sort(terms.begin(), terms.end());
+      for (std::string_view term : terms) apply_type_scoped(term);
     }
   }
   // 12: the last value of the first @type entry. Only whether it is @json
@@ -563,28 +615,33 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
       opts_.ordered ? member_order(element, true) : std::vector<size_t>();
   for (size_t n = 0; n < element.size(); ++n) {
     const size_t i = opts_.ordered ? order[n] : n;
-    const std::string& key = element.key(i);
+    const std::string_view key = element.key(i);
     const Value& value = element.value(i);
     const SourceLoc key_loc = element.key_location(i);
     if (key == "@context"sv) continue;  // 13.1
     // 13.2, sharing the term lookup with 13.5: for a defined term, IRI
     // Expansion (vocab true) returns its IRI mapping (steps 4 and 5).
     const TermDefinition* def = nullptr;
-    std::optional<std::string> expanded_property;
+    // A defined term's IRI is viewed in its definition (which `active`
+    // keeps alive), not copied.
+    std::optional<std::string> expanded_storage;
+    const std::string* expanded = nullptr;
     if (!key.empty() && key[0] != '@' && (def = active->find(key)) != nullptr) {
-      expanded_property = def->iri;
+      if (def->iri) expanded = &*def->iri;
     } else {
-      expanded_property = expand_iri(*active, key);
+      expanded_storage = expand_iri(*active, key);
+      if (expanded_storage) expanded = &*expanded_storage;
     }
     // 13.3
-    if (!expanded_property ||
-        (expanded_property->find(':') == std::string::npos && !is_keyword(*expanded_property))) {
+    if (expanded == nullptr ||
+        (expanded->find(':') == std::string::npos && !is_keyword(*expanded))) {
       note_dropped_key(*active, key, key_loc, st);
       continue;
     }
+    const std::string_view expanded_property = *expanded;
     // 13.4
-    if (is_keyword(*expanded_property)) {
-      expand_keyword(active, ap, key, key_loc, *expanded_property, value, base_url, st, nests);
+    if (is_keyword(expanded_property)) {
+      expand_keyword(active, ap, key, key_loc, expanded_property, value, base_url, st, nests);
       continue;
     }
     // 13.5
@@ -593,8 +650,8 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     auto has = [&container](std::string_view c) { return has_container(container, c); };
     Value expanded_value;
     if (def != nullptr && def->type && *def->type == "@json"sv) {  // 13.6
-      Object lit;
-      lit.append_new("@value", value);
+      Object lit(mem_);
+      lit.append_new("@value", copy(value));
       lit.append_new("@type", Value("@json"));
       expanded_value = Value(std::move(lit));
       expanded_value.set_location(value.location());
@@ -611,18 +668,18 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     // 13.11
     if (has("@list") && !is_list_object(expanded_value)) {
       SourceLoc loc = expanded_value.location();
-      Object list;
-      list.append_new("@list", to_array(std::move(expanded_value)));
+      Object list(mem_);
+      list.append_new("@list", array_of(std::move(expanded_value)));
       expanded_value = Value(std::move(list));
       expanded_value.set_location(loc);
     }
     // 13.12
     if (has("@graph") && !has("@id") && !has("@index")) {
-      expanded_value = to_array(std::move(expanded_value));
+      expanded_value = array_of(std::move(expanded_value));
       for (Value& ev : expanded_value.as_array()) {
         SourceLoc loc = ev.location();
-        Object g;
-        g.append_new("@graph", to_array(std::move(ev)));
+        Object g(mem_);
+        g.append_new("@graph", array_of(std::move(ev)));
         ev = Value(std::move(g));
         ev.set_location(loc);
       }
@@ -630,20 +687,20 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     // 13.13
     if (def != nullptr && def->reverse) {
       Value* rm = result.find("@reverse");
-      if (rm == nullptr) rm = &put(result, "@reverse", Value(Object{}), key_loc);
-      expanded_value = to_array(std::move(expanded_value));
+      if (rm == nullptr) rm = &put(result, "@reverse", Value(Object(mem_)), key_loc);
+      expanded_value = array_of(std::move(expanded_value));
       for (Value& item : expanded_value.as_array()) {
         if (is_value_object(item) || is_list_object(item)) {
           fail("invalid reverse property value",
-               "reverse property \"" + key + "\" cannot take a value or list object",
+               "reverse property \"" + std::string(key) + "\" cannot take a value or list object",
                item.location());
         }
-        note_property(*expanded_property);
-        add_value(rm->as_object(), *expanded_property, std::move(item), key_loc);
+        note_property(expanded_property);
+        add_value(rm->as_object(), expanded_property, std::move(item), key_loc);
       }
     } else {  // 13.14
-      note_property(*expanded_property);
-      add_value(result, std::move(*expanded_property), std::move(expanded_value), key_loc);
+      note_property(expanded_property);
+      add_value(result, expanded_property, std::move(expanded_value), key_loc);
     }
   }
 
@@ -670,7 +727,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
       }
       if (bad) {
         fail("invalid @nest value",
-             "\"" + nesting_key + "\" (@nest) must hold node objects, found " +
+             "\"" + std::string(nesting_key) + "\" (@nest) must hold node objects, found " +
                  std::string(kind_name(*nested)) + (nested->is_object() ? " with @value" : ""),
              nested->location().known() ? nested->location() : nest_loc);
       }
@@ -686,28 +743,32 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
   }
 }
 
-void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const std::string& key,
-                              SourceLoc key_loc, const std::string& expanded_property,
+void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, std::string_view key,
+                              SourceLoc key_loc, std::string_view expanded_property,
                               const Value& value, const std::string& base_url, ObjectState& st,
                               std::vector<std::pair<std::string, SourceLoc>>& nests) {
   Object& result = st.result;
   const bool v10 = opts_.processing_mode == ProcessingMode::JsonLd10;
-  const std::string& ep = expanded_property;
+  const std::string_view ep = expanded_property;
   // 13.4.1
   if (ap && *ap == kReverse) {
     fail("invalid reverse property map",
-         "keyword \"" + key + "\" (" + ep + ") is not allowed inside @reverse", key_loc);
+         "keyword \"" + std::string(key) + "\" (" + std::string(ep) +
+             ") is not allowed inside @reverse",
+         key_loc);
   }
   // 13.4.2
   if (result.contains(ep) && ep != "@included"sv && (ep != "@type"sv || v10)) {
-    fail("colliding keywords", "key \"" + key + "\" expands to " + ep + ", which is already set",
-         key_loc);
+    fail(
+        "colliding keywords",
+        "key \"" + std::string(key) + "\" expands to " + std::string(ep) + ", which is already set",
+        key_loc);
   }
   Value expanded_value;
   if (ep == "@id"sv) {  // 13.4.3
     if (!value.is_string()) {
       fail("invalid @id value",
-           "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
+           "\"" + std::string(key) + "\" must be a string, found " + std::string(kind_name(value)),
            value.location());
     }
     std::optional<std::string> iri = expand_iri(*active, value.as_string(), true, false);
@@ -717,7 +778,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
       // a blank node and its triples are dropped.
       if (opts_.diagnostics != nullptr) {
         st.pending.push_back({value.location(), "dropped-id",
-                              "@id value \"" + value.as_string() +
+                              "@id value \"" + std::string(value.as_string()) +
                                   "\" expands to no IRI; the node's triples are dropped"});
       }
       Value null_id;
@@ -735,7 +796,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
     }
     if (!ok) {
       fail("invalid type value",
-           "\"" + key + "\" must be a string or an array of strings, found " +
+           "\"" + std::string(key) + "\" must be a string or an array of strings, found " +
                std::string(kind_name(value)),
            value.location());
     }
@@ -744,7 +805,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
       std::optional<std::string> iri = expand_type_iri(tsc, value, st);
       if (iri) expanded_value = string_at(std::move(*iri), value.location());
     } else {
-      Array types;
+      Array types(mem_);
       types.reserve(value.as_array().size());
       for (const Value& t : value.as_array()) {
         std::optional<std::string> iri = expand_type_iri(tsc, t, st);
@@ -757,17 +818,17 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
       expanded_value = concat(std::move(*existing), std::move(expanded_value));
     }
   } else if (ep == "@graph"sv) {  // 13.4.5
-    expanded_value = to_array(expand(active, kGraph, value, base_url, false));
+    expanded_value = array_of(expand(active, kGraph, value, base_url, false));
   } else if (ep == "@included"sv) {  // 13.4.6
     if (v10) return;
     // The spec passes null as active property, which would silently drop
     // free-floating values before the node-object check below; the suite
     // (in07-in09) expects them to be rejected, so "@included" is used instead.
-    expanded_value = to_array(expand(active, kIncluded, value, base_url, false));
+    expanded_value = array_of(expand(active, kIncluded, value, base_url, false));
     for (const Value& item : expanded_value.as_array()) {
       if (!is_node_object(item)) {
         fail("invalid @included value",
-             "\"" + key + "\" must hold node objects, found " +
+             "\"" + std::string(key) + "\" must hold node objects, found " +
                  (item.is_object() ? std::string("a value, list or set object")
                                    : std::string(kind_name(item))),
              item.location().known() ? item.location() : value.location());
@@ -782,14 +843,14 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
         fail("invalid value object value", "@json literals need processing mode json-ld-1.1",
              value.location());
       }
-      expanded_value = value;
+      expanded_value = copy(value);
     } else if (!value.is_null() && !value.is_scalar()) {
       fail("invalid value object value",
-           "\"" + key + "\" must be a string, number, boolean or null, found " +
+           "\"" + std::string(key) + "\" must be a string, number, boolean or null, found " +
                std::string(kind_name(value)),
            value.location());
     } else {
-      expanded_value = value;
+      expanded_value = copy(value);
     }
     if (expanded_value.is_null()) {  // 13.4.7.4
       put(result, "@value", std::move(expanded_value), key_loc);
@@ -798,36 +859,36 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
   } else if (ep == "@language"sv) {  // 13.4.8
     if (!value.is_string()) {
       fail("invalid language-tagged string",
-           "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
+           "\"" + std::string(key) + "\" must be a string, found " + std::string(kind_name(value)),
            value.location());
     }
-    expanded_value = value;
+    expanded_value = copy(value);
   } else if (ep == "@direction"sv) {  // 13.4.9
     if (v10) return;
     if (!value.is_string() || (value.as_string() != "ltr" && value.as_string() != "rtl")) {
-      fail(
-          "invalid base direction",
-          "\"" + key + "\" must be \"ltr\" or \"rtl\", found " +
-              (value.is_string() ? "\"" + value.as_string() + "\"" : std::string(kind_name(value))),
-          value.location());
+      fail("invalid base direction",
+           "\"" + std::string(key) + "\" must be \"ltr\" or \"rtl\", found " +
+               (value.is_string() ? "\"" + std::string(value.as_string()) + "\""
+                                  : std::string(kind_name(value))),
+           value.location());
     }
-    expanded_value = value;
+    expanded_value = copy(value);
   } else if (ep == "@index"sv) {  // 13.4.10
     if (!value.is_string()) {
       fail("invalid @index value",
-           "\"" + key + "\" must be a string, found " + std::string(kind_name(value)),
+           "\"" + std::string(key) + "\" must be a string, found " + std::string(kind_name(value)),
            value.location());
     }
-    expanded_value = value;
+    expanded_value = copy(value);
   } else if (ep == "@list"sv) {        // 13.4.11
     if (!ap || *ap == kGraph) return;  // free-floating list
-    expanded_value = to_array(expand(active, ap, value, base_url, false));
+    expanded_value = array_of(expand(active, ap, value, base_url, false));
   } else if (ep == "@set"sv) {  // 13.4.12
     expanded_value = expand(active, ap, value, base_url, false);
   } else if (ep == "@reverse"sv) {  // 13.4.13
     if (!value.is_object()) {
       fail("invalid @reverse value",
-           "\"" + key + "\" must be an object, found " + std::string(kind_name(value)),
+           "\"" + std::string(key) + "\" must be an object, found " + std::string(kind_name(value)),
            value.location());
     }
     Value ev = expand(active, kReverse, value, base_url, false);  // 13.4.13.2
@@ -845,14 +906,15 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
     for (size_t i = 0; i < eo.size(); ++i) has_other = has_other || eo.key(i) != "@reverse"sv;
     if (has_other) {
       Value* rm = result.find("@reverse");
-      if (rm == nullptr) rm = &put(result, "@reverse", Value(Object{}), key_loc);
+      if (rm == nullptr) rm = &put(result, "@reverse", Value(Object(mem_)), key_loc);
       for (size_t i = 0; i < eo.size(); ++i) {
         if (eo.key(i) == "@reverse"sv) continue;
-        Value items = to_array(std::move(eo.value(i)));
+        Value items = array_of(std::move(eo.value(i)));
         for (Value& item : items.as_array()) {
           if (is_value_object(item) || is_list_object(item)) {
             fail("invalid reverse property value",
-                 "reverse property \"" + eo.key(i) + "\" cannot take a value or list object",
+                 "reverse property \"" + std::string(eo.key(i)) +
+                     "\" cannot take a value or list object",
                  item.location());
           }
           add_value(rm->as_object(), eo.key(i), std::move(item), eo.key_location(i));
@@ -879,7 +941,8 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, const
 // 13.7: a language map.
 Value Expander::expand_language_map(const ActiveContext& active, const TermDefinition* def,
                                     const Value& value) {
-  Value out{Array{}};
+  Value out;
+  out.emplace_array(mem_);
   out.set_location(value.location());
   // 13.7.2
   std::optional<std::string> direction = active.default_direction();
@@ -890,7 +953,7 @@ Value Expander::expand_language_map(const ActiveContext& active, const TermDefin
   }
   const Object& map = value.as_object();
   for (size_t i : member_order(map, opts_.ordered)) {  // 13.7.4
-    const std::string& language = map.key(i);
+    const std::string_view language = map.key(i);
     const Value& lv = map.value(i);
     std::vector<const Value*> items;
     if (lv.is_array()) {
@@ -907,12 +970,12 @@ Value Expander::expand_language_map(const ActiveContext& active, const TermDefin
       if (item->is_null()) continue;  // 13.7.4.2.1
       if (!item->is_string()) {       // 13.7.4.2.2
         fail("invalid language map value",
-             "language map entry \"" + language + "\" must hold strings, found " +
+             "language map entry \"" + std::string(language) + "\" must hold strings, found " +
                  std::string(kind_name(*item)),
              item->location());
       }
-      Object v;  // 13.7.4.2.3
-      v.append_new("@value", *item);
+      Object v(mem_);  // 13.7.4.2.3
+      v.append_new("@value", copy(*item));
       if (!none) v.append_new("@language", string_at(language, map.key_location(i)));
       if (direction) v.append_new("@direction", Value(*direction));
       Value vv(std::move(v));
@@ -924,10 +987,11 @@ Value Expander::expand_language_map(const ActiveContext& active, const TermDefin
 }
 
 // 13.8: an index, id or type map.
-Value Expander::expand_index_map(const ContextPtr& active, const std::string& key,
+Value Expander::expand_index_map(const ContextPtr& active, std::string_view key,
                                  const TermDefinition& def, const Value& value,
                                  const std::string& base_url, ObjectState& st) {
-  Value out{Array{}};
+  Value out;
+  out.emplace_array(mem_);
   out.set_location(value.location());
   const std::set<std::string>& container = def.container;
   auto has = [&container](std::string_view c) { return has_container(container, c); };
@@ -935,7 +999,7 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
   const std::string index_key = def.index ? *def.index : std::string("@index");  // 13.8.2
   const Object& map = value.as_object();
   for (size_t i : member_order(map, opts_.ordered)) {  // 13.8.3
-    const std::string& index = map.key(i);
+    const std::string_view index = map.key(i);
     const SourceLoc index_loc = map.key_location(i);
     const Value& index_value = map.value(i);
     // 13.8.3.1
@@ -954,12 +1018,12 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
     const bool none = expanded_index && *expanded_index == "@none"sv;
     // 13.8.3.5, 13.8.3.6
     Value items =
-        to_array(expand(map_context, std::string_view(key), to_array(index_value), base_url, true));
+        array_of(expand(map_context, std::string_view(key), array_of(index_value), base_url, true));
     for (Value& item : items.as_array()) {            // 13.8.3.7
       if (has("@graph") && !is_graph_object(item)) {  // 13.8.3.7.1
         SourceLoc loc = item.location();
-        Object g;
-        g.append_new("@graph", to_array(std::move(item)));
+        Object g(mem_);
+        g.append_new("@graph", array_of(std::move(item)));
         item = Value(std::move(g));
         item.set_location(loc);
       }
@@ -968,15 +1032,15 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
             expand_value(*active, std::string_view(index_key), string_at(index, index_loc));
         if (is_value_object(item)) {
           fail("invalid value object",
-               "value in property-valued index \"" + key + "\" under \"" + index +
-                   "\" must not be a value object",
+               "value in property-valued index \"" + std::string(key) + "\" under \"" +
+                   std::string(index) + "\" must not be a value object",
                item.location());
         }
         // An index key that expands to nothing cannot hold the index: nothing to add.
         std::optional<std::string> eik = expand_iri(*active, index_key);
         if (eik && item.is_object()) {
           Object& io = item.as_object();
-          Value values = to_array(std::move(reexpanded));
+          Value values = array_of(std::move(reexpanded));
           if (Value* existing = io.find(*eik)) {
             values = concat(std::move(values), std::move(*existing));
           }
@@ -990,7 +1054,8 @@ Value Expander::expand_index_map(const ContextPtr& active, const std::string& ke
         put(item.as_object(), "@id", id ? string_at(std::move(*id), index_loc) : Value(),
             index_loc);
       } else if (has("@type") && !none) {  // 13.8.3.7.5
-        Value types{Array{}};
+        Value types;
+        types.emplace_array(mem_);
         std::optional<std::string> t = expand_type_iri(*active, string_at(index, index_loc), st);
         if (t) types.as_array().push_back(string_at(std::move(*t), index_loc));
         if (Value* existing = item.as_object().find("@type")) {
@@ -1021,9 +1086,9 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
         }
       }
       Value out;
-      Value& id = out.emplace_object().append_new("@id", Value());
+      Value& id = out.emplace_object(mem_).append_new("@id", Value());
       if (iri) {
-        id.emplace_string() = std::move(*iri);
+        id.emplace_string(mem_) = *iri;
         id.set_location(value.location());
       }
       out.set_location(value.location());
@@ -1032,9 +1097,9 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
   }
   // 3 (built in place: the value object is returned, not moved into a Value)
   Value out;
-  Object& result = out.emplace_object();
+  Object& result = out.emplace_object(mem_);
   result.reserve(2);
-  result.append_new("@value", value);
+  result.append_new("@value", copy(value));
   if (type != nullptr && *type && **type != "@id"sv && **type != "@vocab"sv &&
       **type != "@none"sv) {
     result.append_new("@type", string_at(**type, value.location()));  // 4
@@ -1054,7 +1119,7 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
       direction = active.default_direction();
     }
     if (language != nullptr && language->is_string()) {
-      result.append_new("@language", *language);
+      result.append_new("@language", copy(*language));
     } else if (language == nullptr && language_default) {
       result.append_new("@language", Value(*language_default));
     }
@@ -1073,10 +1138,10 @@ Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc elem
     const Value* type = result.find("@type");
     const bool lang_or_dir = result.contains("@language") || result.contains("@direction");
     for (size_t i = 0; i < result.size(); ++i) {
-      const std::string& k = result.key(i);
+      const std::string_view k = result.key(i);
       if (k != "@direction"sv && k != "@index"sv && k != "@language"sv && k != "@type"sv &&
           k != "@value"sv) {
-        fail("invalid value object", "value object must not contain \"" + k + "\"",
+        fail("invalid value object", "value object must not contain \"" + std::string(k) + "\"",
              result.key_location(i).known() ? result.key_location(i) : element_loc);
       }
     }
@@ -1099,13 +1164,13 @@ Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc elem
       if (!type->is_string() || !is_iri(type->as_string())) {
         fail("invalid typed value",
              "@type of a value object must be an IRI, found " +
-                 (type->is_string() ? "\"" + type->as_string() + "\""
+                 (type->is_string() ? "\"" + std::string(type->as_string()) + "\""
                                     : std::string(kind_name(*type))),
              type->location().known() ? type->location() : element_loc);
       }
     }
   } else if (Value* t = result.find("@type")) {  // 16
-    if (!t->is_array()) *t = to_array(std::move(*t));
+    if (!t->is_array()) *t = array_of(std::move(*t));
   } else if (result.contains("@set") || result.contains("@list")) {  // 17
     if (result.size() > 2 || (result.size() == 2 && !result.contains("@index"))) {
       fail("invalid set or list object",
@@ -1130,7 +1195,7 @@ Value Expander::finish_object(ActiveProperty ap, ObjectState& st, SourceLoc elem
 
 }  // namespace
 
-json::Value expand(const json::Value& input, const Options& options) {
+json::Value expand(const json::Value& input, const Options& options, json::Resource* output) {
   // The active context starts with the base option as base IRI and original base.
   ContextPtr active = ActiveContext::initial(options.base, options);
   // expandContext: an object with @context contributes that entry's value.
@@ -1139,7 +1204,7 @@ json::Value expand(const json::Value& input, const Options& options) {
     const Value* local = ec.get("@context");
     active = process_context(active, local != nullptr ? *local : ec, options.base, options);
   }
-  Expander expander(options);
+  Expander expander(options, output);
   Value out = expander.expand(active, std::nullopt, input, options.base, false);
   // Post-processing: a lone @graph is unwrapped; null becomes []; always an array.
   if (out.is_object() && out.as_object().size() == 1) {
@@ -1149,7 +1214,7 @@ json::Value expand(const json::Value& input, const Options& options) {
     }
   }
   SourceLoc loc = input.location();
-  out = to_array(std::move(out));
+  out = to_array(std::move(out), output);
   if (!out.location().known()) out.set_location(loc);
   return out;
 }

@@ -20,6 +20,10 @@ namespace mospec::jsonld {
 // expands to no IRI), "undefined-type" (an @type value that is no term, compact
 // or absolute IRI and is resolved against the base) and "dropped-id" (an @id
 // that expands to nothing).
-json::Value expand(const json::Value& input, const Options& options);
+// The result's strings, arrays and objects live in `output` (the heap by
+// default): an arena the caller keeps until the result is gone makes the
+// expanded tree one bump per value to build and free to drop.
+json::Value expand(const json::Value& input, const Options& options,
+                   json::Resource* output = std::pmr::get_default_resource());
 
 }  // namespace mospec::jsonld

@@ -157,10 +157,10 @@ class Reader {
         std::string list;
         for (std::string_view k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
         const SourceLoc l = o.key_location(i);
-        throw Error(
-            "invalid-world",
-            std::string(what) + ": unknown key '" + o.key(i) + "' (expected one of: " + list + ")",
-            file_, l.line, l.column);
+        throw Error("invalid-world",
+                    std::string(what) + ": unknown key '" + std::string(o.key(i)) +
+                        "' (expected one of: " + list + ")",
+                    file_, l.line, l.column);
       }
     }
     return o;
@@ -202,7 +202,7 @@ class Reader {
     return v.as_bool();
   }
 
-  const std::string& string(const json::Value& v, std::string_view what) const {
+  std::string_view string(const json::Value& v, std::string_view what) const {
     if (!v.is_string()) fail(v, std::string(what) + ": expected a string");
     return v.as_string();
   }
@@ -257,7 +257,7 @@ class Reader {
   // read past the loader's sandbox.
   std::string confined_path(const json::Value& v, const std::string& what) const {
     namespace fs = std::filesystem;
-    const std::string p = path(string(v, what));
+    const std::string p = path(std::string(string(v, what)));
     if (!check_files_) return p;
     const fs::path target = canonical_path(p);
     const fs::path world_dir = fs::absolute(fs::path(file_)).parent_path();
@@ -330,7 +330,7 @@ void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
   if (!v.is_object()) r.fail(v, "arms: expected an object of arm name: arm");
   const json::Object& o = v.as_object();
   for (size_t k = 0; k < o.size(); ++k) {
-    const std::string& name = o.key(k);
+    const std::string name(o.key(k));
     const std::string what = "arms." + name;
     if (name.empty() || name.size() > 32 ||
         name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789") != std::string::npos) {
@@ -426,7 +426,7 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       {"base", "control_period", "substeps", "command_delay_ticks", "seed", "robot", "arms",
        "actuation", "end_effector", "platform", "table", "mount", "initial", "perturbation"});
   for (size_t i = 0; i < top.size(); ++i) {
-    const std::string& key = top.key(i);
+    const std::string_view key = top.key(i);
     const json::Value& v = top.value(i);
     if (key == "base") {
       auto b = parse_base_fidelity(r.string(v, "base"));

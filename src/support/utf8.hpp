@@ -10,7 +10,9 @@ namespace mospec {
 
 // Appends the UTF-8 encoding of code point `cp` (the caller has checked that it
 // is a valid scalar value, i.e. not a surrogate and <= 0x10FFFF).
-inline void append_utf8(std::string& out, uint32_t cp) {
+// `out`: any std::basic_string of char (std::string, std::pmr::string).
+template <class Str>
+inline void append_utf8(Str& out, uint32_t cp) {
   if (cp < 0x80) {
     out += static_cast<char>(cp);
   } else if (cp < 0x800) {

@@ -44,7 +44,7 @@ struct Args {
 };
 
 std::string str(const Value* v) {
-  return v != nullptr && v->is_string() ? v->as_string() : "";
+  return v != nullptr && v->is_string() ? std::string(v->as_string()) : std::string();
 }
 
 bool has_type(const Value& test, std::string_view type) {
@@ -77,7 +77,7 @@ bool jsonld_equal(const Value& a, const Value& b, bool ordered, bool language = 
     case mospec::json::Kind::Number:
       return a.as_number() == b.as_number();
     case mospec::json::Kind::String:
-      return language ? lower(a.as_string()) == lower(b.as_string())
+      return language ? lower(std::string(a.as_string())) == lower(std::string(b.as_string()))
                       : a.as_string() == b.as_string();
     case mospec::json::Kind::Object: {
       const auto& ao = a.as_object();
@@ -86,7 +86,7 @@ bool jsonld_equal(const Value& a, const Value& b, bool ordered, bool language = 
       for (size_t i = 0; i < ao.size(); ++i) {
         const Value* other = bo.find(ao.key(i));
         if (other == nullptr) return false;
-        const std::string& key = ao.key(i);
+        const std::string_view key = ao.key(i);
         // @json literal values are plain JSON: their arrays keep their order.
         bool json_literal = key == "@value" && a.get("@type") && str(a.get("@type")) == "@json";
         if (!jsonld_equal(ao.value(i), *other, key == "@list" || json_literal,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory_resource>
 #include <string>
 
 namespace mospec::json {
@@ -340,6 +341,76 @@ TEST(JsonCanonicalize, NumbersAndNesting) {
             R"({"literals":[null,true,false],"numbers":[333333333.3333333,1e+30,4.5,0.002,)"
             R"(1e-27],"z":{"a":[{"c":2,"d":1}],"b":1}})");
   EXPECT_THROW(canonicalize(Value(std::numeric_limits<double>::infinity())), Error);
+}
+
+// ---------------------------------------------------------------------------
+// Values in an arena
+
+// Counts what is allocated from it, passing the requests on to the heap.
+class CountingResource : public std::pmr::memory_resource {
+ public:
+  size_t allocations = 0;
+  size_t live_bytes = 0;
+
+ private:
+  void* do_allocate(size_t bytes, size_t align) override {
+    ++allocations;
+    live_bytes += bytes;
+    return std::pmr::new_delete_resource()->allocate(bytes, align);
+  }
+  void do_deallocate(void* p, size_t bytes, size_t align) override {
+    live_bytes -= bytes;
+    std::pmr::new_delete_resource()->deallocate(p, bytes, align);
+  }
+  bool do_is_equal(const memory_resource& other) const noexcept override { return this == &other; }
+};
+
+constexpr std::string_view kArenaDoc =
+    R"({"a long key that is not a short string": [1, "a string past the small-string buffer", {"nested object key long enough": "another value long enough to allocate"}], "esc\u00e9aped and long enough to allocate": true})";
+
+TEST(JsonArena, ParsedValuesLiveInTheGivenResource) {
+  CountingResource counting;
+  {
+    const Value in_arena = parse(kArenaDoc, 1, "doc.json", &counting);
+    // One block per object, array, key and string past the small-string
+    // buffer: 2 objects, 1 array, 3 keys and 2 strings.
+    EXPECT_EQ(counting.allocations, 8u);
+    EXPECT_EQ(in_arena, parse(kArenaDoc));
+    EXPECT_EQ(in_arena.as_object().resource(), &counting);
+    const Value& nested = in_arena.as_object().value(0).as_array()[2];
+    EXPECT_EQ(nested.as_object().resource(), &counting);
+    EXPECT_EQ(nested.as_object().key(0), "nested object key long enough");
+  }
+  EXPECT_EQ(counting.live_bytes, 0u);
+}
+
+TEST(JsonArena, CopiesGoToTheHeapAndOutliveTheArena) {
+  Value copy;
+  {
+    std::pmr::monotonic_buffer_resource arena;
+    const Value in_arena = parse(kArenaDoc, 1, "doc.json", &arena);
+    copy = in_arena;
+    EXPECT_EQ(copy.as_object().resource(), std::pmr::get_default_resource());
+    EXPECT_EQ(copy.as_object().value(0).as_array()[2].as_object().resource(),
+              std::pmr::get_default_resource());
+  }
+  // The arena is gone; the copy's bytes are its own.
+  EXPECT_EQ(copy, parse(kArenaDoc));
+  EXPECT_EQ(copy.as_object().value(0).as_array()[1].as_string(),
+            "a string past the small-string buffer");
+}
+
+TEST(JsonArena, KeysAddedToAnArenaObjectLiveInItsResource) {
+  CountingResource counting;
+  {
+    Object o(&counting);
+    o.append_new("a key long enough to need its own block", Value(1));
+    o.set(std::string("another key long enough to need its own block"), Value(2));
+    EXPECT_EQ(o.key(1), "another key long enough to need its own block");
+    // The members' block (grown once) and the two keys.
+    EXPECT_GE(counting.allocations, 3u);
+  }
+  EXPECT_EQ(counting.live_bytes, 0u);
 }
 
 }  // namespace

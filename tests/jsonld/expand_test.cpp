@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory_resource>
 #include <string>
 #include <string_view>
 
@@ -610,6 +611,76 @@ TEST(ExpandUpstream, ModelsReportUndefinedTypesAndDroppedKeys) {
   }
   EXPECT_TRUE(rotate) << "no undefined-type for RotateWrenchToProximalWithPose";
   EXPECT_TRUE(chain) << "no dropped-key for kinematic-chain";
+}
+
+// ---------------------------------------------------------------------------
+// Output in an arena
+
+// The path of the first object or array of `v` that does not live in `mem`,
+// or "" when all do.
+std::string outside(const json::Value& v, json::Resource* mem, const std::string& path = "$") {
+  if (v.is_array()) {
+    if (v.as_array().get_allocator().resource() != mem) return path;
+    for (size_t i = 0; i < v.as_array().size(); ++i) {
+      std::string p = outside(v.as_array()[i], mem, path + "[" + std::to_string(i) + "]");
+      if (!p.empty()) return p;
+    }
+  }
+  if (v.is_object()) {
+    const json::Object& o = v.as_object();
+    if (o.resource() != mem) return path;
+    for (size_t i = 0; i < o.size(); ++i) {
+      std::string p = outside(o.value(i), mem, path + "." + std::string(o.key(i)));
+      if (!p.empty()) return p;
+    }
+  }
+  return "";
+}
+
+TEST_F(Expand, OutputBuiltInAnArenaEqualsTheHeapOutputAndStaysInIt) {
+  // Every kind of output the expander builds: node, value, list, set, graph
+  // and @json objects, language, index, id and type maps, reverse
+  // properties, nested properties, and scalars copied from the input.
+  constexpr std::string_view kDoc = R"({
+    "@context": {
+      "@vocab": "http://example.org/vocab#",
+      "list": {"@container": "@list"},
+      "set": {"@container": "@set"},
+      "label": {"@container": "@language"},
+      "byIndex": {"@container": "@index"},
+      "byId": {"@container": "@id"},
+      "byType": {"@container": "@type"},
+      "graph": {"@container": "@graph"},
+      "data": {"@type": "@json"},
+      "ref": {"@type": "@id"},
+      "parent": {"@reverse": "http://example.org/vocab#child"},
+      "nested": "@nest"
+    },
+    "@id": "http://example.org/a-node-with-a-long-identifier",
+    "@type": "Thing",
+    "list": [1, "two", {"@id": "http://example.org/three"}],
+    "set": ["a", "b"],
+    "label": {"en": "a label long enough to allocate", "de": ["eins", "zwei"]},
+    "byIndex": {"first": {"name": "indexed"}},
+    "byId": {"http://example.org/by-id": {"name": "by id"}},
+    "byType": {"Kind": {"name": "by type"}},
+    "graph": {"name": "in a graph"},
+    "data": {"any": ["json", 1, true, null]},
+    "ref": "http://example.org/referenced-node",
+    "parent": {"@id": "http://example.org/the-parent"},
+    "nested": {"inner": "a nested property value long enough"},
+    "@included": [{"@id": "http://example.org/included"}],
+    "plain": {"@value": "a typed value", "@type": "http://example.org/datatype"}
+  })";
+  const json::Value on_heap = run(kDoc);
+  std::pmr::monotonic_buffer_resource arena;
+  {
+    const uint32_t id = loader_.files().add("arena.json");
+    const json::Value doc = json::parse(kDoc, id, "arena.json");
+    const json::Value in_arena = expand(doc, opts_, &arena);
+    EXPECT_EQ(in_arena, on_heap) << json::dump(in_arena) << "\n" << json::dump(on_heap);
+    EXPECT_EQ(outside(in_arena, &arena), "");
+  }
 }
 
 }  // namespace
