@@ -237,6 +237,10 @@ inline bool ends_with_gen_delim(std::string_view s) {
 // otherwise look up a second time.
 std::optional<std::string> expand_iri(const ActiveContext& active, std::string_view value,
                                       bool document_relative, bool vocab, bool* is_term);
+// The same, written over `out` (false: the value expands to null). Expansion
+// reuses one buffer for the IRIs it copies into its output.
+bool expand_iri_into(std::string& out, const ActiveContext& active, std::string_view value,
+                     bool document_relative, bool vocab, bool* is_term);
 
 inline bool is_keyword_alias(const TermDefinition& def) {
   return def.iri && is_keyword(*def.iri);

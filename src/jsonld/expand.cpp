@@ -317,8 +317,10 @@ class Expander {
   Value expand_value(const ActiveContext& active, const TermDefinition* def, const Value& value);
   Value finish_object(ActiveProperty ap, ObjectState& st, SourceLoc element_loc);
 
-  std::optional<std::string> expand_type_iri(const ActiveContext& type_scoped, const Value& v,
-                                             ObjectState& st);
+  // The IRI in iri_, valid until the next IRI expansion; null when it
+  // expands to nothing.
+  const std::string* expand_type_iri(const ActiveContext& type_scoped, const Value& v,
+                                     ObjectState& st);
   void note_dropped_key(const ActiveContext& active, std::string_view key, SourceLoc loc,
                         ObjectState& st);
   static std::string did_you_mean(const ActiveContext& active, std::string_view word);
@@ -376,6 +378,8 @@ class Expander {
 
   const Options& opts_;
   json::Resource* mem_;
+  // The IRI most recently expanded for the output, before it is copied there.
+  std::string iri_;
 };
 
 ContextPtr Expander::scoped_context(const ContextPtr& active, const TermDefinition& def,
@@ -439,12 +443,12 @@ std::optional<Expander::Pending> Expander::malformed_id(const std::string& iri,
 // IRI-expands an @type value against the type-scoped context (13.4.4.4). A value
 // that is no term, no compact/absolute IRI and not caught by @vocab silently
 // becomes a document-relative IRI; that is reported as "undefined-type".
-std::optional<std::string> Expander::expand_type_iri(const ActiveContext& type_scoped,
-                                                     const Value& v, ObjectState& st) {
+const std::string* Expander::expand_type_iri(const ActiveContext& type_scoped, const Value& v,
+                                             ObjectState& st) {
   const std::string_view s = v.as_string();
   bool is_term = false;
-  std::optional<std::string> iri = internal::expand_iri(type_scoped, s, true, true, &is_term);
-  if (!iri) return iri;
+  if (!internal::expand_iri_into(iri_, type_scoped, s, true, true, &is_term)) return nullptr;
+  const std::string* iri = &iri_;
   if (opts_.diagnostics != nullptr && s.find(':') == std::string::npos && !is_keyword(s) &&
       !is_term && !type_scoped.vocab()) {
     st.pending.push_back({v.location(), "undefined-type",
@@ -771,8 +775,7 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, std::
            "\"" + std::string(key) + "\" must be a string, found " + std::string(kind_name(value)),
            value.location());
     }
-    std::optional<std::string> iri = expand_iri(*active, value.as_string(), true, false);
-    if (!iri) {
+    if (!internal::expand_iri_into(iri_, *active, value.as_string(), true, false, nullptr)) {
       // A keyword-like @id ("@ignoreMe") expands to null. The suite (expand
       // 0122, toRdf e122) keeps "@id": null so that the node is not mistaken for
       // a blank node and its triples are dropped.
@@ -786,8 +789,8 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, std::
       put(result, "@id", std::move(null_id), key_loc);
       return;
     }
-    if (auto warning = malformed_id(*iri, value)) st.pending.push_back(std::move(*warning));
-    expanded_value = string_at(std::move(*iri), value.location());
+    if (auto warning = malformed_id(iri_, value)) st.pending.push_back(std::move(*warning));
+    expanded_value = string_at(iri_, value.location());
   } else if (ep == "@type"sv) {  // 13.4.4
     bool ok = value.is_string();
     if (value.is_array()) {
@@ -802,14 +805,16 @@ void Expander::expand_keyword(const ContextPtr& active, ActiveProperty ap, std::
     }
     const ActiveContext& tsc = *st.type_scoped;
     if (value.is_string()) {
-      std::optional<std::string> iri = expand_type_iri(tsc, value, st);
-      if (iri) expanded_value = string_at(std::move(*iri), value.location());
+      if (const std::string* iri = expand_type_iri(tsc, value, st)) {
+        expanded_value = string_at(*iri, value.location());
+      }
     } else {
       Array types(mem_);
       types.reserve(value.as_array().size());
       for (const Value& t : value.as_array()) {
-        std::optional<std::string> iri = expand_type_iri(tsc, t, st);
-        if (iri) types.push_back(string_at(std::move(*iri), t.location()));
+        if (const std::string* iri = expand_type_iri(tsc, t, st)) {
+          types.push_back(string_at(*iri, t.location()));
+        }
       }
       expanded_value = Value(std::move(types));
       expanded_value.set_location(value.location());
@@ -1056,8 +1061,9 @@ Value Expander::expand_index_map(const ContextPtr& active, std::string_view key,
       } else if (has("@type") && !none) {  // 13.8.3.7.5
         Value types;
         types.emplace_array(mem_);
-        std::optional<std::string> t = expand_type_iri(*active, string_at(index, index_loc), st);
-        if (t) types.as_array().push_back(string_at(std::move(*t), index_loc));
+        if (const std::string* t = expand_type_iri(*active, string_at(index, index_loc), st)) {
+          types.as_array().push_back(string_at(*t, index_loc));
+        }
         if (Value* existing = item.as_object().find("@type")) {
           types = concat(std::move(types), std::move(*existing));
         }
@@ -1076,10 +1082,10 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
   if (type != nullptr && *type && value.is_string()) {
     // 1, 2
     if (**type == "@id"sv || **type == "@vocab"sv) {
-      std::optional<std::string> iri =
-          expand_iri(active, value.as_string(), true, **type == "@vocab"sv);
+      const bool iri = internal::expand_iri_into(iri_, active, value.as_string(), true,
+                                                 **type == "@vocab"sv, nullptr);
       if (iri) {
-        if (auto w = malformed_id(*iri, value)) {
+        if (auto w = malformed_id(iri_, value)) {
           opts_.diagnostics->report(Diagnostic{Severity::Warning, file_name(w->loc), w->loc.line,
                                                w->loc.column, std::move(w->code),
                                                std::move(w->message)});
@@ -1088,7 +1094,7 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
       Value out;
       Value& id = out.emplace_object(mem_).append_new("@id", Value());
       if (iri) {
-        id.emplace_string(mem_) = *iri;
+        id.emplace_string(mem_) = iri_;
         id.set_location(value.location());
       }
       out.set_location(value.location());

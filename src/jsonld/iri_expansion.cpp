@@ -77,45 +77,63 @@ namespace internal {
 
 std::optional<std::string> expand_iri(const ActiveContext& active, std::string_view value,
                                       bool document_relative, bool vocab, bool* is_term) {
+  std::string out;
+  if (!expand_iri_into(out, active, value, document_relative, vocab, is_term)) return std::nullopt;
+  return out;
+}
+
+bool expand_iri_into(std::string& out, const ActiveContext& active, std::string_view value,
+                     bool document_relative, bool vocab, bool* is_term) {
   // IE 1
   if (!value.empty() && value[0] == '@') {
-    if (is_keyword(value)) return std::string(value);
+    if (is_keyword(value)) {
+      out.assign(value);
+      return true;
+    }
     // IE 2
-    if (has_keyword_form(value)) return std::nullopt;
+    if (has_keyword_form(value)) return false;
   }
   const TermDefinition* def = active.find(value);
   if (is_term != nullptr) *is_term = def != nullptr;
   if (def != nullptr) {
-    // IE 4
-    if (def->iri && is_keyword(*def->iri)) return def->iri;
-    // IE 5
-    if (vocab) return def->iri;
+    // IE 4, 5
+    if ((def->iri && is_keyword(*def->iri)) || vocab) {
+      if (!def->iri) return false;
+      out.assign(*def->iri);
+      return true;
+    }
   }
   // IE 6
   const size_t colon = value.find(':', 1);
   if (colon != std::string_view::npos) {
     const std::string_view prefix = value.substr(0, colon);
     const std::string_view suffix = value.substr(colon + 1);
-    if (prefix == "_" || suffix.starts_with("//")) return std::string(value);
+    if (prefix == "_" || suffix.starts_with("//")) {
+      out.assign(value);
+      return true;
+    }
     const TermDefinition* pdef = active.find(prefix);
     if (pdef != nullptr && pdef->iri && pdef->prefix) {
-      std::string out;
-      out.reserve(pdef->iri->size() + suffix.size());
-      out.append(*pdef->iri).append(suffix);
-      return out;
+      out.assign(*pdef->iri).append(suffix);
+      return true;
     }
-    if (rdf::is_absolute_iri(value)) return std::string(value);
+    if (rdf::is_absolute_iri(value)) {
+      out.assign(value);
+      return true;
+    }
   }
   // IE 7
   if (vocab && active.vocab()) {
-    std::string out;
-    out.reserve(active.vocab()->size() + value.size());
-    out.append(*active.vocab()).append(value);
-    return out;
+    out.assign(*active.vocab()).append(value);
+    return true;
   }
   // IE 8
-  if (document_relative) return rdf::resolve_iri(active.base(), value);
-  return std::string(value);
+  if (document_relative) {
+    rdf::resolve_iri_into(out, active.base(), value);
+    return true;
+  }
+  out.assign(value);
+  return true;
 }
 
 }  // namespace internal

@@ -185,6 +185,20 @@ const std::optional<std::string>& memoised_prefix(std::string_view base) {
 
 }  // namespace
 
+void resolve_iri_into(std::string& out, std::string_view base, std::string_view reference) {
+  if (base.empty()) {
+    out.assign(reference);
+    return;
+  }
+  if (is_plain_segment(reference)) {
+    if (const std::optional<std::string>& prefix = memoised_prefix(base)) {
+      out.assign(*prefix).append(reference);
+      return;
+    }
+  }
+  out = resolve_iri(base, reference);
+}
+
 std::string resolve_iri(std::string_view base, std::string_view reference) {
   if (base.empty()) return std::string(reference);
   // The common case: a plain segment against a base without dot segments;

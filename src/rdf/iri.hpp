@@ -22,5 +22,8 @@ std::string iri_problem(std::string_view s);
 // RFC 3986 section 5.2 reference resolution (with remove_dot_segments).
 // An empty base returns `reference` unchanged.
 std::string resolve_iri(std::string_view base, std::string_view reference);
+// resolve_iri() written over `out`, whose buffer the common case (a plain
+// segment against a base) reuses: for callers resolving many references.
+void resolve_iri_into(std::string& out, std::string_view base, std::string_view reference);
 
 }  // namespace mospec::rdf
