@@ -59,6 +59,26 @@ TEST(JsonParse, Escapes) {
   EXPECT_EQ(parse("\"\xF0\x9F\x98\x80 raw\"").as_string(), "\xF0\x9F\x98\x80 raw");
 }
 
+// A quote, a backslash, a control character or a multi-byte character at
+// every offset of a string's run of ordinary bytes (the parser copies the
+// run in one go).
+TEST(JsonParse, StringsAtEveryWordOffset) {
+  for (size_t at = 0; at < 20; ++at) {
+    const std::string before(at, 'a');
+    const std::string after(19 - at, 'b');
+    EXPECT_EQ(parse("\"" + before + "\"").as_string(), before) << at;
+    EXPECT_EQ(parse("\"" + before + "\\n" + after + "\"").as_string(), before + "\n" + after) << at;
+    EXPECT_EQ(parse("\"" + before + "\xC3\xA9" + after + "\"").as_string(),
+              before + "\xC3\xA9" + after)
+        << at;
+    EXPECT_EQ(parse_error("\"" + before + "\x01" + after + "\"").column, at + 2) << at;
+    EXPECT_EQ(parse_error("\"" + before + "\x7F" + after).message, "unterminated string") << at;
+    // 0x7F and bytes just below '"' and '\\' are ordinary.
+    const std::string edge = before + "\x7F!#[]" + after;
+    EXPECT_EQ(parse("\"" + edge + "\"").as_string(), edge) << at;
+  }
+}
+
 TEST(JsonParse, StructureAndOrder) {
   const Value v = parse(R"({"b": [1, {"c": null}], "a": {}, "d": []})");
   ASSERT_TRUE(v.is_object());
