@@ -75,13 +75,18 @@ std::map<std::string, int> arm_ports(const sim::WorldConfig& world,
 }
 
 std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& exit_code,
-                                               SourceFiles* files, const AfterPass& after_pass) {
+                                               SourceFiles* files, const AfterPass& after_pass,
+                                               const sim::WorldConfig* world) {
   ir::LowerOptions options;
-  // Only the arms' chains are read: the files the world names are checked
-  // where they are loaded (`run`).
-  options.ports = arm_ports(
-      scenario_world(resolve_app(flags.inputs.front()), flags.world, /*check_files=*/false),
-      flags.binds);
+  if (world != nullptr) {
+    options.ports = arm_ports(*world, flags.binds);
+  } else {
+    // Only the arms' chains are read: the files the world names are checked
+    // where they are loaded (`run`).
+    options.ports = arm_ports(
+        scenario_world(resolve_app(flags.inputs.front()), flags.world, /*check_files=*/false),
+        flags.binds);
+  }
   std::vector<std::string> inputs;
   for (const std::string& i : flags.inputs) inputs.push_back(resolve_app(i));
   app::LoadedModel model = app::load(inputs, flags.load.to_options());

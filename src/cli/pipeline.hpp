@@ -43,11 +43,14 @@ std::map<std::string, int> arm_ports(const sim::WorldConfig& world,
 // every finding (located) to stderr and returns the exit code in `exit_code`: 1 when the model does
 // not validate or lower, 2 on bad input. `files` receives the source files (for locations in the
 // IR's JSON) when non-null. `after_pass`, when given, is called after each lowering pass with the
-// program so far and the model's files (mospec ir --dump-after).
+// program so far and the model's files (mospec ir --dump-after). `world`: the scenario's world when
+// the caller has read it (`run`, which simulates it: the arms the program is bound to are then
+// those of the very file it runs); otherwise it is read here for its arms.
 using AfterPass =
     std::function<void(std::string_view pass, const ir::Program&, const SourceFiles&)>;
 std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& exit_code,
                                                SourceFiles* files = nullptr,
-                                               const AfterPass& after_pass = {});
+                                               const AfterPass& after_pass = {},
+                                               const sim::WorldConfig* world = nullptr);
 
 }  // namespace mospec::cli

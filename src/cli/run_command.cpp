@@ -289,10 +289,12 @@ Action add_run_command(CLI::App& app) {
   return [flags]() {
     int code = kExitOk;
     SourceFiles files;
-    auto program = load_validate_lower(flags->pipeline, code, &files);
-    if (!program) return code;
+    // The world is read once: the program's arms are bound to the arms of
+    // the file that is simulated (a second read could see another file).
     const std::string app_path = resolve_app(flags->pipeline.inputs.front());
     sim::WorldConfig config = scenario_world(app_path, flags->pipeline.world);
+    auto program = load_validate_lower(flags->pipeline, code, &files, {}, &config);
+    if (!program) return code;
     if (!flags->base.empty()) config.base = *sim::parse_base_fidelity(flags->base);
     if (flags->seed) config.seed = *flags->seed;
     // Refuse a run too long to simulate before building anything.

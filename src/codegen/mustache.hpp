@@ -27,15 +27,19 @@ class Data {
  public:
   enum class Kind : uint8_t { Object, List, String, True, False };
 
-  Data() = default;  // an empty object
-  Data(std::string text) : kind_(Kind::String), text_(std::move(text)) {}
-  Data(const char* text) : kind_(Kind::String), text_(text) {}
-  Data(bool b) : kind_(b ? Kind::True : Kind::False) {}
-  static Data list() {
-    Data d;
-    d.kind_ = Kind::List;
-    return d;
-  }
+  // Defined below, once Member is complete: a Member holds a Data, so
+  // these cannot be implicit or in the class (clang needs ~vector<Member>
+  // where a constructor is defined).
+  inline Data();  // an empty object
+  inline Data(std::string text);
+  inline Data(const char* text);
+  inline Data(bool b);
+  inline ~Data();
+  inline Data(const Data&);
+  inline Data(Data&&) noexcept;
+  inline Data& operator=(const Data&);
+  inline Data& operator=(Data&&) noexcept;
+  static inline Data list();
 
   Kind kind() const { return kind_; }
   // Sets member `key` of an object (replacing a member of that name).
@@ -60,6 +64,21 @@ struct Data::Member {
   std::string key;
   Data value;
 };
+
+inline Data::Data() = default;
+inline Data::Data(std::string text) : kind_(Kind::String), text_(std::move(text)) {}
+inline Data::Data(const char* text) : kind_(Kind::String), text_(text) {}
+inline Data::Data(bool b) : kind_(b ? Kind::True : Kind::False) {}
+inline Data::~Data() = default;
+inline Data::Data(const Data&) = default;
+inline Data::Data(Data&&) noexcept = default;
+inline Data& Data::operator=(const Data&) = default;
+inline Data& Data::operator=(Data&&) noexcept = default;
+inline Data Data::list() {
+  Data d;
+  d.kind_ = Kind::List;
+  return d;
+}
 
 // Renders `text` with `data` as the outermost context. A malformed template
 // (an unclosed tag or section, a section closed under another name, a tag
