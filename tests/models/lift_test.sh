@@ -21,13 +21,9 @@ stdout_has "validates with no finding" '^shacl: 0 violations, 0 warnings, 0 info
 expect "lowers" 0 "" -- "$mospec" ir "$app" -o "$work/ir.json"
 cat > "$work/check.py" <<'PY'
 import json, sys
+from ir_checks import want, single_arm, report
 ir = json.load(open(sys.argv[1]))
-problems = []
-def want(ok, what):
-    if not ok: problems.append(what)
-arms = ir["arms"]
-want(len(arms) == 1, f"one arm solver, got {len(arms)}")
-arm = arms[0]
+arm = single_arm(ir)
 segs = arm["segments"]
 want([(s["joint"], s["type"]) for s in segs] ==
      [("lift", "prismatic"), ("shoulder", "revolute"), ("wrist", "revolute")],
@@ -40,12 +36,9 @@ data = {d["name"]: d for d in ir["data"]}
 want(data["q_lift"]["unit"] == "M", f"q-lift in {data['q_lift'].get('unit')}")
 want(data["frc_lift"]["unit"] == "N", f"frc-lift in {data['frc_lift'].get('unit')}")
 want(data["frc_lift_measured"]["unit"] == "N", "the measured slide force in N")
-for line in problems: print(line)
+report()
 PY
-python3 "$work/check.py" "$work/ir.json" > "$work/problems.txt" 2>&1
-check "the lowered program is the intended one ($(head -1 "$work/problems.txt"))" \
-  test ! -s "$work/problems.txt"
-[ -s "$work/problems.txt" ] && sed 's/^/  /' "$work/problems.txt"
+check_program "$work/check.py" "$work/ir.json"
 
 expect "runs (interpreted)" 0 "" -- "$mospec" run "$app" --sim --interpret --duration 4 \
   --log "$work/run.csv" --summary "$work/run.json"

@@ -33,14 +33,10 @@ expect "... as --bind CHAIN=right says on the default robot" 0 "" -- \
 # Reads the IR and the world file; prints one line per failed expectation.
 cat > "$work/check.py" <<'PY'
 import json, math, sys
+from ir_checks import want, single_arm, report
 ir = json.load(open(sys.argv[1]))
 world = json.load(open(sys.argv[2]))
-problems = []
-def want(ok, what):
-    if not ok: problems.append(what)
-arms = ir["arms"]
-want(len(arms) == 1, f"one arm solver, got {len(arms)}")
-arm = arms[0]
+arm = single_arm(ir)
 segs = arm["segments"]
 joints = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
           "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"]
@@ -88,11 +84,8 @@ lost = data["pos_ur5e_ee_x_contact_lost"]["value"][0]
 past = data["pos_ur5e_ee_x_past_table"]["value"][0]
 want(near(lost, p[0] - 0.05, 1e-4), f"contact-lost threshold {lost} is 5 cm behind the tip's x {p[0]}")
 want(near(past, p[0] + 0.05, 1e-4), f"past-table threshold {past} is 5 cm ahead of the tip's x {p[0]}")
-for line in problems: print(line)
+report()
 PY
-python3 "$work/check.py" "$work/ir.json" models/ur5e.world.json > "$work/problems.txt" 2>&1
-check "the lowered program is the intended one ($(head -1 "$work/problems.txt"))" \
-  test ! -s "$work/problems.txt"
-[ -s "$work/problems.txt" ] && sed 's/^/  /' "$work/problems.txt"
+check_program "$work/check.py" "$work/ir.json" models/ur5e.world.json
 
 finish ur5e

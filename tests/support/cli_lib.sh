@@ -66,6 +66,17 @@ csv_range() {
     $c["t"] + 1e-9 >= t { v = $c[name] + 0; if (!n++ || v < lo) lo = v; if (n == 1 || v > hi) hi = v }
     END { printf "%.17g %.17g\n", lo, hi }' "$1"
 }
+# check_program SCRIPT ARGS...: runs the Python check SCRIPT of a lowered
+# program (it imports ir_checks from this folder and prints one line per
+# failed expectation) with ARGS; passes when it prints nothing.
+check_program() {
+  local script=$1; shift
+  PYTHONPATH="$(dirname "${BASH_SOURCE[0]}")" python3 "$script" "$@" > "$work/problems.txt" 2>&1
+  check "the lowered program is the intended one ($(head -1 "$work/problems.txt"))" \
+    test ! -s "$work/problems.txt"
+  if [ -s "$work/problems.txt" ]; then sed 's/^/  /' "$work/problems.txt"; fi
+}
+
 csv_has() { head -1 "$1" | tr ',' '\n' | grep -qx -- "$2"; }
 holds() { awk "BEGIN { exit !($1) }"; }
 
