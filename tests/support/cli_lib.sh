@@ -68,10 +68,11 @@ csv_range() {
 }
 # check_program SCRIPT ARGS...: runs the Python check SCRIPT of a lowered
 # program (it imports ir_checks from this folder and prints one line per
-# failed expectation) with ARGS; passes when it prints nothing.
+# failed expectation) with ARGS; passes when it prints nothing. No bytecode
+# is written: the source tree stays as it is.
 check_program() {
   local script=$1; shift
-  PYTHONPATH="$(dirname "${BASH_SOURCE[0]}")" python3 "$script" "$@" > "$work/problems.txt" 2>&1
+  PYTHONDONTWRITEBYTECODE=1 PYTHONPATH="$(dirname "${BASH_SOURCE[0]}")" python3 "$script" "$@" > "$work/problems.txt" 2>&1
   check "the lowered program is the intended one ($(head -1 "$work/problems.txt"))" \
     test ! -s "$work/problems.txt"
   if [ -s "$work/problems.txt" ]; then sed 's/^/  /' "$work/problems.txt"; fi
