@@ -125,7 +125,10 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
     exit_code = kExitOk;
     return program;
   } catch (const ir::LowerError& e) {
-    std::cerr << e.what() << '\n';
+    // One located line per error, each starting with its file:line:col (an
+    // editor's error parser reads it there; e.what() would put the first
+    // behind "mospec: error: ").
+    for (const Diagnostic& d : e.diagnostics()) std::cerr << format(d) << '\n';
     std::cerr << "mospec: the model cannot be lowered (" << e.diagnostics().size()
               << " error(s)); nothing was generated\n";
     exit_code = kExitFindings;

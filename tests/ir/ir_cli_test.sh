@@ -77,6 +77,12 @@ expect "a dependency cycle is refused, located" 1 \
   'tiny/model.json:[0-9]+:[0-9]+: error: .*eval-track.*dependency cycle' -- \
   "$mospec" ir --root "$work/cycle" "$work/cycle/tiny.json" -o "$work/cycle.json"
 check "no IR written for a refused model" test ! -e "$work/cycle.json"
+# Each lowering error is a line of its own that starts with its location, as
+# an editor's error parser reads it (the first used to follow "mospec: error: ").
+check "every lowering error line starts with its file:line:col" \
+  grep -Eq "^[^ ]*tiny/model.json:[0-9]+:[0-9]+: error: " "$work/stderr.txt"
+check "... and none is behind a prefix" \
+  bash -c "! grep -Eq '^mospec: error: .*: error: ' '$work/stderr.txt'"
 
 variant unproduced 's/"quantity": "time", "reference-value"/"quantity": "orphan", "reference-value"/; s/{ "@id": "effort"/{ "@id": "orphan", "@type": ["Quantity", "Time"], "quantity-kind": "Time", "unit": "SEC" },\n        { "@id": "effort"/'
 expect "an unproduced quantity is refused, named and located" 1 \
