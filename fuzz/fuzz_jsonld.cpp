@@ -3,9 +3,11 @@
 // exception, a crash or a sanitizer report is a bug.
 #include <cstddef>
 #include <cstdint>
+#include <memory_resource>
 #include <string_view>
 
 #include "json/json.hpp"
+#include "jsonld/expand.hpp"
 #include "jsonld/loader.hpp"
 #include "jsonld/to_rdf.hpp"
 #include "rdf/dataset.hpp"
@@ -38,10 +40,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.loader = &loader;
   mospec::DiagnosticSink diagnostics;
   options.diagnostics = &diagnostics;
+  // As app::load does it: the document parsed into an arena and expanded
+  // into one (declared first, so that it outlives every value in it).
+  std::pmr::monotonic_buffer_resource arena;
   try {
-    mospec::json::Value document = mospec::json::parse(text, 0, "<fuzz>");
+    const mospec::json::Value document = mospec::json::parse(text, 0, "<fuzz>", &arena);
+    const mospec::json::Value expanded = mospec::jsonld::expand(document, options, &arena);
     mospec::rdf::Dataset dataset;
-    mospec::jsonld::load_into(document, dataset, options);
+    mospec::jsonld::to_rdf(expanded, dataset, options);
   } catch (const mospec::Error&) {
     // Expected for invalid input.
   }
