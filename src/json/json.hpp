@@ -130,10 +130,8 @@ class Value {
 
   bool as_bool() const { return std::get<bool>(data_); }
   double as_number() const { return std::get<double>(data_); }
-  // The string's bytes (whatever resource holds them); mutable_string() to
-  // change them in place.
+  // The string's bytes, whatever resource holds them.
   std::string_view as_string() const { return std::get<String>(data_); }
-  String& mutable_string() { return std::get<String>(data_); }
   const Array& as_array() const { return std::get<Array>(data_); }
   Array& as_array() { return std::get<Array>(data_); }
   const Object& as_object() const { return std::get<Object>(data_); }
