@@ -33,6 +33,11 @@ class KeyIndex {
     slots_.clear();
     used_ = 0;
   }
+  // clear(), also giving back a table grown past `keep` slots.
+  void clear_keeping(size_t keep) {
+    clear();
+    if (slots_.capacity() > keep) std::vector<uint32_t>().swap(slots_);
+  }
 
   // The position of `key` in `members`, or kNone.
   size_t find(std::span<const Object::Member> members, std::string_view key) const {
@@ -353,13 +358,47 @@ class Parser {
     }
   }
 
-  // Members and elements are collected in per-depth scratch buffers (reused
-  // across objects) and moved into an exactly sized container, so that each
-  // object or array costs one allocation.
-  std::vector<std::vector<Object::Member>> member_scratch_;
-  std::vector<std::vector<Value>> element_scratch_;
-  std::vector<KeyIndex> key_index_scratch_;
+  // Members and elements are collected in per-depth scratch buffers and moved
+  // into an exactly sized container, so that each object or array costs one
+  // allocation. The buffers are reused across objects and, per thread, across
+  // documents (a load parses dozens); ~Parser empties them.
+  struct Scratch {
+    std::vector<std::vector<Object::Member>> members;
+    std::vector<std::vector<Value>> elements;
+    std::vector<KeyIndex> key_indexes;
+  };
+  static Scratch& thread_scratch() {
+    thread_local Scratch scratch;
+    return scratch;
+  }
+  Scratch& scratch_ = thread_scratch();
+  std::vector<std::vector<Object::Member>>& member_scratch_ = scratch_.members;
+  std::vector<std::vector<Value>>& element_scratch_ = scratch_.elements;
+  std::vector<KeyIndex>& key_index_scratch_ = scratch_.key_indexes;
 
+  // After an error the buffers still hold parsed values, whose blocks may be
+  // in the caller's arena: they go now, while it exists. Buffers grown past
+  // kKeptScratch entries by a huge object or array are given back, so a
+  // thread keeps only what an ordinary document needs.
+  static constexpr size_t kKeptScratch = 1024;
+  template <class T>
+  static void empty(std::vector<std::vector<T>>& levels) {
+    for (std::vector<T>& level : levels) {
+      level.clear();
+      if (level.capacity() > kKeptScratch) std::vector<T>().swap(level);
+    }
+  }
+
+ public:
+  ~Parser() {
+    empty(member_scratch_);
+    empty(element_scratch_);
+    for (KeyIndex& index : key_index_scratch_) index.clear_keeping(4 * kKeptScratch);
+  }
+  Parser(const Parser&) = delete;
+  Parser& operator=(const Parser&) = delete;
+
+ private:
   template <class T>
   static T& scratch_at(std::vector<T>& s, int depth) {
     const auto d = static_cast<size_t>(depth);

@@ -404,6 +404,19 @@ TEST(JsonArena, ParsedValuesLiveInTheGivenResource) {
   EXPECT_EQ(counting.live_bytes, 0u);
 }
 
+// The parser's buffers outlive a parse (they are reused by the next one): a
+// parse that fails half-way must not leave values in them whose blocks are in
+// the caller's resource, which the caller may free next.
+TEST(JsonArena, AFailedParseLeavesNothingInTheResource) {
+  CountingResource counting;
+  EXPECT_THROW(parse(R"({"a long key that is not a short string": {"another long key kept in the )"
+                     R"(parser's buffers": ["a string past the small-string buffer", tru]}})",
+                     1, "doc.json", &counting),
+               Error);
+  EXPECT_EQ(counting.live_bytes, 0u);
+  EXPECT_EQ(parse(kArenaDoc), parse(kArenaDoc, 1, "doc.json", &counting));
+}
+
 TEST(JsonArena, CopiesGoToTheHeapAndOutliveTheArena) {
   Value copy;
   {
