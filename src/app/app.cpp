@@ -99,7 +99,7 @@ class Loader {
     opts.property_prefix = kAppNs;
     opts.property_prefix_seen = &mentions_app_property;
     // The expanded tree is walked once by toRdf and dropped: it lives in an
-    // arena for this document (sized like the parsed text it comes from).
+    // arena for this document.
     std::pmr::monotonic_buffer_resource arena(kExpandedArenaBytes);
     const json::Value expanded = jsonld::expand(*doc.document, opts, &arena);
     ModelFile file{doc.document_url, path, doc.file_id, false, imported_at};

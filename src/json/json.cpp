@@ -372,9 +372,6 @@ class Parser {
     return scratch;
   }
   Scratch& scratch_ = thread_scratch();
-  std::vector<std::vector<Object::Member>>& member_scratch_ = scratch_.members;
-  std::vector<std::vector<Value>>& element_scratch_ = scratch_.elements;
-  std::vector<KeyIndex>& key_index_scratch_ = scratch_.key_indexes;
 
   // After an error the buffers still hold parsed values, whose blocks may be
   // in the caller's arena: they go now, while it exists. Buffers grown past
@@ -391,9 +388,9 @@ class Parser {
 
  public:
   ~Parser() {
-    empty(member_scratch_);
-    empty(element_scratch_);
-    for (KeyIndex& index : key_index_scratch_) index.clear_keeping(4 * kKeptScratch);
+    empty(scratch_.members);
+    empty(scratch_.elements);
+    for (KeyIndex& index : scratch_.key_indexes) index.clear_keeping(4 * kKeptScratch);
   }
   Parser(const Parser&) = delete;
   Parser& operator=(const Parser&) = delete;
@@ -415,8 +412,8 @@ class Parser {
       out.emplace_object(resource_);
       return;
     }
-    scratch_at(member_scratch_, depth).clear();
-    scratch_at(key_index_scratch_, depth).clear();
+    scratch_at(scratch_.members, depth).clear();
+    scratch_at(scratch_.key_indexes, depth).clear();
     for (;;) {
       if (at_end()) fail("unexpected end of input; expected a string key in object");
       if (peek() != '"') fail("expected a string key in object, found " + describe(peek()));
@@ -431,12 +428,12 @@ class Parser {
       // scratch vectors are looked up again after each nested value: parsing
       // it may grow the per-depth lists (moving the vectors, not their
       // elements, so `slot` stays valid).
-      std::vector<Object::Member>& members = member_scratch_[static_cast<size_t>(depth)];
-      KeyIndex& index = key_index_scratch_[static_cast<size_t>(depth)];
+      std::vector<Object::Member>& members = scratch_.members[static_cast<size_t>(depth)];
+      KeyIndex& index = scratch_.key_indexes[static_cast<size_t>(depth)];
       if (const size_t same = index.find(members, key); same != KeyIndex::kNone) {
         Value v;
         parse_value(v, depth + 1);
-        Object::Member& m = member_scratch_[static_cast<size_t>(depth)][same];
+        Object::Member& m = scratch_.members[static_cast<size_t>(depth)][same];
         m.value = std::move(v);
         m.key_loc = key_loc;
       } else {
@@ -452,7 +449,7 @@ class Parser {
       const char c = peek();
       if (c == '}') {
         ++pos_;
-        std::vector<Object::Member>& done = member_scratch_[static_cast<size_t>(depth)];
+        std::vector<Object::Member>& done = scratch_.members[static_cast<size_t>(depth)];
         out.emplace_object(resource_).append_members(std::make_move_iterator(done.begin()),
                                                      std::make_move_iterator(done.end()));
         done.clear();
@@ -475,18 +472,18 @@ class Parser {
       out.emplace_array(resource_);
       return;
     }
-    scratch_at(element_scratch_, depth).clear();
+    scratch_at(scratch_.elements, depth).clear();
     for (;;) {
       // As in parse_object: the element's slot survives the nested parse,
       // the reference to this depth's vector may not.
-      Value* slot = &element_scratch_[static_cast<size_t>(depth)].emplace_back();
+      Value* slot = &scratch_.elements[static_cast<size_t>(depth)].emplace_back();
       parse_value(*slot, depth + 1);
       skip_ws();
       if (at_end()) fail("unexpected end of input; expected ',' or ']' after array element");
       const char c = peek();
       if (c == ']') {
         ++pos_;
-        std::vector<Value>& elements = element_scratch_[static_cast<size_t>(depth)];
+        std::vector<Value>& elements = scratch_.elements[static_cast<size_t>(depth)];
         out.emplace_array(resource_).assign(std::make_move_iterator(elements.begin()),
                                             std::make_move_iterator(elements.end()));
         elements.clear();

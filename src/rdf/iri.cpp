@@ -185,32 +185,10 @@ const std::optional<std::string>& memoised_prefix(std::string_view base) {
 
 }  // namespace
 
-void resolve_iri_into(std::string& out, std::string_view base, std::string_view reference) {
-  if (base.empty()) {
-    out.assign(reference);
-    return;
-  }
-  if (is_plain_segment(reference)) {
-    if (const std::optional<std::string>& prefix = memoised_prefix(base)) {
-      out.assign(*prefix).append(reference);
-      return;
-    }
-  }
-  out = resolve_iri(base, reference);
-}
+namespace {
 
-std::string resolve_iri(std::string_view base, std::string_view reference) {
-  if (base.empty()) return std::string(reference);
-  // The common case: a plain segment against a base without dot segments;
-  // the result is written directly (what 5.2.2 - 5.3 would give).
-  if (is_plain_segment(reference)) {
-    if (const std::optional<std::string>& prefix = memoised_prefix(base)) {
-      std::string out;
-      out.reserve(prefix->size() + reference.size());
-      out.append(*prefix).append(reference);
-      return out;
-    }
-  }
+// RFC 3986 sections 5.2.2 and 5.3 in full, for a non-empty base.
+std::string resolve_in_full(std::string_view base, std::string_view reference) {
   const Parts b = split(base);
   const Parts r = split(reference);
 
@@ -273,6 +251,31 @@ std::string resolve_iri(std::string_view base, std::string_view reference) {
     out += '#';
     out.append(t.fragment);
   }
+  return out;
+}
+
+}  // namespace
+
+void resolve_iri_into(std::string& out, std::string_view base, std::string_view reference) {
+  if (base.empty()) {
+    out.assign(reference);
+    return;
+  }
+  // The common case: a plain segment against a base without dot segments;
+  // the result is written directly (what 5.2.2 - 5.3 would give).
+  if (is_plain_segment(reference)) {
+    if (const std::optional<std::string>& prefix = memoised_prefix(base)) {
+      out.reserve(prefix->size() + reference.size());
+      out.assign(*prefix).append(reference);
+      return;
+    }
+  }
+  out = resolve_in_full(base, reference);
+}
+
+std::string resolve_iri(std::string_view base, std::string_view reference) {
+  std::string out;
+  resolve_iri_into(out, base, reference);
   return out;
 }
 
