@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory_resource>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -11,6 +12,7 @@
 #include "jsonld/expand.hpp"
 #include "jsonld/to_rdf.hpp"
 #include "rdf/iri.hpp"
+#include "support/arena.hpp"
 #include "support/paths.hpp"
 #include "vocab/w3c.hpp"
 
@@ -19,9 +21,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The first block of a document's expansion arena; a larger document's arena
-// grows geometrically from it.
+// The first block of a document's expansion arena, one buffer reused by every
+// document of a load; a larger document's arena grows from it, and the buffer
+// is then enlarged (up to kMaxExpandedBufferBytes) for the documents after it.
 constexpr size_t kExpandedArenaBytes = 32 * 1024;
+constexpr size_t kMaxExpandedBufferBytes = 1024 * 1024;
 
 std::string app_term(std::string_view local) {
   return std::string(kAppNs) + std::string(local);
@@ -30,17 +34,16 @@ std::string app_term(std::string_view local) {
 // The IRI a local file is known by: the inverse of an IRI mapping when one
 // covers it (so relative references inside it resolve as they would on the
 // web), otherwise its file: URL.
-std::string iri_for_path(const std::vector<std::pair<std::string, std::string>>& maps,
+std::string iri_for_path(const jsonld::MappedDocumentLoader& docs,
+                         const std::vector<std::pair<std::string, std::string>>& maps,
                          const std::string& path) {
-  std::error_code ec;
-  fs::path abs = fs::weakly_canonical(fs::absolute(path), ec);
-  std::string abs_s = abs.generic_string();
+  const std::string abs = docs.canonical(path);
   for (const auto& [prefix, dir] : maps) {
-    std::string d = fs::weakly_canonical(fs::absolute(dir), ec).generic_string();
+    std::string d = docs.canonical(dir);
     if (!d.empty() && d.back() != '/') d += '/';
-    if (abs_s.rfind(d, 0) == 0) return prefix + abs_s.substr(d.size());
+    if (abs.starts_with(d)) return prefix + abs.substr(d.size());
   }
-  return "file://" + abs_s;
+  return "file://" + abs;
 }
 
 std::string join_root(const LoadOptions& options, const std::string& path) {
@@ -73,7 +76,7 @@ class Loader {
 
   void load_input(const std::string& path) {
     docs_.allow(fs::path(path).has_parent_path() ? fs::path(path).parent_path().string() : ".");
-    std::string iri = iri_for_path(maps_, path);
+    std::string iri = iri_for_path(docs_, maps_, path);
     if (!loaded_.insert(iri).second) return;
     jsonld::RemoteDocument doc = docs_.load_file(path, iri);
     load_document(doc, path, SourceLoc{});
@@ -98,30 +101,43 @@ class Loader {
     bool mentions_app_property = false;
     opts.property_prefix = kAppNs;
     opts.property_prefix_seen = &mentions_app_property;
-    // The expanded tree is walked once by toRdf and dropped: it lives in an
-    // arena for this document.
-    std::pmr::monotonic_buffer_resource arena(kExpandedArenaBytes);
-    const json::Value expanded = jsonld::expand(*doc.document, opts, &arena);
     ModelFile file{doc.document_url, path, doc.file_id, false, imported_at};
+    std::optional<rdf::Dataset> local;  // an app's own quads
+    size_t grown = 0;                   // what the expansion needed beyond the buffer
+    {
+      // The expanded tree is walked once by toRdf and dropped: it lives in an
+      // arena for this document, on the load's reused buffer. (Nothing below
+      // loads another document while it lives.)
+      if (!expand_buffer_) reserve_expand_buffer(kExpandedArenaBytes);
+      Arena arena(expand_buffer_.get(), expand_buffer_bytes_);
+      const json::Value expanded = jsonld::expand(*doc.document, opts, &arena);
+      if (!mentions_app_property) {
+        // No app:* property, so not an app: its quads go straight into the
+        // model's dataset, default graph renamed to the file's graph (what
+        // copy_into_file_graph does, without a dataset per file).
+        opts.default_graph = doc.document_url;
+        jsonld::to_rdf(expanded, dataset_, opts);
+      } else {
+        jsonld::to_rdf(expanded, local.emplace(), opts);
+      }
+      grown = arena.allocated_bytes();
+    }
+    // (Only once the tree in it is gone.)
+    if (grown != 0) {
+      reserve_expand_buffer(std::min(kMaxExpandedBufferBytes, expand_buffer_bytes_ + grown));
+    }
     if (!mentions_app_property) {
-      // No app:* property, so not an app: its quads go straight into the
-      // model's dataset, default graph renamed to the file's graph (what
-      // copy_into_file_graph does, without a dataset per file).
-      opts.default_graph = doc.document_url;
-      jsonld::to_rdf(expanded, dataset_, opts);
       files_.push_back(file);
       return;
     }
-    rdf::Dataset local;
-    jsonld::to_rdf(expanded, local, opts);
 
-    const rdf::TermTable& lt = local.terms();
+    const rdf::TermTable& lt = local->terms();
     rdf::TermId import_p = lt.find_iri(app_term("import"));
     file.is_app = !import_p.is_any() &&
-                  !local.match(rdf::TermId::any(), import_p, rdf::TermId::any()).empty();
-    copy_into_file_graph(local, doc.document_url);
+                  !local->match(rdf::TermId::any(), import_p, rdf::TermId::any()).empty();
+    copy_into_file_graph(*local, doc.document_url);
     files_.push_back(file);
-    if (file.is_app) load_app(local, path);
+    if (file.is_app) load_app(*local, path);
   }
 
   // Copies quads into the model's dataset: blank nodes renamed fresh (files
@@ -224,8 +240,8 @@ class Loader {
   // paths resolve against (--root, else the current directory): an untrusted
   // app must not map an IRI onto /etc or the user's home.
   void check_iri_map_dir(const std::string& dir, SourceLoc at, const std::string& prefix) const {
-    const fs::path base = canonical_path(options_.root.value_or("."));
-    const fs::path target = canonical_path(dir);
+    const fs::path base = docs_.canonical(options_.root.value_or("."));
+    const fs::path target = docs_.canonical(dir);
     bool inside = is_within(target, base);
     for (char c : dir) inside = inside && static_cast<unsigned char>(c) >= 0x20 && c != 0x7f;
     if (inside) return;
@@ -298,6 +314,13 @@ class Loader {
   std::vector<std::pair<std::string, std::string>> maps_;
   std::unordered_set<std::string> loaded_;
   std::shared_ptr<jsonld::ContextCache> context_cache_ = std::make_shared<jsonld::ContextCache>();
+  // See kExpandedArenaBytes. Not initialised: an arena only hands it out.
+  std::unique_ptr<std::byte[]> expand_buffer_;
+  size_t expand_buffer_bytes_ = 0;
+  void reserve_expand_buffer(size_t bytes) {
+    expand_buffer_.reset(new std::byte[bytes]);
+    expand_buffer_bytes_ = bytes;
+  }
 };
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "ir/ir.hpp"
 #include "ir/lower.hpp"
 #include "ir/operators.hpp"
+#include "support/arena.hpp"
 #include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
@@ -267,7 +268,7 @@ struct State {
   // nodes (hundreds of them, each otherwise a malloc and a free) come from
   // one arena, released at once when the State goes. Declared first, so it
   // outlives them.
-  std::pmr::monotonic_buffer_resource arena{16 * 1024};
+  Arena arena{16 * 1024};
   Names data_names{&arena}, step_names{&arena};            // taken (unique_name)
   std::pmr::unordered_map<uint32_t, int> data_of{&arena};  // model entity (term index) -> its datum
   std::pmr::map<int, int> producer{&arena};                // datum -> the step that writes it

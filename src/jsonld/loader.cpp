@@ -12,6 +12,7 @@
 #include <system_error>
 #include <vector>
 
+#include "support/arena.hpp"
 #include "support/io.hpp"
 #include "support/paths.hpp"
 
@@ -26,7 +27,7 @@ struct ParsedDocument {
   // the shipped models, robots and metamodels, 4.1 at most), so the first
   // block holds most documents; the arena grows past it by itself.
   explicit ParsedDocument(size_t text_bytes) : arena(std::max<size_t>(1024, 3 * text_bytes)) {}
-  std::pmr::monotonic_buffer_resource arena;
+  Arena arena;
   json::Value root;
 };
 
@@ -86,12 +87,6 @@ std::string_view strip_query_fragment(std::string_view iri) {
   return cut == std::string_view::npos ? iri : iri.substr(0, cut);
 }
 
-std::string canonical_key(const std::string& path) {
-  std::error_code ec;
-  fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
-  return ec ? path : p.generic_string();
-}
-
 std::string file_url(const std::string& canonical) {
   static constexpr std::string_view kUnsafe = " %\"<>\\^`{|}#?";
   std::string out = "file://";
@@ -128,35 +123,8 @@ std::string code_point(int u) {
 
 }  // namespace
 
-std::string MappedDocumentLoader::canonical_document_path(const std::string& path) const {
-  // Split at the last '/' by hand: the directory is only canonicalised (and a
-  // memo key), so any spelling of it will do, and building std::filesystem
-  // paths cost more than the rest of the check.
-  const size_t slash = path.rfind('/');
-  const std::string_view name = slash == std::string::npos
-                                    ? std::string_view(path)
-                                    : std::string_view(path).substr(slash + 1);
-  struct stat st {};
-  if (!name.empty() && name != "." && name != ".." && ::lstat(path.c_str(), &st) == 0 &&
-      !S_ISLNK(st.st_mode)) {
-    const std::string dir = slash == std::string::npos ? std::string()
-                            : slash == 0               ? std::string("/")
-                                                       : path.substr(0, slash);
-    auto it = canonical_dirs_.find(dir);
-    if (it == canonical_dirs_.end()) {
-      it = canonical_dirs_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string()).first;
-    }
-    std::string out = it->second;
-    if (out.empty() || out.back() != '/') out += '/';
-    out += name;
-    return out;
-  }
-  return canonical_path(path).string();
-}
-
 void MappedDocumentLoader::add_root(const std::string& dir) {
-  if (!root_paths_.contains(dir))
-    root_paths_.emplace(dir, canonical_path(dir.empty() ? "." : dir).string());
+  if (!root_paths_.contains(dir)) root_paths_.emplace(dir, canonical(dir.empty() ? "." : dir));
 }
 
 void MappedDocumentLoader::map(std::string prefix, std::string dir) {
@@ -259,7 +227,7 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
                "; IRIs that name files may not contain U+0000-U+001F or U+007F");
   }
   if (confined_) {
-    const std::string canonical = canonical_document_path(path);
+    const std::string canonical = this->canonical(path);
     if (!inside_sandbox(canonical)) {
       throw fail("it resolves to '" + escaped_bytes(canonical) +
                  "', outside the model tree (the directories of --map, --root, the app's "
@@ -336,7 +304,7 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
                                                const std::string& read_path,
                                                std::string document_url,
                                                bool read_path_is_canonical) {
-  std::string key = read_path_is_canonical ? read_path : canonical_key(read_path);
+  std::string key = read_path_is_canonical ? read_path : canonical(read_path);
   auto it = cache_.find(key);
   if (it == cache_.end()) {
     std::string& text = read_buffer_;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "json/json.hpp"
+#include "support/canonical_paths.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::jsonld {
@@ -76,6 +77,9 @@ class MappedDocumentLoader : public DocumentLoader {
   // Reads and parses a local file (cached), registering it in files().
   RemoteDocument load_file(const std::string& path, std::string document_url = {});
   size_t documents_read() const { return reads_; }
+  // canonical_path(path), answered from what this loader (one load) has
+  // already resolved of the same directories.
+  std::string canonical(std::string_view path) const { return canonical_.canonical(path); }
 
  private:
   // `read_path_is_canonical`: read_path is already canonical_path()'s answer
@@ -91,13 +95,6 @@ class MappedDocumentLoader : public DocumentLoader {
   // Records the canonical form of a sandbox root when it is added, so each
   // check costs one canonicalisation (of the document) rather than one per root.
   void add_root(const std::string& dir);
-  // canonical_path(path), with the canonical form of each directory computed
-  // once per loader: a document that is not itself a symbolic link is its
-  // directory's canonical path plus its name (one lstat instead of realpath's
-  // readlink per path component). The directory memo lives as long as this
-  // loader, i.e. one load.
-  std::string canonical_document_path(const std::string& path) const;
-
   std::map<std::string, std::string, std::greater<>> prefixes_;  // longest first
   std::vector<std::string> allowed_;                             // allow()'s directories
   bool confined_ = false;
@@ -106,7 +103,7 @@ class MappedDocumentLoader : public DocumentLoader {
   // there, and its canonical_path() at the time it was added.
   std::unordered_map<std::string, std::string> root_paths_;
   std::unordered_map<std::string, RemoteDocument> cache_;  // by path
-  mutable std::unordered_map<std::string, std::string> canonical_dirs_;
+  mutable CanonicalPaths canonical_;
   // The text of the document being parsed, reused across documents: the
   // parsed values copy what they keep, and one buffer sized for the largest
   // file saves an allocation (and the allocator's consolidation of freed

@@ -21,6 +21,7 @@
 #include "rdf/id_hash_set.hpp"
 #include "rdf/iri.hpp"
 #include "rdf/term.hpp"
+#include "support/arena.hpp"
 #include "vocab/w3c.hpp"
 
 namespace mospec::jsonld {
@@ -274,7 +275,7 @@ std::string double_lexical_exact(double d) {
 // containers draw from one monotonic arena (the Converter's): a few large
 // blocks instead of an allocation per node, property and value list, and no
 // frees one by one.
-using Arena = std::pmr::monotonic_buffer_resource;
+using Arena = mospec::Arena;
 
 // Node-map keys (IRIs, "_:" labels, properties, types) as dense numbers. Each
 // key is hashed once, where generate() meets it; the node map and emit() then

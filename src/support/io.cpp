@@ -100,6 +100,12 @@ std::string read_file_reason(const std::string& path, std::string& out, std::siz
       out.clear();
       return "file grew past the limit of " + std::to_string(limit) + " bytes while being read";
     }
+    // A regular file read short at the size fstat gave has ended: the read
+    // that would return 0 is one system call per file saved. A file that
+    // changes size while read is read to its end.
+    if (static_cast<std::size_t>(n) < want && out.size() == static_cast<std::size_t>(st.st_size)) {
+      break;
+    }
   }
   return {};
 }

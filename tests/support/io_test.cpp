@@ -60,6 +60,18 @@ TEST_F(IoTest, ReadsRegularFiles) {
   EXPECT_EQ(read_file(path("empty.txt")), "");
 }
 
+// Around the read buffer's size (a read that ends short at the file's size
+// ends the file; a full one asks again).
+TEST_F(IoTest, ReadsWholeFilesOfEverySizeAroundTheBuffer) {
+  for (size_t size : {size_t{1}, size_t{4095}, size_t{65535}, size_t{65536}, size_t{65537},
+                      size_t{3 * 65536 + 17}}) {
+    std::string text(size, 'x');
+    for (size_t i = 0; i < size; ++i) text[i] = static_cast<char>('a' + (i * 7) % 26);
+    std::ofstream(path("f.txt"), std::ios::binary) << text;
+    EXPECT_EQ(read_file(path("f.txt")), text) << size;
+  }
+}
+
 TEST_F(IoTest, RefusesAFifoWithoutBlocking) {
   // No writer ever opens it: a blocking open would hang this test forever.
   ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
