@@ -47,8 +47,10 @@ bool TermDefinition::operator==(const TermDefinition& o) const {
   // CTD 27 compares definitions "other than the value of protected"; `where` and
   // base_url only say where the definition came from.
   return iri == o.iri && prefix == o.prefix && reverse == o.reverse &&
-         local_context == o.local_context && container == o.container && direction == o.direction &&
-         language == o.language && index == o.index && nest == o.nest && type == o.type;
+         (local_context == o.local_context ||
+          (local_context && o.local_context && *local_context == *o.local_context)) &&
+         container == o.container && direction == o.direction && language == o.language &&
+         index == o.index && nest == o.nest && type == o.type;
 }
 
 // ---------------------------------------------------------------------------

@@ -30,8 +30,11 @@ struct TermDefinition {
   bool reverse = false;
   // Base URL to use when applying local_context (for property-scoped contexts).
   std::string base_url;
-  std::optional<json::Value> local_context;  // the scoped context, unprocessed
-  std::set<std::string> container;           // "@list", "@set", "@index", ...
+  // The scoped context, unprocessed (null: none). It points into the context
+  // document it was written in, which it keeps alive, when that is known
+  // (remote contexts); otherwise it is a copy.
+  std::shared_ptr<const json::Value> local_context;
+  std::set<std::string> container;  // "@list", "@set", "@index", ...
   // Each optional: absent = not set; present null/"ltr"/"rtl" etc.
   std::optional<json::Value> direction;  // null or "ltr"/"rtl"
   std::optional<json::Value> language;   // null or a string

@@ -72,6 +72,7 @@ void Processor::process_item(Builder& result, const json::Value& context,
   }
   // CP 5.6
   json::Object merged;
+  std::optional<OwnerScope> merged_values;  // copies: owned by no document
   if (const json::Value* v = ctx->find("@import")) {
     if (json10_) fail("invalid context entry", "@import is not allowed in json-ld-1.0", loc);
     if (!v->is_string()) fail("invalid @import value", "@import must be a string", v->location());
@@ -100,6 +101,7 @@ void Processor::process_item(Builder& result, const json::Value& context,
       merged.set_key_location(at, ctx->key_location(i));
     }
     ctx = &merged;
+    merged_values.emplace(owner_, nullptr);
   }
   // CP 5.7
   if (const json::Value* v = ctx->find("@base"); v != nullptr && !in_remote) {
@@ -331,13 +333,16 @@ void Processor::process_remote(Builder& result, const json::Value& context,
   const bool saved_used = result.used_base, saved_touched = result.touched_base;
   result.used_base = false;
   result.touched_base = false;
-  std::vector<std::string> copy = remote_contexts;
+  // CP 5.2.6 passes a copy of the remote contexts: what processing adds is
+  // taken off again afterwards instead of copying every IRI in the list.
+  RemoteContextsMark copy(remote_contexts);
   detail::DepLog log;
   if (cacheable) log.reserve(member_count(*loaded));
   {
     DepRecording recording(result, cacheable ? &log : nullptr);
     ChainEntry in_chain(chain_, iri);
-    process(result, nullptr, *loaded, doc_url, copy, override_protected, true, validate,
+    OwnerScope in_document(owner_, keep);
+    process(result, nullptr, *loaded, doc_url, remote_contexts, override_protected, true, validate,
             /*in_remote=*/true);
   }
   if (cacheable && !result.touched_base && result.previous == in_previous) {

@@ -601,6 +601,22 @@ inline void apply_delta(Builder& b, const detail::Delta& d) {
   b.freeze();
 }
 
+// Context Processing passes "a copy of remote contexts" to the processing of
+// a remote or scoped context (CP 5.2.6, CTD 21.3): processing only appends to
+// the list, so taking its additions off when that processing ends, even by an
+// exception, is the same as giving it a copy.
+struct RemoteContextsMark {
+  std::vector<std::string>& list;
+  size_t size;
+  explicit RemoteContextsMark(std::vector<std::string>& l) : list(l), size(l.size()) {}
+  ~RemoteContextsMark() {
+    if (list.size() > size)
+      list.erase(list.begin() + static_cast<std::ptrdiff_t>(size), list.end());
+  }
+  RemoteContextsMark(const RemoteContextsMark&) = delete;
+  RemoteContextsMark& operator=(const RemoteContextsMark&) = delete;
+};
+
 // Turns off dependency recording when processing ends (even by an exception).
 struct DepRecording {
   Builder& b;
@@ -657,6 +673,19 @@ class Processor {
     ~ChainEntry() { chain.pop_back(); }
     ChainEntry(const ChainEntry&) = delete;
     ChainEntry& operator=(const ChainEntry&) = delete;
+  };
+  // The document the local context being processed was read from, when it
+  // is a remote context: a scoped context written in it is kept by pointing
+  // into it rather than copied. Null while processing anything else.
+  std::shared_ptr<const json::Value> owner_;
+  struct OwnerScope {
+    std::shared_ptr<const json::Value>& owner;
+    std::shared_ptr<const json::Value> saved;
+    OwnerScope(std::shared_ptr<const json::Value>& o, std::shared_ptr<const json::Value> now)
+        : owner(o), saved(std::exchange(o, std::move(now))) {}
+    ~OwnerScope() { owner = std::move(saved); }
+    OwnerScope(const OwnerScope&) = delete;
+    OwnerScope& operator=(const OwnerScope&) = delete;
   };
   // Documents dereferenced during this call when there is no shared cache (CP
   // 5.2.4: a context is dereferenced at most once).

@@ -250,8 +250,10 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
       scratch.vocab = active.vocab;
       scratch.language = active.language;
       scratch.direction = active.direction;
-      std::vector<std::string> remote = *args.remote_contexts;
-      process(scratch, nullptr, *sc, args.base_url, remote, true, true, false, false);
+      // (A copy of the remote contexts, as RemoteContextsMark gives.)
+      RemoteContextsMark copy(*args.remote_contexts);
+      process(scratch, nullptr, *sc, args.base_url, *args.remote_contexts, true, true, false,
+              false);
       if (scratch.used_base) active.used_base = true;
     } catch (const Error& e) {
       fail("invalid scoped context",
@@ -260,7 +262,8 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
            sc->location());
     }
     // CTD 21.4
-    def->local_context = *sc;
+    def->local_context = owner_ ? std::shared_ptr<const json::Value>(owner_, sc)
+                                : std::make_shared<const json::Value>(*sc);
     def->base_url = args.base_url;
   }
   // CTD 22

@@ -143,7 +143,7 @@ TEST_F(ContextTest, ScopedContextsStoredUnprocessed) {
   })");
   const TermDefinition* robot = c->find("Robot");
   ASSERT_NE(robot, nullptr);
-  ASSERT_TRUE(robot->local_context.has_value());
+  ASSERT_NE(robot->local_context, nullptr);
   EXPECT_EQ(*robot->local_context, json::parse(R"({"joint": {"@type": "@id"}})"));
   EXPECT_EQ(robot->base_url, "http://example.org/doc/base");
   EXPECT_EQ(c->find("joint"), nullptr);  // not applied until expansion uses it
