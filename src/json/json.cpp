@@ -11,6 +11,7 @@
 #include <limits>
 #include <span>
 #include <system_error>
+#include <utility>
 
 #include "support/utf8.hpp"
 
@@ -26,6 +27,13 @@ namespace detail {
 // rather than views of the keys because the members' vector reallocates.
 class KeyIndex {
  public:
+  explicit KeyIndex(Resource* resource = std::pmr::get_default_resource()) : slots_(resource) {}
+  // A copy on the heap, as every copy (json.hpp).
+  KeyIndex(const KeyIndex& o) : slots_(o.slots_.begin(), o.slots_.end()), used_(o.used_) {}
+  KeyIndex(KeyIndex&&) noexcept = default;
+  KeyIndex& operator=(const KeyIndex&) = delete;
+  KeyIndex& operator=(KeyIndex&&) = delete;
+
   static constexpr size_t kScanLimit = 16;
   static constexpr size_t kNone = std::numeric_limits<size_t>::max();
 
@@ -36,7 +44,7 @@ class KeyIndex {
   // clear(), also giving back a table grown past `keep` slots.
   void clear_keeping(size_t keep) {
     clear();
-    if (slots_.capacity() > keep) std::vector<uint32_t>().swap(slots_);
+    if (slots_.capacity() > keep) std::pmr::vector<uint32_t>(slots_.get_allocator()).swap(slots_);
   }
 
   // The position of `key` in `members`, or kNone.
@@ -82,7 +90,7 @@ class KeyIndex {
 
  private:
   static constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
-  std::vector<uint32_t> slots_;
+  std::pmr::vector<uint32_t> slots_;
   size_t used_ = 0;
 
   static size_t hash(std::string_view key) { return std::hash<std::string_view>{}(key); }
@@ -104,22 +112,77 @@ using detail::KeyIndex;
 // Object
 
 Object::IndexPtr::IndexPtr() noexcept = default;
-Object::IndexPtr::IndexPtr(const IndexPtr& o)
-    : p(o.p ? std::make_unique<KeyIndex>(*o.p) : nullptr) {}
+Object::IndexPtr::IndexPtr(const IndexPtr& o) {
+  if (o.p != nullptr) {
+    resource_ = std::pmr::get_default_resource();
+    p = new (resource_->allocate(sizeof(KeyIndex), alignof(KeyIndex))) KeyIndex(*o.p);
+  }
+}
 Object::IndexPtr& Object::IndexPtr::operator=(const IndexPtr& o) {
-  if (this != &o) p = o.p ? std::make_unique<KeyIndex>(*o.p) : nullptr;
+  if (this != &o) {
+    IndexPtr copy(o);
+    *this = std::move(copy);
+  }
   return *this;
 }
-Object::IndexPtr::IndexPtr(IndexPtr&&) noexcept = default;
-Object::IndexPtr& Object::IndexPtr::operator=(IndexPtr&&) noexcept = default;
-Object::IndexPtr::~IndexPtr() = default;
+Object::IndexPtr::IndexPtr(IndexPtr&& o) noexcept
+    : p(std::exchange(o.p, nullptr)), resource_(std::exchange(o.resource_, nullptr)) {}
+Object::IndexPtr& Object::IndexPtr::operator=(IndexPtr&& o) noexcept {
+  if (this != &o) {
+    reset();
+    p = std::exchange(o.p, nullptr);
+    resource_ = std::exchange(o.resource_, nullptr);
+  }
+  return *this;
+}
+Object::IndexPtr::~IndexPtr() {
+  reset();
+}
+
+void Object::IndexPtr::create(Resource* resource) {
+  reset();
+  resource_ = resource;
+  p = new (resource->allocate(sizeof(KeyIndex), alignof(KeyIndex))) KeyIndex(resource);
+}
+
+void Object::IndexPtr::reset() noexcept {
+  if (p == nullptr) return;
+  p->~KeyIndex();
+  resource_->deallocate(p, sizeof(KeyIndex), alignof(KeyIndex));
+  p = nullptr;
+  resource_ = nullptr;
+}
+
+Object& Object::operator=(const Object& o) {
+  if (this != &o) {
+    members_ = o.members_;
+    index_.reset();
+    reindex();
+  }
+  return *this;
+}
+
+Object& Object::operator=(Object&& o) noexcept {
+  if (this != &o) {
+    const bool same_resource = resource() == o.resource();
+    members_ = std::move(o.members_);
+    if (same_resource) {
+      index_ = std::move(o.index_);
+    } else {
+      o.index_.reset();
+      index_.reset();
+      reindex();
+    }
+  }
+  return *this;
+}
 
 void Object::reindex() {
   if (members_.size() <= KeyIndex::kScanLimit) {
-    index_.p.reset();
+    index_.reset();
     return;
   }
-  if (!index_.p) index_.p = std::make_unique<KeyIndex>();
+  if (!index_.p) index_.create(resource());
   index_.p->rebuild(members_);
 }
 
@@ -147,12 +210,11 @@ Value& Object::set(std::string_view key, Value v) {
 }
 
 Value& Object::append_new(std::string_view key, Value v) {
-  // Built in place: a temporary Member would cost a move and a destruction of
-  // its key and value. The key is built in the object's resource (a Member
-  // is not allocator-aware, so emplace_back does not pass it on).
-  Member& m = members_.emplace_back(Member{String(key, members_.get_allocator()), Value(), {}});
-  m.value = std::move(v);
-  if (!index_.p && members_.size() > KeyIndex::kScanLimit) index_.p = std::make_unique<KeyIndex>();
+  // Built in place (a temporary Member would cost a move and a destruction of
+  // its key and value): the key in the object's resource (a Member is not
+  // allocator-aware, so emplace_back does not pass it on), the value moved in.
+  members_.emplace_back(String(key, members_.get_allocator()), std::move(v), SourceLoc{});
+  if (!index_.p && members_.size() > KeyIndex::kScanLimit) index_.create(resource());
   if (index_.p) index_.p->added(members_);
   return members_.back().value;
 }
@@ -439,7 +501,7 @@ class Parser {
       } else {
         // The key moves in with its resource (assigning it to a default
         // member's key would copy it to the heap).
-        Object::Member& m = members.emplace_back(Object::Member{std::move(key), Value(), key_loc});
+        Object::Member& m = members.emplace_back(std::move(key), Value(), key_loc);
         index.added(members);
         Value* slot = &m.value;
         parse_value(*slot, depth + 1);
@@ -712,6 +774,34 @@ Value parse(std::string_view text, uint32_t file_id, std::string_view file_name,
 
 // ---------------------------------------------------------------------------
 // Serialisation
+
+bool lives_in(const Value& v, const Resource* resource) {
+  switch (v.kind()) {
+    case Kind::String:
+      return std::get<String>(v.data_).get_allocator().resource() == resource;
+    case Kind::Array: {
+      const Array& a = v.as_array();
+      if (a.get_allocator().resource() != resource) return false;
+      for (const Value& e : a) {
+        if (!lives_in(e, resource)) return false;
+      }
+      return true;
+    }
+    case Kind::Object: {
+      const Object& o = v.as_object();
+      if (o.resource() != resource) return false;
+      if (o.index_.p != nullptr && o.index_.resource_ != resource) return false;
+      for (const Object::Member& m : o.members_) {
+        if (m.key.get_allocator().resource() != resource || !lives_in(m.value, resource)) {
+          return false;
+        }
+      }
+      return true;
+    }
+    default:
+      return true;
+  }
+}
 
 std::string number_to_string(double d) {
   if (std::isnan(d)) return "NaN";

@@ -47,8 +47,10 @@ class Object {
   inline ~Object();
   inline Object(const Object&);
   inline Object(Object&&) noexcept;
-  inline Object& operator=(const Object&);
-  inline Object& operator=(Object&&) noexcept;
+  // Assignment keeps this object's resource (std::pmr containers do), the
+  // key index included.
+  Object& operator=(const Object&);
+  Object& operator=(Object&&) noexcept;
 
   // Bodies that touch members_ come after Member is complete (clang
   // instantiates std::vector members eagerly in inline bodies).
@@ -84,7 +86,9 @@ class Object {
 
  private:
   // Member positions by key, kept once the object has more than 16 members so
-  // that find() and set() stay O(1) on large objects (null below that).
+  // that find() and set() stay O(1) on large objects (null below that). It
+  // lives in the object's resource, like everything else the object holds,
+  // so a tree built in an arena is in the arena whole; a copy is on the heap.
   class IndexPtr {
    public:
     IndexPtr() noexcept;
@@ -93,12 +97,17 @@ class Object {
     IndexPtr(IndexPtr&&) noexcept;
     IndexPtr& operator=(IndexPtr&&) noexcept;
     ~IndexPtr();
-    std::unique_ptr<detail::KeyIndex> p;
+    void create(Resource* resource);
+    void reset() noexcept;
+    detail::KeyIndex* p = nullptr;
+    Resource* resource_ = nullptr;
   };
   void reindex();
 
   std::pmr::vector<Member> members_;
   IndexPtr index_;
+
+  friend bool lives_in(const Value& v, const Resource* resource);
 };
 
 enum class Kind : uint8_t { Null, Boolean, Number, String, Array, Object };
@@ -170,10 +179,14 @@ class Value {
 
  private:
   std::variant<std::nullptr_t, bool, double, String, Array, Object> data_{nullptr};
+  friend bool lives_in(const Value& v, const Resource* resource);
   SourceLoc loc_{};
 };
 
 struct Object::Member {
+  // (A constructor, not aggregate initialisation, so that emplace_back builds
+  // a member in place with clang 14 too.)
+  Member(String k, Value v, SourceLoc loc) : key(std::move(k)), value(std::move(v)), key_loc(loc) {}
   String key;
   Value value;
   SourceLoc key_loc{};
@@ -184,8 +197,6 @@ inline Object::Object(Resource* resource) : members_(resource) {}
 inline Object::~Object() = default;
 inline Object::Object(const Object&) = default;
 inline Object::Object(Object&&) noexcept = default;
-inline Object& Object::operator=(const Object&) = default;
-inline Object& Object::operator=(Object&&) noexcept = default;
 
 inline size_t Object::size() const {
   return members_.size();
@@ -237,5 +248,10 @@ std::string canonicalize(const Value& v);
 
 // ECMAScript Number::toString (e.g. 1 -> "1", 0.1 -> "0.1", 1e21 -> "1e+21").
 std::string number_to_string(double d);
+
+// Whether every string, array, object, key and key index of `v` allocates
+// from `resource`: then dropping the resource frees all of `v`, and `v` need
+// not be destroyed (the loader drops parsed and expanded trees that way).
+bool lives_in(const Value& v, const Resource* resource);
 
 }  // namespace mospec::json

@@ -656,7 +656,7 @@ void Expander::expand_entries(const ContextPtr& active, ActiveProperty ap, const
     if (def != nullptr && def->type && *def->type == "@json"sv) {  // 13.6
       Object lit(mem_);
       lit.append_new("@value", copy(value));
-      lit.append_new("@type", Value("@json"));
+      lit.append_new("@type", Value("@json", mem_));
       expanded_value = Value(std::move(lit));
       expanded_value.set_location(value.location());
     } else if (has("@language") && value.is_object()) {  // 13.7
@@ -982,7 +982,7 @@ Value Expander::expand_language_map(const ActiveContext& active, const TermDefin
       Object v(mem_);  // 13.7.4.2.3
       v.append_new("@value", copy(*item));
       if (!none) v.append_new("@language", string_at(language, map.key_location(i)));
-      if (direction) v.append_new("@direction", Value(*direction));
+      if (direction) v.append_new("@direction", Value(*direction, mem_));
       Value vv(std::move(v));
       vv.set_location(item->location());
       out.as_array().push_back(std::move(vv));
@@ -1127,9 +1127,9 @@ Value Expander::expand_value(const ActiveContext& active, const TermDefinition* 
     if (language != nullptr && language->is_string()) {
       result.append_new("@language", copy(*language));
     } else if (language == nullptr && language_default) {
-      result.append_new("@language", Value(*language_default));
+      result.append_new("@language", Value(*language_default, mem_));
     }
-    if (direction) result.append_new("@direction", Value(*direction));
+    if (direction) result.append_new("@direction", Value(*direction, mem_));
   }
   out.set_location(value.location());
   return out;

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -20,15 +21,17 @@ namespace mospec::jsonld {
 
 namespace {
 
-// A parsed document and the arena its values live in, declared so that the
-// values go first.
+// A parsed document and the arena its values live in. The tree is in the
+// arena whole (the parser builds every string, array, object and key index
+// there; json::lives_in), so it is dropped with the arena and never destroyed
+// value by value.
 struct ParsedDocument {
   // Parsed values take about three times the bytes of their text (2.9 over
   // the shipped models, robots and metamodels, 4.1 at most), so the first
   // block holds most documents; the arena grows past it by itself.
   explicit ParsedDocument(size_t text_bytes) : arena(std::max<size_t>(1024, 3 * text_bytes)) {}
   Arena arena;
-  json::Value root;
+  const json::Value* root = nullptr;  // in the arena
 };
 
 }  // namespace
@@ -321,8 +324,11 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
     // parsing costs a pointer bump per string, array and object, and the
     // document is freed in a few blocks when its last user lets go.
     auto parsed = std::make_shared<ParsedDocument>(text.size());
-    parsed->root = json::parse(text, doc.file_id, path, &parsed->arena);
-    doc.document = std::shared_ptr<const json::Value>(parsed, &parsed->root);
+    json::Value* root = static_cast<json::Value*>(
+        parsed->arena.allocate(sizeof(json::Value), alignof(json::Value)));
+    parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &parsed->arena));
+    assert(json::lives_in(*parsed->root, &parsed->arena));
+    doc.document = std::shared_ptr<const json::Value>(parsed, parsed->root);
     doc.document_url = file_url(key);
     it = cache_.emplace(key, std::move(doc)).first;
   }

@@ -23,6 +23,7 @@
 #include "rdf/dataset.hpp"
 #include "rdf/isomorphism.hpp"
 #include "rdf/nquads.hpp"
+#include "support/arena.hpp"
 #include "support/diagnostics.hpp"
 
 namespace fs = std::filesystem;
@@ -246,6 +247,15 @@ class Runner {
           fail(id, name, "result differs: " + truncate(mospec::json::dump(result)),
                "expected:\n" + mospec::json::dump(expected, 2) + "\nactual:\n" +
                    mospec::json::dump(result, 2));
+          return;
+        }
+        // The loader expands into an arena and drops the tree without
+        // destroying it, which is sound only if all of it is in the arena.
+        mospec::Arena arena(512);
+        const Value in_arena = mospec::jsonld::expand(*doc.document, options, &arena);
+        if (!(in_arena == result) || !mospec::json::lives_in(in_arena, &arena)) {
+          fail(id, name, "expanded into an arena, the result differs or is not all in the arena",
+               mospec::json::dump(in_arena, 2));
           return;
         }
       } else {

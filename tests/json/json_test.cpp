@@ -446,5 +446,69 @@ TEST(JsonArena, KeysAddedToAnArenaObjectLiveInItsResource) {
   EXPECT_EQ(counting.live_bytes, 0u);
 }
 
+// What lets the loader drop a parsed or expanded tree with its arena instead
+// of destroying it: every block of the tree is in the arena, key indexes of
+// wide objects included, and lives_in() says so (or says where it is not).
+TEST(JsonArena, AWholeParsedTreeLivesInItsArenaWideObjectsIncluded) {
+  std::string wide = "{";
+  for (int i = 0; i < 40; ++i) {
+    wide += (i ? ", " : "") + std::string("\"member number ") + std::to_string(i) +
+            " with a long key\": [\"a value long enough to allocate\"]";
+  }
+  wide += "}";
+  CountingResource counting;
+  {
+    const Value in_arena = parse(wide, 1, "wide.json", &counting);
+    EXPECT_TRUE(lives_in(in_arena, &counting));
+    EXPECT_FALSE(lives_in(in_arena, std::pmr::get_default_resource()));
+    // A find through the key index still answers.
+    ASSERT_NE(in_arena.as_object().find("member number 39 with a long key"), nullptr);
+    // A copy is on the heap, key index included.
+    const Value copy = in_arena;
+    EXPECT_TRUE(lives_in(copy, std::pmr::get_default_resource()));
+    EXPECT_EQ(copy, in_arena);
+  }
+  EXPECT_EQ(counting.live_bytes, 0u);
+}
+
+TEST(JsonArena, LivesInFindsAHeapValueInsideAnArenaTree) {
+  CountingResource counting;
+  {
+    Value tree = parse(kArenaDoc, 1, "doc.json", &counting);
+    EXPECT_TRUE(lives_in(tree, &counting));
+    // A string made on the heap and moved in keeps its resource.
+    tree.as_object().value(0).as_array().push_back(
+        Value(std::string_view("a heap string long enough to allocate")));
+    EXPECT_FALSE(lives_in(tree, &counting));
+  }
+  EXPECT_EQ(counting.live_bytes, 0u);
+}
+
+// Assigning a wide object rebuilds or moves its key index so that lookups
+// answer and nothing is left behind in either resource.
+TEST(JsonArena, AssignedWideObjectsKeepAWorkingKeyIndex) {
+  std::string wide = "{";
+  for (int i = 0; i < 20; ++i)
+    wide += (i ? ", " : "") + std::string("\"k") + std::to_string(i) + "\": 1";
+  wide += "}";
+  const Value on_heap = parse(wide);
+  CountingResource counting;
+  {
+    Object target(&counting);
+    target = on_heap.as_object();  // copy-assigned
+    ASSERT_NE(target.find("k19"), nullptr);
+    EXPECT_EQ(target.find("k20"), nullptr);
+    Object moved_into(&counting);
+    Object source = on_heap.as_object();  // on the heap
+    moved_into = std::move(source);       // across resources: moved member by member
+    ASSERT_NE(moved_into.find("k19"), nullptr);
+    Object same(&counting);
+    same = std::move(moved_into);  // same resource: the index moves with the members
+    ASSERT_NE(same.find("k0"), nullptr);
+    EXPECT_EQ(same.find("k20"), nullptr);
+  }
+  EXPECT_EQ(counting.live_bytes, 0u);
+}
+
 }  // namespace
 }  // namespace mospec::json

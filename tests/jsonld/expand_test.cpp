@@ -670,7 +670,10 @@ TEST_F(Expand, OutputBuiltInAnArenaEqualsTheHeapOutputAndStaysInIt) {
     "parent": {"@id": "http://example.org/the-parent"},
     "nested": {"inner": "a nested property value long enough"},
     "@included": [{"@id": "http://example.org/included"}],
-    "plain": {"@value": "a typed value", "@type": "http://example.org/datatype"}
+    "plain": {"@value": "a typed value", "@type": "http://example.org/datatype"},
+    "wide": {"p01": 1, "p02": 2, "p03": 3, "p04": 4, "p05": 5, "p06": 6, "p07": 7, "p08": 8,
+             "p09": 9, "p10": 10, "p11": 11, "p12": 12, "p13": 13, "p14": 14, "p15": 15,
+             "p16": 16, "p17": 17, "p18": 18}
   })";
   const json::Value on_heap = run(kDoc);
   std::pmr::monotonic_buffer_resource arena;
@@ -680,6 +683,9 @@ TEST_F(Expand, OutputBuiltInAnArenaEqualsTheHeapOutputAndStaysInIt) {
     const json::Value in_arena = expand(doc, opts_, &arena);
     EXPECT_EQ(in_arena, on_heap) << json::dump(in_arena) << "\n" << json::dump(on_heap);
     EXPECT_EQ(outside(in_arena, &arena), "");
+    // Strings, keys and key indexes too: the loader drops such a tree with its
+    // arena, without destroying it.
+    EXPECT_TRUE(json::lives_in(in_arena, &arena));
   }
 }
 
