@@ -186,6 +186,17 @@ void Object::reindex() {
   index_.p->rebuild(members_);
 }
 
+size_t Object::index_of(std::string_view key) const {
+  if (index_.p) {
+    const size_t i = index_.p->find(members_, key);
+    return i == KeyIndex::kNone ? std::string::npos : i;
+  }
+  for (size_t i = 0; i < members_.size(); ++i) {
+    if (members_[i].key == key) return i;
+  }
+  return std::string::npos;
+}
+
 const Value* Object::find(std::string_view key) const {
   if (index_.p) {
     const size_t i = index_.p->find(members_, key);

@@ -60,6 +60,8 @@ class Object {
   Resource* resource() const { return members_.get_allocator().resource(); }
   inline void reserve(size_t n);
   const Value* find(std::string_view key) const;
+  // The position of `key` among the members, or std::string::npos.
+  size_t index_of(std::string_view key) const;
   Value* find(std::string_view key);
   bool contains(std::string_view key) const { return find(key) != nullptr; }
   // Inserts or replaces; returns the stored value. A new key is copied into
@@ -186,7 +188,8 @@ class Value {
 struct Object::Member {
   // (A constructor, not aggregate initialisation, so that emplace_back builds
   // a member in place with clang 14 too.)
-  Member(String k, Value v, SourceLoc loc) : key(std::move(k)), value(std::move(v)), key_loc(loc) {}
+  Member(String&& k, Value&& v, SourceLoc loc)
+      : key(std::move(k)), value(std::move(v)), key_loc(loc) {}
   String key;
   Value value;
   SourceLoc key_loc{};

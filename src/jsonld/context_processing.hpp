@@ -530,30 +530,30 @@ struct Builder {
 };
 
 // The local context whose terms are being defined, with the `defined` map of
-// CP 5.12 kept per member index.
+// CP 5.12 kept per member index (inline for the usual few dozen members).
 struct LocalCtx {
   enum State : uint8_t { Undefined, InProgress, Defined };
   const json::Object* obj = nullptr;
-  std::vector<State> state;
-  std::unordered_map<std::string_view, size_t> index;  // built for large contexts
+  State* state;
 
-  explicit LocalCtx(const json::Object& o) : obj(&o), state(o.size(), Undefined) {
-    if (o.size() > 16) {
-      index.reserve(o.size());
-      for (size_t i = 0; i < o.size(); ++i) index.emplace(o.key(i), i);
+  explicit LocalCtx(const json::Object& o) : obj(&o) {
+    if (o.size() <= small_.size()) {
+      state = small_.data();
+    } else {
+      large_.resize(o.size());
+      state = large_.data();
     }
+    std::fill(state, state + o.size(), Undefined);
   }
-  // Index of `key`, or npos.
-  size_t find(std::string_view key) const {
-    if (!index.empty()) {
-      auto it = index.find(key);
-      return it == index.end() ? std::string::npos : it->second;
-    }
-    for (size_t i = 0; i < obj->size(); ++i) {
-      if (obj->key(i) == key) return i;
-    }
-    return std::string::npos;
-  }
+  LocalCtx(const LocalCtx&) = delete;
+  LocalCtx& operator=(const LocalCtx&) = delete;
+  // Index of `key`, or npos (through the object's own key index when it has
+  // one).
+  size_t find(std::string_view key) const { return obj->index_of(key); }
+
+ private:
+  std::array<State, 64> small_;
+  std::vector<State> large_;
 };
 
 // Whether `state` answers every lookup in `deps` as the state they were

@@ -26,9 +26,11 @@ std::string CanonicalPaths::canonical(std::string_view path) {
   // `resolved` stays canonical: every component appended to it was checked
   // not to be a link (or replaced by what the link resolves to), so `..` can
   // drop its last component by spelling.
-  std::string resolved = path[0] == '/' ? std::string() : cwd_;
-  if (resolved == "/") resolved.clear();
-  std::string candidate;
+  // (Both buffers are kept across calls: a path costs no allocation but its
+  // answer and the components seen for the first time.)
+  std::string& resolved = resolved_;
+  std::string& candidate = candidate_;
+  resolved.assign(path[0] == '/' || cwd_ == "/" ? std::string_view() : std::string_view(cwd_));
   size_t at = 0;
   while (at < path.size()) {
     size_t end = path.find('/', at);
@@ -49,12 +51,12 @@ std::string CanonicalPaths::canonical(std::string_view path) {
         // path and normalises the rest by spelling.
         return canonical_path(std::string(path)).string();
       }
-      Known k{candidate, S_ISDIR(st.st_mode)};
-      if (S_ISLNK(st.st_mode)) {
+      Known k{S_ISDIR(st.st_mode), S_ISLNK(st.st_mode), {}};
+      if (k.link) {
         // A link is rare: realpath answers for it (and stat for its target).
         char* target = ::realpath(candidate.c_str(), nullptr);
         if (target == nullptr) return canonical_path(std::string(path)).string();
-        k.path = std::string_view(target) == "/" ? std::string() : std::string(target);
+        k.target = std::string_view(target) == "/" ? std::string() : std::string(target);
         k.directory = ::stat(target, &st) == 0 && S_ISDIR(st.st_mode);
         std::free(target);
       }
@@ -65,7 +67,11 @@ std::string CanonicalPaths::canonical(std::string_view path) {
     if (!it->second.directory && end < path.size()) {
       return canonical_path(std::string(path)).string();
     }
-    resolved = it->second.path;
+    if (it->second.link) {
+      resolved = it->second.target;
+    } else {
+      resolved.swap(candidate);
+    }
   }
   return resolved.empty() ? std::string("/") : resolved;
 }

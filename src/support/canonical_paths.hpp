@@ -20,14 +20,15 @@ class CanonicalPaths {
 
  private:
   std::string cwd_;
-  // A canonical directory plus one more component -> that path's canonical
-  // form (itself unless the component is a symbolic link), and whether it is
-  // a directory.
+  // A canonical directory plus one more component -> whether it is a
+  // directory, and for a symbolic link, the canonical form it resolves to.
   struct Known {
-    std::string path;
     bool directory = false;
+    bool link = false;
+    std::string target;  // a link's canonical target
   };
   std::unordered_map<std::string, Known> known_;
+  std::string resolved_, candidate_;  // canonical()'s buffers
 };
 
 }  // namespace mospec
