@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "json/json.hpp"
+#include "support/arena.hpp"
 #include "support/canonical_paths.hpp"
 #include "support/diagnostics.hpp"
 
@@ -110,6 +111,8 @@ class MappedDocumentLoader : public DocumentLoader {
   // small blocks that a large request triggers) per document.
   std::string read_buffer_;
   size_t reads_ = 0;
+  // Where the documents' parsed values live (loader.cpp, kDocumentArenaBytes).
+  std::shared_ptr<Arena> documents_arena_;
 };
 
 }  // namespace mospec::jsonld
