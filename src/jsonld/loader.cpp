@@ -21,21 +21,18 @@ namespace mospec::jsonld {
 
 namespace {
 
-// A parsed document: its tree is in the arena shared by the documents of one
-// loader (one load), which it keeps alive. The tree is in the arena whole (the
-// parser builds every string, array, object and key index there;
-// json::lives_in), so it is dropped with the arena and never destroyed value
-// by value.
+// A parsed document and the arena its values live in. The tree is in the
+// arena whole (the parser builds every string, array, object and key index
+// there; json::lives_in), so it is dropped with the arena and never destroyed
+// value by value.
 struct ParsedDocument {
-  std::shared_ptr<Arena> arena;
+  // Parsed values take about three times the bytes of their text (2.9 over
+  // the shipped models, robots and metamodels, 4.1 at most), so the first
+  // block holds most documents; the arena grows past it by itself.
+  explicit ParsedDocument(size_t text_bytes) : arena(std::max<size_t>(1024, 3 * text_bytes)) {}
+  Arena arena;
   const json::Value* root = nullptr;  // in the arena
 };
-
-// The first block of a loader's document arena: parsed values take about
-// three times the bytes of their text (2.9 over the shipped models, robots
-// and metamodels, 4.1 at most), and sc1's 45 documents and contexts about
-// 200 KB of text; the arena doubles past it by itself.
-constexpr size_t kDocumentArenaBytes = 256 * 1024;
 
 }  // namespace
 namespace fs = std::filesystem;
@@ -323,20 +320,14 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
     RemoteDocument doc;
     doc.file_id = files_.add(path);
     doc.content_type = "application/ld+json";
-    // The document's values live in the loader's arena, which lives as long
-    // as any of its documents: parsing costs a pointer bump per string, array
-    // and object, and the documents of a load are freed in a few blocks when
-    // their last user lets go (one block per document cost a large
-    // allocation each, and with it a consolidation of the heap's free lists).
-    if (!documents_arena_) {
-      documents_arena_ = std::make_shared<Arena>(std::max(kDocumentArenaBytes, 3 * text.size()));
-    }
-    auto parsed = std::make_shared<ParsedDocument>(ParsedDocument{documents_arena_, nullptr});
-    Arena& arena = *documents_arena_;
-    json::Value* root =
-        static_cast<json::Value*>(arena.allocate(sizeof(json::Value), alignof(json::Value)));
-    parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &arena));
-    assert(json::lives_in(*parsed->root, &arena));
+    // The document's values live in an arena that lives as long as they do:
+    // parsing costs a pointer bump per string, array and object, and the
+    // document is freed in a few blocks when its last user lets go.
+    auto parsed = std::make_shared<ParsedDocument>(text.size());
+    json::Value* root = static_cast<json::Value*>(
+        parsed->arena.allocate(sizeof(json::Value), alignof(json::Value)));
+    parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &parsed->arena));
+    assert(json::lives_in(*parsed->root, &parsed->arena));
     doc.document = std::shared_ptr<const json::Value>(parsed, parsed->root);
     doc.document_url = file_url(key);
     it = cache_.emplace(key, std::move(doc)).first;

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "json/json.hpp"
-#include "support/arena.hpp"
 #include "support/canonical_paths.hpp"
 #include "support/diagnostics.hpp"
 
@@ -111,8 +110,6 @@ class MappedDocumentLoader : public DocumentLoader {
   // small blocks that a large request triggers) per document.
   std::string read_buffer_;
   size_t reads_ = 0;
-  // Where the documents' parsed values live (loader.cpp, kDocumentArenaBytes).
-  std::shared_ptr<Arena> documents_arena_;
 };
 
 }  // namespace mospec::jsonld
