@@ -8,6 +8,8 @@
 #include <memory_resource>
 #include <string>
 
+#include "counting_resource.hpp"
+
 namespace mospec::json {
 namespace {
 
@@ -366,24 +368,7 @@ TEST(JsonCanonicalize, NumbersAndNesting) {
 // ---------------------------------------------------------------------------
 // Values in an arena
 
-// Counts what is allocated from it, passing the requests on to the heap.
-class CountingResource : public std::pmr::memory_resource {
- public:
-  size_t allocations = 0;
-  size_t live_bytes = 0;
-
- private:
-  void* do_allocate(size_t bytes, size_t align) override {
-    ++allocations;
-    live_bytes += bytes;
-    return std::pmr::new_delete_resource()->allocate(bytes, align);
-  }
-  void do_deallocate(void* p, size_t bytes, size_t align) override {
-    live_bytes -= bytes;
-    std::pmr::new_delete_resource()->deallocate(p, bytes, align);
-  }
-  bool do_is_equal(const memory_resource& other) const noexcept override { return this == &other; }
-};
+using mospec::test::CountingResource;
 
 constexpr std::string_view kArenaDoc =
     R"({"a long key that is not a short string": [1, "a string past the small-string buffer", {"nested object key long enough": "another value long enough to allocate"}], "esc\u00e9aped and long enough to allocate": true})";

@@ -11,28 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "counting_resource.hpp"
+
 namespace {
 
-// Counts what reaches the heap.
-class CountingResource final : public std::pmr::memory_resource {
- public:
-  size_t allocations = 0, deallocations = 0, live_bytes = 0;
-
- private:
-  void* do_allocate(size_t bytes, size_t alignment) override {
-    ++allocations;
-    live_bytes += bytes;
-    return std::pmr::new_delete_resource()->allocate(bytes, alignment);
-  }
-  void do_deallocate(void* p, size_t bytes, size_t alignment) override {
-    ++deallocations;
-    live_bytes -= bytes;
-    std::pmr::new_delete_resource()->deallocate(p, bytes, alignment);
-  }
-  bool do_is_equal(const std::pmr::memory_resource& o) const noexcept override {
-    return this == &o;
-  }
-};
+using mospec::test::CountingResource;
 
 TEST(Arena, AlignsEveryAllocationAndNeverOverlaps) {
   CountingResource heap;
