@@ -342,6 +342,33 @@ TEST_F(ContextTest, Import) {
   EXPECT_EQ(error_of(R"({"@import": "http://ctx.org/arr.jsonld"})"), "invalid remote context");
 }
 
+// A scoped context written in a remote context is kept by pointing into that
+// context's document; one that came in through @import sits in a merged copy
+// that processing drops, so it must be kept as a copy of its own. Either way
+// it is still there once processing is over.
+TEST_F(ContextTest, ScopedContextsOfRemoteAndImportedContextsOutliveProcessing) {
+  loader.add("http://ctx.org/scoped.jsonld",
+             R"({"@context": {"robot": {"@id": "http://e/robot",
+                                       "@context": {"joint": {"@id": "http://e/joint",
+                                                              "@type": "@id"}}}}})");
+  loader.add("http://ctx.org/importing.jsonld",
+             R"({"@context": {"@import": "scoped.jsonld", "arm": "http://e/arm"}})");
+  const json::Value expected =
+      json::parse(R"({"joint": {"@id": "http://e/joint", "@type": "@id"}})");
+  for (const char* ctx :
+       {R"("http://ctx.org/scoped.jsonld")", R"("http://ctx.org/importing.jsonld")"}) {
+    ContextPtr c = process(ctx);
+    const TermDefinition* robot = c->find("robot");
+    ASSERT_NE(robot, nullptr) << ctx;
+    ASSERT_NE(robot->local_context, nullptr) << ctx;
+    EXPECT_EQ(*robot->local_context, expected) << ctx;
+    // And it applies.
+    ContextPtr scoped = process_context(c, *robot->local_context, robot->base_url, options);
+    ASSERT_NE(scoped->find("joint"), nullptr) << ctx;
+    EXPECT_EQ(scoped->find("joint")->type, "@id") << ctx;
+  }
+}
+
 TEST_F(ContextTest, ExpandIri) {
   ContextPtr c = process(R"({
     "@vocab": "http://v/", "ex": "http://e/", "id": "@id", "nul": null,
