@@ -122,9 +122,9 @@ class Loader {
         // model's dataset, default graph renamed to the file's graph (what
         // copy_into_file_graph does, without a dataset per file).
         opts.default_graph = doc.document_url;
-        jsonld::to_rdf(expanded, dataset_, opts);
+        jsonld::to_rdf(expanded, dataset_, opts, &arena);
       } else {
-        jsonld::to_rdf(expanded, local.emplace(), opts);
+        jsonld::to_rdf(expanded, local.emplace(), opts, &arena);
       }
       grown = arena.allocated_bytes();
     }

@@ -404,7 +404,8 @@ class LazyIri {
 
 class Converter {
  public:
-  Converter(rdf::Dataset& out, const Options& options) : out_(out), options_(options) {}
+  Converter(rdf::Dataset& out, const Options& options, std::pmr::memory_resource* scratch)
+      : out_(out), options_(options), arena_(16 * 1024, scratch) {}
 
   void run(const json::Value& expanded) {
     generate(expanded, graph_named("@default"sv, Symbols::kNone), nullptr, nullptr, Symbols::kNone,
@@ -831,7 +832,7 @@ class Converter {
   rdf::Dataset& out_;
   const Options& options_;
   // Declared first: destroyed after everything that draws from it.
-  Arena arena_{16 * 1024};
+  Arena arena_;
   Symbols symbols_{&arena_};
   std::pmr::vector<SymbolInfo> info_{&arena_};                   // by symbol
   std::pmr::map<std::string_view, NamedGraph> graphs_{&arena_};  // ordered by graph name
@@ -844,8 +845,9 @@ class Converter {
 
 }  // namespace
 
-void to_rdf(const json::Value& expanded, rdf::Dataset& out, const Options& options) {
-  Converter(out, options).run(expanded);
+void to_rdf(const json::Value& expanded, rdf::Dataset& out, const Options& options,
+            std::pmr::memory_resource* scratch) {
+  Converter(out, options, scratch).run(expanded);
 }
 
 void load_into(const json::Value& document, rdf::Dataset& out, const Options& options) {
