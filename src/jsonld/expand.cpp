@@ -4,6 +4,8 @@
 #include "jsonld/expand.hpp"
 
 #include <algorithm>
+#include <cstddef>
+#include <memory_resource>
 #include <optional>
 #include <set>
 #include <string>
@@ -16,6 +18,7 @@
 #include "jsonld/context_processing.hpp"
 #include "jsonld/loader.hpp"
 #include "rdf/iri.hpp"
+#include "support/arena.hpp"
 #include "support/spelling.hpp"
 
 namespace mospec::jsonld {
@@ -586,7 +589,11 @@ Value Expander::expand_object(const ContextPtr& entry, ActiveProperty ap,
     if (v.is_string()) {
       apply_type_scoped(v.as_string());
     } else if (v.is_array()) {
-      std::vector<std::string_view> terms;
+      // A node's types are a handful: sorted on the stack, not the heap.
+      alignas(std::string_view) std::byte buffer[8 * sizeof(std::string_view)];
+      Arena scratch(buffer, sizeof buffer);
+      std::pmr::vector<std::string_view> terms(&scratch);
+      terms.reserve(v.as_array().size());
       for (const Value& t : v.as_array()) {
         if (t.is_string()) terms.push_back(t.as_string());
       }
