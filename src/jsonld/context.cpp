@@ -60,16 +60,16 @@ ActiveContext::ActiveContext(std::shared_ptr<Impl> impl) : impl_(std::move(impl)
 
 ContextPtr ActiveContext::initial(std::string base, const Options&) {
   auto impl = std::make_shared<Impl>();
-  impl->original_base = base;
-  impl->base = std::move(base);
+  impl->original_base = detail::SharedString(base);
+  impl->base = impl->original_base;
   return std::make_shared<const ActiveContext>(std::move(impl));
 }
 
 const std::string& ActiveContext::base() const {
-  return impl_->base;
+  return impl_->base.str();
 }
 const std::string& ActiveContext::original_base() const {
-  return impl_->original_base;
+  return impl_->original_base.str();
 }
 const std::optional<std::string>& ActiveContext::vocab() const {
   return impl_->vocab;

@@ -292,7 +292,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
         if (d.used_base && d.base != result.base) continue;
         if (!deps_hold(d.deps, result.layer.get())) continue;
         ++cache_->stats.delta_hits;
-        const std::string in_base = result.base;
+        const detail::SharedString in_base = result.base;
         apply_delta(result, d);
         store_remote(iri, flags, in_terms, d.vocab, d.language, d.direction, d.used_base, in_base,
                      result);
@@ -328,7 +328,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
   delta.vocab = result.vocab;
   delta.language = result.language;
   delta.direction = result.direction;
-  const std::string in_base = result.base;
+  const detail::SharedString in_base = result.base;
   const ContextPtr in_previous = result.previous;
   const bool saved_used = result.used_base, saved_touched = result.touched_base;
   result.used_base = false;
@@ -368,7 +368,7 @@ void Processor::store_remote(const std::string& iri, unsigned flags, const Layer
                              const std::optional<std::string>& vocab,
                              const std::optional<std::string>& language,
                              const std::optional<std::string>& direction, bool used_base,
-                             const std::string& base, const Builder& result) {
+                             const detail::SharedString& base, const Builder& result) {
   ContextCache::Impl::RemoteEntry e;
   e.terms = in_terms;
   e.terms_raw = in_terms.get();

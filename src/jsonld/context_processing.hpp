@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -29,6 +30,32 @@
 namespace mospec::jsonld {
 
 namespace detail {
+
+// A base IRI as active contexts, builders and cache entries hold it. Every
+// context made from another keeps its base IRI (and original base URL), so
+// they are copied far more often than written: a copy here shares the one
+// string instead of allocating another. Immutable once made.
+class SharedString {
+ public:
+  SharedString() = default;
+  explicit SharedString(std::string_view s)
+      : p_(s.empty() ? nullptr : std::make_shared<const std::string>(s)) {}
+  SharedString& operator=(std::string_view s) { return *this = SharedString(s); }
+  const std::string& str() const { return p_ ? *p_ : empty_string(); }
+  operator const std::string&() const { return str(); }  // NOLINT: reads as the string
+  bool empty() const { return p_ == nullptr; }
+  void clear() { p_.reset(); }
+  friend bool operator==(const SharedString& a, const SharedString& b) {
+    return a.p_ == b.p_ || a.str() == b.str();
+  }
+
+ private:
+  static const std::string& empty_string() {
+    static const std::string empty;
+    return empty;
+  }
+  std::shared_ptr<const std::string> p_;  // null: empty
+};
 
 // A term with its hash computed once, for looking it up in every layer of a
 // chain (TermLayer::lookup) without hashing it again per layer.
@@ -183,7 +210,7 @@ struct Delta {
   unsigned flags = 0;
   std::optional<std::string> vocab, language, direction;  // of the state
   bool used_base = false;
-  std::string base;  // compared only when used_base
+  SharedString base;  // compared only when used_base
   DepList deps;
   TermMap changes;  // defined or (null) removed terms
   std::optional<std::string> out_vocab, out_language, out_direction;
@@ -257,8 +284,8 @@ inline std::string quoted(std::string_view s) {
 
 struct ActiveContext::Impl {
   LayerPtr terms;  // nullptr: no term definitions
-  std::string base;
-  std::string original_base;
+  detail::SharedString base;
+  detail::SharedString original_base;
   std::optional<std::string> vocab;
   std::optional<std::string> language;
   std::optional<std::string> direction;
@@ -345,7 +372,7 @@ struct ContextCache::Impl {
     std::optional<std::string> vocab, language, direction;
     unsigned flags = 0;
     bool used_base = false;
-    std::string base;  // compared only when used_base
+    detail::SharedString base;  // compared only when used_base
     LayerPtr out_terms;
     std::optional<std::string> out_vocab, out_language, out_direction;
   };
@@ -395,8 +422,8 @@ struct Builder {
   const Builder* parent = nullptr;
   LayerPtr layer;
   TermMap overlay;
-  std::string base;
-  std::string original_base;
+  detail::SharedString base;
+  detail::SharedString original_base;
   std::optional<std::string> vocab, language, direction;
   ContextPtr previous;
   // Whether processing read the base IRI (the cache key must then include it)
@@ -441,7 +468,7 @@ struct Builder {
   }
   const std::string& base_iri() const {
     used_base = true;
-    return base;
+    return base.str();
   }
 
   void set(std::string_view term, TermPtr def) {
@@ -724,7 +751,7 @@ class Processor {
                     const std::optional<std::string>& vocab,
                     const std::optional<std::string>& language,
                     const std::optional<std::string>& direction, bool used_base,
-                    const std::string& base, const Builder& result);
+                    const detail::SharedString& base, const Builder& result);
 
   struct TermArgs {
     const std::string& base_url;
