@@ -56,13 +56,11 @@ bool TermDefinition::operator==(const TermDefinition& o) const {
 // ---------------------------------------------------------------------------
 // ActiveContext
 
-ActiveContext::ActiveContext(std::shared_ptr<Impl> impl) : impl_(std::move(impl)) {}
-
 ContextPtr ActiveContext::initial(std::string base, const Options&) {
-  auto impl = std::make_shared<Impl>();
-  impl->original_base = detail::SharedString(base);
-  impl->base = impl->original_base;
-  return std::make_shared<const ActiveContext>(std::move(impl));
+  Impl impl;
+  impl.original_base = detail::SharedString(base);
+  impl.base = impl.original_base;
+  return internal::make_context(std::move(impl));
 }
 
 const std::string& ActiveContext::base() const {

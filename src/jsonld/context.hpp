@@ -72,11 +72,15 @@ class ActiveContext {
   bool has_protected_terms() const;
 
   struct Impl;
-  explicit ActiveContext(std::shared_ptr<Impl> impl);
+  // A context and its state are made together, in one allocation
+  // (internal::make_context); the context only points at the state.
+  explicit ActiveContext(const Impl* impl) : impl_(impl) {}
+  ActiveContext(const ActiveContext&) = delete;
+  ActiveContext& operator=(const ActiveContext&) = delete;
   const Impl& impl() const { return *impl_; }
 
  private:
-  std::shared_ptr<Impl> impl_;
+  const Impl* impl_;
 };
 
 // Memo of context processing shared by the documents of one run (one per

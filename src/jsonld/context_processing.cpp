@@ -491,15 +491,15 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
           if (!(stored == local_context)) continue;
         }
         ++cache->stats.state_hits;
-        auto impl = std::make_shared<ActiveContext::Impl>();
-        impl->terms = e.out_terms;
-        impl->base = in.base;
-        impl->original_base = in.original_base;
-        impl->vocab = e.out_vocab;
-        impl->language = e.out_language;
-        impl->direction = e.out_direction;
-        impl->previous = expected_previous;
-        ContextPtr out = std::make_shared<const ActiveContext>(std::move(impl));
+        ActiveContext::Impl impl;
+        impl.terms = e.out_terms;
+        impl.base = in.base;
+        impl.original_base = in.original_base;
+        impl.vocab = e.out_vocab;
+        impl.language = e.out_language;
+        impl.direction = e.out_direction;
+        impl.previous = expected_previous;
+        ContextPtr out = internal::make_context(std::move(impl));
         store_exact(*cache, active, owner, local_context, base_url, flags, key, out);
         return out;
       }

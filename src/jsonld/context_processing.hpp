@@ -294,6 +294,21 @@ struct ActiveContext::Impl {
 
 namespace internal {
 
+// A context with its state beside it: one allocation per context (and one
+// free when the last user lets go) instead of one for each.
+struct ContextBlock {
+  explicit ContextBlock(ActiveContext::Impl state) : impl(std::move(state)), context(&impl) {}
+  ContextBlock(const ContextBlock&) = delete;
+  ContextBlock& operator=(const ContextBlock&) = delete;
+  ActiveContext::Impl impl;
+  ActiveContext context;
+};
+
+inline ContextPtr make_context(ActiveContext::Impl impl) {
+  auto block = std::make_shared<const ContextBlock>(std::move(impl));
+  return ContextPtr(block, &block->context);
+}
+
 inline size_t mix(size_t h, size_t v) {
   return h ^ (v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2));
 }
@@ -544,15 +559,15 @@ struct Builder {
 
   ContextPtr to_context() {
     freeze();
-    auto impl = std::make_shared<ActiveContext::Impl>();
-    impl->terms = layer;
-    impl->base = base;
-    impl->original_base = original_base;
-    impl->vocab = vocab;
-    impl->language = language;
-    impl->direction = direction;
-    impl->previous = previous;
-    return std::make_shared<const ActiveContext>(std::move(impl));
+    ActiveContext::Impl impl;
+    impl.terms = layer;
+    impl.base = base;
+    impl.original_base = original_base;
+    impl.vocab = vocab;
+    impl.language = language;
+    impl.direction = direction;
+    impl.previous = previous;
+    return make_context(std::move(impl));
   }
 };
 
