@@ -78,7 +78,115 @@ struct StringEq {
 };
 
 using TermPtr = std::shared_ptr<const TermDefinition>;
-using TermMap = std::unordered_map<std::string, TermPtr, StringHash, StringEq>;
+
+// Terms to definitions, for a layer, a builder's overlay and a delta: the
+// entries in one array in the order they were added, found through an
+// open-addressing table of their indexes (linear probing; the entries' hashes
+// kept beside them). A remote context's layer of a hundred terms is then a
+// few allocations instead of a node per term, a lookup touches one slot and
+// one entry, and iterating is deterministic. Erasing is rare (a freeze
+// dropping removals of nothing, a flatten): it rebuilds the table.
+class TermMap {
+ public:
+  using value_type = std::pair<std::string, TermPtr>;
+  using iterator = std::vector<value_type>::iterator;
+  using const_iterator = std::vector<value_type>::const_iterator;
+
+  iterator begin() { return entries_.begin(); }
+  iterator end() { return entries_.end(); }
+  const_iterator begin() const { return entries_.begin(); }
+  const_iterator end() const { return entries_.end(); }
+  bool empty() const { return entries_.empty(); }
+  size_t size() const { return entries_.size(); }
+  void clear() {
+    entries_.clear();
+    hashes_.clear();
+    slots_.clear();
+  }
+
+  iterator find(std::string_view term) { return find(HashedKey{term, StringHash{}(term)}); }
+  const_iterator find(std::string_view term) const {
+    return find(HashedKey{term, StringHash{}(term)});
+  }
+  iterator find(const HashedKey& key) { return entries_.begin() + index_of(key); }
+  const_iterator find(const HashedKey& key) const { return entries_.begin() + index_of(key); }
+
+  // Adds `term` unless it is there (then nothing changes), like
+  // std::unordered_map::emplace.
+  std::pair<iterator, bool> emplace(std::string_view term, TermPtr def) {
+    const HashedKey key{term, StringHash{}(term)};
+    const size_t at = index_of(key);
+    if (at != entries_.size()) return {entries_.begin() + static_cast<std::ptrdiff_t>(at), false};
+    if (2 * (entries_.size() + 1) > slots_.size()) rehash(std::max<size_t>(8, 2 * slots_.size()));
+    entries_.emplace_back(std::string(term), std::move(def));
+    hashes_.push_back(key.hash);
+    place(entries_.size() - 1);
+    return {entries_.end() - 1, true};
+  }
+
+  // Removes the entry at `it`; the last entry takes its place, so a loop
+  // erasing as it goes visits that one next (the returned iterator).
+  iterator erase(iterator it) {
+    const auto at = static_cast<size_t>(it - entries_.begin());
+    if (at + 1 != entries_.size()) {
+      entries_[at] = std::move(entries_.back());
+      hashes_[at] = hashes_.back();
+    }
+    entries_.pop_back();
+    hashes_.pop_back();
+    reindex();
+    return entries_.begin() + static_cast<std::ptrdiff_t>(at);
+  }
+
+  template <class Pred>
+  friend size_t erase_if(TermMap& map, Pred pred) {
+    size_t kept = 0;
+    for (size_t i = 0; i < map.entries_.size(); ++i) {
+      if (pred(std::as_const(map.entries_[i]))) continue;
+      if (kept != i) {
+        map.entries_[kept] = std::move(map.entries_[i]);
+        map.hashes_[kept] = map.hashes_[i];
+      }
+      ++kept;
+    }
+    const size_t removed = map.entries_.size() - kept;
+    map.entries_.resize(kept);
+    map.hashes_.resize(kept);
+    if (removed != 0) map.reindex();
+    return removed;
+  }
+
+  // The hash of each entry's term (StringHash), in entry order.
+  const std::vector<size_t>& hashes() const { return hashes_; }
+
+ private:
+  // The entry's index, or entries_.size() when absent.
+  size_t index_of(const HashedKey& key) const {
+    if (slots_.empty()) return entries_.size();
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = key.hash & mask;; i = (i + 1) & mask) {
+      const uint32_t slot = slots_[i];
+      if (slot == 0) return entries_.size();
+      if (hashes_[slot - 1] == key.hash && entries_[slot - 1].first == key.text) return slot - 1;
+    }
+  }
+  void place(size_t entry) {
+    const size_t mask = slots_.size() - 1;
+    size_t i = hashes_[entry] & mask;
+    while (slots_[i] != 0) i = (i + 1) & mask;
+    slots_[i] = static_cast<uint32_t>(entry + 1);
+  }
+  // A table of `slot_count` slots (or none, for no entries) holding every entry.
+  void rehash(size_t slot_count) {
+    slots_.assign(slot_count, 0);
+    for (size_t e = 0; e < entries_.size(); ++e) place(e);
+  }
+  void reindex() { rehash(entries_.empty() ? 0 : slots_.size()); }
+
+  std::vector<value_type> entries_;
+  std::vector<size_t> hashes_;
+  std::vector<uint32_t> slots_;  // entry index + 1; 0: empty. A power of two, at most half full
+};
 
 // Term definitions are stored as a chain of immutable layers: processing a local
 // context adds one layer with the terms it (re)defined over the layer of the
@@ -106,7 +214,7 @@ struct TermLayer {
   // Sets `bloom` from `defs` (after defs is filled).
   void index_bloom() {
     bloom = 0;
-    for (const auto& kv : defs) bloom |= bloom_bit(StringHash{}(std::string_view(kv.first)));
+    for (size_t hash : defs.hashes()) bloom |= bloom_bit(hash);
   }
 
   const TermPtr* lookup(std::string_view term) const {
@@ -491,7 +599,7 @@ struct Builder {
     if (it != overlay.end()) {
       it->second = std::move(def);
     } else {
-      overlay.emplace(std::string(term), std::move(def));
+      overlay.emplace(term, std::move(def));
     }
   }
 
@@ -548,7 +656,7 @@ struct Builder {
       for (const TermLayer* p = layer.get(); p != nullptr; p = p->parent.get()) {
         for (const auto& [k, v] : p->defs) l->defs.emplace(k, v);
       }
-      std::erase_if(l->defs, [](const auto& kv) { return !kv.second; });
+      erase_if(l->defs, [](const auto& kv) { return !kv.second; });
     } else {
       l->parent = layer;
       l->depth = layer ? layer->depth + 1 : 1;
