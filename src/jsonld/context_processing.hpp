@@ -80,12 +80,14 @@ struct StringEq {
 using TermPtr = std::shared_ptr<const TermDefinition>;
 
 // Terms to definitions, for a layer, a builder's overlay and a delta: the
-// entries in one array in the order they were added, found through an
-// open-addressing table of their indexes (linear probing; the entries' hashes
-// kept beside them). A remote context's layer of a hundred terms is then a
-// few allocations instead of a node per term, a lookup touches one slot and
-// one entry, and iterating is deterministic. Erasing is rare (a freeze
-// dropping removals of nothing, a flatten): it rebuilds the table.
+// entries in one array in the order they were added, their hashes beside
+// them, found by a scan of the hashes while there are few (most overlays hold
+// a handful of terms) and through an open-addressing table of their indexes
+// (linear probing) beyond that. A remote context's layer of a hundred terms is
+// then a few allocations instead of a node per term, a small overlay one or
+// two, a lookup touches one slot and one entry, and iteration is
+// deterministic. Erasing is rare (a freeze dropping removals of nothing, a
+// flatten): it rebuilds the table.
 class TermMap {
  public:
   using value_type = std::pair<std::string, TermPtr>;
@@ -117,10 +119,17 @@ class TermMap {
     const HashedKey key{term, StringHash{}(term)};
     const size_t at = index_of(key);
     if (at != entries_.size()) return {entries_.begin() + static_cast<std::ptrdiff_t>(at), false};
-    if (2 * (entries_.size() + 1) > slots_.size()) rehash(std::max<size_t>(8, 2 * slots_.size()));
+    if (entries_.empty()) {
+      entries_.reserve(4);
+      hashes_.reserve(4);
+    }
     entries_.emplace_back(std::string(term), std::move(def));
     hashes_.push_back(key.hash);
-    place(entries_.size() - 1);
+    if (!slots_.empty() && 2 * entries_.size() <= slots_.size()) {
+      place(entries_.size() - 1);
+    } else if (entries_.size() > kScanned) {
+      rehash(std::max<size_t>(4 * kScanned, 2 * slots_.size()));
+    }
     return {entries_.end() - 1, true};
   }
 
@@ -160,9 +169,17 @@ class TermMap {
   const std::vector<size_t>& hashes() const { return hashes_; }
 
  private:
+  // Up to this many entries, lookups scan the hashes and there is no table.
+  static constexpr size_t kScanned = 8;
+
   // The entry's index, or entries_.size() when absent.
   size_t index_of(const HashedKey& key) const {
-    if (slots_.empty()) return entries_.size();
+    if (slots_.empty()) {
+      for (size_t e = 0; e < hashes_.size(); ++e) {
+        if (hashes_[e] == key.hash && entries_[e].first == key.text) return e;
+      }
+      return entries_.size();
+    }
     const size_t mask = slots_.size() - 1;
     for (size_t i = key.hash & mask;; i = (i + 1) & mask) {
       const uint32_t slot = slots_[i];
@@ -176,16 +193,25 @@ class TermMap {
     while (slots_[i] != 0) i = (i + 1) & mask;
     slots_[i] = static_cast<uint32_t>(entry + 1);
   }
-  // A table of `slot_count` slots (or none, for no entries) holding every entry.
+  // A table of `slot_count` slots (a power of two) holding every entry.
   void rehash(size_t slot_count) {
     slots_.assign(slot_count, 0);
     for (size_t e = 0; e < entries_.size(); ++e) place(e);
   }
-  void reindex() { rehash(entries_.empty() ? 0 : slots_.size()); }
+  // The table for the entries left after erasing: none while they are few.
+  void reindex() {
+    if (entries_.size() <= kScanned) {
+      slots_.clear();
+    } else {
+      rehash(slots_.size());
+    }
+  }
 
   std::vector<value_type> entries_;
   std::vector<size_t> hashes_;
-  std::vector<uint32_t> slots_;  // entry index + 1; 0: empty. A power of two, at most half full
+  // Entry index + 1 (0: empty); a power of two, at most half full. Empty while
+  // there are at most kScanned entries.
+  std::vector<uint32_t> slots_;
 };
 
 // Term definitions are stored as a chain of immutable layers: processing a local

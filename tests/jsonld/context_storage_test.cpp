@@ -94,6 +94,24 @@ TEST(TermMap, EraseIfKeepsTheRestFindable) {
   EXPECT_NE(map.find("again"), map.end());
 }
 
+// Few entries are found by a scan, more through a table: across that line in
+// both directions every entry stays findable.
+TEST(TermMap, ShrinkingBelowTheTableAndGrowingPastItAgain) {
+  TermMap map;
+  for (int i = 0; i < 12; ++i) map.emplace(term_name(i), def("x"));
+  EXPECT_EQ(erase_if(map, [](const auto& kv) { return kv.first.size() > 2; }), 2u);  // t10, t11
+  for (auto it = map.begin(); it != map.end();) {
+    it = it->first < "t5" ? map.erase(it) : std::next(it);
+  }
+  ASSERT_EQ(map.size(), 5u);  // t5 .. t9
+  for (int i = 12; i < 30; ++i) map.emplace(term_name(i), def("y"));
+  for (int i = 0; i < 30; ++i) {
+    const bool present = (i >= 5 && i <= 9) || i >= 12;
+    EXPECT_EQ(map.find(term_name(i)) != map.end(), present) << term_name(i);
+  }
+  EXPECT_FALSE(map.emplace(term_name(7), def("z")).second);
+}
+
 TEST(SharedString, CopiesShareOneStringAndCompareByContent) {
   SharedString a("https://example.org/base/");
   SharedString b = a;
