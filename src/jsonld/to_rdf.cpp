@@ -139,8 +139,13 @@ int compare_exact(double x, uint64_t t, int p) {
   return lhs < rhs ? -1 : lhs > rhs ? 1 : 0;
 }
 
-std::string double_lexical(double d) {
-  if (!std::isfinite(d) || d == 0) return double_lexical_exact(d);
+// Into `out` (replacing what it held): the converter keeps one string for
+// every number's lexical form, so only the first allocates.
+void double_lexical(double d, std::string& out) {
+  if (!std::isfinite(d) || d == 0) {
+    out = double_lexical_exact(d);
+    return;
+  }
   // 17 correctly rounded significant digits ("d.dddddddddddddddde±XX"). Unless
   // the 17th is a 5 (a possible tie), rounding them to 16 gives what rounding
   // the exact value to 16 digits gives: every 16-digit rounding boundary is a
@@ -153,7 +158,8 @@ std::string double_lexical(double d) {
   const auto written =
       std::to_chars(buf, buf + sizeof buf, magnitude, std::chars_format::scientific, 16);
   if (written.ec != std::errc() || written.ptr - buf < 20 || buf[1] != '.' || buf[18] != 'e') {
-    return double_lexical_exact(d);
+    out = double_lexical_exact(d);
+    return;
   }
   char digits[16];
   digits[0] = buf[0];
@@ -172,7 +178,10 @@ std::string double_lexical(double d) {
     for (char c : digits) boundary = boundary * 10 + static_cast<uint64_t>(c - '0');
     boundary = boundary * 10 + 5;
     const int sign = compare_exact(magnitude, boundary, exponent - 16);
-    if (sign == 2) return double_lexical_exact(d);
+    if (sign == 2) {
+      out = double_lexical_exact(d);
+      return;
+    }
     round_up = sign >= 0;
   }
   if (round_up) {
@@ -187,8 +196,7 @@ std::string double_lexical(double d) {
   }
   int last = 15;
   while (last > 1 && digits[last] == '0') --last;  // keep one fractional digit
-  std::string out;
-  out.reserve(24);
+  out.clear();
   if (d < 0) out += '-';
   out += digits[0];
   out += '.';
@@ -197,7 +205,6 @@ std::string double_lexical(double d) {
   char exp_buf[8];
   const auto exp_end = std::to_chars(exp_buf, exp_buf + sizeof exp_buf, exponent).ptr;
   out.append(exp_buf, exp_end);
-  return out;
 }
 
 // The same, from the exact value in every case (ties included).
@@ -766,7 +773,8 @@ class Converter {
       // numbers are put in canonical form.
       if (std::fmod(d, 1.0) != 0 || std::fabs(d) >= 1e21 || !std::isfinite(d) ||
           (datatype != kUnresolved && terms[datatype].value == kXsdDouble)) {
-        lexical = lexical_storage_ = double_lexical(d);
+        double_lexical(d, lexical_storage_);
+        lexical = lexical_storage_;
         if (datatype == kUnresolved) datatype = xsd_double_.get(terms);
       } else {
         lexical = lexical_storage_ = integer_lexical(d);
@@ -810,7 +818,7 @@ class Converter {
   rdf::TermId list_to_rdf(const Item& list, std::vector<Triple>& list_triples) {
     rdf::TermTable& terms = out_.terms();
     if (list.list.empty()) return rdf_nil_.get(terms);
-    std::vector<rdf::TermId> bnodes;
+    std::pmr::vector<rdf::TermId> bnodes(&arena_);
     bnodes.reserve(list.list.size());
     for (size_t i = 0; i < list.list.size(); ++i) bnodes.push_back(terms.fresh_blank());
     const rdf::TermId first = rdf_first_.get(terms);
