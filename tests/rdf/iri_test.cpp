@@ -156,3 +156,78 @@ TEST(IsAbsoluteIri, RequiresScheme) {
 
 }  // namespace
 }  // namespace mospec::rdf
+
+namespace mospec::rdf {
+namespace {
+
+// is_well_formed_iri as its definition reads, one byte at a time: a scheme,
+// then no excluded byte (controls, space, DEL, <>"{}|\^`), at most one '#',
+// and each '%' starting an escape of two hex digits.
+bool reference_well_formed(std::string_view s) {
+  const auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+  const auto hex = [](char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+  };
+  if (s.empty() || !alpha(s[0])) return false;
+  size_t colon = std::string_view::npos;
+  for (size_t i = 1; i < s.size(); ++i) {
+    if (s[i] == ':') {
+      colon = i;
+      break;
+    }
+    if (!alpha(s[i]) && !(s[i] >= '0' && s[i] <= '9') && s[i] != '+' && s[i] != '-' && s[i] != '.')
+      return false;
+  }
+  if (colon == std::string_view::npos) return false;
+  int hashes = 0;
+  for (size_t i = colon + 1; i < s.size(); ++i) {
+    const auto u = static_cast<unsigned char>(s[i]);
+    if (u <= 0x20 || u == 0x7f || std::string_view("<>\"{}|\\^`").find(s[i]) != s.npos) {
+      return false;
+    }
+    if (s[i] == '#' && ++hashes > 1) return false;
+    if (s[i] == '%' && (i + 2 >= s.size() || !hex(s[i + 1]) || !hex(s[i + 2]))) return false;
+  }
+  return true;
+}
+
+// Every byte value at every position of IRIs of every length up to 80 (so
+// across each 16- and 4-byte block boundary of the scan), alone and after a
+// '#' or a '%' escape earlier in the IRI.
+TEST(WellFormedIri, AgreesWithTheDefinitionForEveryByteAtEveryPosition) {
+  size_t checked = 0, well_formed = 0;
+  for (const std::string prefix : {"https://example.org/", "h:", "urn:x#", "x:%41"}) {
+    for (size_t length = prefix.size(); length <= 80; ++length) {
+      std::string iri = prefix + std::string(length - prefix.size(), 'a');
+      for (size_t at = prefix.size(); at < iri.size(); ++at) {
+        for (int byte = 0; byte < 256; ++byte) {
+          std::string probe = iri;
+          probe[at] = static_cast<char>(byte);
+          const bool expected = reference_well_formed(probe);
+          ASSERT_EQ(is_well_formed_iri(probe), expected)
+              << "byte " << byte << " at " << at << " of a " << probe.size() << "-byte IRI";
+          ++checked;
+          well_formed += expected ? 1 : 0;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 300000u);
+  EXPECT_GT(well_formed, checked / 2);  // most bytes are allowed
+  EXPECT_LT(well_formed, checked);
+}
+
+TEST(WellFormedIri, SchemesAndEscapes) {
+  EXPECT_TRUE(is_well_formed_iri("https://example.org/a%20b#frag"));
+  EXPECT_TRUE(is_well_formed_iri("https://example.org/\xC3\xA9t\xC3\xA9"));  // UTF-8
+  EXPECT_FALSE(is_well_formed_iri("https://example.org/a b"));
+  EXPECT_FALSE(is_well_formed_iri("https://example.org/a#b#c"));
+  EXPECT_FALSE(is_well_formed_iri("https://example.org/%4"));
+  EXPECT_FALSE(is_well_formed_iri("https://example.org/%zz/and/more/than/sixteen/bytes"));
+  EXPECT_FALSE(is_well_formed_iri("/relative/path"));
+  EXPECT_FALSE(is_well_formed_iri("1http://x"));
+  EXPECT_FALSE(is_well_formed_iri(""));
+}
+
+}  // namespace
+}  // namespace mospec::rdf
