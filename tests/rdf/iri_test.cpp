@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -153,12 +154,6 @@ TEST(IsAbsoluteIri, RequiresScheme) {
   EXPECT_FALSE(is_absolute_iri("#frag"));
   EXPECT_FALSE(is_absolute_iri("./a:b"));
 }
-
-}  // namespace
-}  // namespace mospec::rdf
-
-namespace mospec::rdf {
-namespace {
 
 // is_well_formed_iri as its definition reads, one byte at a time: a scheme,
 // then no excluded byte (controls, space, DEL, <>"{}|\^`), at most one '#',
