@@ -70,13 +70,6 @@ struct StringHash {
   size_t operator()(const HashedKey& k) const noexcept { return k.hash; }
 };
 
-struct StringEq {
-  using is_transparent = void;
-  bool operator()(std::string_view a, std::string_view b) const noexcept { return a == b; }
-  bool operator()(const HashedKey& a, std::string_view b) const noexcept { return a.text == b; }
-  bool operator()(std::string_view a, const HashedKey& b) const noexcept { return a == b.text; }
-};
-
 using TermPtr = std::shared_ptr<const TermDefinition>;
 
 // Terms to definitions, for a layer, a builder's overlay and a delta: the
