@@ -1,19 +1,73 @@
 #include "support/diagnostics.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
+#include <mutex>
+#include <unordered_map>
 
 namespace mospec {
 
-SourceFiles::SourceFiles() {
-  paths_.emplace_back();
+struct SourceFiles::Index {
+  std::mutex mutex;
+  std::unordered_map<std::string, uint32_t> ids;
+};
+
+SourceFiles::SourceFiles() : index_(std::make_unique<Index>()) {
+  blocks_[0] = std::make_unique<std::string[]>(kFirstBlock);
+  size_.store(1, std::memory_order_release);  // id 0, the empty path
+}
+
+SourceFiles::~SourceFiles() = default;
+
+SourceFiles::SourceFiles(const SourceFiles& other) : SourceFiles() {
+  const size_t n = other.size();
+  for (size_t id = 1; id < n; ++id) add(other.path(static_cast<uint32_t>(id)));
+}
+
+SourceFiles& SourceFiles::operator=(const SourceFiles& other) {
+  if (this != &other) *this = SourceFiles(other);
+  return *this;
+}
+
+SourceFiles::SourceFiles(SourceFiles&& other) noexcept
+    : blocks_(std::move(other.blocks_)),
+      size_(other.size_.load(std::memory_order_acquire)),
+      index_(std::move(other.index_)) {
+  other.size_.store(0, std::memory_order_release);
+}
+
+SourceFiles& SourceFiles::operator=(SourceFiles&& other) noexcept {
+  blocks_ = std::move(other.blocks_);
+  size_.store(other.size_.load(std::memory_order_acquire), std::memory_order_release);
+  index_ = std::move(other.index_);
+  other.size_.store(0, std::memory_order_release);
+  return *this;
+}
+
+// Block b holds kFirstBlock << b ids, from kFirstBlock * (2^b - 1) on.
+std::string& SourceFiles::slot(uint32_t id) const {
+  const size_t k = id / kFirstBlock + 1;
+  const int b = std::bit_width(k) - 1;
+  return blocks_[static_cast<size_t>(b)][id - kFirstBlock * ((size_t{1} << b) - 1)];
 }
 
 uint32_t SourceFiles::add(std::string path) {
-  auto it = std::find(paths_.begin() + 1, paths_.end(), path);
-  if (it != paths_.end()) return static_cast<uint32_t>(it - paths_.begin());
-  paths_.push_back(std::move(path));
-  return static_cast<uint32_t>(paths_.size() - 1);
+  std::lock_guard lock(index_->mutex);
+  auto [it, fresh] = index_->ids.try_emplace(path, 0);
+  if (!fresh) return it->second;
+  const size_t id = size_.load(std::memory_order_relaxed);
+  const size_t k = id / kFirstBlock + 1;
+  const auto b = static_cast<size_t>(std::bit_width(k) - 1);
+  if (b >= kBlocks) {
+    index_->ids.erase(it);
+    throw std::length_error("more source files than one load can name");
+  }
+  if (!blocks_[b]) blocks_[b] = std::make_unique<std::string[]>(kFirstBlock << b);
+  slot(static_cast<uint32_t>(id)) = std::move(path);
+  it->second = static_cast<uint32_t>(id);
+  size_.store(id + 1, std::memory_order_release);
+  return static_cast<uint32_t>(id);
 }
 
 Diagnostic located(Severity severity, SourceLoc loc, const SourceFiles& files, std::string code,
@@ -31,7 +85,7 @@ Diagnostic located(Severity severity, SourceLoc loc, const SourceFiles& files, s
 }
 
 const std::string& SourceFiles::path(uint32_t id) const {
-  return id < paths_.size() ? paths_[id] : paths_[0];
+  return id < size() ? slot(id) : slot(0);
 }
 
 std::string_view to_string(Severity s) {

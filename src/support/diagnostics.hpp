@@ -5,7 +5,10 @@
 // mospec::Error, which carries the same location.
 #pragma once
 
+#include <array>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -15,15 +18,31 @@ namespace mospec {
 
 // Files are named by a small integer so that every JSON value and every quad can
 // carry its origin cheaply. Id 0 means "no file" (generated or unknown).
+//
+// The documents of one load are parsed on more than one thread, so add() may
+// run beside other add() and path() calls. A path never moves once added
+// (blocks that double in size, never reallocated), so path() reads without a
+// lock: an id is only ever handed out by add(), after its path is in place.
 class SourceFiles {
  public:
   SourceFiles();
+  ~SourceFiles();
+  SourceFiles(const SourceFiles&);
+  SourceFiles& operator=(const SourceFiles&);
+  SourceFiles(SourceFiles&&) noexcept;
+  SourceFiles& operator=(SourceFiles&&) noexcept;
   uint32_t add(std::string path);  // returns the existing id if already present
   const std::string& path(uint32_t id) const;
-  size_t size() const { return paths_.size(); }
+  size_t size() const { return size_.load(std::memory_order_acquire); }
 
  private:
-  std::vector<std::string> paths_;
+  struct Index;  // path -> id, and the lock add() takes
+  static constexpr size_t kFirstBlock = 64;
+  static constexpr size_t kBlocks = 26;  // 64 * (2^26 - 1) ids, far past any model
+  std::string& slot(uint32_t id) const;
+  std::array<std::unique_ptr<std::string[]>, kBlocks> blocks_;
+  std::atomic<size_t> size_{0};
+  std::unique_ptr<Index> index_;
 };
 
 // 1-based line and column (columns count bytes); 0 means unknown.

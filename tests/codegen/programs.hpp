@@ -592,7 +592,9 @@ inline ir::Program operators_program(SourceFiles& files) {
         values.emplace_back(std::string(param.member), next += 0.25);
     }
     for (const bool gated : {false, true}) {
-      const std::string name = "c" + std::to_string(k) + (gated ? "_gated" : "_free");
+      // (Appended, not "c" + ...: GCC 12 warns falsely of overlapping memcpy there.)
+      std::string name = "c";
+      name.append(std::to_string(k)).append(gated ? "_gated" : "_free");
       const int out = b.datum(name + "_out", T::Scalar);
       std::vector<int> in(kind.in.size(), time);
       if (gated) in.push_back(gate);
