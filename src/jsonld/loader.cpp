@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <memory_resource>
+#include <mutex>
 #include <system_error>
 #include <vector>
 
@@ -126,25 +127,74 @@ std::string code_point(int u) {
 
 }  // namespace
 
+struct MappedDocumentLoader::Sync {
+  std::mutex mutex;
+  // The texts of documents being parsed, each reused across documents: the
+  // parsed values copy what they keep, and a buffer sized for the largest
+  // file saves an allocation (and the allocator's consolidation of freed
+  // small blocks that a large request triggers) per document. One per thread
+  // parsing at once.
+  std::vector<std::string> read_buffers;
+};
+
+MappedDocumentLoader::MappedDocumentLoader() : sync_(std::make_unique<Sync>()) {}
+MappedDocumentLoader::~MappedDocumentLoader() = default;
+MappedDocumentLoader::MappedDocumentLoader(MappedDocumentLoader&&) noexcept = default;
+MappedDocumentLoader& MappedDocumentLoader::operator=(MappedDocumentLoader&&) noexcept = default;
+
 void MappedDocumentLoader::add_root(const std::string& dir) {
-  if (!root_paths_.contains(dir)) root_paths_.emplace(dir, canonical(dir.empty() ? "." : dir));
+  if (!root_paths_.contains(dir)) {
+    root_paths_.emplace(dir, canonical_.canonical(dir.empty() ? "." : dir));
+  }
 }
 
 void MappedDocumentLoader::map(std::string prefix, std::string dir) {
   while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  std::lock_guard lock(sync_->mutex);
   add_root(dir);
   prefixes_[std::move(prefix)] = std::move(dir);
+  ++generation_;
 }
 
 void MappedDocumentLoader::map_fallback(std::string prefix, std::string dir) {
   while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  std::lock_guard lock(sync_->mutex);
   add_root(dir);
   fallbacks_[std::move(prefix)] = std::move(dir);
+  ++generation_;
 }
 
 void MappedDocumentLoader::allow(std::string dir) {
+  std::lock_guard lock(sync_->mutex);
   add_root(dir);
   allowed_.push_back(std::move(dir));
+  ++generation_;
+}
+
+void MappedDocumentLoader::confine(bool on) {
+  std::lock_guard lock(sync_->mutex);
+  confined_ = on;
+  ++generation_;
+}
+
+bool MappedDocumentLoader::confined() const {
+  std::lock_guard lock(sync_->mutex);
+  return confined_;
+}
+
+size_t MappedDocumentLoader::generation() const {
+  std::lock_guard lock(sync_->mutex);
+  return generation_;
+}
+
+size_t MappedDocumentLoader::documents_read() const {
+  std::lock_guard lock(sync_->mutex);
+  return reads_;
+}
+
+std::string MappedDocumentLoader::canonical(std::string_view path) const {
+  std::lock_guard lock(sync_->mutex);
+  return canonical_.canonical(path);
 }
 
 namespace {
@@ -198,13 +248,15 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
                                                       SourceLoc referenced_from,
                                                       std::string_view code,
                                                       std::string_view what) const {
-  return resolve_for_loading(iri, referenced_from, code, what, nullptr);
+  std::lock_guard lock(sync_->mutex);
+  return resolve_for_loading_locked(iri, referenced_from, code, what, nullptr);
 }
 
-std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
-                                                      SourceLoc referenced_from,
-                                                      std::string_view code, std::string_view what,
-                                                      std::string* mapped) const {
+std::string MappedDocumentLoader::resolve_for_loading_locked(std::string_view iri,
+                                                             SourceLoc referenced_from,
+                                                             std::string_view code,
+                                                             std::string_view what,
+                                                             std::string* mapped) const {
   const std::string& ref_file = files_.path(referenced_from.file);
   auto fail = [&](const std::string& reason) -> Error {
     return Error(std::string(code),
@@ -215,7 +267,7 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
     throw fail("the IRI contains the control character " + code_point(c) +
                "; IRIs that name files may not contain U+0000-U+001F or U+007F");
   }
-  std::string path = resolve(iri);
+  std::string path = resolve_locked(iri);
   if (path.empty()) {
     std::string known;
     for (const auto& entry : prefixes_) {
@@ -230,7 +282,7 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
                "; IRIs that name files may not contain U+0000-U+001F or U+007F");
   }
   if (confined_) {
-    const std::string canonical = this->canonical(path);
+    const std::string canonical = canonical_.canonical(path);
     if (!inside_sandbox(canonical)) {
       throw fail("it resolves to '" + escaped_bytes(canonical) +
                  "', outside the model tree (the directories of --map, --root, the app's "
@@ -247,6 +299,11 @@ std::string MappedDocumentLoader::resolve_for_loading(std::string_view iri,
 }
 
 std::string MappedDocumentLoader::resolve(std::string_view iri) const {
+  std::lock_guard lock(sync_->mutex);
+  return resolve_locked(iri);
+}
+
+std::string MappedDocumentLoader::resolve_locked(std::string_view iri) const {
   // Longest prefix wins, so a mapping for a sub-tree overrides its parent's;
   // fallbacks only where no regular mapping applies.
   const std::pair<const std::string, std::string>* best = nullptr;
@@ -286,9 +343,15 @@ RemoteDocument MappedDocumentLoader::load(std::string_view iri, SourceLoc refere
   // between check and read changes which file that is); messages keep the
   // mapped path the user recognises.
   std::string path;
-  const std::string read_path = resolve_for_loading(iri, referenced_from, code, what, &path);
+  std::string read_path;
+  bool confined = false;
+  {
+    std::lock_guard lock(sync_->mutex);
+    read_path = resolve_for_loading_locked(iri, referenced_from, code, what, &path);
+    confined = confined_;
+  }
   try {
-    return load_path(path, read_path, std::string(iri), confined_);
+    return load_path(path, read_path, std::string(iri), confined);
   } catch (const Error& e) {
     if (e.code() != kDocumentFailed) throw;  // JSON syntax errors keep their own location
     // Re-issue at the reference, with the code the caller asked for.
@@ -307,32 +370,61 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
                                                const std::string& read_path,
                                                std::string document_url,
                                                bool read_path_is_canonical) {
-  std::string key = read_path_is_canonical ? read_path : canonical(read_path);
-  auto it = cache_.find(key);
-  if (it == cache_.end()) {
-    std::string& text = read_buffer_;
-    // Regular files of bounded size only: a device or a FIFO would block or
-    // never end, and a huge file would exhaust memory.
-    if (std::string reason = read_file_reason(read_path, text); !reason.empty()) {
-      throw Error(std::string(kDocumentFailed), "cannot read '" + path + "': " + reason, path);
+  std::string key;
+  {
+    std::lock_guard lock(sync_->mutex);
+    key = read_path_is_canonical ? read_path : canonical_.canonical(read_path);
+    if (auto it = cache_.find(key); it != cache_.end()) {
+      RemoteDocument result = it->second;
+      if (!document_url.empty()) result.document_url = std::move(document_url);
+      return result;
     }
-    ++reads_;
-    RemoteDocument doc;
-    doc.file_id = files_.add(path);
-    doc.content_type = "application/ld+json";
-    // The document's values live in an arena that lives as long as they do:
-    // parsing costs a pointer bump per string, array and object, and the
-    // document is freed in a few blocks when its last user lets go.
-    auto parsed = std::make_shared<ParsedDocument>(text.size());
-    json::Value* root = static_cast<json::Value*>(
-        parsed->arena.allocate(sizeof(json::Value), alignof(json::Value)));
-    parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &parsed->arena));
-    assert(json::lives_in(*parsed->root, &parsed->arena));
-    doc.document = std::shared_ptr<const json::Value>(parsed, parsed->root);
-    doc.document_url = file_url(key);
-    it = cache_.emplace(key, std::move(doc)).first;
   }
-  RemoteDocument result = it->second;
+  // Read and parsed outside the lock, so other threads parse beside this one.
+  std::string text;
+  {
+    std::lock_guard lock(sync_->mutex);
+    if (!sync_->read_buffers.empty()) {
+      text = std::move(sync_->read_buffers.back());
+      sync_->read_buffers.pop_back();
+    }
+  }
+  auto give_back = [this](std::string& buffer) {
+    std::lock_guard lock(sync_->mutex);
+    sync_->read_buffers.push_back(std::move(buffer));
+  };
+  // Regular files of bounded size only: a device or a FIFO would block or
+  // never end, and a huge file would exhaust memory.
+  if (std::string reason = read_file_reason(read_path, text); !reason.empty()) {
+    give_back(text);
+    throw Error(std::string(kDocumentFailed), "cannot read '" + path + "': " + reason, path);
+  }
+  RemoteDocument doc;
+  doc.file_id = files_.add(path);
+  doc.content_type = "application/ld+json";
+  // The document's values live in an arena that lives as long as they do:
+  // parsing costs a pointer bump per string, array and object, and the
+  // document is freed in a few blocks when its last user lets go.
+  auto parsed = std::make_shared<ParsedDocument>(text.size());
+  json::Value* root =
+      static_cast<json::Value*>(parsed->arena.allocate(sizeof(json::Value), alignof(json::Value)));
+  try {
+    parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &parsed->arena));
+  } catch (...) {
+    give_back(text);
+    throw;
+  }
+  give_back(text);
+  assert(json::lives_in(*parsed->root, &parsed->arena));
+  doc.document = std::shared_ptr<const json::Value>(parsed, parsed->root);
+  doc.document_url = file_url(key);
+  RemoteDocument result;
+  {
+    std::lock_guard lock(sync_->mutex);
+    auto [it, fresh] = cache_.emplace(key, std::move(doc));
+    if (fresh) ++reads_;
+    result = it->second;
+  }
   if (!document_url.empty()) result.document_url = std::move(document_url);
   return result;
 }

@@ -25,6 +25,7 @@ struct RemoteDocument {
 
 class DocumentLoader {
  public:
+  DocumentLoader() = default;
   virtual ~DocumentLoader() = default;
   // Loads `iri` (absolute). `referenced_from` is where the reference was written,
   // for error messages. Errors throw mospec::Error with code
@@ -36,11 +37,17 @@ class DocumentLoader {
   const SourceFiles& files() const { return files_; }
 
  protected:
+  DocumentLoader(DocumentLoader&&) noexcept = default;
+  DocumentLoader& operator=(DocumentLoader&&) noexcept = default;
   SourceFiles files_;
 };
 
 // Maps IRI prefixes to local directories (longest prefix wins) and plain file
 // paths to themselves. Parsed documents are cached by absolute path.
+//
+// Thread-safe: the documents of a load are read, parsed and expanded on more
+// than one thread. Two threads that miss the cache for the same file both
+// parse it and the first to finish is kept (documents_read() counts it once).
 //
 // Confined (confine()), it is a sandbox for untrusted models: a document loaded
 // by reference (load(), resolve_for_loading()) must lie inside one of the
@@ -62,8 +69,11 @@ class MappedDocumentLoader : public DocumentLoader {
   // --root).
   void allow(std::string dir);
   // Turns the sandbox on (or off).
-  void confine(bool on = true) { confined_ = on; }
-  bool confined() const { return confined_; }
+  void confine(bool on = true);
+  bool confined() const;
+  // Changes with every map(), map_fallback(), allow() and confine(): work
+  // done under one generation resolved IRIs as the next may not.
+  size_t generation() const;
   // Local path for an IRI, or empty when no prefix maps it.
   std::string resolve(std::string_view iri) const;
   // The local path to read for `iri`, written at `referenced_from`: resolve()
@@ -76,25 +86,31 @@ class MappedDocumentLoader : public DocumentLoader {
   RemoteDocument load(std::string_view iri, SourceLoc referenced_from, bool for_context) override;
   // Reads and parses a local file (cached), registering it in files().
   RemoteDocument load_file(const std::string& path, std::string document_url = {});
-  size_t documents_read() const { return reads_; }
+  size_t documents_read() const;
   // canonical_path(path), answered from what this loader (one load) has
   // already resolved of the same directories.
-  std::string canonical(std::string_view path) const { return canonical_.canonical(path); }
+  std::string canonical(std::string_view path) const;
 
  private:
   // `read_path_is_canonical`: read_path is already canonical_path()'s answer
   // (the sandbox check computed it), so it keys the cache as it is.
   RemoteDocument load_path(const std::string& path, const std::string& read_path,
                            std::string document_url, bool read_path_is_canonical = false);
-  // resolve_for_loading(), also storing resolve()'s answer in *mapped.
-  std::string resolve_for_loading(std::string_view iri, SourceLoc referenced_from,
-                                  std::string_view code, std::string_view what,
-                                  std::string* mapped) const;
+  // resolve_for_loading(), also storing resolve()'s answer in *mapped. The
+  // *_locked functions expect sync_->mutex held.
+  std::string resolve_for_loading_locked(std::string_view iri, SourceLoc referenced_from,
+                                         std::string_view code, std::string_view what,
+                                         std::string* mapped) const;
+  std::string resolve_locked(std::string_view iri) const;
   bool inside_sandbox(const std::string& canonical) const;
   std::string sandbox_roots() const;
   // Records the canonical form of a sandbox root when it is added, so each
   // check costs one canonicalisation (of the document) rather than one per root.
   void add_root(const std::string& dir);
+  // The lock and what it guards beyond the members below, apart so that the
+  // loader (and the model that holds it) stays movable.
+  struct Sync;
+  std::unique_ptr<Sync> sync_;
   std::map<std::string, std::string, std::greater<>> prefixes_;  // longest first
   std::vector<std::string> allowed_;                             // allow()'s directories
   bool confined_ = false;
@@ -104,12 +120,14 @@ class MappedDocumentLoader : public DocumentLoader {
   std::unordered_map<std::string, std::string> root_paths_;
   std::unordered_map<std::string, RemoteDocument> cache_;  // by path
   mutable CanonicalPaths canonical_;
-  // The text of the document being parsed, reused across documents: the
-  // parsed values copy what they keep, and one buffer sized for the largest
-  // file saves an allocation (and the allocator's consolidation of freed
-  // small blocks that a large request triggers) per document.
-  std::string read_buffer_;
   size_t reads_ = 0;
+  size_t generation_ = 0;
+
+ public:
+  MappedDocumentLoader();
+  ~MappedDocumentLoader() override;
+  MappedDocumentLoader(MappedDocumentLoader&&) noexcept;
+  MappedDocumentLoader& operator=(MappedDocumentLoader&&) noexcept;
 };
 
 }  // namespace mospec::jsonld

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -87,6 +88,39 @@ TEST_F(LoaderTest, ParsesEachFileOnce) {
   EXPECT_EQ(loc.file, a.file_id);
   EXPECT_EQ(loc.line, 1u);
   EXPECT_EQ(loc.column, 14u);
+}
+
+// The documents of a load are read on two threads: both get the same parsed
+// document and file id for a file, whichever reads it first, and a file read
+// by both counts once.
+TEST_F(LoaderTest, TwoThreadsLoadingTheSameFilesAgree) {
+  constexpr int kFiles = 40;
+  for (int i = 0; i < kFiles; ++i) {
+    write("meta/f" + std::to_string(i) + ".json",
+          R"({"@context": {"x": "http://x/)" + std::to_string(i) + R"("}})");
+  }
+  MappedDocumentLoader loader;
+  loader.map("https://example.org/meta/", dir("meta"));
+  std::vector<mospec::jsonld::RemoteDocument> got[2];
+  auto work = [&](int t) {
+    for (int i = 0; i < kFiles; ++i) {
+      // One thread from the front, the other from the back: they meet.
+      const int f = t == 0 ? i : kFiles - 1 - i;
+      got[t].push_back(
+          loader.load("https://example.org/meta/f" + std::to_string(f) + ".json", {}, true));
+    }
+  };
+  std::thread other(work, 1);
+  work(0);
+  other.join();
+  for (int i = 0; i < kFiles; ++i) {
+    const auto& a = got[0][static_cast<size_t>(i)];
+    const auto& b = got[1][static_cast<size_t>(kFiles - 1 - i)];
+    EXPECT_EQ(a.document, b.document) << i;
+    EXPECT_EQ(a.file_id, b.file_id) << i;
+    EXPECT_EQ(loader.files().path(a.file_id), dir("meta/f" + std::to_string(i) + ".json"));
+  }
+  EXPECT_EQ(loader.documents_read(), static_cast<size_t>(kFiles));
 }
 
 // The loader reads every document into one buffer: a document read after a
