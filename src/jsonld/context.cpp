@@ -116,7 +116,8 @@ bool ActiveContext::has_protected_terms() const {
 
 ContextCache::ContextCache() : impl_(std::make_unique<Impl>()) {}
 ContextCache::~ContextCache() = default;
-const ContextCache::Stats& ContextCache::stats() const {
+ContextCache::Stats ContextCache::stats() const {
+  std::lock_guard lock(impl_->mutex);
   return impl_->stats;
 }
 void ContextCache::clear() {

@@ -119,7 +119,7 @@ class ContextCache {
     size_t terms_defined = 0;       // Create Term Definition runs (work not saved)
     size_t scoped_validations = 0;  // scoped contexts processed to validate them
   };
-  const Stats& stats() const;
+  Stats stats() const;  // a snapshot
   void clear();
 
   struct Impl;

@@ -200,8 +200,11 @@ std::string Processor::resolve_context_iri(const std::string& base_url, std::str
 
 const RemoteDoc& Processor::dereference(const std::string& iri, SourceLoc loc) {
   auto& docs = cache_ != nullptr ? cache_->documents : local_docs_;
-  auto it = docs.find(iri);
-  if (it != docs.end()) return it->second;
+  {
+    std::unique_lock lock = lock_cache();
+    auto it = docs.find(iri);
+    if (it != docs.end()) return it->second;
+  }
   if (opts_.loader == nullptr) {
     fail("loading remote context failed",
          "cannot load remote context " + iri + ": no document loader configured", loc);
@@ -217,9 +220,10 @@ const RemoteDoc& Processor::dereference(const std::string& iri, SourceLoc loc) {
   if (!rd.document || !rd.document->is_object()) {
     fail("invalid remote context", "remote context " + iri + " is not a JSON object", loc);
   }
-  if (cache_ != nullptr) ++cache_->stats.documents_loaded;
   RemoteDoc doc{rd.document, rd.document_url.empty() ? iri : rd.document_url};
-  return docs.emplace(iri, std::move(doc)).first->second;
+  std::unique_lock lock = lock_cache();
+  if (cache_ != nullptr) ++cache_->stats.documents_loaded;
+  return docs.emplace(iri, std::move(doc)).first->second;  // (a node: stays where it is)
 }
 
 void Processor::process_remote(Builder& result, const json::Value& context,
@@ -263,6 +267,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
   if (cacheable) {
     result.freeze();
     in_terms = result.layer;
+    std::lock_guard lock(cache_->mutex);
     auto it = cache_->remote.find(iri);
     if (it != cache_->remote.end()) {
       for (const auto& e : it->second) {
@@ -356,6 +361,7 @@ void Processor::process_remote(Builder& result, const json::Value& context,
       delta.out_direction = result.direction;
     }
     result.freeze();
+    std::lock_guard lock(cache_->mutex);
     store_remote(iri, flags, in_terms, delta.vocab, delta.language, delta.direction,
                  delta.used_base, in_base, result);
     if (!log.opaque) cache_->remote_deltas[iri].push_back(std::move(delta));
@@ -435,6 +441,7 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   size_t key = 0;
   size_t content_hash = 0;
   if (exact_cacheable) {
+    std::lock_guard lock(cache->mutex);
     // A scoped context passed by reference from its term definition is known by
     // address (the entry pins the definition), which saves hashing and
     // comparing its content; anything else is looked up by content.
@@ -476,6 +483,7 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   if (exact_cacheable) {
     state_key = mix(mix(std::hash<const void*>{}(in.terms.get()), content_hash),
                     std::hash<std::string_view>{}(base_url));
+    std::lock_guard lock(cache->mutex);
     auto it = cache->states.find(state_key);
     if (it != cache->states.end()) {
       for (const auto& se : it->second) {
@@ -506,7 +514,8 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
     }
   }
 
-  // Stores the term-state entry for a result computed from `active`.
+  // Stores the term-state entry for a result computed from `active` (with
+  // the cache's lock held).
   auto store_state = [&](const Builder& result) {
     ContextCache::Impl::StateEntry se;
     se.state.terms = in.terms;
@@ -536,6 +545,7 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   size_t delta_key = 0;
   if (delta_cacheable) {
     delta_key = mix(content_hash, std::hash<std::string_view>{}(base_url));
+    std::lock_guard lock(cache->mutex);
     auto it = cache->local_deltas.find(delta_key);
     if (it != cache->local_deltas.end()) {
       for (const auto& ld : it->second) {
@@ -575,8 +585,10 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
   }
   const bool state_cacheable =
       exact_cacheable && !result.touched_base && result.previous == expected_previous;
+  // (The delta takes the overlay before to_context() moves it into a layer.)
+  std::optional<ContextCache::Impl::LocalDelta> local_delta;
   if (state_cacheable && delta_cacheable && !log.opaque) {
-    ContextCache::Impl::LocalDelta ld;
+    ContextCache::Impl::LocalDelta& ld = local_delta.emplace();
     detail::Delta& d = ld.delta;
     d.flags = flags;
     d.vocab = in.vocab;
@@ -595,14 +607,13 @@ ContextPtr process_context(const ContextPtr& active, const json::Value& local_co
       ld.content = local_context;
     }
     ld.base_url = base_url;
-    cache->local_deltas[delta_key].push_back(std::move(ld));
   }
   ContextPtr out = result.to_context();
-
-  if (exact_cacheable) {
-    store_exact(*cache, active, owner, local_context, base_url, flags, key, out);
-    if (state_cacheable) store_state(result);
-  }
+  if (!exact_cacheable) return out;
+  std::lock_guard lock(cache->mutex);
+  if (local_delta) cache->local_deltas[delta_key].push_back(std::move(*local_delta));
+  store_exact(*cache, active, owner, local_context, base_url, flags, key, out);
+  if (state_cacheable) store_state(result);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
@@ -26,6 +27,7 @@
 #include "jsonld/loader.hpp"
 #include "rdf/id_hash_set.hpp"
 #include "rdf/iri.hpp"
+#include "support/spin_lock.hpp"
 
 namespace mospec::jsonld {
 
@@ -482,7 +484,13 @@ using internal::hash_json;
 using internal::RemoteDoc;
 
 struct ContextCache::Impl {
-  Stats stats;
+  // The documents of one load are expanded on more than one thread, sharing
+  // this cache. The lock is held only to look entries up (copying out what is
+  // used or applying it) and to store them, never while a context is being
+  // processed: two threads that miss the same entry both process it, and both
+  // results (equal) are stored.
+  SpinLock mutex;
+  Stats stats;  // under the lock
 
   // Exact level: the result ContextPtr for one (active context, local context).
   struct ExactEntry {
@@ -807,8 +815,22 @@ class Processor {
       : opts_(options),
         cache_(options.context_cache ? &options.context_cache->impl() : nullptr),
         json10_(options.processing_mode == ProcessingMode::JsonLd10) {}
+  // Adds what this run counted to the cache's statistics: once per run, not
+  // once per term, so that threads sharing the cache do not take turns on it.
+  ~Processor() {
+    if (cache_ == nullptr || (terms_defined_ == 0 && scoped_validations_ == 0)) return;
+    std::lock_guard lock(cache_->mutex);
+    cache_->stats.terms_defined += terms_defined_;
+    cache_->stats.scoped_validations += scoped_validations_;
+  }
+  Processor(const Processor&) = delete;
+  Processor& operator=(const Processor&) = delete;
 
   ContextCache::Impl* cache() const { return cache_; }
+  // The shared cache's lock (none without a cache).
+  std::unique_lock<SpinLock> lock_cache() const {
+    return cache_ != nullptr ? std::unique_lock(cache_->mutex) : std::unique_lock<SpinLock>();
+  }
 
   // The Context Processing algorithm on `result` (which starts as a clone of the
   // active context). `active` is the active context as a ContextPtr when known
@@ -827,6 +849,7 @@ class Processor {
  private:
   const Options& opts_;
   ContextCache::Impl* cache_;
+  size_t terms_defined_ = 0, scoped_validations_ = 0;  // see ~Processor
   bool json10_;
   // Remote contexts processed (not answered from the cache) by this call.
   size_t remote_processed_ = 0;

@@ -17,7 +17,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
   // CTD 2
   if (term.empty()) fail("invalid term definition", "the empty string cannot be a term", where);
   lc.state[idx] = LocalCtx::InProgress;
-  if (cache_ != nullptr) ++cache_->stats.terms_defined;
+  ++terms_defined_;
   // CTD 4
   if (term == "@type") {
     bool ok = !json10_ && value.is_object() && !value.as_object().empty();
@@ -241,7 +241,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     }
     // CTD 21.3: processed now to report errors where the definition is
     // written; the result is discarded.
-    if (cache_ != nullptr) ++cache_->stats.scoped_validations;
+    ++scoped_validations_;
     try {
       Builder scratch;
       scratch.parent = &active;
@@ -333,6 +333,7 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
     final_def = previous;
   }
   if (cache_ != nullptr && final_def->local_context && final_def == def) {
+    std::lock_guard lock(cache_->mutex);
     cache_->register_owner(final_def);
   }
   // CTD 28
