@@ -1,11 +1,17 @@
 #include "app/app.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
+#include <condition_variable>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <memory_resource>
+#include <mutex>
 #include <optional>
+#include <system_error>
+#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -22,9 +28,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The first block of a document's expansion arena, one buffer reused by every
-// document of a load; a larger document's arena grows from it, and the buffer
-// is then enlarged (up to kMaxExpandedBufferBytes) for the documents after it.
+// The first block of a document's expansion arena, a buffer from a pool that
+// the documents of a load reuse (one per document being expanded or waiting
+// for its turn); a larger document's arena grows from it, and the buffer is
+// then enlarged (up to kMaxExpandedBufferBytes) for the documents after it.
 constexpr size_t kExpandedArenaBytes = 32 * 1024;
 constexpr size_t kMaxExpandedBufferBytes = 1024 * 1024;
 
@@ -52,11 +59,52 @@ std::string join_root(const LoadOptions& options, const std::string& path) {
   return (fs::path(*options.root) / path).generic_string();
 }
 
+// A first-block buffer for a document's expansion arena (see
+// kExpandedArenaBytes).
+struct ExpandBuffer {
+  std::unique_ptr<std::byte[]> data;  // not initialised: an arena only hands it out
+  size_t bytes = 0;
+};
+
+// One document read, parsed and expanded, waiting for its turn to become
+// quads. The imports of an app are prepared on two threads, ahead of their
+// turn; turning them into quads (and everything that depends on the order of
+// the files) stays on the loading thread, in the order the app lists them.
+struct Prepared {
+  // Each of the two steps, reading (and parsing) and expanding, is claimed by
+  // one thread, which marks it done.
+  enum Step : int { kWaiting, kBusy, kDone };
+  std::string iri;  // the IRI imported
+  SourceLoc imported_at;
+  std::atomic<int> read{kWaiting};
+  std::atomic<int> expanded{kWaiting};
+  size_t generation = 0;  // the loader's generation() when it was resolved
+  jsonld::RemoteDocument doc;
+  std::string path;
+  std::exception_ptr load_error;    // reading or parsing it failed
+  std::exception_ptr expand_error;  // expanding it failed
+  ExpandBuffer buffer;
+  std::optional<Arena> arena;  // holds `tree`, on `buffer` first
+  const json::Value* tree = nullptr;
+  bool mentions_app_property = false;
+  DiagnosticSink diagnostics;  // what expanding it reported
+};
+
+// A document prepared ahead of its turn no longer means what it would at its
+// turn: an import that is itself an app can map IRIs (and load files) that
+// change what later imports resolve to. The load is then redone one document
+// after another.
+struct PreparedAheadInvalid {};
+
 class Loader {
+  const unsigned threads_;
+
  public:
-  Loader(const LoadOptions& options, jsonld::MappedDocumentLoader& docs, rdf::Dataset& dataset,
-         std::vector<ModelFile>& files, std::vector<AppInfo>& apps, DiagnosticSink& diagnostics)
-      : options_(options),
+  Loader(const LoadOptions& options, unsigned threads, jsonld::MappedDocumentLoader& docs,
+         rdf::Dataset& dataset, std::vector<ModelFile>& files, std::vector<AppInfo>& apps,
+         DiagnosticSink& diagnostics)
+      : threads_(threads),
+        options_(options),
         docs_(docs),
         dataset_(dataset),
         files_(files),
@@ -79,19 +127,46 @@ class Loader {
     docs_.allow(fs::path(path).has_parent_path() ? fs::path(path).parent_path().string() : ".");
     std::string iri = iri_for_path(docs_, maps_, path);
     if (!loaded_.insert(iri).second) return;
-    jsonld::RemoteDocument doc = docs_.load_file(path, iri);
-    load_document(doc, path, SourceLoc{});
+    Prepared p;
+    p.doc = docs_.load_file(path, iri);
+    p.path = path;
+    expand(p);
+    load_document(p);
   }
 
  private:
-  void load_import(const std::string& iri, SourceLoc imported_at) {
-    if (!loaded_.insert(iri).second) return;  // duplicates load once
-    jsonld::RemoteDocument doc = docs_.load(iri, imported_at, /*for_context=*/false);
-    load_document(doc, docs_.resolve(iri), imported_at);
+  // Reads and parses p.iri (any thread).
+  void read(Prepared& p) {
+    p.generation = docs_.generation();
+    try {
+      p.doc = docs_.load(p.iri, p.imported_at, /*for_context=*/false);
+      p.path = docs_.resolve(p.iri);
+    } catch (...) {
+      p.load_error = std::current_exception();
+    }
   }
 
-  void load_document(const jsonld::RemoteDocument& doc, const std::string& path,
-                     SourceLoc imported_at) {
+  // Expands p.doc into p's arena (any thread).
+  void expand(Prepared& p) {
+    if (p.load_error) return;
+    try {
+      jsonld::Options opts = document_options(p.doc);
+      opts.diagnostics = &p.diagnostics;
+      opts.property_prefix_seen = &p.mentions_app_property;
+      p.buffer = take_buffer();
+      Arena& arena = p.arena.emplace(p.buffer.data.get(), p.buffer.bytes);
+      // Built in the arena and dropped with it, never destroyed value by
+      // value: all of it is in the arena (json::lives_in; the expand
+      // conformance runner checks that for every test it passes).
+      p.tree = new (arena.allocate(sizeof(json::Value), alignof(json::Value)))
+          json::Value(jsonld::expand(*p.doc.document, opts, &arena));
+      assert(json::lives_in(*p.tree, &arena));
+    } catch (...) {
+      p.expand_error = std::current_exception();
+    }
+  }
+
+  jsonld::Options document_options(const jsonld::RemoteDocument& doc) {
     jsonld::Options opts;
     opts.base = doc.document_url;
     opts.loader = &docs_;
@@ -99,40 +174,32 @@ class Loader {
     opts.context_cache = context_cache_;  // remote contexts are processed once per load
     // Only a document with a property in the application namespace can hold
     // the app:import quads that make it an app.
-    bool mentions_app_property = false;
     opts.property_prefix = kAppNs;
-    opts.property_prefix_seen = &mentions_app_property;
-    ModelFile file{doc.document_url, path, doc.file_id, false, imported_at};
+    return opts;
+  }
+
+  // Turns a prepared document into quads (the loading thread, in order).
+  void load_document(Prepared& p) {
+    for (const Diagnostic& d : p.diagnostics.diagnostics()) diagnostics_.report(d);
+    if (p.expand_error) {
+      give_back(p);
+      std::rethrow_exception(p.expand_error);
+    }
+    const jsonld::RemoteDocument& doc = p.doc;
+    jsonld::Options opts = document_options(doc);
+    ModelFile file{doc.document_url, p.path, doc.file_id, false, p.imported_at};
     std::optional<rdf::Dataset> local;  // an app's own quads
-    size_t grown = 0;                   // what the expansion needed beyond the buffer
-    {
-      // The expanded tree is walked once by toRdf and dropped: it lives in an
-      // arena for this document, on the load's reused buffer. (Nothing below
-      // loads another document while it lives.)
-      if (!expand_buffer_) reserve_expand_buffer(kExpandedArenaBytes);
-      Arena arena(expand_buffer_.get(), expand_buffer_bytes_);
-      // Built in the arena and dropped with it, never destroyed value by
-      // value: all of it is in the arena (json::lives_in; the expand
-      // conformance runner checks that for every test it passes).
-      const json::Value& expanded = *new (arena.allocate(sizeof(json::Value), alignof(json::Value)))
-                                        json::Value(jsonld::expand(*doc.document, opts, &arena));
-      assert(json::lives_in(expanded, &arena));
-      if (!mentions_app_property) {
-        // No app:* property, so not an app: its quads go straight into the
-        // model's dataset, default graph renamed to the file's graph (what
-        // copy_into_file_graph does, without a dataset per file).
-        opts.default_graph = doc.document_url;
-        jsonld::to_rdf(expanded, dataset_, opts, &arena);
-      } else {
-        jsonld::to_rdf(expanded, local.emplace(), opts, &arena);
-      }
-      grown = arena.allocated_bytes();
+    if (!p.mentions_app_property) {
+      // No app:* property, so not an app: its quads go straight into the
+      // model's dataset, default graph renamed to the file's graph (what
+      // copy_into_file_graph does, without a dataset per file).
+      opts.default_graph = doc.document_url;
+      jsonld::to_rdf(*p.tree, dataset_, opts, &*p.arena);
+    } else {
+      jsonld::to_rdf(*p.tree, local.emplace(), opts, &*p.arena);
     }
-    // (Only once the tree in it is gone.)
-    if (grown != 0) {
-      reserve_expand_buffer(std::min(kMaxExpandedBufferBytes, expand_buffer_bytes_ + grown));
-    }
-    if (!mentions_app_property) {
+    give_back(p);
+    if (!p.mentions_app_property) {
       files_.push_back(file);
       return;
     }
@@ -143,7 +210,41 @@ class Loader {
                   !local->match(rdf::TermId::any(), import_p, rdf::TermId::any()).empty();
     copy_into_file_graph(*local, doc.document_url);
     files_.push_back(file);
-    if (file.is_app) load_app(*local, path);
+    if (file.is_app) {
+      // Read ahead of it, later imports of an outer app may now resolve
+      // differently (see PreparedAheadInvalid).
+      if (preparing_ahead_ > 0) throw PreparedAheadInvalid{};
+      load_app(*local, p.path);
+    }
+  }
+
+  // The expansion's buffer back to the pool, once the tree in it is gone;
+  // enlarged (up to kMaxExpandedBufferBytes) when the document needed more.
+  void give_back(Prepared& p) {
+    const size_t grown = p.arena ? p.arena->allocated_bytes() : 0;
+    p.tree = nullptr;
+    p.arena.reset();
+    if (!p.buffer.data) return;
+    if (grown != 0) {
+      const size_t bytes = std::min(kMaxExpandedBufferBytes, p.buffer.bytes + grown);
+      p.buffer.data.reset(new std::byte[bytes]);
+      p.buffer.bytes = bytes;
+    }
+    std::lock_guard lock(pool_mutex_);
+    buffers_.push_back(std::move(p.buffer));
+  }
+
+  ExpandBuffer take_buffer() {
+    {
+      std::lock_guard lock(pool_mutex_);
+      if (!buffers_.empty()) {
+        ExpandBuffer b = std::move(buffers_.back());
+        buffers_.pop_back();
+        return b;
+      }
+    }
+    return ExpandBuffer{std::unique_ptr<std::byte[]>(new std::byte[kExpandedArenaBytes]),
+                        kExpandedArenaBytes};
   }
 
   // Copies quads into the model's dataset: blank nodes renamed fresh (files
@@ -231,16 +332,181 @@ class Loader {
     // A missing import does not stop the others from loading, so the error can
     // name what the rest of the model points at in it.
     std::vector<Error> missing;
-    for (size_t i = 0; i < unique.size(); ++i) {
+    load_imports(unique, unique_locs, missing);
+    if (!missing.empty()) throw with_dangling_references(missing);
+  }
+
+  // Loads each import once, in order. With threads_ > 1 a helper thread
+  // prepares (reads, parses, expands) the imports ahead of their turn while
+  // this thread prepares too and turns them into quads in order; the result is
+  // the same as one document after another.
+  void load_imports(const std::vector<std::string>& iris, const std::vector<SourceLoc>& at,
+                    std::vector<Error>& missing) {
+    std::vector<std::unique_ptr<Prepared>> jobs;
+    for (size_t i = 0; i < iris.size(); ++i) {
+      if (loaded_.contains(iris[i])) continue;  // duplicates load once
+      auto& p = *jobs.emplace_back(std::make_unique<Prepared>());
+      p.iri = iris[i];
+      p.imported_at = at[i];
+    }
+    const bool ahead = threads_ > 1 && jobs.size() > 1;
+    if (ahead) {
+      // Files are numbered in the order the app lists them, as one after
+      // another would (reports sort by file), whichever thread reads them.
+      for (const auto& p : jobs) {
+        if (std::string mapped = docs_.resolve(p->iri); !mapped.empty()) {
+          docs_.files().add(std::move(mapped));
+        }
+      }
+    }
+    Helper helper(*this, jobs, ahead);
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      Prepared& p = *jobs[i];
+      // (Loaded meanwhile by an import that is an app, one after another.)
+      if (!loaded_.insert(p.iri).second) continue;
+      helper.wait_for(i);
+      if (p.generation != docs_.generation()) throw PreparedAheadInvalid{};
       try {
-        load_import(unique[i], unique_locs[i]);
+        if (p.load_error) std::rethrow_exception(p.load_error);
+        load_document(p);
       } catch (const Error& e) {
         if (e.code() != "loading document failed") throw;
         missing.push_back(e);
       }
     }
-    if (!missing.empty()) throw with_dangling_references(missing);
   }
+
+  // Prepares jobs on one more thread, which reads and parses every one first
+  // (so that it has work while the first expansion processes the remote
+  // contexts every document shares) and then expands them in order, at most
+  // kExpandAhead past the one its owner is at (each expanded tree is held
+  // until its turn). The owner waits for each job in turn, meanwhile taking
+  // unclaimed steps itself.
+  class Helper {
+   public:
+    static constexpr size_t kExpandAhead = 8;
+
+    Helper(Loader& loader, std::vector<std::unique_ptr<Prepared>>& jobs, bool start)
+        : loader_(loader), jobs_(jobs) {
+      if (!start) return;
+      try {
+        thread_ = std::thread([this] {
+          while (help()) {
+          }
+        });
+      } catch (const std::system_error&) {
+        return;  // no thread to be had: the owner prepares every job
+      }
+      ++loader_.preparing_ahead_;
+    }
+    ~Helper() {
+      if (!thread_.joinable()) return;
+      {
+        std::lock_guard lock(mutex_);
+        stop_.store(true, std::memory_order_relaxed);
+      }
+      changed_.notify_all();
+      thread_.join();
+      --loader_.preparing_ahead_;
+    }
+    Helper(const Helper&) = delete;
+    Helper& operator=(const Helper&) = delete;
+
+    // Returns once jobs[i] is read and expanded, the jobs before it having
+    // been taken. While the helper expands it, the owner expands a job of
+    // its own from the end of the window (the helper works from the front,
+    // in the order the owner needs them).
+    void wait_for(size_t i) {
+      {
+        std::lock_guard lock(mutex_);
+        current_ = i;
+      }
+      changed_.notify_all();
+      Prepared& p = *jobs_[i];
+      if (claim(p.read)) run_read(p);
+      if (claim(p.expanded)) {
+        wait_until_done(p.read);
+        run_expand(p);
+      }
+      while (!done(p.expanded)) {
+        Prepared* other = nullptr;
+        for (size_t k = std::min(jobs_.size(), i + 1 + kExpandAhead); k-- > i + 1;) {
+          if (claim(jobs_[k]->expanded)) {
+            other = &*jobs_[k];
+            break;
+          }
+        }
+        if (other == nullptr) break;
+        if (claim(other->read)) run_read(*other);
+        wait_until_done(other->read);
+        run_expand(*other);
+      }
+      wait_until_done(p.expanded);
+    }
+
+   private:
+    static bool claim(std::atomic<int>& step) {
+      int waiting = Prepared::kWaiting;
+      return step.compare_exchange_strong(waiting, Prepared::kBusy);
+    }
+    static bool done(const std::atomic<int>& step) {
+      return step.load(std::memory_order_acquire) == Prepared::kDone;
+    }
+    void mark_done(std::atomic<int>& step) {
+      {
+        std::lock_guard lock(mutex_);
+        step.store(Prepared::kDone, std::memory_order_release);
+      }
+      changed_.notify_all();
+    }
+    void run_read(Prepared& p) {
+      loader_.read(p);
+      mark_done(p.read);
+    }
+    void run_expand(Prepared& p) {
+      loader_.expand(p);
+      mark_done(p.expanded);
+    }
+    // The helper thread's step: reads every job, then expands within the
+    // window. False once there is nothing left (or it is told to stop).
+    bool help() {
+      for (; next_read_ < jobs_.size(); ++next_read_) {
+        if (stop_.load(std::memory_order_relaxed)) return false;
+        if (claim(jobs_[next_read_]->read)) {
+          run_read(*jobs_[next_read_++]);
+          return true;
+        }
+      }
+      for (; next_expand_ < jobs_.size(); ++next_expand_) {
+        {
+          std::unique_lock lock(mutex_);
+          changed_.wait(lock, [this] { return stop_ || next_expand_ <= current_ + kExpandAhead; });
+          if (stop_) return false;
+        }
+        if (claim(jobs_[next_expand_]->expanded)) {
+          Prepared& p = *jobs_[next_expand_++];
+          wait_until_done(p.read);
+          run_expand(p);
+          return true;
+        }
+      }
+      return false;
+    }
+    void wait_until_done(const std::atomic<int>& step) {
+      if (done(step)) return;
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [&step] { return done(step); });
+    }
+
+    Loader& loader_;
+    std::vector<std::unique_ptr<Prepared>>& jobs_;
+    size_t next_read_ = 0, next_expand_ = 0;  // the helper thread's own
+    std::mutex mutex_;  // guards current_ (and stop_'s changes), pairs with changed_
+    std::condition_variable changed_;
+    size_t current_ = 0;  // the job the owner waits for or turns into quads
+    std::atomic<bool> stop_{false};
+    std::thread thread_;
+  };
 
   // An app's iri-map may only name directories inside the tree its relative
   // paths resolve against (--root, else the current directory): an untrusted
@@ -320,13 +586,9 @@ class Loader {
   std::vector<std::pair<std::string, std::string>> maps_;
   std::unordered_set<std::string> loaded_;
   std::shared_ptr<jsonld::ContextCache> context_cache_ = std::make_shared<jsonld::ContextCache>();
-  // See kExpandedArenaBytes. Not initialised: an arena only hands it out.
-  std::unique_ptr<std::byte[]> expand_buffer_;
-  size_t expand_buffer_bytes_ = 0;
-  void reserve_expand_buffer(size_t bytes) {
-    expand_buffer_.reset(new std::byte[bytes]);
-    expand_buffer_bytes_ = bytes;
-  }
+  int preparing_ahead_ = 0;  // Helpers running (an import that is an app ends them)
+  std::mutex pool_mutex_;
+  std::vector<ExpandBuffer> buffers_;  // see kExpandedArenaBytes
 };
 
 }  // namespace
@@ -339,15 +601,25 @@ std::string builtin_metamodels_dir() {
 }
 
 LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& options) {
-  LoadedModel model;
-  Loader loader(options, model.loader_, model.dataset_, model.files_, model.apps_,
-                model.diagnostics_);
-  // The indexes are folded once, when every file is in.
-  model.dataset_.set_auto_compact(false);
-  for (const std::string& input : inputs) loader.load_input(input);
-  model.dataset_.compact();
-  model.dataset_.set_auto_compact(true);
-  return model;
+  auto load_with = [&](unsigned threads) {
+    LoadedModel model;
+    Loader loader(options, threads, model.loader_, model.dataset_, model.files_, model.apps_,
+                  model.diagnostics_);
+    // The indexes are folded once, when every file is in.
+    model.dataset_.set_auto_compact(false);
+    for (const std::string& input : inputs) loader.load_input(input);
+    model.dataset_.compact();
+    model.dataset_.set_auto_compact(true);
+    return model;
+  };
+  unsigned threads = options.threads;
+  if (threads == 0) threads = std::clamp(std::thread::hardware_concurrency(), 1u, 2u);
+  if (threads == 1) return load_with(1);
+  try {
+    return load_with(threads);
+  } catch (const PreparedAheadInvalid&) {
+    return load_with(1);
+  }
 }
 
 std::optional<SourceLoc> LoadedModel::where(rdf::TermId subject) const {

@@ -31,6 +31,12 @@ struct LoadOptions {
   // Resolve the metamodel base (vocab::kMetamodels) to mospec's own metamodels
   // (builtin_metamodels_dir()) wherever no --map or iri-map entry covers it.
   bool builtin_metamodels = true;
+  // Threads that read, parse and expand an app's imports at once (the quads
+  // are made on the calling thread, in order, so the model is the same for
+  // any number). 0: two where the machine has two cores, else one. The
+  // mospec commands use one (a single load in a fresh process; docs/ir.md,
+  // "Loading on two threads").
+  unsigned threads = 0;
 };
 
 // One loaded JSON-LD document.
