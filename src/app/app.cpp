@@ -88,6 +88,9 @@ struct Prepared {
   const json::Value* tree = nullptr;
   bool mentions_app_property = false;
   DiagnosticSink diagnostics;  // what expanding it reported
+  // Prepared again by the loading thread while the helper, holding this one,
+  // was too slow (Helper::wait_for); used instead of it.
+  std::unique_ptr<Prepared> stand_in;
 };
 
 // A document prepared ahead of its turn no longer means what it would at its
@@ -361,10 +364,9 @@ class Loader {
     }
     Helper helper(*this, jobs, ahead);
     for (size_t i = 0; i < jobs.size(); ++i) {
-      Prepared& p = *jobs[i];
       // (Loaded meanwhile by an import that is an app, one after another.)
-      if (!loaded_.insert(p.iri).second) continue;
-      helper.wait_for(i);
+      if (!loaded_.insert(jobs[i]->iri).second) continue;
+      Prepared& p = helper.wait_for(i);
       if (p.generation != docs_.generation()) throw PreparedAheadInvalid{};
       try {
         if (p.load_error) std::rethrow_exception(p.load_error);
@@ -412,11 +414,14 @@ class Loader {
     Helper(const Helper&) = delete;
     Helper& operator=(const Helper&) = delete;
 
-    // Returns once jobs[i] is read and expanded, the jobs before it having
-    // been taken. While the helper expands it, the owner expands a job of
-    // its own from the end of the window (the helper works from the front,
-    // in the order the owner needs them).
-    void wait_for(size_t i) {
+    // Returns jobs[i] read and expanded (or a stand-in for it), the jobs
+    // before it having been taken. While the helper prepares it, the owner
+    // expands a job of its own from the end of the window (the helper works
+    // from the front, in the order the owner needs them); with nothing else
+    // to do it waits, but at most `patience`: a helper whose core was taken
+    // away must not hold the load up, so the owner then prepares the job
+    // itself as well and the helper's copy is dropped.
+    Prepared& wait_for(size_t i) {
       {
         std::lock_guard lock(mutex_);
         current_ = i;
@@ -424,24 +429,30 @@ class Loader {
       changed_.notify_all();
       Prepared& p = *jobs_[i];
       if (claim(p.read)) run_read(p);
-      if (claim(p.expanded)) {
-        wait_until_done(p.read);
-        run_expand(p);
-      }
       while (!done(p.expanded)) {
-        Prepared* other = nullptr;
-        for (size_t k = std::min(jobs_.size(), i + 1 + kExpandAhead); k-- > i + 1;) {
-          if (claim(jobs_[k]->expanded)) {
-            other = &*jobs_[k];
-            break;
-          }
+        if (done(p.read) && claim(p.expanded)) {
+          run_expand(p);
+          break;
         }
-        if (other == nullptr) break;
-        if (claim(other->read)) run_read(*other);
-        wait_until_done(other->read);
-        run_expand(*other);
+        if (Prepared* other = claim_other(i)) {
+          run_expand(*other);
+          continue;
+        }
+        std::unique_lock lock(mutex_);
+        if (!changed_.wait_for(lock, loader_.options_.helper_patience, [&p] {
+              return done(p.expanded) || (done(p.read) && p.expanded.load() == Prepared::kWaiting);
+            })) {
+          lock.unlock();
+          p.stand_in = std::make_unique<Prepared>();
+          Prepared& s = *p.stand_in;
+          s.iri = p.iri;
+          s.imported_at = p.imported_at;
+          loader_.read(s);
+          loader_.expand(s);
+          return s;
+        }
       }
-      wait_until_done(p.expanded);
+      return p;
     }
 
    private:
@@ -451,6 +462,20 @@ class Loader {
     }
     static bool done(const std::atomic<int>& step) {
       return step.load(std::memory_order_acquire) == Prepared::kDone;
+    }
+    // An unclaimed expansion in the window after jobs[i], from its end, read
+    // here if need be (not one the helper is reading: that would be waited for).
+    Prepared* claim_other(size_t i) {
+      for (size_t k = std::min(jobs_.size(), i + 1 + kExpandAhead); k-- > i + 1;) {
+        Prepared& q = *jobs_[k];
+        if (q.expanded.load() != Prepared::kWaiting) continue;
+        if (!done(q.read)) {
+          if (!claim(q.read)) continue;
+          run_read(q);
+        }
+        if (claim(q.expanded)) return &q;
+      }
+      return nullptr;
     }
     void mark_done(std::atomic<int>& step) {
       {

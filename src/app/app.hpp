@@ -7,6 +7,7 @@
 // point at the file and line where an entity is written.
 #pragma once
 
+#include <chrono>
 #include <optional>
 #include <string>
 #include <utility>
@@ -37,6 +38,11 @@ struct LoadOptions {
   // mospec commands use one (a single load in a fresh process; docs/ir.md,
   // "Loading on two threads").
   unsigned threads = 0;
+  // With more than one thread: how long the calling thread waits for a
+  // document another thread is preparing before it prepares the document
+  // itself as well (a thread whose core was taken away must not hold the
+  // load up; about four times what expanding one of the shipped models takes).
+  std::chrono::microseconds helper_patience{200};
 };
 
 // One loaded JSON-LD document.
