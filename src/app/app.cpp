@@ -78,7 +78,6 @@ struct Prepared {
   SourceLoc imported_at;
   std::atomic<int> read{kWaiting};
   std::atomic<int> expanded{kWaiting};
-  size_t generation = 0;  // the loader's generation() when it was resolved
   jsonld::RemoteDocument doc;
   std::string path;
   std::exception_ptr load_error;    // reading or parsing it failed
@@ -140,7 +139,6 @@ class Loader {
  private:
   // Reads and parses p.iri (any thread).
   void read(Prepared& p) {
-    p.generation = docs_.generation();
     try {
       p.doc = docs_.load(p.iri, p.imported_at, /*for_context=*/false);
       p.path = docs_.resolve(p.iri);
@@ -367,7 +365,6 @@ class Loader {
       // (Loaded meanwhile by an import that is an app, one after another.)
       if (!loaded_.insert(jobs[i]->iri).second) continue;
       Prepared& p = helper.wait_for(i);
-      if (p.generation != docs_.generation()) throw PreparedAheadInvalid{};
       try {
         if (p.load_error) std::rethrow_exception(p.load_error);
         load_document(p);

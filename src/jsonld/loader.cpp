@@ -153,7 +153,6 @@ void MappedDocumentLoader::map(std::string prefix, std::string dir) {
   std::lock_guard lock(sync_->mutex);
   add_root(dir);
   prefixes_[std::move(prefix)] = std::move(dir);
-  ++generation_;
 }
 
 void MappedDocumentLoader::map_fallback(std::string prefix, std::string dir) {
@@ -161,30 +160,22 @@ void MappedDocumentLoader::map_fallback(std::string prefix, std::string dir) {
   std::lock_guard lock(sync_->mutex);
   add_root(dir);
   fallbacks_[std::move(prefix)] = std::move(dir);
-  ++generation_;
 }
 
 void MappedDocumentLoader::allow(std::string dir) {
   std::lock_guard lock(sync_->mutex);
   add_root(dir);
   allowed_.push_back(std::move(dir));
-  ++generation_;
 }
 
 void MappedDocumentLoader::confine(bool on) {
   std::lock_guard lock(sync_->mutex);
   confined_ = on;
-  ++generation_;
 }
 
 bool MappedDocumentLoader::confined() const {
   std::lock_guard lock(sync_->mutex);
   return confined_;
-}
-
-size_t MappedDocumentLoader::generation() const {
-  std::lock_guard lock(sync_->mutex);
-  return generation_;
 }
 
 size_t MappedDocumentLoader::documents_read() const {

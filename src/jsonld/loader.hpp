@@ -71,9 +71,6 @@ class MappedDocumentLoader : public DocumentLoader {
   // Turns the sandbox on (or off).
   void confine(bool on = true);
   bool confined() const;
-  // Changes with every map(), map_fallback(), allow() and confine(): work
-  // done under one generation resolved IRIs as the next may not.
-  size_t generation() const;
   // Local path for an IRI, or empty when no prefix maps it.
   std::string resolve(std::string_view iri) const;
   // The local path to read for `iri`, written at `referenced_from`: resolve()
@@ -121,7 +118,6 @@ class MappedDocumentLoader : public DocumentLoader {
   std::unordered_map<std::string, RemoteDocument> cache_;  // by path
   mutable CanonicalPaths canonical_;
   size_t reads_ = 0;
-  size_t generation_ = 0;
 
  public:
   MappedDocumentLoader();
