@@ -415,9 +415,9 @@ class Loader {
     // before it having been taken. While the helper prepares it, the owner
     // expands a job of its own from the end of the window (the helper works
     // from the front, in the order the owner needs them); with nothing else
-    // to do it waits, but at most `patience`: a helper whose core was taken
-    // away must not hold the load up, so the owner then prepares the job
-    // itself as well and the helper's copy is dropped.
+    // to do it waits, but at most LoadOptions::helper_patience: a helper
+    // whose core was taken away must not hold the load up, so the owner then
+    // prepares the job itself as well and the helper's copy is dropped.
     Prepared& wait_for(size_t i) {
       {
         std::lock_guard lock(mutex_);
