@@ -11,6 +11,7 @@
 #include <memory>
 #include <memory_resource>
 #include <mutex>
+#include <new>
 #include <system_error>
 #include <vector>
 
@@ -371,23 +372,33 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
       return result;
     }
   }
-  // Read and parsed outside the lock, so other threads parse beside this one.
-  std::string text;
-  {
-    std::lock_guard lock(sync_->mutex);
-    if (!sync_->read_buffers.empty()) {
-      text = std::move(sync_->read_buffers.back());
-      sync_->read_buffers.pop_back();
+  // Read and parsed outside the lock, so other threads parse beside this one,
+  // each in a buffer of the pool (given back however this ends).
+  struct BufferLease {
+    Sync& sync;
+    std::string text;
+    explicit BufferLease(Sync& s) : sync(s) {
+      std::lock_guard lock(sync.mutex);
+      if (!sync.read_buffers.empty()) {
+        text = std::move(sync.read_buffers.back());
+        sync.read_buffers.pop_back();
+      }
     }
-  }
-  auto give_back = [this](std::string& buffer) {
-    std::lock_guard lock(sync_->mutex);
-    sync_->read_buffers.push_back(std::move(buffer));
+    ~BufferLease() {
+      std::lock_guard lock(sync.mutex);
+      try {
+        sync.read_buffers.push_back(std::move(text));
+      } catch (const std::bad_alloc&) {  // the buffer is dropped instead
+      }
+    }
+    BufferLease(const BufferLease&) = delete;
+    BufferLease& operator=(const BufferLease&) = delete;
   };
+  BufferLease buffer(*sync_);
+  const std::string& text = buffer.text;
   // Regular files of bounded size only: a device or a FIFO would block or
   // never end, and a huge file would exhaust memory.
-  if (std::string reason = read_file_reason(read_path, text); !reason.empty()) {
-    give_back(text);
+  if (std::string reason = read_file_reason(read_path, buffer.text); !reason.empty()) {
     throw Error(std::string(kDocumentFailed), "cannot read '" + path + "': " + reason, path);
   }
   RemoteDocument doc;
@@ -399,13 +410,7 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
   auto parsed = std::make_shared<ParsedDocument>(text.size());
   json::Value* root =
       static_cast<json::Value*>(parsed->arena.allocate(sizeof(json::Value), alignof(json::Value)));
-  try {
-    parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &parsed->arena));
-  } catch (...) {
-    give_back(text);
-    throw;
-  }
-  give_back(text);
+  parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &parsed->arena));
   assert(json::lives_in(*parsed->root, &parsed->arena));
   doc.document = std::shared_ptr<const json::Value>(parsed, parsed->root);
   doc.document_url = file_url(key);

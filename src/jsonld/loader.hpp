@@ -58,6 +58,11 @@ class DocumentLoader {
 // confined or not. load_file() is for paths the user named and is not confined.
 class MappedDocumentLoader : public DocumentLoader {
  public:
+  MappedDocumentLoader();
+  ~MappedDocumentLoader() override;
+  MappedDocumentLoader(MappedDocumentLoader&&) noexcept;
+  MappedDocumentLoader& operator=(MappedDocumentLoader&&) noexcept;
+
   // `prefix` is an IRI prefix such as "https://comp-rob2b.github.io/"; `dir` a
   // local directory (a trailing '/' is optional).
   void map(std::string prefix, std::string dir);
@@ -118,12 +123,6 @@ class MappedDocumentLoader : public DocumentLoader {
   std::unordered_map<std::string, RemoteDocument> cache_;  // by path
   mutable CanonicalPaths canonical_;
   size_t reads_ = 0;
-
- public:
-  MappedDocumentLoader();
-  ~MappedDocumentLoader() override;
-  MappedDocumentLoader(MappedDocumentLoader&&) noexcept;
-  MappedDocumentLoader& operator=(MappedDocumentLoader&&) noexcept;
 };
 
 }  // namespace mospec::jsonld
