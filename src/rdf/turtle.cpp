@@ -172,6 +172,16 @@ class TurtleReader {
         return terms.iri(*iri);
       }
       case SERD_BLANK:
+        // serd 0.30 takes a '.' at the very end of the input into the label
+        // ("_:b." with nothing after it); Turtle's labels never end in '.',
+        // and N-Quads could not write one back.
+        if (view(node).ends_with('.')) {
+          record(
+              "a blank node label ends with '.' (a label may not; end the statement with "
+              "' .')",
+              line_, column());
+          return std::nullopt;
+        }
         return terms.blank(view(node));
       case SERD_LITERAL: {
         if (datatype != nullptr && datatype->type != SERD_NOTHING) {

@@ -177,6 +177,18 @@ TEST(ReadTurtle, MalformedLanguageTagIsAnError) {
             "doc.ttl:1:35: error: invalid language tag 'en--'");
 }
 
+// serd 0.30 reads "_:b." at the very end of the input as the label "b." (fuzz_turtle found
+// it: the N-Quads written back could not be read). Turtle's labels never end in '.'.
+TEST(ReadTurtle, ABlankNodeLabelEndingInADotIsAnError) {
+  const std::string error = turtle_error("_:a <http://e/p> _:b..");
+  EXPECT_NE(error.find("doc.ttl:1:"), std::string::npos) << error;
+  EXPECT_NE(error.find("a blank node label ends with '.'"), std::string::npos) << error;
+  // With a space before the final '.', the same statement is fine.
+  Dataset d;
+  read_turtle("_:a <http://e/p> _:b .", "", d);
+  EXPECT_EQ(d.size(), 1u);
+}
+
 TEST(ReadTurtle, LabelledAndAnonymousBlankNodesStayApart) {
   Dataset d;
   read_turtle("_:b1 <http://e/p> [ <http://e/q> _:b2 ] .\n_:x <http://e/r> ( 1 ) .\n", "", d);
