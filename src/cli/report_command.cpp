@@ -10,6 +10,7 @@
 #include "cli/pipeline.hpp"
 #include "report/report.hpp"
 #include "support/io.hpp"
+#include "support/paths.hpp"
 
 namespace mospec::cli {
 namespace {
@@ -18,24 +19,28 @@ namespace fs = std::filesystem;
 
 struct ReportFlags {
   std::string input, output, title;
+  bool absolute_links = false, no_video = false;
   LoadFlags load;
 };
 
 // A run's files: SUMMARY.json beside SUMMARY.csv and, when present,
 // SUMMARY.mp4 or SUMMARY.gif.
-report::Run run_of(const fs::path& summary) {
+report::Run run_of(const fs::path& summary, const fs::path& dir, bool video) {
   report::Run r;
   r.name = summary.stem().string();
+  r.dir = dir.string();
   r.summary_path = summary.string();
   fs::path log = summary;
   log.replace_extension(".csv");
   if (!fs::is_regular_file(log)) {
-    throw Error("report", "mospec report: " + summary.string() + " has no log beside it (" +
-                              log.string() + "): run with --log " + log.string() + " --summary " +
-                              summary.string());
+    throw Error("report", "mospec report: " + escaped_bytes(summary.string()) +
+                              " has no log beside it (" + escaped_bytes(log.string()) +
+                              "): run with --log " + escaped_bytes(log.string()) + " --summary " +
+                              escaped_bytes(summary.string()));
   }
   r.log_path = log.string();
   for (const char* ext : {".mp4", ".gif"}) {
+    if (!video) break;
     fs::path video = summary;
     video.replace_extension(ext);
     if (fs::is_regular_file(video)) {
@@ -51,11 +56,14 @@ bool natural_less(const std::string& a, const std::string& b) {
   return a.size() != b.size() ? a.size() < b.size() : a < b;
 }
 
-std::vector<report::Run> runs_in(const std::string& input) {
+std::vector<report::Run> runs_in(const std::string& input, bool video) {
   const fs::path p(input);
-  if (fs::is_regular_file(p)) return {run_of(p)};
+  if (fs::is_regular_file(p)) {
+    const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    return {run_of(p, dir, video)};
+  }
   if (!fs::is_directory(p)) {
-    throw Error("report", "mospec report: " + input +
+    throw Error("report", "mospec report: " + escaped_bytes(input) +
                               " is neither a run's summary (FILE.json) nor a directory of runs");
   }
   std::vector<fs::path> summaries;
@@ -70,26 +78,35 @@ std::vector<report::Run> runs_in(const std::string& input) {
     return natural_less(a.filename().string(), b.filename().string());
   });
   if (summaries.empty()) {
-    throw Error("report", "mospec report: " + input +
+    throw Error("report", "mospec report: " + escaped_bytes(input) +
                               " holds no run (a NAME.json summary beside its NAME.csv log)");
   }
   std::vector<report::Run> runs;
-  for (const fs::path& s : summaries) runs.push_back(run_of(s));
+  for (const fs::path& s : summaries) runs.push_back(run_of(s, p, video));
   return runs;
 }
 
 // The model the run came from, validated and lowered again: the page lists its
 // constraints, monitors, controllers and motions where the files define them.
-void describe_model(const report::Run& run, const ReportFlags& flags, report::Input& in) {
-  std::string app;
-  try {
-    const auto summary = nlohmann::json::parse(read_file(run.summary_path));
-    app = summary.value("scenario", std::string());
-  } catch (const nlohmann::json::exception&) {
-    // render() reports the malformed summary.
+// The summary names the app; it is loaded only from inside the tree `report`
+// runs in (--root, else the current directory), as an app's iri-map is: a
+// shared summary must not make the page list a model of its reader's.
+void describe_model(const std::string& app, const ReportFlags& flags, report::Input& in) {
+  if (app.empty()) {
+    in.model_verdict = "The run's summary names no app.";
+    return;
   }
-  if (app.empty() || !fs::exists(app)) {
-    in.model_verdict = "The run's app (" + (app.empty() ? std::string("unnamed") : app) +
+  const fs::path tree = canonical_path(flags.load.root.empty() ? "." : flags.load.root);
+  const fs::path app_path = canonical_path(app);
+  if (!is_within(app_path, tree)) {
+    in.model_verdict = "The run's app (" + app + ") lies outside the tree mospec report runs in (" +
+                       tree.string() +
+                       "); it was not loaded (run mospec report where you ran the "
+                       "run, or pass --root).";
+    return;
+  }
+  if (!fs::is_regular_file(app_path)) {
+    in.model_verdict = "The run's app (" + app +
                        ") is not found from here: run mospec report where you ran the run.";
     return;
   }
@@ -134,23 +151,25 @@ void describe_model(const report::Run& run, const ReportFlags& flags, report::In
       const std::string& flag = program->data[static_cast<size_t>(s.out[0])].iri;
       iri = flag.substr(0, flag.rfind('#')) + " (evaluated by " + s.iri + ")";
     }
-    report::Entity e{kind, iri, "", "", s.where.line};
+    report::Entity e{kind, iri, "", s.where.line};
     if (s.where.known()) {
       e.file = files.path(s.where.file);
-      std::error_code ec;
-      const fs::path absolute = fs::absolute(e.file, ec);
-      if (!ec) e.url = "file://" + absolute.lexically_normal().string();
     }
     in.entities.push_back(std::move(e));
   }
 }
 
 int run_report(const ReportFlags& flags) {
+  const std::vector<report::Run> runs = runs_in(flags.input, !flags.no_video);
+  const report::Assets assets = report::load_assets();
   report::Input in;
-  in.runs = runs_in(flags.input);
+  SourceFiles files;
+  for (const report::Run& r : runs) in.runs.push_back(report::load_run(r, files));
   in.title = flags.title.empty() ? "mospec report: " + flags.input : flags.title;
-  describe_model(in.runs.front(), flags, in);
-  write_output(flags.output, report::render(in));
+  in.page = flags.output;
+  in.absolute_links = flags.absolute_links;
+  describe_model(in.runs.front().summary.scenario, flags, in);
+  write_output(flags.output, report::render(in, assets));
   std::cerr << "mospec: wrote " << flags.output << " (" << in.runs.size() << " run"
             << (in.runs.size() == 1 ? "" : "s") << ")\n";
   return kExitOk;
@@ -172,6 +191,10 @@ Action add_report_command(CLI::App& app) {
       ->type_name("RUN.json|DIR");
   cmd->add_option("-o,--output", flags->output, "The page")->required()->type_name("FILE.html");
   cmd->add_option("--title", flags->title, "The page's title (default: from the input)");
+  cmd->add_flag("--absolute-links", flags->absolute_links,
+                "Link the model's files by absolute file:// URLs (the default links them "
+                "relative to the page, so a shared page does not carry your directory names)");
+  cmd->add_flag("--no-video", flags->no_video, "Leave the run's video out of the page");
   flags->load.add_to(*cmd);
   return [flags]() { return run_report(*flags); };
 }

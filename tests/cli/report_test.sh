@@ -21,8 +21,12 @@ expect "the report is written" 0 "wrote $work/report.html \\(1 run\\)" -- \
   "$mospec" report "$run_dir" -o "$work/report.html"
 page="$work/report.html"
 check "the page names the verdict" grep -q 'class="status ok">ok<' "$page"
-check "the page has the model's entities with file:line" \
-  grep -Eq '<a href="file://[^"]*/models/sc0a/05-constraint-handler.json">models/sc0a/05-constraint-handler.json:[0-9]+</a>' "$page"
+check "the page links the model's entities' files relative to the page" \
+  grep -Eq '<a href="(\.\./)+[^"]*models/sc0a/05-constraint-handler.json">models/sc0a/05-constraint-handler.json:[0-9]+</a>' "$page"
+check "the page embeds no absolute path of this machine" bash -c "! grep -q 'file://' '$page'"
+expect "absolute links on request" 0 "" -- "$mospec" report "$run_dir" -o "$work/absolute.html" --absolute-links
+check "--absolute-links links by file:// URL" \
+  grep -Eq '<a href="file:///[^"]*/models/sc0a/05-constraint-handler.json">' "$work/absolute.html"
 check "the video is inlined" grep -q 'src="data:image/gif;base64,' "$page"
 check "nothing is fetched: no external script, style, image or link" \
   bash -c "! grep -Eiq '(src|href)=\"(https?:)?//|<link |@import|fetch\\(' '$page'"
@@ -55,13 +59,72 @@ browse "$work/trials.html"
 check "the trials' charts are drawn" grep -Eq 'data-charts="[1-9][0-9]*"' "$work/dom.html"
 check "no console error (trials)" bash -c "! grep -Eiq 'CONSOLE.*(error|uncaught)|Uncaught' '$work/console.txt'"
 
+# A hostile run directory: every field of the summary, the log's column names
+# and the run's name carry markup and script. The page must draw every chart
+# and run none of it (an injected script would set data-pwned on the body).
+hostile="$work/hostile"
+mkdir -p "$hostile"
+payload='</script><script>document.body.dataset.pwned=1</script><!--<script><img src=x onerror=document.body.dataset.pwned=1>'
+name="h<img src=x onerror=document.body.dataset.pwned=1>"
+python3 - "$run_dir/sc0a.json" "$hostile/$name.json" "$payload" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+p = sys.argv[3]
+s["scenario"] = p
+s["controller"] = p
+v = s["verdict"]
+v["status"] = p
+v["why"] = [p, p]
+for m in v["motions"]:
+    m["name"] = p; m["ended_by"] = p
+for c in v["constraints"]:
+    c["name"] = p; c["relation"] = p
+s["events"] = [{"tick": 1, "event": p, "edge": p}]
+json.dump(s, open(sys.argv[2], "w"))
+PY
+{ head -1 "$run_dir/sc0a.csv" | sed "s|^t,\([^,]*\),\([^,]*\),|t,\1,${payload//|/\|}.value,|"; tail -n +2 "$run_dir/sc0a.csv"; } > "$hostile/$name.csv"
+check "the hostile log has the payload as a column" grep -q 'pwned=1>.value' "$hostile/$name.csv"
+expect "the hostile run's report is written" 0 "" -- "$mospec" report "$hostile" -o "$work/hostile.html"
+browse "$work/hostile.html"
+hostile_charts=$(grep -o '<div class="chart" id="chart-[0-9]*"' "$work/hostile.html" | wc -l)
+check "the hostile page has its charts ($hostile_charts)" test "$hostile_charts" -ge 4
+check "every chart of the hostile page is drawn" grep -q "data-charts=\"$hostile_charts\"" "$work/dom.html"
+check "no script from the data ran" bash -c "! grep -q 'data-pwned' '$work/dom.html'"
+check "no element from the data exists" bash -c "! grep -q '<img src=\"x\"' '$work/dom.html'"
+check "no console error (hostile)" bash -c "! grep -Eiq 'CONSOLE.*(error|uncaught)|Uncaught' '$work/console.txt'"
+check "the payload is shown as text" grep -q 'document.body.dataset.pwned=1&lt;/script&gt;' "$work/dom.html"
+
+# A video is inlined only from inside the run's directory and only when its
+# header says GIF or MP4.
+linked="$work/linked"
+mkdir -p "$linked"
+cp "$run_dir/sc0a.json" "$run_dir/sc0a.csv" "$linked/"
+echo "GIF89a the author's private notes" > "$work/private.gif"
+ln -s "$work/private.gif" "$linked/sc0a.gif"
+expect "a video linked out of the run's directory" 2 "the run's video .*sc0a.gif resolves to '.*private.gif', outside the run's directory" -- \
+  "$mospec" report "$linked" -o "$work/none.html"
+check "the linked file's content is not quoted" bash -c "! grep -q 'private notes' '$work/stderr.txt'"
+expect "--no-video leaves it out" 0 "" -- "$mospec" report "$linked" -o "$work/novideo.html" --no-video
+check "no video on that page" bash -c "! grep -q 'data:image/gif' '$work/novideo.html'"
+rm "$linked/sc0a.gif"
+echo "not a video at all" > "$linked/sc0a.mp4"
+expect "a video whose header is not MP4" 2 "sc0a.mp4 is not an MP4 \(its first bytes say neither\)" -- \
+  "$mospec" report "$linked" -o "$work/none.html"
+rm "$linked/sc0a.mp4"
+python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); s["duration"]="ten"; json.dump(s, open(sys.argv[1],"w"))' "$linked/sc0a.json"
+expect "a summary field of the wrong type" 2 "sc0a.json:1:[0-9]+: error: \"duration\" is a string" -- \
+  "$mospec" report "$linked" -o "$work/none.html"
+printf '{"verdict": {"why": %s' "$(head -c 100000 /dev/zero | tr '\0' '[')" > "$linked/sc0a.json"
+expect "a deeply nested summary" 2 "sc0a.json:1:[0-9]+: error: .*nesting deeper than 512 levels" -- \
+  "$mospec" report "$linked" -o "$work/none.html"
+
 # Bad input: refused, named, nothing written.
 mkdir -p "$work/empty"
 expect "a directory without runs" 2 "holds no run" -- "$mospec" report "$work/empty" -o "$work/none.html"
 echo '{}' > "$work/lonely.json"
 expect "a summary without its log" 2 "has no log beside it" -- "$mospec" report "$work/lonely.json" -o "$work/none.html"
 cp "$run_dir/sc0a.csv" "$work/lonely.csv"
-expect "a JSON that is not a run summary" 2 "not a run summary" -- "$mospec" report "$work/lonely.json" -o "$work/none.html"
+expect "a JSON that is not a run summary" 2 "lonely.json:1:1: error: not a run summary" -- "$mospec" report "$work/lonely.json" -o "$work/none.html"
 check "nothing was written for them" test ! -e "$work/none.html"
 
 finish report

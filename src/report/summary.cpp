@@ -1,0 +1,159 @@
+#include "report/summary.hpp"
+
+#include <cmath>
+
+#include "json/json.hpp"
+
+namespace mospec::report {
+namespace {
+
+constexpr std::string_view kCode = "report";
+
+const char* kind_name(json::Kind k) {
+  switch (k) {
+    case json::Kind::Null:
+      return "null";
+    case json::Kind::Boolean:
+      return "a boolean";
+    case json::Kind::Number:
+      return "a number";
+    case json::Kind::String:
+      return "a string";
+    case json::Kind::Array:
+      return "an array";
+    case json::Kind::Object:
+      return "an object";
+  }
+  return "a value";
+}
+
+// Reads the fields of one summary, each error located at the value (or, for
+// a missing member, at its object).
+class Reader {
+ public:
+  Reader(const SourceFiles& files) : files_(files) {}
+
+  [[noreturn]] void fail(const json::Value& at, const std::string& message) const {
+    const SourceLoc l = at.location();
+    throw Error(std::string(kCode), message, files_.path(l.file), l.line, l.column);
+  }
+
+  void expect(const json::Value& v, json::Kind kind, std::string_view what,
+              std::string_view should) const {
+    if (v.kind() == kind) return;
+    fail(v, std::string(what) + " is " + kind_name(v.kind()) + "; a run summary has " +
+                std::string(should) + " there (write summaries with `mospec run --summary`)");
+  }
+
+  std::string string(const json::Value& object, std::string_view key, std::string_view what) const {
+    const json::Value* v = object.get(key);
+    if (!v) return {};
+    expect(*v, json::Kind::String, what, "a string");
+    return std::string(v->as_string());
+  }
+
+  bool boolean(const json::Value& object, std::string_view key, std::string_view what,
+               bool absent) const {
+    const json::Value* v = object.get(key);
+    if (!v) return absent;
+    expect(*v, json::Kind::Boolean, what, "true or false");
+    return v->as_bool();
+  }
+
+  // A finite number, or nothing for null or a missing member.
+  std::optional<double> number(const json::Value& object, std::string_view key,
+                               std::string_view what) const {
+    const json::Value* v = object.get(key);
+    if (!v || v->is_null()) return std::nullopt;
+    expect(*v, json::Kind::Number, what, "a number or null");
+    if (!std::isfinite(v->as_number()))
+      fail(*v, std::string(what) + " is not a finite number; a run summary writes null instead");
+    return v->as_number();
+  }
+
+  // The elements of an array member (none when it is missing), each an object.
+  const json::Array* objects(const json::Value& object, std::string_view key,
+                             std::string_view what) const {
+    const json::Value* v = object.get(key);
+    if (!v) return nullptr;
+    expect(*v, json::Kind::Array, what, "an array");
+    for (const json::Value& e : v->as_array())
+      expect(e, json::Kind::Object, std::string("an element of ") + std::string(what), "an object");
+    return &v->as_array();
+  }
+
+ private:
+  const SourceFiles& files_;
+};
+
+}  // namespace
+
+Summary parse_summary(std::string_view text, const std::string& path, SourceFiles& files) {
+  const uint32_t id = files.add(path);
+  const json::Value root = json::parse(text, id, path);
+  const Reader r(files);
+  if (!root.is_object() || !root.get("verdict")) {
+    r.fail(root,
+           "not a run summary (a JSON object with a \"verdict\"): write it with `mospec run "
+           "--sim --summary FILE.json`");
+  }
+  Summary s;
+  const json::Value& verdict = *root.get("verdict");
+  r.expect(verdict, json::Kind::Object, "\"verdict\"", "an object");
+  s.status = r.string(verdict, "status", "verdict.status");
+  if (s.status.empty()) s.status = "unknown";
+  if (const json::Value* why = verdict.get("why")) {
+    r.expect(*why, json::Kind::Array, "verdict.why", "an array of strings");
+    for (const json::Value& w : why->as_array()) {
+      r.expect(w, json::Kind::String, "an element of verdict.why", "a string");
+      s.why.emplace_back(w.as_string());
+    }
+  }
+  if (const json::Array* motions = r.objects(verdict, "motions", "verdict.motions")) {
+    for (const json::Value& m : *motions) {
+      MotionRow row;
+      row.name = r.string(m, "name", "a motion's \"name\"");
+      row.started_time = r.number(m, "started_time", "a motion's \"started_time\"");
+      row.ended_time = r.number(m, "ended_time", "a motion's \"ended_time\"");
+      row.ended_by = r.string(m, "ended_by", "a motion's \"ended_by\"");
+      s.motions.push_back(std::move(row));
+    }
+  }
+  if (const json::Array* constraints = r.objects(verdict, "constraints", "verdict.constraints")) {
+    for (const json::Value& c : *constraints) {
+      ConstraintRow row;
+      row.name = r.string(c, "name", "a constraint's \"name\"");
+      row.relation = r.string(c, "relation", "a constraint's \"relation\"");
+      row.guard = r.boolean(c, "guard", "a constraint's \"guard\"", false);
+      row.final_value = r.number(c, "final_value", "a constraint's \"final_value\"");
+      row.final_error = r.number(c, "final_error", "a constraint's \"final_error\"");
+      row.judged = r.boolean(c, "judged", "a constraint's \"judged\"", true);
+      row.satisfied = r.boolean(c, "satisfied", "a constraint's \"satisfied\"", false);
+      s.constraints.push_back(std::move(row));
+    }
+  }
+  s.controller = r.string(root, "controller", "\"controller\"");
+  if (const json::Value* d = root.get("duration")) {
+    r.expect(*d, json::Kind::Number, "\"duration\"", "a number of seconds");
+    if (!std::isfinite(d->as_number()) || d->as_number() < 0)
+      r.fail(*d, "\"duration\" is " + exact_number(d->as_number()) +
+                     "; a run lasts a finite, non-negative number of seconds");
+    s.duration = d->as_number();
+  }
+  s.ticks = r.number(root, "ticks", "\"ticks\"");
+  s.max_torque_ratio = r.number(root, "max_torque_ratio", "\"max_torque_ratio\"");
+  if (const json::Array* events = r.objects(root, "events", "\"events\"")) {
+    for (const json::Value& e : *events) {
+      EventRow row;
+      row.tick = r.number(e, "tick", "an event's \"tick\"");
+      row.column = r.string(e, "event", "an event's \"event\"");
+      row.what = e.get("reason") ? r.string(e, "reason", "an event's \"reason\"")
+                                 : r.string(e, "edge", "an event's \"edge\"");
+      s.events.push_back(std::move(row));
+    }
+  }
+  s.scenario = r.string(root, "scenario", "\"scenario\"");
+  return s;
+}
+
+}  // namespace mospec::report
