@@ -24,6 +24,7 @@
 
 #include "cli/commands.hpp"
 #include "support/io.hpp"
+#include "support/paths.hpp"
 
 namespace mospec::cli {
 namespace {
@@ -59,6 +60,32 @@ std::string scenario_app(const std::string& from) {
                          "models/sc0a.json) or the name of one in models/ (sc0a, sc0b, sc1, sc2)");
 }
 
+// The model tree a task's files may be read from, as the loader confines
+// imports (docs/security.md): the scenario app's own directory, the tree its
+// iri-map resolves against (--root, else the current directory) and the
+// directories of --map. The files a scenario imports went through the
+// loader's sandbox; the world file beside the app did not, so a planted
+// symbolic link out of a shared bundle would copy a file of the user's into
+// the new task.
+struct Tree {
+  std::vector<fs::path> roots;
+  // The file's content when it lies inside a root once links are resolved.
+  std::string read(const fs::path& file, std::string_view what) const {
+    const fs::path canonical = canonical_path(file.string());
+    for (const fs::path& root : roots) {
+      if (is_within(canonical, root)) return read_file(canonical.string());
+    }
+    std::string where;
+    for (const fs::path& root : roots) where += (where.empty() ? "" : ", ") + root.string();
+    throw Error("new", "mospec new: the scenario's " + std::string(what) + " " +
+                           escaped_bytes(file.string()) + " resolves to '" +
+                           escaped_bytes(canonical.string()) + "', outside the model tree (" +
+                           escaped_bytes(where) +
+                           "); nothing was created (copy the file into the scenario's directory "
+                           "if you trust it)");
+  }
+};
+
 // The removal of whatever a failed `new` created.
 class Undo {
  public:
@@ -86,6 +113,12 @@ int run_new(const NewFlags& flags) {
     throw Error("new", "mospec new: '" + source + "' is not an app file (it imports nothing)");
   const fs::path app_path(source);
   const fs::path dir = app_path.parent_path();
+  Tree tree{{canonical_path(dir.empty() ? "." : dir.string()),
+             canonical_path(flags.load.root.empty() ? "." : flags.load.root)}};
+  for (const std::string& map : flags.load.maps) {
+    const size_t eq = map.find('=');
+    if (eq != std::string::npos) tree.roots.push_back(canonical_path(map.substr(eq + 1)));
+  }
   const std::string own_folder = app_path.stem().string();
   const fs::path target_app = dir / (flags.name + ".json");
   const fs::path target_world = dir / (flags.name + ".world.json");
@@ -157,13 +190,15 @@ int run_new(const NewFlags& flags) {
   fs::create_directory(target_dir);
   undo.add(target_dir);
   for (const Copy& c : copies)
-    write_output((target_dir / c.new_name).string(), rename_iris(read_file(c.path)));
+    write_output((target_dir / c.new_name).string(),
+                 rename_iris(tree.read(c.path, "imported file")));
   const std::string app_text = rename_iris(read_file(source));
   fs::path world = app_path;
   world.replace_extension(".world.json");
-  const bool has_world = fs::exists(world);
+  std::error_code ec;
+  const bool has_world = fs::exists(fs::symlink_status(world, ec));
   if (has_world) {
-    write_output(target_world.string(), read_file(world.string()));
+    write_output(target_world.string(), tree.read(world, "world file"));
     undo.add(target_world);
   }
   write_output(target_app.string(), app_text);

@@ -64,5 +64,19 @@ expect "a name that is not one" 2 "is not a task name" -- "$mospec" new ../escap
 check "nothing escaped" test ! -e ../escape.json
 expect "an unknown scenario" 2 "no scenario 'sc9'" -- "$mospec" new other --from sc9
 check "no half-made task" test ! -e models/other -a ! -e models/other.json
+# A world file is copied only from inside the model tree: a planted link out of
+# a shared bundle must not copy a file of the user's into the new task.
+echo '{"secret": "do not copy"}' > "$work/private.json"
+mv models/sc0b.world.json "$work/sc0b.world.json.orig" 2>/dev/null || true
+ln -s "$work/private.json" models/sc0b.world.json
+expect "a world file linked out of the tree" 2 \
+  "the scenario's world file models/sc0b.world.json resolves to '.*private.json', outside the model tree" \
+  -- "$mospec" new linked --from sc0b
+check "nothing of it was created" test ! -e models/linked -a ! -e models/linked.json -a ! -e models/linked.world.json
+check "the private file's content is not quoted" bash -c "! grep -q 'do not copy' '$work/stderr.txt'"
+rm models/sc0b.world.json
+ln -s sc0a.world.json models/sc0b.world.json
+expect "a world file linked inside the tree is copied" 0 "" -- "$mospec" new linked --from sc0b
+check "the linked world file's content was copied" cmp -s models/sc0a.world.json models/linked.world.json
 
 finish tutorial
