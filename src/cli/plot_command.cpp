@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "json/json.hpp"
 #include "plot/csv.hpp"
 #include "plot/figure.hpp"
 #include "plot/gnuplot.hpp"
@@ -50,19 +51,28 @@ std::vector<std::string> trial_logs(const std::string& dir) {
   const fs::path manifest = fs::path(dir) / "trials.json";
   std::vector<std::string> failed;
   if (fs::exists(manifest)) {
-    try {
-      const nlohmann::json j = nlohmann::json::parse(read_file(manifest.string()));
-      for (const nlohmann::json& trial : j.at("trials")) {
-        const nlohmann::json& code = trial.at("exit_code");  // null: killed by a signal
-        const nlohmann::json& csv = trial.at("csv");         // null: never written
-        if (csv.is_string() && !(code.is_number_integer() && code.get<int>() == 0)) {
-          failed.push_back(csv.get<std::string>());
-        }
-      }
-    } catch (const nlohmann::json::exception& e) {
-      std::string message = "not a `mospec trials` manifest: ";
-      message.append(e.what());
-      throw Error("trials", message, manifest.string());
+    // Read with locations: a manifest comes with a shared trials directory,
+    // and a field of the wrong type is the file's fault, said where it is.
+    SourceFiles files;
+    const std::string path = manifest.string();
+    const json::Value j = json::parse(read_file(path), files.add(path), path);
+    const auto fail = [&](const json::Value& at, const std::string& what) {
+      throw Error("trials",
+                  "not a `mospec trials` manifest: " + what +
+                      " (`mospec trials` writes it; delete it to plot the logs without it)",
+                  path, at.location().line, at.location().column);
+    };
+    const json::Value* trials = j.get("trials");
+    if (!trials || !trials->is_array()) fail(trials ? *trials : j, "\"trials\" is not an array");
+    for (const json::Value& trial : trials->as_array()) {
+      const json::Value* code = trial.get("exit_code");  // null: killed by a signal
+      const json::Value* csv = trial.get("csv");         // null: never written
+      if (!code || !(code->is_null() || code->is_number()))
+        fail(code ? *code : trial, "a trial's \"exit_code\" is not a number or null");
+      if (!csv || !(csv->is_null() || csv->is_string()))
+        fail(csv ? *csv : trial, "a trial's \"csv\" is not a file name or null");
+      if (csv->is_string() && !(code->is_number() && code->as_number() == 0))
+        failed.emplace_back(csv->as_string());
     }
   }
   std::vector<std::string> logs;

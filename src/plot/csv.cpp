@@ -7,6 +7,7 @@
 
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
+#include "support/paths.hpp"
 
 namespace mospec::plot {
 
@@ -56,10 +57,11 @@ std::optional<size_t> Table::find(std::string_view name) const {
 size_t Table::require(std::string_view name, std::string_view role) const {
   if (auto i = find(name)) return *i;
   std::string message = "no column '";
-  message.append(name).append("'");
+  message.append(escaped_bytes(name)).append("'");
   if (!role.empty()) message.append(" (").append(role).append(")");
   message.append("; the columns are: ").append(join_names(columns));
-  throw Error("missing-column", message, path);
+  // At the header, which lists the columns there are.
+  throw Error("missing-column", message, path, 1, 1);
 }
 
 std::string join_names(const std::vector<std::string>& names) {
@@ -89,7 +91,7 @@ Table parse_csv(std::string_view text, const std::string& path) {
     if (header) {
       header = false;
       if (trim(line).empty())
-        throw Error("csv", "the header line (column names) is empty", path, line_no);
+        throw Error("csv", "the header line (column names) is empty", path, line_no, 1);
       split(line, fields, starts);
       std::unordered_set<std::string> seen;
       for (size_t i = 0; i < fields.size(); ++i) {
@@ -102,10 +104,11 @@ Table parse_csv(std::string_view text, const std::string& path) {
         }
         if (!seen.insert(name).second) {
           std::string message = "column name '";
-          message.append(name).append("' appears twice");
+          message.append(escaped_bytes(name)).append("' appears twice");
           throw Error("csv", message, path, line_no, column);
         }
         table.columns.push_back(std::move(name));
+        table.column_at.push_back(column);
       }
       table.data.resize(table.columns.size());
       continue;
@@ -114,7 +117,7 @@ Table parse_csv(std::string_view text, const std::string& path) {
       // Only a trailing blank line is tolerated: a blank line between rows
       // would silently shift the time base.
       if (text.find_first_not_of(" \t\r\n", pos) == std::string_view::npos) break;
-      throw Error("csv", "empty line between rows", path, line_no);
+      throw Error("csv", "empty line between rows", path, line_no, 1);
     }
     split(line, fields, starts);
     if (fields.size() != table.columns.size()) {
@@ -122,15 +125,19 @@ Table parse_csv(std::string_view text, const std::string& path) {
       message.append(std::to_string(table.columns.size()))
           .append(" fields (as in the header), got ")
           .append(std::to_string(fields.size()));
-      throw Error("csv", message, path, line_no);
+      // At the first field too many, or at the line's end where the next
+      // field is missing.
+      const size_t at =
+          fields.size() > table.columns.size() ? starts[table.columns.size()] : line.size();
+      throw Error("csv", message, path, line_no, static_cast<uint32_t>(at + 1));
     }
     for (size_t i = 0; i < fields.size(); ++i) {
       double v = 0.0;
       if (!parse_number(trim(fields[i]), v)) {
         std::string message = "column '";
-        message.append(table.columns[i])
+        message.append(escaped_bytes(table.columns[i]))
             .append("': '")
-            .append(fields[i])
+            .append(escaped_bytes(fields[i]))
             .append("' is not a number");
         throw Error("csv", message, path, line_no, static_cast<uint32_t>(starts[i] + 1));
       }
@@ -138,7 +145,7 @@ Table parse_csv(std::string_view text, const std::string& path) {
     }
   }
   if (header)
-    throw Error("csv", "the file is empty (expected a header line of column names)", path, 1);
+    throw Error("csv", "the file is empty (expected a header line of column names)", path, 1, 1);
   return table;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,6 +15,7 @@ namespace mospec::plot {
 struct Table {
   std::string path;                       // where it was read from (for messages)
   std::vector<std::string> columns;       // header names, in file order
+  std::vector<uint32_t> column_at;        // where each name starts in the header (1-based)
   std::vector<std::vector<double>> data;  // data[column][row]
 
   size_t rows() const { return data.empty() ? 0 : data.front().size(); }

@@ -177,7 +177,7 @@ void no_force_columns(const Table& table, std::string_view wanted) {
   message.append(wanted)
       .append("; choose columns with --force; the columns are: ")
       .append(join_names(table.columns));
-  throw Error("missing-column", message, table.path);
+  throw Error("missing-column", message, table.path, 1, 1);  // the header lists them
 }
 
 // The force curves (panel 1). `base_wrench`: prefer the platform wrench (one
@@ -488,7 +488,8 @@ Figure trials_figure(const std::vector<Table>& trials, const Selection& selectio
           .append(" is '");
       message.append(i < trial.columns.size() ? trial.columns[i] : "(none)").append("', there '");
       message.append(i < first.columns.size() ? first.columns[i] : "(none)").append("'");
-      throw Error("trials", message, trial.path, 1);
+      throw Error("trials", message, trial.path, 1,
+                  i < trial.column_at.size() ? trial.column_at[i] : 1);
     }
     if (trial.rows() != first.rows()) {
       std::string message = "has ";
@@ -498,7 +499,8 @@ Figure trials_figure(const std::vector<Table>& trials, const Selection& selectio
           .append(" has ");
       message.append(std::to_string(first.rows()))
           .append(": the trials must share their time base");
-      throw Error("trials", message, trial.path);
+      // At its last row (the header is line 1).
+      throw Error("trials", message, trial.path, static_cast<uint32_t>(trial.rows() + 1), 1);
     }
     for (size_t r = 0; r < trial.rows(); ++r) {
       const double a = trial.data[t][r], b = first.data[t][r];
@@ -509,8 +511,8 @@ Figure trials_figure(const std::vector<Table>& trials, const Selection& selectio
             .append(first.path)
             .append("'s t = ");
         message.append(exact_number(b)).append(": the trials must share their time base");
-        throw Error("trials", message, trial.path,
-                    static_cast<uint32_t>(r + 2));  // the header is line 1
+        // At the row (the header is line 1).
+        throw Error("trials", message, trial.path, static_cast<uint32_t>(r + 2), 1);
       }
     }
   }

@@ -36,13 +36,15 @@ TEST(PlotCsv, ReadsColumnsNonFiniteValuesAndLineEnds) {
 
 TEST(PlotCsv, ErrorsAreLocated) {
   EXPECT_EQ(error_of(""),
-            "run.csv:1: error: the file is empty (expected a header line of column names)");
+            "run.csv:1:1: error: the file is empty (expected a header line of column names)");
   EXPECT_EQ(error_of("t,,x\n"), "run.csv:1:3: error: column 2 has an empty name");
   EXPECT_EQ(error_of("t,x,t\n"), "run.csv:1:5: error: column name 't' appears twice");
   EXPECT_EQ(error_of("t,x\n0,1\n1\n"),
-            "run.csv:3: error: expected 2 fields (as in the header), got 1");
+            "run.csv:3:2: error: expected 2 fields (as in the header), got 1");
+  EXPECT_EQ(error_of("t,x\n0,1\n1,2,3\n"),
+            "run.csv:3:5: error: expected 2 fields (as in the header), got 3");
   EXPECT_EQ(error_of("t,x\n0,1\n1,1O\n"), "run.csv:3:3: error: column 'x': '1O' is not a number");
-  EXPECT_EQ(error_of("t,x\n0,1\n\n1,2\n"), "run.csv:3: error: empty line between rows");
+  EXPECT_EQ(error_of("t,x\n0,1\n\n1,2\n"), "run.csv:3:1: error: empty line between rows");
 }
 
 TEST(PlotCsv, MissingColumnListsTheAvailableOnes) {
@@ -51,7 +53,7 @@ TEST(PlotCsv, MissingColumnListsTheAvailableOnes) {
     t.require("b", "--force");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "run.csv: error: no column 'b' (--force); the columns are: t, a");
+    EXPECT_STREQ(e.what(), "run.csv:1:1: error: no column 'b' (--force); the columns are: t, a");
   }
 }
 
@@ -142,7 +144,7 @@ TEST(PlotFigure, TrialsAreMeanAndSampleStandardDeviation) {
   } catch (const Error& e) {
     EXPECT_STREQ(
         e.what(),
-        "trial-3.csv:3: error: t = 1.5 differs from trial-0.csv's t = 1: the trials must share "
+        "trial-3.csv:3:1: error: t = 1.5 differs from trial-0.csv's t = 1: the trials must share "
         "their time base");
   }
 }

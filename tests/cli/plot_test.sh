@@ -47,22 +47,22 @@ expect "chosen columns" 0 "" -- "$mospec" plot "$work/sc1.csv" -o "$work/pick.pn
 check "chosen columns png" is_png "$work/pick.png"
 
 # Errors: exit 2, the file (and line) named, nothing written.
-expect "missing --force column" 2 "sc1.csv: error: no column 'nope' \(--force\); the columns are: t, cstr-dist" -- \
+expect "missing --force column" 2 "sc1.csv:1:1: error: no column 'nope' \(--force\); the columns are: t, cstr-dist" -- \
   "$mospec" plot "$work/sc1.csv" -o "$work/bad.svg" --force nope
 cut -d, -f1-4,8- "$work/sc1.csv" > "$work/no-right.csv"
-expect "missing distance column" 2 "no-right.csv: error: no column 'cstr-dist-rightarm-shoulder-ee.value' .*the columns are: t, " -- \
+expect "missing distance column" 2 "no-right.csv:1:1: error: no column 'cstr-dist-rightarm-shoulder-ee.value' .*the columns are: t, " -- \
   "$mospec" plot "$work/no-right.csv" -o "$work/bad.svg"
 cut -d, -f1-7,10 "$work/sc2.csv" > "$work/no-force.csv"
-expect "no force columns" 2 "no-force.csv: error: no force columns: .*--force" -- \
+expect "no force columns" 2 "no-force.csv:1:1: error: no force columns: .*--force" -- \
   "$mospec" plot "$work/no-force.csv" -o "$work/bad.svg"
 { head -3 "$work/sc1.csv"; echo "0.2,0.7,0.68,zero,0.7,0.68,0.72,1,1,1,1,1,1"; } > "$work/bad-number.csv"
 expect "malformed number" 2 "bad-number.csv:4:[0-9]+: error: column 'cstr-dist-leftarm-shoulder-ee.upper': 'zero' is not a number" -- \
   "$mospec" plot "$work/bad-number.csv" -o "$work/bad.svg"
 { head -4 "$work/sc1.csv"; echo "0.25,0.7,0.68"; } > "$work/short-row.csv"
-expect "short row" 2 "short-row.csv:5: error: expected 13 fields \(as in the header\), got 3" -- \
+expect "short row" 2 "short-row.csv:5:[0-9]+: error: expected 13 fields \(as in the header\), got 3" -- \
   "$mospec" plot "$work/short-row.csv" -o "$work/bad.svg"
 : > "$work/empty.csv"
-expect "empty file" 2 "empty.csv:1: error: the file is empty" -- "$mospec" plot "$work/empty.csv" -o "$work/bad.svg"
+expect "empty file" 2 "empty.csv:1:1: error: the file is empty" -- "$mospec" plot "$work/empty.csv" -o "$work/bad.svg"
 expect "missing file" 2 "cannot read '.*/absent.csv'" -- "$mospec" plot "$work/absent.csv" -o "$work/bad.svg"
 expect "unknown format" 2 "must end in .svg or .png" -- "$mospec" plot "$work/sc1.csv" -o "$work/bad.pdf"
 expect "missing output dir" 2 "no directory" -- "$mospec" plot "$work/sc1.csv" -o "$work/nowhere/bad.svg"
@@ -85,7 +85,7 @@ check "trials png is png" is_png "$work/trials.png"
 mkdir "$work/skewed"
 cp "$work/trials/trial-0.csv" "$work/trials/trial-1.csv" "$work/skewed/"
 sed '3s/^0.1,/0.11,/' "$work/trials/trial-2.csv" > "$work/skewed/trial-2.csv"
-expect "trials time base" 2 "skewed/trial-2.csv:3: error: t = 0.11.* differs" -- \
+expect "trials time base" 2 "skewed/trial-2.csv:3:1: error: t = 0.11.* differs" -- \
   "$mospec" plot "$work/skewed" -o "$work/bad.svg"
 # A manifest from `mospec trials`: a trial that did not exit 0 is left out.
 cat > "$work/trials/trials.json" <<'JSON'
@@ -96,7 +96,10 @@ JSON
 expect "failed trials left out" 0 "\(1 trial\)" -- "$mospec" plot "$work/trials" -o "$work/trials.svg"
 check "failed trial warned" grep -q "leaving out .*trial-1.csv: its run did not exit 0" "$work/stderr.txt"
 echo '{"trials": 3}' > "$work/trials/trials.json"
-expect "bad manifest" 2 "trials/trials.json: error: not a .mospec trials. manifest" -- \
+expect "bad manifest" 2 "trials/trials.json:1:12: error: not a .mospec trials. manifest: \"trials\" is not an array" -- \
+  "$mospec" plot "$work/trials" -o "$work/trials.svg"
+echo '{"trials": [{"exit_code": "0", "csv": "trial-0.csv"}]}' > "$work/trials/trials.json"
+expect "a manifest field of the wrong type" 2 "trials/trials.json:1:27: error: not a .mospec trials. manifest: a trial's \"exit_code\" is not a number or null" -- \
   "$mospec" plot "$work/trials" -o "$work/trials.svg"
 # Issue #17: the title is the scenario's name (trials.json's app; a run's
 # summary next to its log); a start-up spike is clipped and said; markers at
