@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
@@ -101,6 +102,7 @@ class Engine {
   const rdf::Dataset& data() const { return data_; }
   void set_limits(const Limits& limits) { limits_ = limits; }
   const Limits& limits() const { return limits_; }
+  void set_budget(Budget* budget) { shared_budget_ = budget; }
 
   // ---- terms ----
   std::pair<const rdf::TermTable*, TermId> locate(TermId id) const {
@@ -164,7 +166,11 @@ class Engine {
     saved_.clear();
     filled_.clear();
     arena_used_ = 0;
-    budget_.emplace(limits_);
+    if (shared_budget_ != nullptr) {
+      budget_ = shared_budget_;
+    } else {
+      budget_ = &own_budget_.emplace(limits_);
+    }
     for (const Binding& b : prebound) {
       std::string_view name = b.name;
       if (!name.empty() && (name[0] == '?' || name[0] == '$')) name.remove_prefix(1);
@@ -313,12 +319,18 @@ class Engine {
       const size_t nk = plan.order.size();
       std::vector<size_t> perm(rows);
       for (size_t i = 0; i < rows; ++i) perm[i] = i;
-      std::stable_sort(perm.begin(), perm.end(), [&](size_t a, size_t b) {
-        for (size_t k = 0; k < nk; ++k) {
-          const int c = order(value_of(keys[a * nk + k]), value_of(keys[b * nk + k]));
-          if (c != 0) return plan.order[k].descending ? c > 0 : c < 0;
-        }
-        return false;
+      // A sort of millions of rows takes seconds without a step of its own.
+      uint64_t comparisons = 0;
+      for (size_t n = rows; n > 1; n /= 2) comparisons += rows;
+      budget_->bulk(Budget::Bulk::Sort, comparisons, [&] {
+        std::stable_sort(perm.begin(), perm.end(), [&](size_t a, size_t b) {
+          for (size_t k = 0; k < nk; ++k) {
+            const int c = order(value_of(keys[a * nk + k]), value_of(keys[b * nk + k]));
+            if (c != 0) return plan.order[k].descending ? c > 0 : c < 0;
+          }
+          return false;
+        });
+        return true;
       });
       std::vector<TermId> sorted;
       sorted.reserve(cells.size());
@@ -582,17 +594,17 @@ class Engine {
       (void)start_value;
     };
     if (s != kUnbound) {
-      evaluate_path(data_, path, s, buffer, TermId::any(), &*budget_);
+      evaluate_path(data_, path, s, buffer, TermId::any(), budget_);
       each_end(pe.o, s);
     } else if (o != kUnbound) {
-      evaluate_path_inverse(data_, path, o, buffer, TermId::any(), &*budget_);
+      evaluate_path_inverse(data_, path, o, buffer, TermId::any(), budget_);
       each_end(pe.s, o);
     } else {
       // Neither end known: every node of the graph is a start (zero-length
       // paths match every subject and object).
       for (TermId start : all_nodes()) {
         if (!cont) break;
-        evaluate_path(data_, path, start, buffer, TermId::any(), &*budget_);
+        evaluate_path(data_, path, start, buffer, TermId::any(), budget_);
         Var bound[3];
         int nbound = 0;
         if (bind(pe.s, start, bound, nbound)) each_end(pe.o, start);
@@ -699,6 +711,13 @@ class Engine {
     if ((v.kind == Value::Kind::Numeric || v.kind == Value::Kind::Bool) && v.id.is_any())
       return store(canonical_lexical(v));
     return v.str;
+  }
+  // CONTAINS in time linear in both strings (std::string_view::find can take
+  // their product: "aaa...ab" in "aaa...a").
+  static bool contains(std::string_view text, std::string_view needle) {
+    if (needle.size() < 16) return text.find(needle) != std::string_view::npos;
+    return std::search(text.begin(), text.end(),
+                       std::boyer_moore_searcher(needle.begin(), needle.end())) != text.end();
   }
   static bool stringish(const Value& v) {
     return v.kind == Value::Kind::String || v.kind == Value::Kind::LangString;
@@ -911,18 +930,20 @@ class Engine {
         if (!stringish(a) || !stringish(b)) return Value::make_error();
         // Argument compatibility (17.4.3.1.2): b's language, if any, must be a's.
         if (!b.lang.empty() && a.lang != b.lang) return Value::make_error();
+        budget_->bytes(a.str.size() + b.str.size());
         switch (e.op) {
           case ExprOp::StrStarts:
             return Value::boolean(a.str.starts_with(b.str));
           case ExprOp::StrEnds:
             return Value::boolean(a.str.ends_with(b.str));
           default:
-            return Value::boolean(a.str.find(b.str) != std::string_view::npos);
+            return Value::boolean(contains(a.str, b.str));
         }
       }
       case ExprOp::StrLen: {
         const Value v = arg(0);
         if (!stringish(v)) return Value::make_error();
+        budget_->bytes(v.str.size());
         int64_t n = 0;
         for (char c : v.str)
           if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++n;
@@ -932,6 +953,7 @@ class Engine {
       case ExprOp::Lcase: {
         const Value v = arg(0);
         if (!stringish(v)) return Value::make_error();
+        budget_->bytes(v.str.size());
         std::string s(v.str);
         for (char& c : s)
           c = static_cast<char>(e.op == ExprOp::Ucase
@@ -946,6 +968,7 @@ class Engine {
         for (size_t i = 0; i < e.args.size(); ++i) {
           const Value v = arg(i);
           if (!stringish(v)) return Value::make_error();
+          budget_->bytes(v.str.size());
           if (i == 0) {
             lang = v.lang;
           } else if (v.lang != lang) {
@@ -1077,7 +1100,11 @@ class Engine {
       if (!it->second) return Value::make_error();
       re = &*it->second;
     }
-    return Value::boolean(re->search(text.str));
+    // RE2 is linear in the text: its cost is the text's length, charged (and
+    // checked against the time left) before the match starts.
+    return Value::boolean(budget_->bulk(Budget::Bulk::Regex,
+                                        1 + text.str.size() / Budget::kBytesPerStep,
+                                        [&] { return re->search(text.str); }));
   }
 
   bool exists(uint32_t op_index) {
@@ -1119,9 +1146,11 @@ class Engine {
   static constexpr uint8_t kUnknown = 0, kFirst = 1, kDuplicate = 2;
   mutable std::vector<uint8_t> duplicate_;
   Limits limits_;
+  Budget* shared_budget_ = nullptr;
 
   // Per evaluation.
-  std::optional<Budget> budget_;
+  std::optional<Budget> own_budget_;
+  Budget* budget_ = nullptr;  // the shared budget, else own_budget_
   Prepared* P_ = nullptr;
   const Plan* plan_ = nullptr;
   std::vector<TermId> row_;
@@ -1212,6 +1241,9 @@ void Evaluator::set_limits(const Limits& limits) {
 }
 const Limits& Evaluator::limits() const {
   return engine_->limits();
+}
+void Evaluator::set_budget(Budget* budget) {
+  engine_->set_budget(budget);
 }
 
 }  // namespace mospec::sparql

@@ -31,9 +31,9 @@
 // Default graph: the union of all graphs of the dataset (as a set of triples).
 //
 // Bounded work: the parser refuses queries nested deeper than 256 levels
-// (sparql-syntax), and each evaluation runs under an Evaluator's Limits (a time
-// budget, a step count and a row count, limits.hpp): past one it throws
-// mospec::Error with code "sparql-limit".
+// (sparql-syntax), and each evaluation runs under a Budget (a time budget and
+// a step count, shared by every evaluation of a command, and a row count per
+// SELECT; limits.hpp): past one it throws mospec::Error "sparql-limit".
 //
 // Deviations from the specification, on purpose:
 //  - xsd:integer arithmetic is 64-bit; an overflow is an expression error.
@@ -196,6 +196,11 @@ class Evaluator {
   // mospec::Error with code "sparql-limit". Defaults: Limits{}.
   void set_limits(const Limits& limits);
   const Limits& limits() const;
+  // Charges every later select()/ask() call to `budget` (which must outlive
+  // them; nullptr: each call gets its own Budget of limits()), so that one
+  // budget bounds all evaluations of a command. Its row limit still applies
+  // to each SELECT on its own.
+  void set_budget(Budget* budget);
 
  private:
   std::unique_ptr<detail::Engine> engine_;
