@@ -70,6 +70,26 @@ class Cont {
   bool (*call_)(void*);
 };
 
+// SHACL's pre-binding (appendix "Pre-binding of Variables") is undefined for
+// a query that assigns a pre-bound variable with AS, or has a sub-SELECT that
+// does not return one the query uses (W3C SHACL tests pre-binding-006 and
+// unsupported-sparql-004).
+void check_prebound(const Plan& plan, std::string_view name) {
+  for (const auto& [assigned, pos] : plan.assigned)
+    if (plan.var_names[assigned] == name)
+      throw QueryError("unsupported-sparql", pos.line, pos.column,
+                       "AS ?" + std::string(name) + " assigns the pre-bound variable $" +
+                           std::string(name) + " (not allowed with SHACL pre-binding)");
+  if (!plan.names(name)) return;
+  for (const auto& [names, pos] : plan.subselect_names)
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw QueryError("unsupported-sparql", pos.line, pos.column,
+                       "this sub-SELECT does not return the pre-bound variable $" +
+                           std::string(name) +
+                           " (SHACL pre-binding requires every sub-SELECT to return the "
+                           "pre-bound variables the query uses)");
+}
+
 }  // namespace
 
 struct OpState {
@@ -166,6 +186,9 @@ class Engine {
     saved_.clear();
     filled_.clear();
     arena_used_ = 0;
+    sub_ready_.assign(plan.selects.size(), 0);
+    sub_rows_.resize(plan.selects.size());
+    sub_counts_.resize(plan.selects.size());
     if (shared_budget_ != nullptr) {
       budget_ = shared_budget_;
     } else {
@@ -174,17 +197,15 @@ class Engine {
     for (const Binding& b : prebound) {
       std::string_view name = b.name;
       if (!name.empty() && (name[0] == '?' || name[0] == '$')) name.remove_prefix(1);
-      const Var v = plan.find_var(name);
-      if (v == kNone) continue;
-      for (const auto& [assigned, pos] : plan.assigned) {
-        if (assigned == v)
-          throw QueryError("unsupported-sparql", pos.line, pos.column,
-                           "AS ?" + std::string(name) + " assigns the pre-bound variable $" +
-                               std::string(name) + " (not allowed with SHACL pre-binding)");
-      }
+      check_prebound(plan, name);
       if (b.value == kUnbound) continue;
-      row_[v] = b.value;
-      pinned_[v] = 1;
+      // Also a sub-SELECT's own slot of the name: pre-binding holds in every
+      // pattern (check_prebound made sure such a sub-SELECT projects it).
+      for (Var v = 0; v < nv; ++v) {
+        if (plan.var_names[v] != name) continue;
+        row_[v] = b.value;
+        pinned_[v] = 1;
+      }
     }
 
     if (found == nullptr && plan.form == QueryForm::Ask) {
@@ -279,9 +300,15 @@ class Engine {
   void collect(const Plan& plan, ResultSet& out) {
     out.clear();
     out.variables = plan.result_names;
+    out.rows = collect_rows(plan, out.cells);
+  }
+
+  // The solutions of a query or sub-SELECT (S: Plan or Select), projected,
+  // ordered, made distinct and sliced, appended to `cells`; returns how many.
+  template <class S>
+  size_t collect_rows(const S& plan, std::vector<TermId>& cells) {
     const size_t width = plan.result_vars.size();
-    if (plan.limit == 0) return;
-    std::vector<TermId>& cells = out.cells;
+    if (plan.limit == 0) return 0;
     // Only DISTINCT needs the set (no allocation per call otherwise).
     std::unordered_set<size_t, RowHash, RowEq> seen(0, RowHash{&cells, width},
                                                     RowEq{&cells, width});
@@ -358,7 +385,7 @@ class Engine {
       cells.erase(cells.begin() + static_cast<ptrdiff_t>(last * width), cells.end());
       cells.erase(cells.begin(), cells.begin() + static_cast<ptrdiff_t>(first * width));
     }
-    out.rows = last - first;
+    return last - first;
   }
 
   // ---- ops ----
@@ -415,6 +442,49 @@ class Engine {
         for (uint32_t c : op.children)
           if (!eval(c, k)) return false;
         return true;
+      case OpKind::SubSelect:
+        return eval_sub_select(op.select, k);
+    }
+    return true;
+  }
+
+  // Evaluated on its own (eval() hid the input's bindings of its variables,
+  // except pinned ones), then each solution joined with the input. Its own
+  // slots see only the pre-bound values, the same for the whole run, so its
+  // solutions are computed once per run however often the join asks.
+  bool eval_sub_select(uint32_t index, Cont k) {
+    const Select& sel = plan_->selects[index];
+    if (!sub_ready_[index]) {
+      std::vector<TermId> cells;
+      const size_t n = collect_rows(sel, cells);
+      sub_rows_[index] = std::move(cells);
+      sub_counts_[index] = n;
+      sub_ready_[index] = 1;
+    }
+    const std::vector<TermId>& cells = sub_rows_[index];
+    const size_t rows = sub_counts_[index];
+    const size_t width = sel.result_vars.size();
+    for (size_t r = 0; r < rows; ++r) {
+      budget_->tick();
+      const size_t mark = filled_.size();
+      bool compatible = true;
+      for (size_t c = 0; c < width && compatible; ++c) {
+        const TermId value = cells[r * width + c];
+        if (value == kUnbound) continue;
+        const Var v = sel.outer_vars[c];
+        if (row_[v] == kUnbound) {
+          row_[v] = value;
+          filled_.push_back(v);
+        } else {
+          compatible = row_[v] == value;
+        }
+      }
+      const bool cont = !compatible || k();
+      while (filled_.size() > mark) {
+        row_[filled_.back()] = kUnbound;
+        filled_.pop_back();
+      }
+      if (!cont) return false;
     }
     return true;
   }
@@ -1162,6 +1232,10 @@ class Engine {
   std::vector<Var> filled_;
   std::deque<std::string> arena_;
   size_t arena_used_ = 0;
+  // Sub-SELECT solutions of this run, by Plan::selects index.
+  std::vector<uint8_t> sub_ready_;
+  std::vector<std::vector<TermId>> sub_rows_;
+  std::vector<size_t> sub_counts_;
 };
 
 }  // namespace detail
@@ -1175,7 +1249,7 @@ const std::vector<std::string>& Query::variables() const {
   return plan_->result_names;
 }
 bool Query::mentions(std::string_view name) const {
-  return plan_->find_var(name) != detail::kNone;
+  return plan_->names(name);
 }
 std::string Query::algebra() const {
   return detail::to_sse(*plan_);
@@ -1184,13 +1258,7 @@ std::string Query::algebra() const {
 void Query::check_prebinding(std::span<const std::string_view> names) const {
   for (std::string_view name : names) {
     if (!name.empty() && (name[0] == '?' || name[0] == '$')) name.remove_prefix(1);
-    const detail::Var v = plan_->find_var(name);
-    if (v == detail::kNone) continue;
-    for (const auto& [assigned, pos] : plan_->assigned)
-      if (assigned == v)
-        throw QueryError("unsupported-sparql", pos.line, pos.column,
-                         "AS ?" + std::string(name) + " assigns the pre-bound variable $" +
-                             std::string(name) + " (not allowed with SHACL pre-binding)");
+    detail::check_prebound(*plan_, name);
   }
 }
 

@@ -21,8 +21,9 @@
 // isNumeric STR LANG DATATYPE IRI URI REGEX STRSTARTS STRENDS CONTAINS STRLEN
 // UCASE LCASE (ASCII case mapping) CONCAT LANGMATCHES sameTerm and the XSD
 // casts xsd:string/integer/decimal/double/float/boolean; ORDER BY, LIMIT,
-// OFFSET.
-// Everything else (MINUS, VALUES, SERVICE, GRAPH, sub-SELECT, FROM, aggregates,
+// OFFSET; sub-SELECTs (with their own modifiers, evaluated bottom-up and
+// joined with the enclosing group).
+// Everything else (MINUS, VALUES, SERVICE, GRAPH, FROM, aggregates,
 // GROUP BY, HAVING, CONSTRUCT, DESCRIBE, updates, unknown functions) is rejected
 // with a QueryError of code "unsupported-sparql" naming the construct and its
 // position; syntax errors have code "sparql-syntax". Messages start with
@@ -106,8 +107,9 @@ class Query {
 
   // Rejects (unsupported-sparql, with position) queries that SHACL's pre-binding
   // (SHACL 1.0 appendix "Pre-binding of Variables") cannot handle for the given
-  // potentially pre-bound variables: `AS ?var` for one of them. MINUS, SERVICE,
-  // VALUES and sub-queries are rejected by the parser for every query.
+  // potentially pre-bound variables: `AS ?var` for one of them, or a sub-SELECT
+  // that does not return one the query uses. MINUS, SERVICE and VALUES are
+  // rejected by the parser for every query.
   void check_prebinding(std::span<const std::string_view> names) const;
 
   const detail::Plan& plan() const { return *plan_; }
