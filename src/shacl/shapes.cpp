@@ -300,8 +300,14 @@ class ShapesCompiler {
   std::vector<TermId> shape_classes() {
     // SHACL instances of sh:NodeShape / sh:PropertyShape include instances of
     // their subclasses (rare, but cheap to honour).
+    return subclasses({node_shape_, property_shape_});
+  }
+
+  // The classes given (those present in the graph) and their rdfs:subClassOf*
+  // subclasses in the shapes graph.
+  std::vector<TermId> subclasses(std::initializer_list<TermId> roots) {
     std::vector<TermId> classes;
-    for (TermId c : {node_shape_, property_shape_})
+    for (TermId c : roots)
       if (c != kAbsent) classes.push_back(c);
     for (size_t i = 0; i < classes.size(); ++i) {
       g_.scan(TermId::any(), subclass_, classes[i], TermId::any(),
@@ -1017,15 +1023,17 @@ class ShapesCompiler {
   // Every sh:ConstraintComponent of the shapes graph, checked once; SHACL's
   // own components (the sh: namespace) are built in and skipped.
   void declare_components() {
-    if (constraint_component_ == kAbsent) return;
+    // SHACL instances of sh:ConstraintComponent include instances of its
+    // subclasses: a component typed with one must not be left undeclared, or
+    // its parameters would be ignored and the data would conform.
     std::vector<Value> declared;
-    g_.scan(TermId::any(), type_, constraint_component_, TermId::any(),
-            [&](const rdf::Quad& q, uint32_t i) {
-              for (const Value& d : declared)
-                if (d.object == q.subject) return true;
-              declared.push_back({q.subject, g_.location(i)});
-              return true;
-            });
+    for (TermId cls : subclasses({constraint_component_}))
+      g_.scan(TermId::any(), type_, cls, TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
+        for (const Value& d : declared)
+          if (d.object == q.subject) return true;
+        declared.push_back({q.subject, g_.location(i)});
+        return true;
+      });
     for (const Value& d : declared) {
       const rdf::Term& term = t_[d.object];
       if (term.is_iri() && term.value.substr(0, vocab::sh::ns.size()) == vocab::sh::ns) continue;

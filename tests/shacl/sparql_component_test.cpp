@@ -185,6 +185,32 @@ ex:S a sh:NodeShape ; sh:targetNode 1, 2 ; ex:notEqualTo 2 ; sh:message "not two
   EXPECT_EQ(r.terms[r.results[0].messages[0]].language, "en");
 }
 
+// W3C SHACL-SPARQL test sparql/component/validator-001: the component and
+// its validator are typed with subclasses of sh:ConstraintComponent and
+// sh:SPARQLAskValidator. mospec looked for rdf:type sh:ConstraintComponent
+// only, so the component was never declared, its parameters on the shape
+// meant nothing and "Hallo Welt" conformed (issue #32).
+TEST(SparqlComponent, AComponentTypedWithASubclassIsDeclared) {
+  Report r = check_one(R"(
+ex:ConstraintComponent a rdfs:Class ; rdfs:subClassOf sh:ConstraintComponent .
+ex:MyComponent rdfs:subClassOf ex:ConstraintComponent .
+ex:SPARQLAskValidator rdfs:subClassOf sh:SPARQLAskValidator .
+ex:TestConstraintComponent a ex:MyComponent ;
+  sh:parameter ex:TestParameter1 , ex:TestParameter2 ;
+  sh:validator [ a ex:SPARQLAskValidator ;
+    sh:ask "ASK { FILTER (?value = CONCAT($test1, $test2)) }" ] .
+ex:TestParameter1 a sh:Parameter ; sh:path ex:test1 ; sh:datatype xsd:string .
+ex:TestParameter2 a sh:Parameter ; sh:path ex:test2 ; sh:datatype xsd:string .
+ex:TestShape a sh:NodeShape ; ex:test1 "Hello " ; ex:test2 "World" ;
+  sh:targetNode "Hallo Welt" , "Hello World" .
+)");
+  ASSERT_EQ(r.results.size(), 1u) << text(r);
+  EXPECT_EQ(r.terms[r.results[0].focus].value, "Hallo Welt");
+  EXPECT_EQ(r.terms[r.results[0].value].value, "Hallo Welt");
+  EXPECT_EQ(r.terms[r.results[0].component_node].value,
+            "http://example.org/TestConstraintComponent");
+}
+
 TEST(SparqlComponent, ComponentsMospecWouldHaveToIgnoreAreErrors) {
   struct Case {
     std::string body, code, needle;
