@@ -580,14 +580,12 @@ class ShapesCompiler {
     // Everything the shape says in the SHACL namespace is implemented or refused.
     check_properties(node, shape_properties_, "a shape");
     std::vector<std::pair<uint32_t, TermId>> predicates;
-    std::vector<Value> custom_values;  // first value of each custom parameter
-    std::vector<uint32_t> custom;      // custom components used, in the order written
+    std::vector<uint32_t> custom;  // custom components used, in the order written
     std::unordered_set<uint32_t> seen;
     g_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
       if (!seen.insert(q.predicate.index).second) return true;
       if (params_.count(q.predicate.index) != 0) predicates.emplace_back(i, q.predicate);
       if (auto it = custom_params_.find(q.predicate.index); it != custom_params_.end()) {
-        custom_values.push_back({q.predicate, g_.location(i)});
         for (uint32_t c : it->second)
           if (std::find(custom.begin(), custom.end(), c) == custom.end()) custom.push_back(c);
       }
@@ -597,18 +595,10 @@ class ShapesCompiler {
       Component c = params_.at(predicate.index);
       add_constraints(self, s, c, predicate);
     }
-    std::unordered_set<uint32_t> used;
-    for (uint32_t c : custom) add_component_constraints(self, s, c, used);
-    for (const Value& v : custom_values) {
-      if (used.count(v.object.index) != 0 || params_.count(v.object.index) != 0) continue;
-      std::string components;
-      for (uint32_t c : custom_params_.at(v.object.index))
-        components += (components.empty() ? "" : ", ") + show(components_[c].node);
-      fail(self, v.where,
-           show(v.object) + " is a parameter of " + components +
-               ", but the shape lacks a value for a mandatory parameter, so the value would be "
-               "ignored");
-    }
+    // SHACL 6.2: a shape declares a component's constraint only when it has
+    // values for all of its mandatory parameters; a value of an optional
+    // parameter alone declares nothing (W3C test sparql/component/optional-001).
+    for (uint32_t c : custom) add_component_constraints(self, s, c);
     out_.shapes_[self] = std::move(s);
     return self;
   }
@@ -1149,16 +1139,14 @@ class ShapesCompiler {
 
   // The constraints of custom component `ci` that shape `s` declares (one per
   // combination of parameter values), if it has values for every mandatory
-  // parameter. Marks the parameters it used in `used`.
-  void add_component_constraints(uint32_t self, Shape& s, uint32_t ci,
-                                 std::unordered_set<uint32_t>& used) {
+  // parameter.
+  void add_component_constraints(uint32_t self, Shape& s, uint32_t ci) {
     const CustomComponent& c = components_[ci];
     std::vector<std::vector<Value>> given;
     for (const Parameter& p : c.parameters) {
       given.push_back(values(s.node, p.path));
       if (!p.optional && given.back().empty()) return;
     }
-    for (const Parameter& p : c.parameters) used.insert(p.path.index);
     const Value* first = nullptr;  // the first mandatory parameter value: the constraint's place
     size_t combinations = 1;
     for (size_t i = 0; i < c.parameters.size(); ++i) {
