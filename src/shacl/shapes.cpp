@@ -149,6 +149,7 @@ class ShapesCompiler {
     rest_ = sh(vocab::rdf::rest);
     nil_ = sh(vocab::rdf::nil);
     subclass_ = sh(vocab::rdfs::subClassOf);
+    sparql_ = sh(vocab::sh::sparql);
     rdfs_class_ = sh(vocab::rdfs::Class);
     node_shape_ = sh(vocab::sh::NodeShape);
     property_shape_ = sh(vocab::sh::PropertyShape);
@@ -244,6 +245,8 @@ class ShapesCompiler {
           vocab::sh::ignoredProperties, vocab::sh::declare, vocab::sh::name, vocab::sh::description,
           vocab::sh::order, vocab::sh::group, vocab::sh::defaultValue})
       if (TermId id = sh(iri); id != kAbsent) shape_properties_.insert(id.index);
+    // A shape's sh:prefixes serve the queries of its SPARQL constraints (prefixes()).
+    if (TermId id = sh(vocab::sh::prefixes); id != kAbsent) shape_properties_.insert(id.index);
     auto allow = [&](std::unordered_set<uint32_t>& set,
                      std::initializer_list<std::string_view> iris) {
       for (std::string_view iri : iris)
@@ -578,7 +581,12 @@ class ShapesCompiler {
 
     // Constraints, in the order their parameters are written.
     // Everything the shape says in the SHACL namespace is implemented or refused.
-    check_properties(node, shape_properties_, "a shape");
+    // A shape may be its own SPARQL constraint (W3C test sparql/node/sparql-002:
+    // `ex:S sh:sparql ex:S ; sh:select ...`): then it may say what either says.
+    const bool also_constraint =
+        sparql_ != kAbsent && g_.count(TermId::any(), sparql_, node, TermId::any(), 1) != 0;
+    check_properties(node, shape_properties_, "a shape",
+                     also_constraint ? &sparql_properties_ : nullptr);
     std::vector<std::pair<uint32_t, TermId>> predicates;
     std::vector<uint32_t> custom;  // custom components used, in the order written
     std::unordered_set<uint32_t> seen;
@@ -809,11 +817,19 @@ class ShapesCompiler {
     }
   }
 
-  // sh:prefixes/owl:imports*/sh:declare of a SPARQL-based constraint.
-  sparql::PrefixMap prefixes(uint32_t shape, TermId constraint) {
+  // sh:prefixes/owl:imports*/sh:declare of a SPARQL-based constraint or
+  // validator, and of the shape that uses it (which SHACL leaves to
+  // extensions; mospec lets a shape's prefixes serve all of its queries).
+  sparql::PrefixMap prefixes(uint32_t shape, TermId shape_node, TermId constraint) {
     sparql::PrefixMap out;
     std::vector<TermId> todo;
-    for (const Value& v : values(constraint, prefixes_)) todo.push_back(v.object);
+    for (TermId holder : {constraint, shape_node}) {
+      for (const Value& v : values(holder, prefixes_)) {
+        if (t_[v.object].is_literal())
+          fail(shape, v.where, "sh:prefixes must be an IRI or blank node, got " + show(v.object));
+        todo.push_back(v.object);
+      }
+    }
     std::unordered_set<uint32_t> visited;
     while (!todo.empty()) {
       TermId node = todo.back();
@@ -870,8 +886,9 @@ class ShapesCompiler {
                              std::span<const std::string_view> prebound) {
     auto where_query = [&](const std::string& m) { return what + ": " + m; };
     try {
-      sparql::Query query = sparql::parse_query(
-          query_text(s, literal, form == sparql::QueryForm::Select), prefixes(self, holder));
+      sparql::Query query =
+          sparql::parse_query(query_text(s, literal, form == sparql::QueryForm::Select),
+                              prefixes(self, s.node, holder));
       if (query.form() != form)
         fail(self, literal.where,
              where_query(form == sparql::QueryForm::Select ? "must be a SELECT query"
@@ -937,7 +954,8 @@ class ShapesCompiler {
                                                             const Value& v) {
     if (t_[v.object].is_literal())
       fail(self, v.where, "sh:sparql must be an IRI or blank node, got " + show(v.object));
-    check_properties(v.object, sparql_properties_, "a SPARQL-based constraint");
+    check_properties(v.object, sparql_properties_, "a SPARQL-based constraint",
+                     v.object == s.node ? &shape_properties_ : nullptr);
     auto deactivated = values(v.object, deactivated_);
     at_most_one(self, deactivated, "sh:deactivated");
     if (!deactivated.empty() && bool_param(self, deactivated[0], "sh:deactivated").value_or(false))
@@ -1307,9 +1325,10 @@ class ShapesCompiler {
   // `allowed` (nor a parameter of a custom constraint component): a
   // misspelt parameter would otherwise be silently ignored.
   void check_properties(TermId node, const std::unordered_set<uint32_t>& allowed,
-                        std::string_view what) {
+                        std::string_view what, const std::unordered_set<uint32_t>* also = nullptr) {
     g_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
       if (!in_sh(q.predicate) || allowed.count(q.predicate.index) != 0 ||
+          (also != nullptr && also->count(q.predicate.index) != 0) ||
           custom_params_.count(q.predicate.index) != 0)
         return true;
       if (q.predicate == optional_ && parameter_nodes_.count(node.index) != 0) return true;
@@ -1386,7 +1405,7 @@ class ShapesCompiler {
   std::unordered_map<uint32_t, std::vector<uint32_t>> custom_params_;
   std::unordered_set<uint32_t> parameter_nodes_;  // parameter declarations
   std::vector<TermId> referenced_;
-  TermId type_, first_, rest_, nil_, subclass_, rdfs_class_, node_shape_, property_shape_;
+  TermId type_, first_, rest_, nil_, subclass_, sparql_, rdfs_class_, node_shape_, property_shape_;
   TermId violation_, warning_, info_;
   TermId path_, target_node_, target_class_, target_subjects_, target_objects_, deactivated_,
       severity_, message_;

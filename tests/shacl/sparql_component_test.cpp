@@ -239,6 +239,28 @@ ex:TestShape2 a sh:NodeShape ; ex:requiredParam "One" ; ex:optionalParam "Two" ;
       << text(r);
 }
 
+// sh:prefixes on the validator (SHACL 5.2.1) and, as an extension, on the
+// shape that uses the component; conflicting declarations are ill-formed.
+TEST(SparqlComponent, PrefixesOfValidatorsAndShapes) {
+  const std::string component = R"(
+ex:decls sh:declare [ sh:prefix "ex" ; sh:namespace "http://example.org/"^^xsd:anyURI ] .
+ex:other sh:declare [ sh:prefix "ex" ; sh:namespace "http://example.com/"^^xsd:anyURI ] .
+ex:C a sh:ConstraintComponent ; sh:parameter [ sh:path ex:forbidden ] ;
+  sh:validator [ sh:ask "ASK { FILTER NOT EXISTS { $value ex:tag $forbidden } }" ] .
+ex:a ex:tag ex:bad .
+)";
+  Report r = check_one(component +
+                       "ex:S a sh:NodeShape ; sh:prefixes ex:decls ; sh:targetNode ex:a ; "
+                       "ex:forbidden ex:bad .\n");
+  EXPECT_EQ(r.results.size(), 1u) << text(r);
+  Error e = refused(component +
+                    "ex:S a sh:NodeShape ; sh:prefixes ex:decls , ex:other ; sh:targetNode ex:a ; "
+                    "ex:forbidden ex:bad .\n");
+  EXPECT_EQ(e.code(), "shacl-ill-formed") << e.what();
+  EXPECT_NE(std::string(e.what()).find("declared with two namespaces"), std::string::npos)
+      << e.what();
+}
+
 TEST(SparqlComponent, ComponentsMospecWouldHaveToIgnoreAreErrors) {
   struct Case {
     std::string body, code, needle;

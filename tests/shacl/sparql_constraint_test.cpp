@@ -83,6 +83,25 @@ ex:S a sh:NodeShape ; sh:targetNode ex:a ;
   }
 }
 
+// W3C sparql/node/sparql-002: a shape that is its own SPARQL constraint
+// (`sh:sparql` pointing at itself) may carry sh:select, sh:prefixes and
+// sh:message beside its targets; they were refused as unknown shape properties.
+TEST(SparqlConstraint, AShapeThatIsItsOwnConstraint) {
+  Report r = check_one(R"(
+ex:decls sh:declare [ sh:prefix "ex" ; sh:namespace "http://example.org/"^^xsd:anyURI ] .
+ex:S a sh:NodeShape , sh:SPARQLConstraint ; sh:targetClass ex:Country ;
+  sh:sparql ex:S ; sh:prefixes ex:decls ; sh:message "German labels only" ;
+  sh:select """SELECT $this (ex:germanLabel AS ?path) ?value WHERE {
+    $this ex:germanLabel ?value . FILTER (!langMatches(lang(?value), "de")) }""" .
+ex:es a ex:Country ; ex:germanLabel "Spain"@en .
+ex:de a ex:Country ; ex:germanLabel "Spanien"@de .
+)");
+  ASSERT_EQ(r.results.size(), 1u) << text(r);
+  EXPECT_EQ(r.terms[r.results[0].focus].value, "http://example.org/es");
+  ASSERT_NE(r.results[0].path, nullptr);
+  EXPECT_EQ(r.terms[r.results[0].path->predicate].value, "http://example.org/germanLabel");
+}
+
 TEST(SparqlConstraint, BadQueriesAreIllFormedShapes) {
   const char* cases[] = {
       "ex:S a sh:NodeShape ; sh:sparql [ sh:select \"SELECT $this WHERE { $this ex:p }\" ] .",
