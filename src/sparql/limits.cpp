@@ -66,13 +66,14 @@ double Budget::before_bulk(Bulk kind, uint64_t steps) {
   if (spent > limits_.seconds) time_exceeded();
   const double estimate = static_cast<double>(steps) * rate_[static_cast<size_t>(kind)];
   if (spent + estimate > limits_.seconds) {
+    const char* what = kind == Bulk::Regex  ? "REGEX"
+                       : kind == Bulk::Sort ? "sort"
+                                            : "string function";
     throw Error(std::string(kCode), "SPARQL evaluation stopped after " + seconds_text(spent) +
                                         " s and " + std::to_string(steps_) + " steps: the next " +
-                                        (kind == Bulk::Regex ? "REGEX" : "sort") + " (" +
-                                        std::to_string(steps) + " steps, about " +
+                                        what + " (" + std::to_string(steps) + " steps, about " +
                                         seconds_text(estimate) +
-                                        " s) would end past the "
-                                        "command's time budget of " +
+                                        " s) would end past the command's time budget of " +
                                         seconds_text(limits_.seconds) +
                                         " s; make the queries more selective or raise the limit");
   }

@@ -49,7 +49,7 @@ class Budget {
   static constexpr uint64_t kBytesPerStep = 64;
 
   // Bulk operations whose duration is estimated before they start.
-  enum class Bulk : uint8_t { Regex, Sort };
+  enum class Bulk : uint8_t { Regex, Sort, String };
 
   // Seconds since an arbitrary origin; a test seam (the default reads
   // std::chrono::steady_clock).
@@ -61,8 +61,17 @@ class Budget {
     steps_ += n;
     if (steps_ >= next_check_) check();
   }
-  // Charges `bytes` read by a cheap string operation (before it runs).
-  void bytes(size_t n) { tick(1 + n / kBytesPerStep); }
+  // Charges `n` bytes a string function is about to read. Past kCheckEvery
+  // steps, like bulk(): refused when its estimate would end past the time
+  // budget (and the next tick reads the clock again, right after it).
+  void bytes(size_t n) {
+    const uint64_t steps = 1 + n / kBytesPerStep;
+    if (steps < kCheckEvery || limits_.seconds <= 0) {
+      tick(steps);
+      return;
+    }
+    before_bulk(Bulk::String, steps);
+  }
 
   // Runs `op`, charged `steps` steps of kind `kind`. An operation of
   // kCheckEvery steps or more reads the clock first and throws "sparql-limit"
@@ -92,13 +101,15 @@ class Budget {
   uint64_t clock_reads() const { return clock_reads_; }
   // The estimated seconds per step of a bulk operation of that kind: the
   // slowest rate measured so far, at least the default (kRegexSecondsPerStep,
-  // kSortSecondsPerStep).
+  // kSortSecondsPerStep; string functions keep kStringSecondsPerStep).
   double seconds_per_step(Bulk kind) const { return rate_[static_cast<size_t>(kind)]; }
 
   // Conservative defaults: RE2's DFA scans about 1 ns per byte, its NFA
   // fallback several times that; a sort comparison of decoded values ~100 ns.
   static constexpr double kRegexSecondsPerStep = 4e-9 * kBytesPerStep;
   static constexpr double kSortSecondsPerStep = 2e-7;
+  // Copying, case mapping, comparing and searching run at a GB/s or more.
+  static constexpr double kStringSecondsPerStep = 2e-9 * kBytesPerStep;
 
  private:
   void check();
@@ -114,7 +125,7 @@ class Budget {
   mutable uint64_t clock_reads_ = 0;
   uint64_t steps_ = 0;
   uint64_t next_check_ = kCheckEvery;
-  double rate_[2] = {kRegexSecondsPerStep, kSortSecondsPerStep};
+  double rate_[3] = {kRegexSecondsPerStep, kSortSecondsPerStep, kStringSecondsPerStep};
 };
 
 }  // namespace mospec::sparql

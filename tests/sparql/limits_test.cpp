@@ -203,6 +203,18 @@ TEST(SparqlLimits, ARegexThatWouldEndPastTheBudgetDoesNotStart) {
   EXPECT_NEAR(learning.seconds_per_step(Budget::Bulk::Regex), 8e-9 * Budget::kBytesPerStep, 1e-10);
 }
 
+TEST(SparqlLimits, AStringFunctionThatWouldEndPastTheBudgetDoesNotStart) {
+  // 1 ms of a 1 s budget left, CONTAINS over 4 MiB estimated at 8 ms: refused
+  // before it starts (the clock then stands still, so only that check can stop it).
+  Data d(long_literals(1, 4 << 20));
+  Budget budget(Limits{1.0, 0, 0}, [reads = 0]() mutable { return reads++ == 0 ? 0.0 : 0.999; });
+  d.eval().set_budget(&budget);
+  const std::string message =
+      limit_error([&] { d.run("SELECT ?s { ?s ex:text ?t FILTER(CONTAINS(?t, \"b\")) }"); });
+  EXPECT_NE(message.find("the next string function (65537 steps, about"), std::string::npos)
+      << message;
+}
+
 TEST(SparqlLimits, TheClockIsReadAtLeastEveryKCheckEverySteps) {
   Data d(triples(100));
   Budget budget(Limits{1e9, 0, 0}, [] { return 0.0; });
