@@ -6,9 +6,13 @@
 // s_per_triple stays flat from 5k to 100k triples; BM_ValidateProcess/sc1, the
 // whole `mospec validate models/sc1.json` process as users run it (start-up,
 // dynamic loading, validation, report), <= 15 ms wall. BM_HelpProcess is
-// `mospec --help`: the start-up alone.
+// `mospec --help`: the start-up alone. BM_SparqlBudgetOverrun: a query
+// stopped by its time budget ends at most 10 % past it (counter `overrun`);
+// BM_RegexScan is the RE2 rate the budget's estimate must stay above.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -18,6 +22,8 @@
 #include "rdf/turtle.hpp"
 #include "shacl/shapes.hpp"
 #include "shacl/validate.hpp"
+#include "sparql/query.hpp"
+#include "sparql/regex.hpp"
 #include "spawn.hpp"
 #include "support/io.hpp"
 #include "validation/model_validation.hpp"
@@ -258,6 +264,61 @@ BENCHMARK(BM_ValidateScaling)
     ->Arg(800)
     ->Arg(1750)
     ->Unit(benchmark::kMillisecond);
+
+// ---- the SPARQL budget --------------------------------------------------------
+
+// `n` subjects with a literal of `bytes` bytes each, and 64 ex:k triples.
+std::string long_texts(size_t n, size_t bytes) {
+  std::string out = "@prefix ex: <http://example.org/> .\n";
+  const std::string body(bytes, 'a');
+  for (size_t i = 0; i < n; ++i)
+    out += "ex:s" + std::to_string(i) + " ex:text \"" + body + std::to_string(i) + "\" .\n";
+  for (size_t i = 0; i < 64; ++i)
+    out += "ex:k" + std::to_string(i) + " ex:k " + std::to_string(i) + " .\n";
+  return out;
+}
+
+// How fast RE2 scans a 1 MiB text for a pattern that does not match and that
+// it cannot skip through with memchr or a reverse scan from `$` (the cost
+// Budget::kRegexSecondsPerStep estimates conservatively): bytes/s.
+void BM_RegexScan(benchmark::State& state) {
+  const std::string text(size_t{1} << 20, 'a');
+  const sparql::Regex re("(a|b)c", "");
+  for (auto _ : state) benchmark::DoNotOptimize(re.search(text));
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) *
+                          static_cast<int64_t>(text.size()));
+}
+BENCHMARK(BM_RegexScan)->Unit(benchmark::kMicrosecond);
+
+// A query that runs REGEX over 1 MiB for each of 16 x 64 solutions (about a
+// second of work) under a time budget of state.range(0) ms: how far past the
+// budget it stops. Target (issue #32): overrun <= 10 % of the budget.
+void BM_SparqlBudgetOverrun(benchmark::State& state) {
+  rdf::Dataset data;
+  rdf::read_turtle(long_texts(16, size_t{1} << 20), "http://example.org/", data);
+  const sparql::Query query = sparql::parse_query(
+      "PREFIX ex: <http://example.org/>\n"
+      "SELECT ?s { ?s ex:text ?t . ?k ex:k ?i FILTER(REGEX(CONCAT(?t, STR(?i)), '(a|b)c')) }");
+  const double budget_s = static_cast<double>(state.range(0)) / 1000;
+  double worst = 0;
+  for (auto _ : state) {
+    sparql::Evaluator eval(data);
+    sparql::Budget budget(sparql::Limits{budget_s, 0, 0});
+    eval.set_budget(&budget);
+    sparql::ResultSet rows;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      eval.select(query, {}, rows);
+      state.SkipWithError("the query ended within its budget");
+      break;
+    } catch (const Error&) {
+    }
+    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
+    worst = std::max(worst, spent.count() / budget_s - 1);
+  }
+  state.counters["overrun"] = worst;  // worst (elapsed - budget) / budget
+}
+BENCHMARK(BM_SparqlBudgetOverrun)->Arg(20)->Arg(100)->Arg(500)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

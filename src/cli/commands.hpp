@@ -25,7 +25,11 @@ struct LoadFlags {
   std::string root;
   bool strict = false;
   bool listed_shapes_only = false;  // no shapes for the vocabulary, only the listed ones
+  // The SPARQL budget of the command's validation (sparql::Limits).
+  double sparql_seconds = 60;
+  uint64_t sparql_steps = uint64_t{1} << 32;
   void add_to(CLI::App& cmd);
+  void add_budget_to(CLI::App& cmd);    // --sparql-seconds, --sparql-steps (commands that validate)
   app::LoadOptions to_options() const;  // throws mospec::Error on a malformed --map
 };
 

@@ -37,6 +37,22 @@ void LoadFlags::add_to(CLI::App& cmd) {
                "lowering refuses by itself, in isolation");
 }
 
+void LoadFlags::add_budget_to(CLI::App& cmd) {
+  cmd.add_option("--sparql-seconds", sparql_seconds,
+                 "Wall-clock budget of all SPARQL work of this command (every SHACL-SPARQL "
+                 "constraint and sh:path, for every shape and focus node, together); past it "
+                 "validation stops with a sparql-limit error. 0: none")
+      ->type_name("S")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd.add_option("--sparql-steps", sparql_steps,
+                 "Step budget of all SPARQL work of this command, together (a step is a "
+                 "matched triple, a node reached by a path, a solution, or 64 bytes a string "
+                 "function or REGEX reads). 0: none")
+      ->type_name("N")
+      ->capture_default_str();
+}
+
 app::LoadOptions LoadFlags::to_options() const {
   app::LoadOptions o;
   for (const std::string& m : maps) {

@@ -21,6 +21,7 @@ void PipelineFlags::add_to(CLI::App& cmd) {
                  "NAME.world.json, else mospec's default robot and world)")
       ->type_name("FILE");
   load.add_to(cmd);
+  load.add_budget_to(cmd);
 }
 
 std::string resolve_app(const std::string& path) {
@@ -94,6 +95,8 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
   validation::ModelValidationOptions vopt;
   vopt.strict = flags.load.strict;
   vopt.vocabulary_shapes = !flags.load.listed_shapes_only;
+  vopt.sparql_limits.seconds = flags.load.sparql_seconds;
+  vopt.sparql_limits.steps = flags.load.sparql_steps;
   validation::ModelValidation v = validation::validate_model(model, vopt);
   print_diagnostics(v.shape_diagnostics);
   const size_t violations =

@@ -37,6 +37,7 @@ Action add_validate_command(CLI::App& app) {
   cmd->add_option("-o,--output", flags->output, "Report file ('-' = standard output)")
       ->type_name("FILE");
   flags->load.add_to(*cmd);
+  flags->load.add_budget_to(*cmd);
 
   return [flags]() {
     app::LoadedModel model = app::load(flags->inputs, flags->load.to_options());
@@ -46,6 +47,8 @@ Action add_validate_command(CLI::App& app) {
     options.extra_shapes = flags->shapes;
     options.strict = flags->load.strict;
     options.vocabulary_shapes = !flags->load.listed_shapes_only;
+    options.sparql_limits.seconds = flags->load.sparql_seconds;
+    options.sparql_limits.steps = flags->load.sparql_steps;
     validation::ModelValidation v = validation::validate_model(model, options);
     warnings += print_diagnostics(v.shape_diagnostics);
     for (const Diagnostic& d : v.strict_findings) std::cerr << format(d) << '\n';

@@ -149,6 +149,7 @@ class ShapesCompiler {
     rest_ = sh(vocab::rdf::rest);
     nil_ = sh(vocab::rdf::nil);
     subclass_ = sh(vocab::rdfs::subClassOf);
+    sparql_ = sh(vocab::sh::sparql);
     rdfs_class_ = sh(vocab::rdfs::Class);
     node_shape_ = sh(vocab::sh::NodeShape);
     property_shape_ = sh(vocab::sh::PropertyShape);
@@ -244,6 +245,8 @@ class ShapesCompiler {
           vocab::sh::ignoredProperties, vocab::sh::declare, vocab::sh::name, vocab::sh::description,
           vocab::sh::order, vocab::sh::group, vocab::sh::defaultValue})
       if (TermId id = sh(iri); id != kAbsent) shape_properties_.insert(id.index);
+    // A shape's sh:prefixes serve the queries of its SPARQL constraints (prefixes()).
+    if (TermId id = sh(vocab::sh::prefixes); id != kAbsent) shape_properties_.insert(id.index);
     auto allow = [&](std::unordered_set<uint32_t>& set,
                      std::initializer_list<std::string_view> iris) {
       for (std::string_view iri : iris)
@@ -300,8 +303,14 @@ class ShapesCompiler {
   std::vector<TermId> shape_classes() {
     // SHACL instances of sh:NodeShape / sh:PropertyShape include instances of
     // their subclasses (rare, but cheap to honour).
+    return subclasses({node_shape_, property_shape_});
+  }
+
+  // The classes given (those present in the graph) and their rdfs:subClassOf*
+  // subclasses in the shapes graph.
+  std::vector<TermId> subclasses(std::initializer_list<TermId> roots) {
     std::vector<TermId> classes;
-    for (TermId c : {node_shape_, property_shape_})
+    for (TermId c : roots)
       if (c != kAbsent) classes.push_back(c);
     for (size_t i = 0; i < classes.size(); ++i) {
       g_.scan(TermId::any(), subclass_, classes[i], TermId::any(),
@@ -572,16 +581,19 @@ class ShapesCompiler {
 
     // Constraints, in the order their parameters are written.
     // Everything the shape says in the SHACL namespace is implemented or refused.
-    check_properties(node, shape_properties_, "a shape");
+    // A shape may be its own SPARQL constraint (W3C test sparql/node/sparql-002:
+    // `ex:S sh:sparql ex:S ; sh:select ...`): then it may say what either says.
+    const bool also_constraint =
+        sparql_ != kAbsent && g_.count(TermId::any(), sparql_, node, TermId::any(), 1) != 0;
+    check_properties(node, shape_properties_, "a shape",
+                     also_constraint ? &sparql_properties_ : nullptr);
     std::vector<std::pair<uint32_t, TermId>> predicates;
-    std::vector<Value> custom_values;  // first value of each custom parameter
-    std::vector<uint32_t> custom;      // custom components used, in the order written
+    std::vector<uint32_t> custom;  // custom components used, in the order written
     std::unordered_set<uint32_t> seen;
     g_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
       if (!seen.insert(q.predicate.index).second) return true;
       if (params_.count(q.predicate.index) != 0) predicates.emplace_back(i, q.predicate);
       if (auto it = custom_params_.find(q.predicate.index); it != custom_params_.end()) {
-        custom_values.push_back({q.predicate, g_.location(i)});
         for (uint32_t c : it->second)
           if (std::find(custom.begin(), custom.end(), c) == custom.end()) custom.push_back(c);
       }
@@ -591,18 +603,10 @@ class ShapesCompiler {
       Component c = params_.at(predicate.index);
       add_constraints(self, s, c, predicate);
     }
-    std::unordered_set<uint32_t> used;
-    for (uint32_t c : custom) add_component_constraints(self, s, c, used);
-    for (const Value& v : custom_values) {
-      if (used.count(v.object.index) != 0 || params_.count(v.object.index) != 0) continue;
-      std::string components;
-      for (uint32_t c : custom_params_.at(v.object.index))
-        components += (components.empty() ? "" : ", ") + show(components_[c].node);
-      fail(self, v.where,
-           show(v.object) + " is a parameter of " + components +
-               ", but the shape lacks a value for a mandatory parameter, so the value would be "
-               "ignored");
-    }
+    // SHACL 6.2: a shape declares a component's constraint only when it has
+    // values for all of its mandatory parameters; a value of an optional
+    // parameter alone declares nothing (W3C test sparql/component/optional-001).
+    for (uint32_t c : custom) add_component_constraints(self, s, c);
     out_.shapes_[self] = std::move(s);
     return self;
   }
@@ -813,11 +817,19 @@ class ShapesCompiler {
     }
   }
 
-  // sh:prefixes/owl:imports*/sh:declare of a SPARQL-based constraint.
-  sparql::PrefixMap prefixes(uint32_t shape, TermId constraint) {
+  // sh:prefixes/owl:imports*/sh:declare of a SPARQL-based constraint or
+  // validator, and of the shape that uses it (which SHACL leaves to
+  // extensions; mospec lets a shape's prefixes serve all of its queries).
+  sparql::PrefixMap prefixes(uint32_t shape, TermId shape_node, TermId constraint) {
     sparql::PrefixMap out;
     std::vector<TermId> todo;
-    for (const Value& v : values(constraint, prefixes_)) todo.push_back(v.object);
+    for (TermId holder : {constraint, shape_node}) {
+      for (const Value& v : values(holder, prefixes_)) {
+        if (t_[v.object].is_literal())
+          fail(shape, v.where, "sh:prefixes must be an IRI or blank node, got " + show(v.object));
+        todo.push_back(v.object);
+      }
+    }
     std::unordered_set<uint32_t> visited;
     while (!todo.empty()) {
       TermId node = todo.back();
@@ -873,24 +885,37 @@ class ShapesCompiler {
                              sparql::QueryForm form, const std::string& what,
                              std::span<const std::string_view> prebound) {
     auto where_query = [&](const std::string& m) { return what + ": " + m; };
+    // SHACL 5.3.1: a processor that does not support $shapesGraph must report
+    // a failure for a query that uses it; thrown as a query error so that it
+    // is located at the variable.
+    const auto [graph_line, graph_column] =
+        variable_position(t_[literal.object].value, "shapesGraph");
+    const sparql::QueryError shapes_graph_error(
+        "unsupported-sparql", graph_line, graph_column,
+        "line " + std::to_string(graph_line) + ", column " + std::to_string(graph_column) +
+            ": $shapesGraph is not supported (mospec does not query the shapes graph: it is not "
+            "a named graph of the data)");
     try {
-      sparql::Query query = sparql::parse_query(
-          query_text(s, literal, form == sparql::QueryForm::Select), prefixes(self, holder));
-      if (query.form() != form)
-        fail(self, literal.where,
-             where_query(form == sparql::QueryForm::Select ? "must be a SELECT query"
-                                                           : "must be an ASK query"));
-      const auto& vars = query.variables();
-      if (form == sparql::QueryForm::Select &&
-          std::find(vars.begin(), vars.end(), "this") == vars.end())
-        fail(self, literal.where, where_query("must project $this"));
-      if (query.mentions("shapesGraph"))
-        fail(self, literal.where,
-             where_query("uses $shapesGraph, which mospec does not support (the shapes graph is "
-                         "not a named graph of the data)"),
-             "unsupported-shacl");
-      query.check_prebinding(prebound);
-      return query;
+      try {
+        sparql::Query query =
+            sparql::parse_query(query_text(s, literal, form == sparql::QueryForm::Select),
+                                prefixes(self, s.node, holder));
+        if (query.form() != form)
+          fail(self, literal.where,
+               where_query(form == sparql::QueryForm::Select ? "must be a SELECT query"
+                                                             : "must be an ASK query"));
+        const auto& vars = query.variables();
+        if (form == sparql::QueryForm::Select &&
+            std::find(vars.begin(), vars.end(), "this") == vars.end())
+          fail(self, literal.where, where_query("must project $this"));
+        if (query.mentions("shapesGraph")) throw shapes_graph_error;
+        query.check_prebinding(prebound);
+        return query;
+      } catch (const sparql::QueryError& e) {
+        // GRAPH $shapesGraph { ... } fails at GRAPH: name the reason instead.
+        if (e.code() == "unsupported-sparql" && graph_line != 0) throw shapes_graph_error;
+        throw;
+      }
     } catch (const sparql::QueryError& e) {
       // Point into the shapes file: the quad is located just past the sh:select
       // literal, so a long string (""""..."""" with its newlines written out) starts
@@ -920,8 +945,31 @@ class ShapesCompiler {
           message.rfind("line ", 0) == 0 && colon != std::string_view::npos)
         message.remove_prefix(colon + 2);
       m += message;
-      fail(self, at, where_query(m));
+      // What mospec does not implement is refused as such, never as a mistake of the shape.
+      fail(self, at, where_query(m),
+           e.code() == "unsupported-sparql" ? "unsupported-shacl" : "shacl-ill-formed");
     }
+  }
+
+  // The 1-based line and column of the first ?name / $name in a query.
+  static std::pair<uint32_t, uint32_t> variable_position(std::string_view text,
+                                                         std::string_view name) {
+    uint32_t line = 1, column = 1;
+    for (size_t i = 0; i < text.size(); ++i) {
+      if ((text[i] == '?' || text[i] == '$') && text.compare(i + 1, name.size(), name) == 0) {
+        const size_t end = i + 1 + name.size();
+        if (end == text.size() ||
+            !(std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_'))
+          return {line, column};
+      }
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    return {0, 0};
   }
 
   // The values of `predicate` at `node`, which must be literals; `who` starts
@@ -941,7 +989,8 @@ class ShapesCompiler {
                                                             const Value& v) {
     if (t_[v.object].is_literal())
       fail(self, v.where, "sh:sparql must be an IRI or blank node, got " + show(v.object));
-    check_properties(v.object, sparql_properties_, "a SPARQL-based constraint");
+    check_properties(v.object, sparql_properties_, "a SPARQL-based constraint",
+                     v.object == s.node ? &shape_properties_ : nullptr);
     auto deactivated = values(v.object, deactivated_);
     at_most_one(self, deactivated, "sh:deactivated");
     if (!deactivated.empty() && bool_param(self, deactivated[0], "sh:deactivated").value_or(false))
@@ -1017,15 +1066,17 @@ class ShapesCompiler {
   // Every sh:ConstraintComponent of the shapes graph, checked once; SHACL's
   // own components (the sh: namespace) are built in and skipped.
   void declare_components() {
-    if (constraint_component_ == kAbsent) return;
+    // SHACL instances of sh:ConstraintComponent include instances of its
+    // subclasses: a component typed with one must not be left undeclared, or
+    // its parameters would be ignored and the data would conform.
     std::vector<Value> declared;
-    g_.scan(TermId::any(), type_, constraint_component_, TermId::any(),
-            [&](const rdf::Quad& q, uint32_t i) {
-              for (const Value& d : declared)
-                if (d.object == q.subject) return true;
-              declared.push_back({q.subject, g_.location(i)});
-              return true;
-            });
+    for (TermId cls : subclasses({constraint_component_}))
+      g_.scan(TermId::any(), type_, cls, TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
+        for (const Value& d : declared)
+          if (d.object == q.subject) return true;
+        declared.push_back({q.subject, g_.location(i)});
+        return true;
+      });
     for (const Value& d : declared) {
       const rdf::Term& term = t_[d.object];
       if (term.is_iri() && term.value.substr(0, vocab::sh::ns.size()) == vocab::sh::ns) continue;
@@ -1141,16 +1192,14 @@ class ShapesCompiler {
 
   // The constraints of custom component `ci` that shape `s` declares (one per
   // combination of parameter values), if it has values for every mandatory
-  // parameter. Marks the parameters it used in `used`.
-  void add_component_constraints(uint32_t self, Shape& s, uint32_t ci,
-                                 std::unordered_set<uint32_t>& used) {
+  // parameter.
+  void add_component_constraints(uint32_t self, Shape& s, uint32_t ci) {
     const CustomComponent& c = components_[ci];
     std::vector<std::vector<Value>> given;
     for (const Parameter& p : c.parameters) {
       given.push_back(values(s.node, p.path));
       if (!p.optional && given.back().empty()) return;
     }
-    for (const Parameter& p : c.parameters) used.insert(p.path.index);
     const Value* first = nullptr;  // the first mandatory parameter value: the constraint's place
     size_t combinations = 1;
     for (size_t i = 0; i < c.parameters.size(); ++i) {
@@ -1311,9 +1360,10 @@ class ShapesCompiler {
   // `allowed` (nor a parameter of a custom constraint component): a
   // misspelt parameter would otherwise be silently ignored.
   void check_properties(TermId node, const std::unordered_set<uint32_t>& allowed,
-                        std::string_view what) {
+                        std::string_view what, const std::unordered_set<uint32_t>* also = nullptr) {
     g_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad& q, uint32_t i) {
       if (!in_sh(q.predicate) || allowed.count(q.predicate.index) != 0 ||
+          (also != nullptr && also->count(q.predicate.index) != 0) ||
           custom_params_.count(q.predicate.index) != 0)
         return true;
       if (q.predicate == optional_ && parameter_nodes_.count(node.index) != 0) return true;
@@ -1390,7 +1440,7 @@ class ShapesCompiler {
   std::unordered_map<uint32_t, std::vector<uint32_t>> custom_params_;
   std::unordered_set<uint32_t> parameter_nodes_;  // parameter declarations
   std::vector<TermId> referenced_;
-  TermId type_, first_, rest_, nil_, subclass_, rdfs_class_, node_shape_, property_shape_;
+  TermId type_, first_, rest_, nil_, subclass_, sparql_, rdfs_class_, node_shape_, property_shape_;
   TermId violation_, warning_, info_;
   TermId path_, target_node_, target_class_, target_subjects_, target_objects_, deactivated_,
       severity_, message_;

@@ -73,6 +73,8 @@ class Validator {
         same_(&shapes.graph() == &data),
         base_(static_cast<uint32_t>(data.terms().size())),
         options_(options) {
+    budget_ = options.sparql_budget != nullptr ? options.sparql_budget
+                                               : &own_budget_.emplace(options.sparql_limits);
     auto find = [&](std::string_view iri) {
       TermId id = dt_.find_iri(iri);
       return id.is_any() ? kAbsent : id;
@@ -190,8 +192,7 @@ class Validator {
       return;
     }
     try {
-      sparql::Budget budget(options_.sparql_limits);
-      sparql::evaluate_path(data_, *path, focus, out, TermId::any(), &budget);
+      sparql::evaluate_path(data_, *path, focus, out, TermId::any(), budget_);
     } catch (const Error& e) {
       if (e.code() != "sparql-limit") throw;
       limit_reached(shapes_[shape].where,
@@ -676,7 +677,8 @@ class Validator {
     const SparqlConstraint& q = *s.constraints[k].sparql;
     if (!eval_) {
       eval_ = std::make_unique<sparql::Evaluator>(data_);
-      eval_->set_limits(options_.sparql_limits);
+      eval_->set_limits(budget_->limits());
+      eval_->set_budget(budget_);
     }
     std::vector<sparql::Binding> bindings{{"this", to_eval(focus)}};
     if (q.binds_current_shape) bindings.push_back({"currentShape", eval_->import(st_, s.node)});
@@ -997,6 +999,10 @@ class Validator {
   std::unordered_set<uint64_t> active_;
   std::vector<uint32_t> stack_;
   std::unique_ptr<sparql::Evaluator> eval_;
+  // One budget for every SPARQL evaluation and path of the run (or the
+  // caller's, shared by the whole command).
+  std::optional<sparql::Budget> own_budget_;
+  sparql::Budget* budget_ = nullptr;
 };
 
 }  // namespace

@@ -18,9 +18,13 @@ struct ValidateOptions {
   // report's order and the text output (nullopt: not located). Unset: the
   // location of the first triple that has the node as subject (else as object).
   std::function<std::optional<SourceLoc>(rdf::TermId)> locate;
-  // Bounds on each SPARQL constraint's query (per focus node) and each sh:path
-  // evaluation (per focus node).
+  // Bounds on the SPARQL work of the whole validation: every SPARQL
+  // constraint's query and every sh:path evaluation, for every shape and focus
+  // node, share one time and step budget (rows are bounded per SELECT).
   sparql::Limits sparql_limits;
+  // The budget to charge instead (nullptr: one of sparql_limits for this
+  // call), when a command validates more than once.
+  sparql::Budget* sparql_budget = nullptr;
 };
 
 // Validates `data` (every graph of it, as one graph) against every shape with
@@ -30,9 +34,8 @@ struct ValidateOptions {
 // sh:node, sh:property, sh:and, ...) throws mospec::Error "shacl-recursion"
 // naming the shape cycle and the focus node.
 //
-// Work: a SPARQL constraint or a path that exceeds options.sparql_limits
-// throws mospec::Error "sparql-limit", located at the constraint (or the
-// shape) and naming it and the focus node.
+// Work: SPARQL constraints and paths that together exceed the budget throw mospec::Error
+// "sparql-limit", located at the constraint (or the shape) and naming it and the focus node.
 Report validate(const Shapes& shapes, const rdf::Dataset& data,
                 const ValidateOptions& options = {});
 

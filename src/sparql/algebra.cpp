@@ -1,6 +1,7 @@
 // Stage 2: syntax tree -> algebra (SPARQL 1.1 section 18.2).
 #include "sparql/algebra.hpp"
 
+#include <algorithm>
 #include <unordered_map>
 
 #include "vocab/w3c.hpp"
@@ -295,9 +296,11 @@ class Builder {
     // A union joins each branch with the input separately and every branch
     // hides for itself, so the union itself needs no hiding (and branches that
     // bind a variable keep using the input's binding for their lookups).
+    // A sub-SELECT is evaluated on its own (its LIMIT, DISTINCT and ORDER BY
+    // apply before the join), so it sees none of the input's bindings.
     if (op.kind != OpKind::Union)
       for (Var v : op.mentioned.members())
-        if (!op.certain.contains(v)) op.hide.push_back(v);
+        if (op.kind == OpKind::SubSelect || !op.certain.contains(v)) op.hide.push_back(v);
     plan_.ops.push_back(std::move(op));
     scope_.push_back(std::move(scope));
     return static_cast<uint32_t>(plan_.ops.size() - 1);
@@ -392,6 +395,10 @@ class Builder {
           add_step(Step{Step::Kind::LeftJoin, c, cond, kNone});
           break;
         }
+        case ast::Element::Kind::SubSelect:
+          flush();
+          add_step(Step{Step::Kind::Join, sub_select(e), kNone, kNone});
+          break;
         case ast::Element::Kind::Bind: {
           flush();
           const Var v = var(e.var.value);
@@ -462,6 +469,69 @@ class Builder {
       for (uint32_t f : after[k]) op.steps.push_back(Step{Step::Kind::Filter, kNone, f, kNone});
     }
     return push(std::move(op), in_scope);
+  }
+
+  // A sub-SELECT, built with a variable scope of its own: its variables that
+  // it does not project are not the enclosing query's (18.2.1).
+  uint32_t sub_select(const ast::Element& e) {
+    const ast::Query& q = *e.sub;
+    auto outer_vars = std::move(vars_);
+    vars_.clear();
+    auto outer_blanks = std::move(blank_labels_);
+    blank_labels_.clear();
+    Select sel;
+    sel.distinct = q.distinct;
+    sel.limit = q.limit;
+    sel.offset = q.offset;
+    for (const ast::Projection& pr : q.projection)
+      if (!pr.has_expr) var(pr.var.value);
+    sel.root = group(q.where, nullptr);
+    const VarSet scope = scope_[sel.root];
+    std::vector<std::string> names;
+    if (q.star) {
+      for (Var v = 0; v < plan_.var_names.size(); ++v) {
+        if (!plan_.hidden[v] && scope.contains(v)) {
+          sel.result_vars.push_back(v);
+          names.push_back(plan_.var_names[v]);
+        }
+      }
+    } else {
+      VarSet projected = scope;
+      for (const ast::Projection& pr : q.projection) {
+        const Var v = var(pr.var.value);
+        if (pr.has_expr) {
+          if (projected.contains(v))
+            ast::fail(kSyntax, pr.var.pos,
+                      "(... AS ?" + pr.var.value + "): variable ?" + pr.var.value +
+                          " is already in scope");
+          sel.projected_exprs.emplace_back(v, expr(pr.expr));
+          plan_.assigned.emplace_back(v, pr.var.pos);
+          projected.insert(v);
+        }
+        sel.result_vars.push_back(v);
+        names.push_back(pr.var.value);
+      }
+    }
+    for (const ast::OrderKey& k : q.order) sel.order.push_back({expr(k.expr), k.descending});
+    const VarSet certain = plan_.ops[sel.root].certain;
+    for (const auto& [name, v] : vars_) plan_.hidden[v] = true;
+    plan_.subselect_names.emplace_back(names, e.pos);
+    vars_ = std::move(outer_vars);
+    blank_labels_ = std::move(outer_blanks);
+
+    Op op;
+    op.kind = OpKind::SubSelect;
+    VarSet outer_scope;
+    for (size_t c = 0; c < names.size(); ++c) {
+      const Var o = var(names[c]);
+      sel.outer_vars.push_back(o);
+      outer_scope.insert(o);
+      op.mentioned.insert(o);
+      if (certain.contains(sel.result_vars[c])) op.certain.insert(o);
+    }
+    op.select = static_cast<uint32_t>(plan_.selects.size());
+    plan_.selects.push_back(std::move(sel));
+    return push(std::move(op), outer_scope);
   }
 
   // ---- expressions ----
@@ -621,30 +691,36 @@ class Printer {
   explicit Printer(const Plan& plan) : plan_(plan) {}
 
   std::string query() {
-    std::string body = op(plan_.root);
     std::string out = plan_.form == QueryForm::Ask ? "(ask " : "(select (";
     if (plan_.form == QueryForm::Select) {
       for (size_t i = 0; i < plan_.result_vars.size(); ++i)
         out += (i > 0 ? " ?" : "?") + plan_.var_names[plan_.result_vars[i]];
       out += ") ";
     }
-    for (const auto& [v, x] : plan_.projected_exprs)
+    return out + modified(plan_) + ")";
+  }
+
+ private:
+  // The WHERE clause of a query or sub-SELECT with its solution modifiers.
+  template <class S>
+  std::string modified(const S& q) const {
+    std::string body = op(q.root);
+    for (const auto& [v, x] : q.projected_exprs)
       body = "(extend ?" + plan_.var_names[v] + " " + expr(x) + " " + body + ")";
-    if (!plan_.order.empty()) {
+    if (!q.order.empty()) {
       std::string keys;
-      for (const OrderKey& k : plan_.order)
+      for (const OrderKey& k : q.order)
         keys += (keys.empty() ? "" : " ") +
                 (k.descending ? "(desc " + expr(k.expr) + ")" : expr(k.expr));
       body = "(order (" + keys + ") " + body + ")";
     }
-    if (plan_.distinct) body = "(distinct " + body + ")";
-    if (plan_.limit >= 0 || plan_.offset > 0)
-      body = "(slice " + std::to_string(plan_.offset) + " " +
-             (plan_.limit >= 0 ? std::to_string(plan_.limit) : "_") + " " + body + ")";
-    return out + body + ")";
+    if (q.distinct) body = "(distinct " + body + ")";
+    if (q.limit >= 0 || q.offset > 0)
+      body = "(slice " + std::to_string(q.offset) + " " +
+             (q.limit >= 0 ? std::to_string(q.limit) : "_") + " " + body + ")";
+    return body;
   }
 
- private:
   std::string var(Var v) const { return "?" + plan_.var_names[v]; }
   std::string term(uint32_t id) const { return rdf::to_ntriples(plan_.terms, rdf::TermId{id}); }
   std::string slot(const Slot& s) const { return s.is_var ? var(s.value) : term(s.value); }
@@ -698,6 +774,13 @@ class Printer {
         out = "(union";
         for (uint32_t c : o.children) out += " " + op(c);
         return out + ")";
+      case OpKind::SubSelect: {
+        const Select& s = plan_.selects[o.select];
+        out = "(project (";
+        for (size_t i = 0; i < s.result_vars.size(); ++i)
+          out += (i > 0 ? " " : "") + var(s.result_vars[i]);
+        return out + ") " + modified(s) + ")";
+      }
       case OpKind::Group:
         out = "(group";
         for (const Step& s : o.steps) {

@@ -138,7 +138,7 @@ struct Expr {
   ast::Pos pos;
 };
 
-enum class OpKind : uint8_t { Bgp, Group, Union };
+enum class OpKind : uint8_t { Bgp, Group, Union, SubSelect };
 
 struct Step {
   enum class Kind : uint8_t { Join, LeftJoin, Extend, Filter };
@@ -154,6 +154,7 @@ struct Op {
   std::vector<uint32_t> filters;   // Bgp: filters to check inside the join loop
   std::vector<Step> steps;         // Group
   std::vector<uint32_t> children;  // Union
+  uint32_t select = kNone;         // SubSelect: index into Plan::selects
   VarSet certain;                  // bound in every solution of the op
   VarSet mentioned;                // occur anywhere in the op (also in filters/EXISTS)
   // mentioned minus certain: bindings of these coming from outside must be
@@ -167,6 +168,19 @@ struct OrderKey {
   bool descending;
 };
 
+// A nested SELECT (18.2.1: evaluated on its own, bottom-up; its solutions are
+// then joined with the enclosing group). Its variables are slots of their
+// own, hidden, except that pre-binding pins them by name like the outer ones.
+struct Select {
+  uint32_t root = kNone;
+  std::vector<Var> result_vars;                           // inner slots, by column
+  std::vector<Var> outer_vars;                            // the enclosing query's, by column
+  std::vector<std::pair<Var, uint32_t>> projected_exprs;  // (inner var, expr)
+  bool distinct = false;
+  std::vector<OrderKey> order;
+  int64_t limit = -1, offset = 0;
+};
+
 struct Plan {
   QueryForm form = QueryForm::Select;
   rdf::TermTable terms;                // constants of the query
@@ -177,6 +191,7 @@ struct Plan {
   std::vector<std::vector<Var>> expr_vars;  // by expr: every variable it mentions
   std::vector<PathPtr> paths;               // plan term ids
   std::vector<Regex> regexes;               // constant REGEX patterns, compiled once
+  std::vector<Select> selects;              // sub-SELECTs, by SubSelect op
   uint32_t root = 0;
 
   std::vector<std::string> result_names;
@@ -190,11 +205,20 @@ struct Plan {
   // Variables assigned with AS (BIND or SELECT expressions), with positions,
   // for the pre-binding check.
   std::vector<std::pair<Var, ast::Pos>> assigned;
+  // The names each sub-SELECT projects, with the position of its SELECT:
+  // SHACL's pre-binding wants every pre-bound variable the query uses among them.
+  std::vector<std::pair<std::vector<std::string>, ast::Pos>> subselect_names;
 
   Var find_var(std::string_view name) const {
     for (Var v = 0; v < var_names.size(); ++v)
       if (var_names[v] == name && !hidden[v]) return v;
     return kNone;
+  }
+  // Whether any slot has this name (also a sub-SELECT's own).
+  bool names(std::string_view name) const {
+    for (const std::string& n : var_names)
+      if (n == name) return true;
+    return false;
   }
 };
 

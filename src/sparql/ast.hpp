@@ -93,13 +93,16 @@ struct Expr {
   Pos pos;
 };
 
+struct Query;
+
 struct Element {
-  enum class Kind : uint8_t { Triples, Group, Union, Optional, Filter, Bind };
+  enum class Kind : uint8_t { Triples, Group, Union, Optional, Filter, Bind, SubSelect };
   Kind kind = Kind::Triples;
   std::vector<Triples> triples;  // Triples (one TriplesBlock)
   std::vector<Group> groups;     // Group: 1, Union: 2+, Optional: 1
   Expr expr;                     // Filter / Bind
   Term var;                      // Bind target
+  std::shared_ptr<Query> sub;    // SubSelect: the nested SELECT
   Pos pos;
 };
 

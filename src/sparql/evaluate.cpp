@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
@@ -69,6 +70,26 @@ class Cont {
   bool (*call_)(void*);
 };
 
+// SHACL's pre-binding (appendix "Pre-binding of Variables") is undefined for
+// a query that assigns a pre-bound variable with AS, or has a sub-SELECT that
+// does not return one the query uses (W3C SHACL tests pre-binding-006 and
+// unsupported-sparql-004).
+void check_prebound(const Plan& plan, std::string_view name) {
+  for (const auto& [assigned, pos] : plan.assigned)
+    if (plan.var_names[assigned] == name)
+      throw QueryError("unsupported-sparql", pos.line, pos.column,
+                       "AS ?" + std::string(name) + " assigns the pre-bound variable $" +
+                           std::string(name) + " (not allowed with SHACL pre-binding)");
+  if (!plan.names(name)) return;
+  for (const auto& [names, pos] : plan.subselect_names)
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw QueryError("unsupported-sparql", pos.line, pos.column,
+                       "this sub-SELECT does not return the pre-bound variable $" +
+                           std::string(name) +
+                           " (SHACL pre-binding requires every sub-SELECT to return the "
+                           "pre-bound variables the query uses)");
+}
+
 }  // namespace
 
 struct OpState {
@@ -101,6 +122,7 @@ class Engine {
   const rdf::Dataset& data() const { return data_; }
   void set_limits(const Limits& limits) { limits_ = limits; }
   const Limits& limits() const { return limits_; }
+  void set_budget(Budget* budget) { shared_budget_ = budget; }
 
   // ---- terms ----
   std::pair<const rdf::TermTable*, TermId> locate(TermId id) const {
@@ -164,21 +186,26 @@ class Engine {
     saved_.clear();
     filled_.clear();
     arena_used_ = 0;
-    budget_.emplace(limits_);
+    sub_ready_.assign(plan.selects.size(), 0);
+    sub_rows_.resize(plan.selects.size());
+    sub_counts_.resize(plan.selects.size());
+    if (shared_budget_ != nullptr) {
+      budget_ = shared_budget_;
+    } else {
+      budget_ = &own_budget_.emplace(limits_);
+    }
     for (const Binding& b : prebound) {
       std::string_view name = b.name;
       if (!name.empty() && (name[0] == '?' || name[0] == '$')) name.remove_prefix(1);
-      const Var v = plan.find_var(name);
-      if (v == kNone) continue;
-      for (const auto& [assigned, pos] : plan.assigned) {
-        if (assigned == v)
-          throw QueryError("unsupported-sparql", pos.line, pos.column,
-                           "AS ?" + std::string(name) + " assigns the pre-bound variable $" +
-                               std::string(name) + " (not allowed with SHACL pre-binding)");
-      }
+      check_prebound(plan, name);
       if (b.value == kUnbound) continue;
-      row_[v] = b.value;
-      pinned_[v] = 1;
+      // Also a sub-SELECT's own slot of the name: pre-binding holds in every
+      // pattern (check_prebound made sure such a sub-SELECT projects it).
+      for (Var v = 0; v < nv; ++v) {
+        if (plan.var_names[v] != name) continue;
+        row_[v] = b.value;
+        pinned_[v] = 1;
+      }
     }
 
     if (found == nullptr && plan.form == QueryForm::Ask) {
@@ -273,9 +300,15 @@ class Engine {
   void collect(const Plan& plan, ResultSet& out) {
     out.clear();
     out.variables = plan.result_names;
+    out.rows = collect_rows(plan, out.cells);
+  }
+
+  // The solutions of a query or sub-SELECT (S: Plan or Select), projected,
+  // ordered, made distinct and sliced, appended to `cells`; returns how many.
+  template <class S>
+  size_t collect_rows(const S& plan, std::vector<TermId>& cells) {
     const size_t width = plan.result_vars.size();
-    if (plan.limit == 0) return;
-    std::vector<TermId>& cells = out.cells;
+    if (plan.limit == 0) return 0;
     // Only DISTINCT needs the set (no allocation per call otherwise).
     std::unordered_set<size_t, RowHash, RowEq> seen(0, RowHash{&cells, width},
                                                     RowEq{&cells, width});
@@ -313,12 +346,18 @@ class Engine {
       const size_t nk = plan.order.size();
       std::vector<size_t> perm(rows);
       for (size_t i = 0; i < rows; ++i) perm[i] = i;
-      std::stable_sort(perm.begin(), perm.end(), [&](size_t a, size_t b) {
-        for (size_t k = 0; k < nk; ++k) {
-          const int c = order(value_of(keys[a * nk + k]), value_of(keys[b * nk + k]));
-          if (c != 0) return plan.order[k].descending ? c > 0 : c < 0;
-        }
-        return false;
+      // A sort of millions of rows takes seconds without a step of its own.
+      uint64_t comparisons = 0;
+      for (size_t n = rows; n > 1; n /= 2) comparisons += rows;
+      budget_->bulk(Budget::Bulk::Sort, comparisons, [&] {
+        std::stable_sort(perm.begin(), perm.end(), [&](size_t a, size_t b) {
+          for (size_t k = 0; k < nk; ++k) {
+            const int c = order(value_of(keys[a * nk + k]), value_of(keys[b * nk + k]));
+            if (c != 0) return plan.order[k].descending ? c > 0 : c < 0;
+          }
+          return false;
+        });
+        return true;
       });
       std::vector<TermId> sorted;
       sorted.reserve(cells.size());
@@ -346,7 +385,7 @@ class Engine {
       cells.erase(cells.begin() + static_cast<ptrdiff_t>(last * width), cells.end());
       cells.erase(cells.begin(), cells.begin() + static_cast<ptrdiff_t>(first * width));
     }
-    out.rows = last - first;
+    return last - first;
   }
 
   // ---- ops ----
@@ -403,6 +442,49 @@ class Engine {
         for (uint32_t c : op.children)
           if (!eval(c, k)) return false;
         return true;
+      case OpKind::SubSelect:
+        return eval_sub_select(op.select, k);
+    }
+    return true;
+  }
+
+  // Evaluated on its own (eval() hid the input's bindings of its variables,
+  // except pinned ones), then each solution joined with the input. Its own
+  // slots see only the pre-bound values, the same for the whole run, so its
+  // solutions are computed once per run however often the join asks.
+  bool eval_sub_select(uint32_t index, Cont k) {
+    const Select& sel = plan_->selects[index];
+    if (!sub_ready_[index]) {
+      std::vector<TermId> cells;
+      const size_t n = collect_rows(sel, cells);
+      sub_rows_[index] = std::move(cells);
+      sub_counts_[index] = n;
+      sub_ready_[index] = 1;
+    }
+    const std::vector<TermId>& cells = sub_rows_[index];
+    const size_t rows = sub_counts_[index];
+    const size_t width = sel.result_vars.size();
+    for (size_t r = 0; r < rows; ++r) {
+      budget_->tick();
+      const size_t mark = filled_.size();
+      bool compatible = true;
+      for (size_t c = 0; c < width && compatible; ++c) {
+        const TermId value = cells[r * width + c];
+        if (value == kUnbound) continue;
+        const Var v = sel.outer_vars[c];
+        if (row_[v] == kUnbound) {
+          row_[v] = value;
+          filled_.push_back(v);
+        } else {
+          compatible = row_[v] == value;
+        }
+      }
+      const bool cont = !compatible || k();
+      while (filled_.size() > mark) {
+        row_[filled_.back()] = kUnbound;
+        filled_.pop_back();
+      }
+      if (!cont) return false;
     }
     return true;
   }
@@ -582,17 +664,17 @@ class Engine {
       (void)start_value;
     };
     if (s != kUnbound) {
-      evaluate_path(data_, path, s, buffer, TermId::any(), &*budget_);
+      evaluate_path(data_, path, s, buffer, TermId::any(), budget_);
       each_end(pe.o, s);
     } else if (o != kUnbound) {
-      evaluate_path_inverse(data_, path, o, buffer, TermId::any(), &*budget_);
+      evaluate_path_inverse(data_, path, o, buffer, TermId::any(), budget_);
       each_end(pe.s, o);
     } else {
       // Neither end known: every node of the graph is a start (zero-length
       // paths match every subject and object).
       for (TermId start : all_nodes()) {
         if (!cont) break;
-        evaluate_path(data_, path, start, buffer, TermId::any(), &*budget_);
+        evaluate_path(data_, path, start, buffer, TermId::any(), budget_);
         Var bound[3];
         int nbound = 0;
         if (bind(pe.s, start, bound, nbound)) each_end(pe.o, start);
@@ -699,6 +781,13 @@ class Engine {
     if ((v.kind == Value::Kind::Numeric || v.kind == Value::Kind::Bool) && v.id.is_any())
       return store(canonical_lexical(v));
     return v.str;
+  }
+  // CONTAINS in time linear in both strings (std::string_view::find can take
+  // their product: "aaa...ab" in "aaa...a").
+  static bool contains(std::string_view text, std::string_view needle) {
+    if (needle.size() < 16) return text.find(needle) != std::string_view::npos;
+    return std::search(text.begin(), text.end(),
+                       std::boyer_moore_searcher(needle.begin(), needle.end())) != text.end();
   }
   static bool stringish(const Value& v) {
     return v.kind == Value::Kind::String || v.kind == Value::Kind::LangString;
@@ -911,18 +1000,20 @@ class Engine {
         if (!stringish(a) || !stringish(b)) return Value::make_error();
         // Argument compatibility (17.4.3.1.2): b's language, if any, must be a's.
         if (!b.lang.empty() && a.lang != b.lang) return Value::make_error();
+        budget_->bytes(a.str.size() + b.str.size());
         switch (e.op) {
           case ExprOp::StrStarts:
             return Value::boolean(a.str.starts_with(b.str));
           case ExprOp::StrEnds:
             return Value::boolean(a.str.ends_with(b.str));
           default:
-            return Value::boolean(a.str.find(b.str) != std::string_view::npos);
+            return Value::boolean(contains(a.str, b.str));
         }
       }
       case ExprOp::StrLen: {
         const Value v = arg(0);
         if (!stringish(v)) return Value::make_error();
+        budget_->bytes(v.str.size());
         int64_t n = 0;
         for (char c : v.str)
           if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++n;
@@ -932,6 +1023,7 @@ class Engine {
       case ExprOp::Lcase: {
         const Value v = arg(0);
         if (!stringish(v)) return Value::make_error();
+        budget_->bytes(v.str.size());
         std::string s(v.str);
         for (char& c : s)
           c = static_cast<char>(e.op == ExprOp::Ucase
@@ -946,6 +1038,7 @@ class Engine {
         for (size_t i = 0; i < e.args.size(); ++i) {
           const Value v = arg(i);
           if (!stringish(v)) return Value::make_error();
+          budget_->bytes(v.str.size());
           if (i == 0) {
             lang = v.lang;
           } else if (v.lang != lang) {
@@ -1077,7 +1170,11 @@ class Engine {
       if (!it->second) return Value::make_error();
       re = &*it->second;
     }
-    return Value::boolean(re->search(text.str));
+    // RE2 is linear in the text: its cost is the text's length, charged (and
+    // checked against the time left) before the match starts.
+    return Value::boolean(budget_->bulk(Budget::Bulk::Regex,
+                                        1 + text.str.size() / Budget::kBytesPerStep,
+                                        [&] { return re->search(text.str); }));
   }
 
   bool exists(uint32_t op_index) {
@@ -1119,9 +1216,11 @@ class Engine {
   static constexpr uint8_t kUnknown = 0, kFirst = 1, kDuplicate = 2;
   mutable std::vector<uint8_t> duplicate_;
   Limits limits_;
+  Budget* shared_budget_ = nullptr;
 
   // Per evaluation.
-  std::optional<Budget> budget_;
+  std::optional<Budget> own_budget_;
+  Budget* budget_ = nullptr;  // the shared budget, else own_budget_
   Prepared* P_ = nullptr;
   const Plan* plan_ = nullptr;
   std::vector<TermId> row_;
@@ -1133,6 +1232,10 @@ class Engine {
   std::vector<Var> filled_;
   std::deque<std::string> arena_;
   size_t arena_used_ = 0;
+  // Sub-SELECT solutions of this run, by Plan::selects index.
+  std::vector<uint8_t> sub_ready_;
+  std::vector<std::vector<TermId>> sub_rows_;
+  std::vector<size_t> sub_counts_;
 };
 
 }  // namespace detail
@@ -1146,7 +1249,7 @@ const std::vector<std::string>& Query::variables() const {
   return plan_->result_names;
 }
 bool Query::mentions(std::string_view name) const {
-  return plan_->find_var(name) != detail::kNone;
+  return plan_->names(name);
 }
 std::string Query::algebra() const {
   return detail::to_sse(*plan_);
@@ -1155,13 +1258,7 @@ std::string Query::algebra() const {
 void Query::check_prebinding(std::span<const std::string_view> names) const {
   for (std::string_view name : names) {
     if (!name.empty() && (name[0] == '?' || name[0] == '$')) name.remove_prefix(1);
-    const detail::Var v = plan_->find_var(name);
-    if (v == detail::kNone) continue;
-    for (const auto& [assigned, pos] : plan_->assigned)
-      if (assigned == v)
-        throw QueryError("unsupported-sparql", pos.line, pos.column,
-                         "AS ?" + std::string(name) + " assigns the pre-bound variable $" +
-                             std::string(name) + " (not allowed with SHACL pre-binding)");
+    detail::check_prebound(*plan_, name);
   }
 }
 
@@ -1212,6 +1309,9 @@ void Evaluator::set_limits(const Limits& limits) {
 }
 const Limits& Evaluator::limits() const {
   return engine_->limits();
+}
+void Evaluator::set_budget(Budget* budget) {
+  engine_->set_budget(budget);
 }
 
 }  // namespace mospec::sparql

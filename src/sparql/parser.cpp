@@ -866,7 +866,26 @@ class Parser {
     Token open = next();  // '{'
     Group g;
     g.pos = pos(open);
-    if (is_keyword(peek(), "SELECT")) unsupported(peek(), "sub-SELECT (nested queries) is");
+    if (is_keyword(peek(), "SELECT")) {
+      // SPARQL 1.1 grammar [53]: a sub-SELECT is the whole of its group.
+      Element e;
+      e.kind = Element::Kind::SubSelect;
+      e.pos = pos(peek());
+      e.sub = std::make_shared<Query>();
+      parse_select_clause(*e.sub);
+      if (is_keyword(peek(), "WHERE")) next();
+      if (!is_punct(peek(), "{")) expected(peek(), "'{' to start the sub-SELECT's WHERE clause");
+      e.sub->where = parse_group();
+      parse_modifiers(*e.sub);
+      if (is_keyword(peek(), "VALUES")) unsupported(peek(), "VALUES is");
+      if (!is_punct(peek(), "}"))
+        expected(peek(), "'}' to close the group of the sub-SELECT at line " +
+                             std::to_string(e.pos.line) + ", column " +
+                             std::to_string(e.pos.column));
+      next();
+      g.elements.push_back(std::move(e));
+      return g;
+    }
     auto close_error = [&]() {
       expected(peek(), "'}' to close the group started at line " + std::to_string(g.pos.line) +
                            ", column " + std::to_string(g.pos.column));
@@ -936,7 +955,7 @@ class Parser {
       } else if (is_keyword(t, "GRAPH")) {
         unsupported(t, "GRAPH is");
       } else if (is_keyword(t, "SELECT")) {
-        unsupported(t, "sub-SELECT (nested queries) is");
+        expected(t, "'{' before the sub-SELECT (a sub-SELECT is a group of its own)");
       } else {
         close_error();
       }

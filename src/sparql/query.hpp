@@ -21,8 +21,9 @@
 // isNumeric STR LANG DATATYPE IRI URI REGEX STRSTARTS STRENDS CONTAINS STRLEN
 // UCASE LCASE (ASCII case mapping) CONCAT LANGMATCHES sameTerm and the XSD
 // casts xsd:string/integer/decimal/double/float/boolean; ORDER BY, LIMIT,
-// OFFSET.
-// Everything else (MINUS, VALUES, SERVICE, GRAPH, sub-SELECT, FROM, aggregates,
+// OFFSET; sub-SELECTs (with their own modifiers, evaluated bottom-up and
+// joined with the enclosing group).
+// Everything else (MINUS, VALUES, SERVICE, GRAPH, FROM, aggregates,
 // GROUP BY, HAVING, CONSTRUCT, DESCRIBE, updates, unknown functions) is rejected
 // with a QueryError of code "unsupported-sparql" naming the construct and its
 // position; syntax errors have code "sparql-syntax". Messages start with
@@ -31,9 +32,9 @@
 // Default graph: the union of all graphs of the dataset (as a set of triples).
 //
 // Bounded work: the parser refuses queries nested deeper than 256 levels
-// (sparql-syntax), and each evaluation runs under an Evaluator's Limits (a time
-// budget, a step count and a row count, limits.hpp): past one it throws
-// mospec::Error with code "sparql-limit".
+// (sparql-syntax), and each evaluation runs under a Budget (a time budget and
+// a step count, shared by every evaluation of a command, and a row count per
+// SELECT; limits.hpp): past one it throws mospec::Error "sparql-limit".
 //
 // Deviations from the specification, on purpose:
 //  - xsd:integer arithmetic is 64-bit; an overflow is an expression error.
@@ -106,8 +107,9 @@ class Query {
 
   // Rejects (unsupported-sparql, with position) queries that SHACL's pre-binding
   // (SHACL 1.0 appendix "Pre-binding of Variables") cannot handle for the given
-  // potentially pre-bound variables: `AS ?var` for one of them. MINUS, SERVICE,
-  // VALUES and sub-queries are rejected by the parser for every query.
+  // potentially pre-bound variables: `AS ?var` for one of them, or a sub-SELECT
+  // that does not return one the query uses. MINUS, SERVICE and VALUES are
+  // rejected by the parser for every query.
   void check_prebinding(std::span<const std::string_view> names) const;
 
   const detail::Plan& plan() const { return *plan_; }
@@ -196,6 +198,11 @@ class Evaluator {
   // mospec::Error with code "sparql-limit". Defaults: Limits{}.
   void set_limits(const Limits& limits);
   const Limits& limits() const;
+  // Charges every later select()/ask() call to `budget` (which must outlive
+  // them; nullptr: each call gets its own Budget of limits()), so that one
+  // budget bounds all evaluations of a command. Its row limit still applies
+  // to each SELECT on its own.
+  void set_budget(Budget* budget);
 
  private:
   std::unique_ptr<detail::Engine> engine_;

@@ -20,6 +20,7 @@
 // pattern and RE2's reason.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -54,6 +55,9 @@ class Regex {
 
   // True when the pattern matches somewhere in `text` (fn:matches).
   bool search(std::string_view text) const;
+  // Bytes of text this thread's search() calls have been given: the work
+  // done, independent of what a Budget charged for it (tests model a clock on it).
+  static uint64_t bytes_searched();
   // The RE2 syntax the pattern was translated into (for tests and messages).
   const std::string& translated() const { return translated_; }
 

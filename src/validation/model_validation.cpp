@@ -706,7 +706,9 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
                 "no shapes to validate against: the app names no constraints and its vocabulary "
                 "does not resolve to mospec's metamodels; pass --shapes FILE");
   out.shapes = std::make_unique<Shapes>(Shapes::compile(*out.shapes_graph, &model.files()));
-  out.report = validate(*out.shapes, model.dataset());
+  ValidateOptions validate_options;
+  validate_options.sparql_limits = options.sparql_limits;
+  out.report = validate(*out.shapes, model.dataset(), validate_options);
   if (options.strict) out.strict_findings = strict_checks(model, *out.shapes, out.files);
   return out;
 }

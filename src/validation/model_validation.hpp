@@ -16,6 +16,7 @@
 #include "rdf/dataset.hpp"
 #include "shacl/report.hpp"
 #include "shacl/shapes.hpp"
+#include "shacl/validate.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::validation {
@@ -60,6 +61,9 @@ struct ModelValidationOptions {
   // An app resolving the vocabulary elsewhere keeps exactly its own list.
   bool vocabulary_shapes = true;
   bool strict = false;  // compute strict_findings
+  // The SPARQL time and step budget of the whole validation (every SPARQL
+  // constraint and sh:path, for every shape and focus node).
+  sparql::Limits sparql_limits;
 };
 
 struct ModelValidation {

@@ -26,6 +26,10 @@ if [ -f models/sc1.json ] && [ -d comp-rob2b/metamodels ]; then
   cp "$work/stdout.txt" "$work/sc1-first.txt"
   expect upstream-sc1-deterministic 1 '' -- "$mospec" validate models/sc1.json
   cmp -s "$work/stdout.txt" "$work/sc1-first.txt" || fail "upstream-sc1-deterministic: two runs differ"
+  # One SPARQL budget for the whole command (#32): each of sc1's SPARQL
+  # evaluations takes a few steps, all of them together more than 100.
+  expect upstream-sc1-sparql-budget 2 '^comp-rob2b/metamodels/.*\.ttl:[0-9]+:[0-9]+: error: SPARQL constraint <[^>]*> of shape <[^>]*> on focus node <[^>]*>: SPARQL evaluation stopped after 100 steps \(the command.s step limit' -- "$mospec" validate models/sc1.json --sparql-steps 100
+  if [ -s "$work/stdout.txt" ]; then fail "upstream-sc1-sparql-budget: a report was written"; fi
   expect upstream-sc1-turtle 1 '' -- "$mospec" validate models/sc1.json --format turtle
   [ "$(grep -c 'sh:sourceConstraintComponent sh:XoneConstraintComponent' "$work/stdout.txt")" -eq 2 ] || fail "upstream-sc1-turtle: expected 2 Xone results"
   stdout_has upstream-sc1-turtle 'sh:conforms false'

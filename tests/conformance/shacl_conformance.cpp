@@ -279,7 +279,13 @@ class Runner {
                                       : std::string()));
       }
     } catch (const mospec::Error& e) {
-      fail(name, std::string("error: ") + e.what());
+      // SHACL 5.3.1 makes $shapesGraph optional: a processor without it must
+      // report a failure, which is what mospec does.
+      if (e.code() == "unsupported-shacl" &&
+          std::string_view(e.what()).find("$shapesGraph is not supported") != std::string::npos)
+        skip(name, "uses $shapesGraph, which SHACL 5.3.1 lets a processor refuse (mospec does)");
+      else
+        fail(name, std::string("error: ") + e.what());
     } catch (const std::exception& e) {
       fail(name, std::string("exception: ") + e.what());
     }

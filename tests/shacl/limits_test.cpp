@@ -83,4 +83,31 @@ TEST(ValidateLimits, ANestedZeroOrMorePathIsALocatedError) {
   EXPECT_EQ(e.diagnostic().line, kPrefixLines + 2000 + 3);  // the property shape
 }
 
+TEST(ValidateLimits, OneBudgetCoversEveryFocusNodeAndShape) {
+  // 2000 focus nodes, each SPARQL evaluation scanning the 2000 ex:next
+  // triples: cheap alone (2000 steps), 4 million steps together. Each
+  // evaluation had a budget of its own, so validation finished (issue #32).
+  const std::string body = chain(2000) +
+                           "ex:S a sh:NodeShape ; sh:targetSubjectsOf ex:next ;\n"
+                           "  sh:sparql [ sh:select \"\"\"\n"
+                           "    SELECT $this WHERE { ?a <http://example.org/next> ?b FILTER(?a = "
+                           "<urn:none>) }\"\"\" ] .\n"
+                           "ex:P a sh:PropertyShape ; sh:targetSubjectsOf ex:next ;\n"
+                           "  sh:path ( ex:next ex:next ) ; sh:maxCount 1 .\n";
+  const Error e = validation_error(body, sparql::Limits{0, 1000000, 0});
+  EXPECT_EQ(e.code(), "sparql-limit");
+  EXPECT_NE(e.diagnostic().message.find("SPARQL evaluation stopped after 1000000 steps (the "
+                                        "command's step limit"),
+            std::string::npos)
+      << e.diagnostic().message;
+  // Paths and queries draw on the caller's budget when it has one.
+  auto g = turtle(body);
+  Shapes shapes = Shapes::compile(g->data, &g->files);
+  sparql::Budget budget(sparql::Limits{0, 0, 0});
+  ValidateOptions options;
+  options.sparql_budget = &budget;
+  EXPECT_TRUE(validate(shapes, g->data, options).conforms());
+  EXPECT_GT(budget.steps(), 2000u * 2000u);
+}
+
 }  // namespace

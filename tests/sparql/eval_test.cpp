@@ -440,5 +440,61 @@ TEST(SparqlEval, FilterPlacementDoesNotChangeResults) {
             (Rows{"<http://example.org/alice>"}));
 }
 
+TEST(SparqlEval, SubSelectIsEvaluatedOnItsOwnThenJoined) {
+  Data d(kPeople);
+  // LIMIT applies inside, before the join: the oldest person, then their name.
+  EXPECT_EQ(d.run("SELECT ?p ?n { ?p ex:name ?n { SELECT ?p { ?p ex:age ?a } ORDER BY DESC(?a) "
+                  "LIMIT 1 } }"),
+            (Rows{R"(<http://example.org/carol> "Carol")"}));
+  // A variable the sub-SELECT does not project is its own: ?n inside is not ?n outside.
+  EXPECT_EQ(d.sorted("SELECT ?p ?n { ?p ex:age ?n { SELECT ?p { ?p ex:name ?n } } }"),
+            (Rows{"<http://example.org/alice> \"30\"^^<http://www.w3.org/2001/XMLSchema#integer>",
+                  "<http://example.org/bob> \"25\"^^<http://www.w3.org/2001/XMLSchema#integer>",
+                  "<http://example.org/carol> \"41\"^^<http://www.w3.org/2001/XMLSchema#int>"}));
+  // Projected expressions, DISTINCT, and a sub-SELECT under OPTIONAL run per solution.
+  EXPECT_EQ(d.sorted("SELECT ?p ?k { ?p a ?t OPTIONAL { { SELECT DISTINCT ?p (1 AS ?k) "
+                     "{ ?p ex:knows ?x } } } }"),
+            (Rows{"<http://example.org/alice> \"1\"^^<http://www.w3.org/2001/XMLSchema#integer>",
+                  "<http://example.org/bob> \"1\"^^<http://www.w3.org/2001/XMLSchema#integer>",
+                  "<http://example.org/carol> UNDEF", "<http://example.org/dave> UNDEF"}));
+  EXPECT_EQ(d.run("SELECT * { { SELECT * { ex:alice ex:knows ?x } ORDER BY ?x OFFSET 1 } }"),
+            (Rows{"<http://example.org/carol>"}));
+  // Nested sub-SELECTs.
+  EXPECT_EQ(d.run("SELECT ?n { { SELECT ?n { { SELECT ?p { ?p a ex:Robot } } ?p ex:name ?n } } }"),
+            (Rows{R"("Dave")"}));
+}
+
+TEST(SparqlEval, PreBindingReachesIntoSubSelectsThatProjectTheVariable) {
+  Data d(kPeople);
+  const rdf::TermId bob = d.iri("bob");
+  // W3C SHACL test sparql/pre-binding/pre-binding-007.
+  EXPECT_EQ(d.run("SELECT $this { { SELECT $this { FILTER($this = ex:bob) } } }", {{"this", bob}}),
+            (Rows{"<http://example.org/bob>"}));
+  EXPECT_EQ(d.run("SELECT $this ?x { { SELECT $this ?x { $this ex:knows ?x } } }", {{"this", bob}}),
+            (Rows{"<http://example.org/bob> <http://example.org/carol>"}));
+  // pre-binding-006: a sub-SELECT that uses $this without returning it.
+  Query q = parse_query("SELECT $this {\n  { SELECT * { FILTER($this = ex:bob) } } }", prefixes());
+  const std::string_view names[] = {"this"};
+  try {
+    q.check_prebinding(names);
+    FAIL() << "no error";
+  } catch (const QueryError& e) {
+    EXPECT_EQ(e.code(), "unsupported-sparql");
+    EXPECT_EQ(e.diagnostic().message,
+              "line 2, column 5: this sub-SELECT does not return the pre-bound variable $this "
+              "(SHACL pre-binding requires every sub-SELECT to return the pre-bound variables the "
+              "query uses)");
+  }
+  ResultSet rs;
+  EXPECT_THROW(d.eval().select(q, std::vector<Binding>{{"this", bob}}, rs), QueryError);
+  EXPECT_TRUE(q.mentions("this"));
+  // unsupported-sparql-004: even one that does not use $this must return it.
+  EXPECT_THROW(parse_query("SELECT $this { $this ?p ?o { SELECT ?x { ?x ?q ?y } } }", prefixes())
+                   .check_prebinding(names),
+               QueryError);
+  EXPECT_NO_THROW(parse_query("SELECT ?x { ?x ?p ?o { SELECT ?x { ?x ?q ?y } } }", prefixes())
+                      .check_prebinding(names));
+}
+
 }  // namespace
 }  // namespace mospec::sparql::test

@@ -4,6 +4,7 @@
 #include "sparql/limits.hpp"
 
 #include "sparql/path.hpp"
+#include "sparql/regex.hpp"
 #include "test_util.hpp"
 
 namespace mospec::sparql::test {
@@ -45,9 +46,10 @@ TEST(SparqlLimits, AThreeWayJoinOfEveryTripleStopsAtTheStepLimit) {
   Data d(triples(200));  // 8 million solutions
   d.eval().set_limits(Limits{0, 100000, 0});
   EXPECT_EQ(limit_error([&] { d.run(kJoinAll); }),
-            "SPARQL evaluation stopped after 100000 steps (its step limit; a step is a matched "
-            "triple, a node reached by a path or a solution passed on): the query does too much "
-            "work on this data; make it more selective or raise the limit");
+            "SPARQL evaluation stopped after 100000 steps (the command's step limit; a step is a "
+            "matched triple, a node reached by a path, a solution passed on or 64 bytes a string "
+            "function reads): the queries do too much work on this data; make them more "
+            "selective or raise the limit");
   // Within the limit the same evaluator answers, with its state reset.
   d.eval().set_limits(Limits{});
   EXPECT_EQ(d.run("SELECT ?o { ex:s7 ex:p ?o }"), Rows{"<http://example.org/o7>"});
@@ -58,7 +60,7 @@ TEST(SparqlLimits, ATimeBudgetEndsEvaluation) {
   d.eval().set_limits(Limits{1e-9, 0, 0});  // spent by the first clock check
   const std::string message = limit_error([&] { d.run(kJoinAll); });
   EXPECT_EQ(message.substr(0, message.find(" s (")), "SPARQL evaluation stopped after 1e-09");
-  EXPECT_NE(message.find("(its time budget) and "), std::string::npos) << message;
+  EXPECT_NE(message.find("(the command's time budget) and "), std::string::npos) << message;
 }
 
 TEST(SparqlLimits, ResultRowsAreBounded) {
@@ -75,7 +77,7 @@ TEST(SparqlLimits, ZeroOrMoreAfterZeroOrMoreOverALongListIsBounded) {
   d.eval().set_limits(Limits{0, 1000000, 0});
   const std::string message =
       limit_error([&] { d.run("SELECT ?x ?y { ?x rdf:rest*/rdf:rest* ?y }"); });
-  EXPECT_EQ(message.substr(0, 48), "SPARQL evaluation stopped after 1000000 steps (i");
+  EXPECT_EQ(message.substr(0, 48), "SPARQL evaluation stopped after 1000000 steps (t");
   // A bound start is cheap.
   EXPECT_EQ(d.run("SELECT ?y { ex:head ex:list/rdf:rest* ?y FILTER(?y = rdf:nil) }").size(), 1u);
 }
@@ -103,6 +105,125 @@ TEST(SparqlLimits, NestedZeroOrMorePathsCountTheirWork) {
   evaluate_path(d.data(), *star, d.iri("n0"), out, rdf::TermId::any(), &unlimited);
   EXPECT_EQ(out.size(), 3001u);
   EXPECT_GT(unlimited.steps(), 3001u * 3001u / 2);
+}
+
+// `n` subjects, each with one literal of `bytes` bytes ("aaa...a" then its
+// index, so that no two are the same term).
+std::string long_literals(size_t n, size_t bytes) {
+  std::string out;
+  const std::string body(bytes, 'a');
+  for (size_t i = 0; i < n; ++i)
+    out.append("ex:s")
+        .append(std::to_string(i))
+        .append(" ex:text \"")
+        .append(body)
+        .append(std::to_string(i) + "\" .\n");
+  return out;
+}
+
+// A clock that reads the work RE2 has done: 1 ns per byte of text searched on
+// this thread since the budget was made. Time then is exactly proportional to
+// the regex work, whatever the Budget charged for it, and no test depends on
+// the machine's speed.
+struct RegexWorkClock {
+  uint64_t origin = Regex::bytes_searched();
+  double seconds() const { return static_cast<double>(Regex::bytes_searched() - origin) * 1e-9; }
+  uint64_t bytes() const { return Regex::bytes_searched() - origin; }
+};
+
+TEST(SparqlLimits, OneBudgetIsSharedByEveryEvaluationOfACommand) {
+  Data d(triples(100));
+  Budget budget(Limits{0, 2000, 0});
+  d.eval().set_budget(&budget);
+  // Each evaluation scans 100 triples: within the limit alone, not 20 together.
+  size_t evaluations = 0;
+  const std::string message = limit_error([&] {
+    for (; evaluations < 100; ++evaluations) d.run("SELECT ?s { ?s ex:p ?o }");
+  });
+  EXPECT_EQ(message.substr(0, 42), "SPARQL evaluation stopped after 2000 steps");
+  EXPECT_GE(evaluations, 15u);
+  EXPECT_LE(evaluations, 20u);
+  // Without a shared budget each evaluation has its own.
+  d.eval().set_budget(nullptr);
+  d.eval().set_limits(Limits{0, 2000, 0});
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(d.run("SELECT ?s { ?s ex:p ?o }").size(), 100u);
+}
+
+TEST(SparqlLimits, RegexIsChargedByTheBytesItReads) {
+  Data d(long_literals(1, 1 << 20));
+  Budget budget(Limits{0, 0, 0});
+  d.eval().set_budget(&budget);
+  EXPECT_EQ(d.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }").size(), 0u);
+  EXPECT_GE(budget.steps(), (uint64_t{1} << 20) / Budget::kBytesPerStep);
+  // And so are string functions.
+  const uint64_t before = budget.steps();
+  EXPECT_EQ(d.run("SELECT ?s { ?s ex:text ?t FILTER(CONTAINS(?t, \"b\")) }").size(), 0u);
+  EXPECT_GE(budget.steps() - before, (uint64_t{1} << 20) / Budget::kBytesPerStep);
+}
+
+TEST(SparqlLimits, RegexesOverrunTheTimeBudgetByAtMostTenPercent) {
+  // 200 texts of 64 KiB, a budget of 100 texts' worth of regex work (6.6 ms
+  // at 1 ns per byte). Charged one step per REGEX, the clock was read once
+  // per ~2000 of them (issue #32), so all 200 ran.
+  constexpr size_t kBytes = 64 * 1024;
+  Data d(long_literals(200, kBytes));
+  RegexWorkClock work;
+  const double budget_seconds = 100 * kBytes * 1e-9;
+  Budget budget(Limits{budget_seconds, 0, 0}, [&] { return work.seconds(); });
+  d.eval().set_budget(&budget);
+  const std::string message =
+      limit_error([&] { d.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }"); });
+  EXPECT_NE(message.find("time budget"), std::string::npos) << message;
+  EXPECT_GE(work.seconds(), budget_seconds * 0.9);
+  EXPECT_LE(work.seconds(), budget_seconds * 1.1) << work.bytes() << " bytes searched";
+}
+
+TEST(SparqlLimits, ARegexThatWouldEndPastTheBudgetDoesNotStart) {
+  // One REGEX over 4 MiB: at 1 ns per byte it takes 4.2 ms against a 2 ms
+  // budget, so it must not start (afterwards would be 110 % over).
+  Data d(long_literals(1, 4 << 20));
+  RegexWorkClock work;
+  Budget budget(Limits{0.002, 0, 0}, [&] { return work.seconds(); });
+  d.eval().set_budget(&budget);
+  const std::string message =
+      limit_error([&] { d.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }"); });
+  EXPECT_NE(message.find("the next REGEX (65537 steps, about"), std::string::npos) << message;
+  EXPECT_EQ(work.bytes(), 0u);
+  // The estimate learns the slowest rate it measured. Four texts at 8 ns per
+  // byte (twice the default estimate) and a budget for 3.6 of them: after the
+  // first, the fourth is known not to fit (at the default rate it would seem
+  // to, and end 11 % over).
+  Data e(long_literals(4, 4 << 20));
+  RegexWorkClock slow;
+  const double per_text = 8e-9 * (4 << 20);
+  Budget learning(Limits{3.6 * per_text, 0, 0}, [&] { return 8 * slow.seconds(); });
+  e.eval().set_budget(&learning);
+  limit_error([&] { e.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }"); });
+  EXPECT_EQ(slow.bytes(), 3u * ((4u << 20) + 1));
+  EXPECT_NEAR(learning.seconds_per_step(Budget::Bulk::Regex), 8e-9 * Budget::kBytesPerStep, 1e-10);
+}
+
+TEST(SparqlLimits, AStringFunctionThatWouldEndPastTheBudgetDoesNotStart) {
+  // 1 ms of a 1 s budget left, CONTAINS over 4 MiB estimated at 8 ms: refused
+  // before it starts (the clock then stands still, so only that check can stop it).
+  Data d(long_literals(1, 4 << 20));
+  Budget budget(Limits{1.0, 0, 0}, [reads = 0]() mutable { return reads++ == 0 ? 0.0 : 0.999; });
+  d.eval().set_budget(&budget);
+  const std::string message =
+      limit_error([&] { d.run("SELECT ?s { ?s ex:text ?t FILTER(CONTAINS(?t, \"b\")) }"); });
+  EXPECT_NE(message.find("the next string function (65537 steps, about"), std::string::npos)
+      << message;
+}
+
+TEST(SparqlLimits, TheClockIsReadAtLeastEveryKCheckEverySteps) {
+  Data d(triples(100));
+  Budget budget(Limits{1e9, 0, 0}, [] { return 0.0; });
+  d.eval().set_budget(&budget);
+  // A million combinations, no solution.
+  d.run("SELECT * { ?a ?p ?b . ?c ?q ?d . ?e ?r ?f FILTER(?f = ?a) }");
+  EXPECT_GT(budget.steps(), 1000000u);
+  EXPECT_GE(budget.clock_reads(), budget.steps() / Budget::kCheckEvery);
+  EXPECT_LE(budget.clock_reads(), budget.steps() / Budget::kCheckEvery + 2);
 }
 
 }  // namespace

@@ -133,10 +133,6 @@ TEST(SparqlParser, UnsupportedConstructsAreRejectedWithTheirPosition) {
       {"SELECT ?x { VALUES ?x { 1 2 } }", "line 1, column 13: VALUES is not supported"},
       {"SELECT ?x { ?x ?p ?o } VALUES ?x { 1 }", "line 1, column 24: VALUES is not supported"},
       {"SELECT ?x { GRAPH ?g { ?x ?p ?o } }", "line 1, column 13: GRAPH is not supported"},
-      {"SELECT ?x {\n  { SELECT ?x { ?x ?p ?o } } }",
-       "line 2, column 5: sub-SELECT (nested queries) is not supported"},
-      {"SELECT ?x { SELECT ?x { ?x ?p ?o } }",
-       "line 1, column 13: sub-SELECT (nested queries) is not supported"},
       {"SELECT ?x FROM <http://e/g> { ?x ?p ?o }",
        "line 1, column 11: FROM (dataset clauses) is not supported"},
       {"SELECT (COUNT(?x) AS ?n) { ?x ?p ?o }",
@@ -158,6 +154,39 @@ TEST(SparqlParser, UnsupportedConstructsAreRejectedWithTheirPosition) {
   for (const Case& c : cases) {
     QueryError e = error_of(c.query);
     EXPECT_EQ(e.code(), "unsupported-sparql") << c.query;
+    EXPECT_EQ(e.diagnostic().message, c.message) << c.query;
+  }
+}
+
+TEST(SparqlParser, SubSelectIsAGroupOfItsOwn) {
+  EXPECT_EQ(parse_query("SELECT ?x {\n  { SELECT DISTINCT ?x WHERE { ?x ?p ?o } ORDER BY ?x "
+                        "LIMIT 2 OFFSET 1 } }")
+                .algebra(),
+            "(select (?x) (group (join (group (join (project (?x) (slice 1 2 (distinct (order (?x) "
+            "(group (join (bgp (?x ?p ?o)))))))))))))");
+  // The WHERE clause itself may be one (grammar rule [53]).
+  EXPECT_EQ(parse_query("SELECT ?x { SELECT ?x { ?x ?p ?o } }").algebra(),
+            "(select (?x) (group (join (project (?x) (group (join (bgp (?x ?p ?o))))))))");
+  struct Case {
+    const char* query;
+    const char* code;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"SELECT ?x { ?x ?p ?o SELECT ?x { ?x ?p ?o } }", "sparql-syntax",
+       "line 1, column 22: expected '{' before the sub-SELECT (a sub-SELECT is a group of its "
+       "own), found 'SELECT'"},
+      {"SELECT ?x { { SELECT ?x { ?x ?p ?o } ?x ?p ?o } }", "sparql-syntax",
+       "line 1, column 38: expected '}' to close the group of the sub-SELECT at line 1, column "
+       "15, found variable ?x"},
+      {"SELECT ?x { { SELECT ?x { ?x ?p ?o } VALUES ?x { 1 } } }", "unsupported-sparql",
+       "line 1, column 38: VALUES is not supported"},
+      {"SELECT ?x { { SELECT (COUNT(?x) AS ?n) { ?x ?p ?o } } }", "unsupported-sparql",
+       "line 1, column 23: aggregate COUNT is not supported"},
+  };
+  for (const Case& c : cases) {
+    QueryError e = error_of(c.query);
+    EXPECT_EQ(e.code(), c.code) << c.query;
     EXPECT_EQ(e.diagnostic().message, c.message) << c.query;
   }
 }
