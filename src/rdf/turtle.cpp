@@ -164,6 +164,18 @@ class TurtleReader {
   std::optional<TermId> term(const SerdNode* node, const SerdNode* datatype = nullptr,
                              const SerdNode* language = nullptr) {
     TermTable& terms = data_.terms();
+    // serd 0.30 turns a \u or \U escape of a surrogate (\uDDDD) or of a code
+    // point past U+10FFFF into bytes that are not UTF-8; RDF terms are
+    // Unicode strings, and N-Quads could not write one back.
+    for (const SerdNode* n : {node, datatype, language}) {
+      if (n != nullptr && find_invalid_utf8(view(n)) != std::string_view::npos) {
+        record(
+            "a \\u or \\U escape names a code point that is not a Unicode character (a "
+            "surrogate, U+D800 to U+DFFF, or one past U+10FFFF)",
+            line_, column());
+        return std::nullopt;
+      }
+    }
     switch (node->type) {
       case SERD_URI:
       case SERD_CURIE: {

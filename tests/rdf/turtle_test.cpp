@@ -189,6 +189,23 @@ TEST(ReadTurtle, ABlankNodeLabelEndingInADotIsAnError) {
   EXPECT_EQ(d.size(), 1u);
 }
 
+TEST(ReadTurtle, AnEscapeOfASurrogateOrPastUnicodeIsAnError) {
+  for (const char* text :
+       {R"(<http://e/s> <http://e/p> "a\uDDDD" .)", R"(<http://e/s> <http://e/p> "\uD800\uDC00" .)",
+        R"(<http://e/s\uDFFF> <http://e/p> "x" .)"}) {
+    const std::string error = turtle_error(text);
+    EXPECT_NE(error.find("doc.ttl:1:"), std::string::npos) << text << ": " << error;
+    EXPECT_NE(error.find("not a Unicode character"), std::string::npos) << text << ": " << error;
+  }
+  // serd refuses one past U+10FFFF itself.
+  EXPECT_NE(turtle_error(R"(<http://e/s> <http://e/p> "\U00110000" .)").find("doc.ttl:1:39: "),
+            std::string::npos);
+  // A character past the BMP, escaped, is fine.
+  Dataset d;
+  read_turtle(R"(<http://e/s> <http://e/p> "\U0001F600" .)", "", d);
+  EXPECT_EQ(d.size(), 1u);
+}
+
 TEST(ReadTurtle, LabelledAndAnonymousBlankNodesStayApart) {
   Dataset d;
   read_turtle("_:b1 <http://e/p> [ <http://e/q> _:b2 ] .\n_:x <http://e/r> ( 1 ) .\n", "", d);
