@@ -61,11 +61,11 @@ TEST(Chain, RejectsWhatIsNotAChain) {
   s.joint = "j";
   s.axis_J = Vec3(0, 0, 2);
   EXPECT_EQ(error_of([&] { chain.add_segment(s); }),
-            "mospec: error: joint 'j': axis must be a unit vector, got norm 2.000000");
+            "mospec: error: joint 'j': axis must be a unit vector, got norm 2");
   s.axis_J = Vec3::UnitZ();
   s.inertia.mass = -1;
   EXPECT_EQ(error_of([&] { chain.add_segment(s); }),
-            "mospec: error: link 'l': mass must be finite and >= 0, got -1.000000 kg");
+            "mospec: error: link 'l': mass must be finite and >= 0, got -1 kg");
   s.inertia.mass = 1;
   s.inertia.I_Scm_S = Vec3(1, 1, -1).asDiagonal();
   EXPECT_NE(error_of([&] { chain.add_segment(s); }).find("not positive semi-definite"),
