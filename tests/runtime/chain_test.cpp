@@ -77,20 +77,23 @@ TEST(Chain, RejectsWhatIsNotAChain) {
 }
 
 TEST(UrdfImport, ErrorsNameTheOffender) {
-  EXPECT_EQ(error_of([] { chain_from_urdf(testing::kToyUrdf, "world", "nope", "toy.urdf"); }),
-            "toy.urdf: error: robot 'toy' has no link 'nope' (links: base, l1, l2, l2b, l3, l4, "
-            "l5, tool, world)");
-  EXPECT_EQ(error_of([] { chain_from_urdf(testing::kToyUrdf, "l3", "l1", "toy.urdf"); }),
-            "toy.urdf: error: link 'l3' is not an ancestor of link 'l1' (the path from 'l1' ends "
-            "at the root link 'world')");
+  EXPECT_EQ(
+      error_of([] { chain_from_urdf(testing::kToyUrdf, "world", "nope", "toy.urdf"); }),
+      "toy.urdf:1:1: error: robot 'toy' has no link 'nope' (links: base, l1, l2, l2b, l3, l4, "
+      "l5, tool, world)");
+  EXPECT_EQ(
+      error_of([] { chain_from_urdf(testing::kToyUrdf, "l3", "l1", "toy.urdf"); }),
+      "toy.urdf:7:3: error: link 'l3' is not an ancestor of link 'l1' (the path from 'l1' ends "
+      "at the root link 'world')");
   EXPECT_EQ(error_of([] { chain_from_urdf("<robot name='x'", "a", "b", "x.urdf"); }),
-            "x.urdf: error: cannot parse URDF: Error parsing Element.");
+            "x.urdf:1:1: error: unterminated start tag <robot>");
   std::string floating = testing::kToyUrdf;
   floating.replace(floating.find("type=\"prismatic\""), 16, "type=\"floating\"");
-  EXPECT_NE(error_of([&] {
-              chain_from_urdf(floating, "world", "tool", "f.urdf");
-            }).find("f.urdf: error: joint 'j2': only revolute, continuous, prismatic and fixed"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] {
+        chain_from_urdf(floating, "world", "tool", "f.urdf");
+      }).find("f.urdf:14:3: error: joint 'j2': only revolute, continuous, prismatic and fixed"),
+      std::string::npos);
 }
 
 TEST(UrdfImport, FoldsFixedJoints) {
