@@ -53,7 +53,10 @@ std::string shown(std::string_view s, std::size_t max = 60) {
 }
 
 std::string quoted(std::string_view name) {
-  return "'" + shown(name) + "'";
+  std::string out(1, '\'');
+  out += shown(name);
+  out += '\'';
+  return out;
 }
 
 // A sorted list of names for a message, cut after a few so that a URDF with

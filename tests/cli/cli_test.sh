@@ -96,7 +96,8 @@ grep -q '"https://ex.org/arm/"' arm.jsonld && grep -q 'RevoluteJoint' arm.jsonld
   { echo "FAIL urdf-ok: content"; failures=$((failures+1)); }
 # An untrusted URDF: refused at the element concerned, exit 2, nothing written.
 # A hundred thousand levels overflowed urdfdom's recursive XML parser.
-{ echo '<robot name="deep">'; awk 'BEGIN { for (i = 0; i < 100000; i++) printf "<a>" }'; echo; } > deep.urdf
+{ echo '<robot name="deep">'; awk 'BEGIN { for (i = 0; i < 100000; i++) printf "<a>"
+  for (i = 0; i < 100000; i++) printf "</a>" }'; echo '</robot>'; } > deep.urdf
 expect urdf-deep 2 '^deep\.urdf:2:190: error: element <a> is nested 65 levels deep' -- \
   "$mospec" import-urdf deep.urdf -o deep.jsonld
 check urdf-deep-writes-nothing test ! -e deep.jsonld
