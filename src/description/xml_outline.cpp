@@ -280,16 +280,29 @@ class Scanner {
       fail(j, "unterminated value of attribute '" + shown(name) + "'");
     std::string value;
     value.reserve(close - j - 1);
+    // urdfdom hands some values it cannot read to printf as the format of its
+    // message ("Inertial: mass [%n] is not a float"); no URDF value needs a
+    // '%' but a file name.
+    const bool may_hold_percent = name == "filename";
     for (std::size_t k = j + 1; k < close; ++k) {
       if (t_[k] == '<') fail(k, "'<' in the value of attribute '" + shown(name) + "'");
       if (t_[k] != '&') {
+        if (t_[k] == '%' && !may_hold_percent) percent(k, name);
         value += t_[k];
         continue;
       }
+      const std::size_t ref = k;
       k = reference(k, close, value);
+      if (!may_hold_percent && !value.empty() && value.back() == '%') percent(ref, name);
     }
     element.attributes.push_back({std::move(name), std::move(value)});
     return close + 1;
+  }
+
+  [[noreturn]] void percent(std::size_t i, const std::string& name) {
+    fail(i, "'%' in the value of attribute '" + shown(name) +
+                "' (urdfdom passes some values to printf as its format; only a filename may hold "
+                "a '%')");
   }
 
   // Replaces the reference at i (a '&') and returns the position of its ';'.

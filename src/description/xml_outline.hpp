@@ -57,7 +57,9 @@ struct XmlOutline {
 // mospec::Error (code "invalid-urdf") at FILE:LINE:COL of the first offending
 // byte or element: a NUL or other control character, a malformed tag,
 // attribute, comment, CDATA section or processing instruction, an unquoted or
-// duplicate attribute, an unknown entity, a mismatched or missing end tag, text
+// duplicate attribute, a '%' in the value of an attribute other than
+// `filename` (raw or as &#37;: urdfdom uses some values as printf formats),
+// an unknown entity, a mismatched or missing end tag, text
 // or a second element outside the root, a DOCTYPE with an internal subset, an
 // element nested deeper than kMaxXmlDepth, the element past kMaxXmlElements, or
 // one with more than kMaxXmlAttributes attributes. A document with no element

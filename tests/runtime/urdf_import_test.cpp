@@ -128,6 +128,23 @@ TEST(UrdfXml, MalformedXmlIsLocated) {
             "r.urdf:1:1: error: the root element is <link>; a URDF's is <robot>");
 }
 
+// urdfdom logs a value it cannot read with the value in printf's format: a
+// mass of "%s%s%s%s%n" read and wrote through whatever the stack held.
+TEST(UrdfXml, PercentSignsAreRefusedOutsideFileNames) {
+  const std::string format = robot("<link name=\"a\">" + inertial("%s%s%s%s%n") + "</link>");
+  EXPECT_EQ(error_of(format),
+            at(format, "%s") +
+                ": error: '%' in the value of attribute 'value' (urdfdom passes some values to "
+                "printf as its format; only a filename may hold a '%')");
+  const std::string reference = robot("<link name=\"a\">" + inertial("&#37;n") + "</link>");
+  EXPECT_EQ(error_of(reference).rfind(
+                at(reference, "&#37;") + ": error: '%' in the value of attribute 'value'", 0),
+            0u);
+  EXPECT_EQ(error_of(robot("<link name=\"a\"><visual><geometry><mesh "
+                           "filename=\"package://r/a%20b.stl\"/></geometry></visual></link>\n")),
+            "(no error)");
+}
+
 // urdfdom reads a C string: what followed a NUL was never seen, so a file
 // could say one thing to mospec's checks and another to urdfdom.
 TEST(UrdfXml, ControlCharactersAreRefused) {
