@@ -144,14 +144,29 @@ class Places {
   int unnamed_link_ = -1, unnamed_joint_ = -1;
 };
 
-// The text between `open` and the next `close` after it in `s`, if `open` occurs.
-bool between(const std::string& s, std::string_view open, char close, std::string& out) {
-  const std::size_t b = s.find(open);
-  if (b == std::string::npos) return false;
-  const std::size_t e = s.find(close, b + open.size());
-  if (e == std::string::npos) return false;
-  out = s.substr(b + open.size(), e - b - open.size());
-  return true;
+// Where the name urdfdom quoted after `word` starts: past `word`, any spaces
+// (it writes "for joint  [j]" in places) and the '['; npos when absent.
+std::size_t bracket_after(const std::string& m, std::string_view word, std::size_t from = 0) {
+  for (std::size_t w = m.find(word, from); w != std::string::npos; w = m.find(word, w + 1)) {
+    std::size_t b = w + word.size();
+    while (b < m.size() && m[b] == ' ') ++b;
+    if (b < m.size() && m[b] == '[') return b + 1;
+  }
+  return std::string::npos;
+}
+
+// The <link> or <joint> whose name starts at `begin` in urdfdom's message: a
+// name may hold ']' itself, so each of the next few ']' is tried as its end.
+int bracketed(const std::string& m, std::size_t begin, bool joint, const Places& places) {
+  if (begin == std::string::npos) return -1;
+  int tries = 0;
+  for (std::size_t e = m.find(']', begin); e != std::string::npos && tries < 16;
+       e = m.find(']', e + 1), ++tries) {
+    const std::string name = m.substr(begin, e - begin);
+    const int at = joint ? places.joint(name) : places.link(name);
+    if (at >= 0) return at;
+  }
+  return -1;
 }
 
 bool contains(const std::string& s, std::string_view part) {
@@ -162,16 +177,15 @@ bool contains(const std::string& s, std::string_view part) {
 // joints in its messages ("... for Link [l1]", "Malformed axis element for
 // joint [j1]: ..."), and says which part of them it could not read.
 int element_of(const std::string& m, const std::vector<std::string>& all, const Places& places) {
-  std::string name, other;
-  if (between(m, "] of joint [", ']', name)) {
-    const int joint = places.joint(name);
+  if (const std::size_t b = bracket_after(m, "] of joint"); b != std::string::npos) {
+    const int joint = bracketed(m, b, true, places);
     return places.child_or_self(joint, contains(m, "child link [") ? "child" : "parent");
   }
-  if (between(m, "Two root links found: [", ']', name) && between(m, "] and [", ']', other)) {
-    return places.link(other);
+  if (contains(m, "Two root links found")) {
+    return bracketed(m, bracket_after(m, "] and"), false, places);
   }
-  if (between(m, "Link [", ']', name)) {
-    const int link = places.link(name);
+  if (const std::size_t b = bracket_after(m, "Link"); b != std::string::npos) {
+    const int link = bracketed(m, b, false, places);
     if (!contains(m, "inertial element")) return link;
     const int inertial = places.child_or_self(link, "inertial");
     // The messages before this one say which part of <inertial> failed.
@@ -183,8 +197,8 @@ int element_of(const std::string& m, const std::vector<std::string>& all, const 
     }
     return inertial;
   }
-  if (between(m, "oint [", ']', name)) {  // "joint [" and "Joint ["
-    const int joint = places.joint(name);
+  if (const std::size_t b = bracket_after(m, "oint"); b != std::string::npos) {  // j or J
+    const int joint = bracketed(m, b, true, places);
     static constexpr std::pair<std::string_view, std::string_view> kParts[] = {
         {"origin element", "origin"},
         {"axis element", "axis"},

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "support/diagnostics.hpp"
+#include "support/utf8.hpp"
 
 namespace mospec::description {
 
@@ -27,37 +28,22 @@ bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r';
 }
 
+// As TinyXML reads names: it takes '<' before anything else (a ':' too) for
+// markup to skip up to the next '>', which this scan must not take for an
+// element.
 bool is_name_start(char c) {
   const auto u = static_cast<unsigned char>(c);
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || c == ':' || u >= 0x80;
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || u >= 0x80;
 }
 
 bool is_name_char(char c) {
-  return is_name_start(c) || (c >= '0' && c <= '9') || c == '-' || c == '.';
+  return is_name_start(c) || (c >= '0' && c <= '9') || c == '-' || c == '.' || c == ':';
 }
 
 // XML 1.0's Char production: what a character reference may name.
 bool is_xml_char(uint32_t c) {
   return c == 0x9 || c == 0xA || c == 0xD || (c >= 0x20 && c <= 0xD7FF) ||
          (c >= 0xE000 && c <= 0xFFFD) || (c >= 0x10000 && c <= 0x10FFFF);
-}
-
-void append_utf8(std::string& out, uint32_t c) {
-  if (c < 0x80) {
-    out += static_cast<char>(c);
-  } else if (c < 0x800) {
-    out += static_cast<char>(0xC0 | (c >> 6));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  } else if (c < 0x10000) {
-    out += static_cast<char>(0xE0 | (c >> 12));
-    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  } else {
-    out += static_cast<char>(0xF0 | (c >> 18));
-    out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
-    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (c & 0x3F));
-  }
 }
 
 // Names quoted in messages: printable ASCII as is, other bytes as \xHH, long
@@ -93,7 +79,7 @@ class Scanner {
       if (t_[i] != '<') {
         i = text(i);
       } else if (starts(i, "<?")) {
-        i = skip_past(i, "?>", "processing instruction");
+        i = processing_instruction(i);
       } else if (starts(i, "<!--")) {
         i = skip_past(i, "-->", "comment");
       } else if (starts(i, "<![CDATA[")) {
@@ -147,8 +133,12 @@ class Scanner {
 
   bool starts(std::size_t i, std::string_view s) const { return t_.substr(i, s.size()) == s; }
 
+  // TinyXML steps over a UTF-8 sequence by its lead byte: an ill-formed one
+  // would swallow the quote or '>' after it and misparse what follows.
   void check_characters() {
-    for (std::size_t i = 0; i < t_.size(); ++i) {
+    const std::size_t invalid = find_invalid_utf8(t_);
+    for (std::size_t i = 0; i < t_.size() && i <= invalid; ++i) {
+      if (i == invalid) fail(i, "ill-formed UTF-8 (a URDF is UTF-8 text)");
       const auto u = static_cast<unsigned char>(t_[i]);
       if (u < 0x20 && u != '\t' && u != '\n' && u != '\r') {
         char code[8];
@@ -163,6 +153,18 @@ class Scanner {
     const std::size_t e = t_.find(end, i + 2);
     if (e == std::string_view::npos) fail(i, std::string("unterminated ") + what);
     return e + end.size();
+  }
+
+  // TinyXML ends a processing instruction (and the XML declaration) at its
+  // first '>', XML at "?>": what lies between would be hidden from this scan
+  // and parsed by TinyXML, so the two must coincide.
+  std::size_t processing_instruction(std::size_t i) {
+    const std::size_t gt = t_.find('>', i + 2);
+    if (gt == std::string_view::npos) fail(i, "unterminated processing instruction");
+    if (t_[gt - 1] != '?' || gt - 1 < i + 2) {
+      fail(gt, "'>' inside a processing instruction (one ends at the first '?>')");
+    }
+    return gt + 1;
   }
 
   std::size_t doctype(std::size_t i) {

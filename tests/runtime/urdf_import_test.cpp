@@ -88,6 +88,19 @@ TEST(UrdfXml, AMillionLevelsDoNotCrash) {
             std::string::npos);
 }
 
+// TinyXML ends "<?" at the first '>': nesting after it, inside what XML reads
+// as one processing instruction, reached TinyXML unseen by the depth limit.
+TEST(UrdfXml, ProcessingInstructionsEndWhereTinyXmlEndsThem) {
+  std::string hidden = "<robot name=\"r\">\n<?pi >";
+  for (int i = 0; i < 1'000'000; ++i) hidden += "<a>";
+  for (int i = 0; i < 1'000'000; ++i) hidden += "</a>";
+  hidden += "?></robot>";
+  EXPECT_EQ(error_of(hidden),
+            "r.urdf:2:6: error: '>' inside a processing instruction (one ends at the first '?>')");
+  EXPECT_EQ(error_of("<?xml version=\"1.0\"?>\n<robot name=\"r\"><link name=\"a\"/></robot>"),
+            "(no error)");
+}
+
 TEST(UrdfXml, ElementAndAttributeCountsAreBounded) {
   std::string many = "<robot name=\"r\">\n";
   for (std::size_t i = 1; i < kMaxXmlElements; ++i) many += "<a/>";
@@ -126,6 +139,14 @@ TEST(UrdfXml, MalformedXmlIsLocated) {
             "element)");
   EXPECT_EQ(error_of("<link name=\"a\"/>"),
             "r.urdf:1:1: error: the root element is <link>; a URDF's is <robot>");
+}
+
+// TinyXML steps over a UTF-8 sequence by its lead byte, so an ill-formed one
+// can swallow the quote after it: urdfdom then said only "Error reading
+// Attributes.", at no line (fuzz/corpus/urdf/utf8-swallows-quote.urdf).
+TEST(UrdfXml, IllFormedUtf8IsRefused) {
+  const std::string text = robot("<link name=\"a\xE6l\"/>");
+  EXPECT_EQ(error_of(text), at(text, "\xE6") + ": error: ill-formed UTF-8 (a URDF is UTF-8 text)");
 }
 
 // urdfdom logs a value it cannot read with the value in printf's format: a
@@ -221,6 +242,17 @@ TEST(UrdfDom, RefusalsAreLocated) {
             at(no_child, "<child") +
                 ": error: urdfdom cannot read the URDF: Failed to build tree: child link [nope] "
                 "of joint [j] not found");
+  // Names holding ']', and urdfdom's "for joint  [j]" with two spaces.
+  EXPECT_EQ(error_of(robot("<link name=\"a\"/>\n<link name=\"b\"/>\n" +
+                           joint("j]x", "revolute", "a", "b"))),
+            "r.urdf:4:1: error: urdfdom cannot read the URDF: Joint [j]x] is of type REVOLUTE but "
+            "it does not specify limits; joint xml is not initialized correctly");
+  const std::string mimic = robot("<link name=\"a\"/>\n<link name=\"b\"/>\n" +
+                                  joint("j", "fixed", "a", "b", "0 0 0", "<mimic/>"));
+  EXPECT_EQ(error_of(mimic), at(mimic, "<mimic") +
+                                 ": error: urdfdom cannot read the URDF: joint mimic: no mimic "
+                                 "joint specified; Could not parse mimic element for joint  [j]; "
+                                 "joint xml is not initialized correctly");
   EXPECT_EQ(
       error_of(robot("<link name=\"a\"/>\n<link name=\"b\"/>\n" + joint("j", "hinge", "a", "b"))),
       "r.urdf:4:1: error: urdfdom cannot read the URDF: Joint [j] has no known type "
