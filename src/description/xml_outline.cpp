@@ -188,6 +188,12 @@ class Scanner {
       for (std::size_t j = i; j < end; ++j)
         if (!is_space(t_[j])) fail(j, "text outside the root element");
     }
+    // TinyXML decodes the references of text too, and fails on a malformed
+    // "&#...;" without saying where.
+    std::string decoded;
+    for (std::size_t j = i; j < end; ++j) {
+      if (t_[j] == '&') j = reference(j, end, decoded);
+    }
     return end;
   }
 

@@ -126,6 +126,9 @@ TEST(UrdfXml, MalformedXmlIsLocated) {
   EXPECT_EQ(error_of(robot("<link name=\"a&b;\"/>")),
             "r.urdf:2:14: error: unknown entity '&b;' (XML predefines only &lt; &gt; &amp; "
             "&quot; &apos;)");
+  // TinyXML said "Error reading Element value." of a reference in text.
+  EXPECT_EQ(error_of(robot("<link name=\"a\">x &#xA-p;</link>")),
+            "r.urdf:2:18: error: character reference '&#xA-p;' names no character XML allows");
   EXPECT_EQ(error_of(robot("<link name=\"a\" name=\"b\"/>")),
             "r.urdf:2:16: error: attribute 'name' is repeated in <link>");
   EXPECT_EQ(error_of(robot("<!-- open")), "r.urdf:2:1: error: unterminated comment");
