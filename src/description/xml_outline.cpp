@@ -81,10 +81,10 @@ class Scanner {
       } else if (starts(i, "<?")) {
         i = processing_instruction(i);
       } else if (starts(i, "<!--")) {
-        i = skip_past(i, "-->", "comment");
+        i = skip_past(i, 4, "-->", "comment");
       } else if (starts(i, "<![CDATA[")) {
         if (stack_.empty()) fail(i, "a CDATA section outside the root element");
-        i = skip_past(i, "]]>", "CDATA section");
+        i = skip_past(i, 9, "]]>", "CDATA section");
       } else if (starts(i, "<!DOCTYPE")) {
         i = doctype(i);
       } else if (starts(i, "<!")) {
@@ -149,8 +149,10 @@ class Scanner {
     }
   }
 
-  std::size_t skip_past(std::size_t i, std::string_view end, const char* what) {
-    const std::size_t e = t_.find(end, i + 2);
+  // The end is looked for after the whole opener: "<!-->" opens a comment and
+  // does not close it (TinyXML reads on to the next "-->").
+  std::size_t skip_past(std::size_t i, std::size_t opener, std::string_view end, const char* what) {
+    const std::size_t e = t_.find(end, i + opener);
     if (e == std::string_view::npos) fail(i, std::string("unterminated ") + what);
     return e + end.size();
   }

@@ -132,6 +132,7 @@ TEST(UrdfXml, MalformedXmlIsLocated) {
   EXPECT_EQ(error_of(robot("<link name=\"a\" name=\"b\"/>")),
             "r.urdf:2:16: error: attribute 'name' is repeated in <link>");
   EXPECT_EQ(error_of(robot("<!-- open")), "r.urdf:2:1: error: unterminated comment");
+  EXPECT_EQ(error_of(robot("<!--><link name=\"a\"/>")), "r.urdf:2:1: error: unterminated comment");
   EXPECT_EQ(error_of("<!DOCTYPE r [<!ENTITY e \"x\">]>\n<robot name=\"r\"/>"),
             "r.urdf:1:13: error: a DOCTYPE with an internal subset (entity or element "
             "declarations); a URDF needs none");
