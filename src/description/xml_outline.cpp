@@ -140,6 +140,15 @@ class Scanner {
     for (std::size_t i = 0; i < t_.size() && i <= invalid; ++i) {
       if (i == invalid) fail(i, "ill-formed UTF-8 (a URDF is UTF-8 text)");
       const auto u = static_cast<unsigned char>(t_[i]);
+      // TinyXML skips U+FEFF, U+FFFE and U+FFFF as if they were spaces, so
+      // one inside a tag would end a name there for TinyXML and not here.
+      if (u == 0xEF && i > 0 &&
+          (t_.substr(i, 3) == "\xEF\xBB\xBF" || t_.substr(i, 3) == "\xEF\xBF\xBE" ||
+           t_.substr(i, 3) == "\xEF\xBF\xBF")) {
+        fail(i,
+             "U+FEFF, U+FFFE or U+FFFF after the start of the document (TinyXML reads "
+             "them as spaces)");
+      }
       if (u < 0x20 && u != '\t' && u != '\n' && u != '\r') {
         char code[8];
         std::snprintf(code, sizeof code, "0x%02x", u);

@@ -151,6 +151,12 @@ TEST(UrdfXml, MalformedXmlIsLocated) {
 TEST(UrdfXml, IllFormedUtf8IsRefused) {
   const std::string text = robot("<link name=\"a\xE6l\"/>");
   EXPECT_EQ(error_of(text), at(text, "\xE6") + ": error: ill-formed UTF-8 (a URDF is UTF-8 text)");
+  // TinyXML skips a byte order mark anywhere as a space: as an attribute's
+  // name it read '="..."' and said "Error reading Attributes.", at no line.
+  const std::string bom = "\xEF\xBB\xBF" + robot("<link name=\"a\" \xEF\xBB\xBF=\"1\"/>");
+  EXPECT_EQ(error_of(bom), at(bom, "\xEF\xBB\xBF", 1) +
+                               ": error: U+FEFF, U+FFFE or U+FFFF after the start of the document "
+                               "(TinyXML reads them as spaces)");
 }
 
 // urdfdom logs a value it cannot read with the value in printf's format: a
