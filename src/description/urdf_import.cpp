@@ -33,25 +33,6 @@ class CapturingHandler : public console_bridge::OutputHandler {
   std::vector<std::string> messages;
 };
 
-// Names quoted in messages: printable ASCII as is, other bytes as \xHH, long
-// names cut, so a hostile name cannot flood or garble the terminal.
-std::string shown(std::string_view s, std::size_t max = 60) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size() && i < max; ++i) {
-    const auto u = static_cast<unsigned char>(s[i]);
-    if (u >= 0x20 && u < 0x7F) {
-      out += s[i];
-    } else {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[u >> 4];
-      out += kHex[u & 0xF];
-    }
-  }
-  if (s.size() > max) out += "...";
-  return out;
-}
-
 std::string quoted(std::string_view name) {
   std::string out(1, '\'');
   out += shown(name);

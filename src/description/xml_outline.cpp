@@ -46,26 +46,6 @@ bool is_xml_char(uint32_t c) {
          (c >= 0xE000 && c <= 0xFFFD) || (c >= 0x10000 && c <= 0x10FFFF);
 }
 
-// Names quoted in messages: printable ASCII as is, other bytes as \xHH, long
-// names cut, so a hostile name cannot flood or garble the terminal.
-std::string shown(std::string_view s) {
-  static constexpr std::size_t kMax = 60;
-  std::string out;
-  for (std::size_t i = 0; i < s.size() && i < kMax; ++i) {
-    const auto u = static_cast<unsigned char>(s[i]);
-    if (u >= 0x20 && u < 0x7F) {
-      out += s[i];
-    } else {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[u >> 4];
-      out += kHex[u & 0xF];
-    }
-  }
-  if (s.size() > kMax) out += "...";
-  return out;
-}
-
 class Scanner {
  public:
   Scanner(std::string_view text, const std::string& source) : t_(text), source_(source) {}
@@ -395,6 +375,23 @@ class Scanner {
 };
 
 }  // namespace
+
+std::string shown(std::string_view s, std::size_t max) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size() && i < max; ++i) {
+    const auto u = static_cast<unsigned char>(s[i]);
+    if (u >= 0x20 && u < 0x7F) {
+      out += s[i];
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[u >> 4];
+      out += kHex[u & 0xF];
+    }
+  }
+  if (s.size() > max) out += "...";
+  return out;
+}
 
 XmlOutline scan_xml(std::string_view text, const std::string& source) {
   return Scanner(text, source).run();

@@ -53,6 +53,11 @@ struct XmlOutline {
   int first_child(int parent, std::string_view name) const;
 };
 
+// Text from the document as messages quote it: printable ASCII as is, other
+// bytes as \xHH, cut after `max` bytes, so a hostile name can neither flood
+// nor garble the terminal.
+std::string shown(std::string_view s, std::size_t max = 60);
+
 // Scans `text` (the whole document; `source` names it in errors). Throws
 // mospec::Error (code "invalid-urdf") at FILE:LINE:COL of the first offending
 // byte or element: a NUL or other control character, a malformed tag,
