@@ -14,13 +14,27 @@ using runtime::Chain;
 // moving joint on the path (URDF revolute and continuous -> Revolute,
 // prismatic -> Prismatic), fixed joints folded (see chain.hpp). Each link's
 // <inertial> is re-expressed in its own link frame; links without one are
-// massless. Throws mospec::Error, naming `source` (a file name for messages),
-// when the XML does not parse (with urdfdom's own message), when `root` or `tip`
-// is not a link (listing the links), when `root` is not an ancestor of `tip`,
-// on a floating or planar joint on the path, or when the chain exceeds
-// kMaxSegments moving joints. An empty `root` means the URDF's root link; an
-// empty `tip` means its only leaf link (an error listing the leaves when there
-// are several).
+// massless. An empty `root` means the URDF's root link; an empty `tip` means
+// its only leaf link.
+//
+// The text is untrusted. Before urdfdom sees it, scan_xml (xml_outline.hpp)
+// bounds its depth, element and attribute counts and refuses malformed XML;
+// the document must be one <robot> element whose links form a tree (no link
+// with two parent joints, no cycle). Every number the chain is built from is
+// checked where it is stated and again after each computation (rpy to a
+// rotation, an inertia rotated into its link frame, origins composed and
+// inertias merged when fixed joints are folded): finite positions, rotations,
+// masses and inertias, a stated <mass> > 0, an inertia positive semi-definite
+// whose principal moments satisfy the triangle inequality, a non-zero axis,
+// <limit> lower <= upper and velocity, effort >= 0.
+//
+// Throws mospec::Error (code "invalid-urdf") at `source`:LINE:COL of the
+// element concerned — the <link>, <joint>, <inertial>, <mass>, <inertia>,
+// <origin>, <axis> or <limit>; the <robot> element for a root or tip link that
+// does not exist (listing the links) or for several leaves when `tip` is empty;
+// urdfdom's own refusals at the element its message names, or at the file
+// alone when it names none. Also refused: `root` not an ancestor of `tip`, a
+// floating or planar joint on the path, more than kMaxSegments moving joints.
 Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root, const std::string& tip,
                       const std::string& source = "<urdf>");
 

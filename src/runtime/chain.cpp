@@ -48,24 +48,25 @@ RigidInertia operator+(const RigidInertia& a, const RigidInertia& b) {
 
 namespace {
 
-void check_inertia(const RigidInertia& I, const std::string& link) {
+// `what` names the body: "link 'l1'".
+void check_inertia(const RigidInertia& I, const std::string& what) {
   if (!std::isfinite(I.mass) || I.mass < 0.0) {
-    throw Error("invalid-chain", "link '" + link + "': mass must be finite and >= 0, got " +
-                                     std::to_string(I.mass) + " kg");
+    throw Error("invalid-chain",
+                what + ": mass must be finite and >= 0, got " + exact_number(I.mass) + " kg");
   }
   if (!I.p_SoScm_S.allFinite() || !I.I_Scm_S.allFinite()) {
-    throw Error("invalid-chain", "link '" + link + "': inertia has non-finite entries");
+    throw Error("invalid-chain", what + ": inertia has non-finite entries");
   }
   const double scale = std::max(1.0, I.I_Scm_S.cwiseAbs().maxCoeff());
   if ((I.I_Scm_S - I.I_Scm_S.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale) {
-    throw Error("invalid-chain", "link '" + link + "': rotational inertia is not symmetric");
+    throw Error("invalid-chain", what + ": rotational inertia is not symmetric");
   }
   const Eigen::SelfAdjointEigenSolver<Mat3> eig(I.I_Scm_S, Eigen::EigenvaluesOnly);
   if (eig.eigenvalues().minCoeff() < -1e-12 * scale) {
-    throw Error("invalid-chain", "link '" + link +
-                                     "': rotational inertia is not positive semi-definite "
+    throw Error("invalid-chain", what +
+                                     ": rotational inertia is not positive semi-definite "
                                      "(smallest principal moment " +
-                                     std::to_string(eig.eigenvalues().minCoeff()) + " kg m^2)");
+                                     exact_number(eig.eigenvalues().minCoeff()) + " kg m^2)");
   }
 }
 
@@ -73,7 +74,9 @@ void check_pose(const Pose& X, const std::string& what) {
   if (!X.R.allFinite() || !X.p.allFinite() ||
       (X.R * X.R.transpose() - Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
       X.R.determinant() < 0.0) {
-    throw Error("invalid-chain", what + ": origin is not a rigid transform");
+    throw Error("invalid-chain", what + ": origin is not a rigid transform (position " +
+                                     exact_number(X.p.x()) + " " + exact_number(X.p.y()) + " " +
+                                     exact_number(X.p.z()) + ")");
   }
 }
 
@@ -91,19 +94,22 @@ void Chain::add_segment(Segment segment) {
   if (!std::isfinite(norm) || std::abs(norm - 1.0) > 1e-9) {
     throw Error("invalid-chain", "joint '" + segment.joint +
                                      "': axis must be a unit vector, got norm " +
-                                     std::to_string(norm));
+                                     exact_number(norm));
   }
   check_pose(segment.X_PJ, "joint '" + segment.joint + "'");
-  check_inertia(segment.inertia, segment.link);
+  check_inertia(segment.inertia, "link '" + segment.link + "'");
   if (!(segment.armature >= 0.0) || !std::isfinite(segment.armature)) {
     throw Error("invalid-chain", "joint '" + segment.joint + "': armature must be finite and >= 0");
   }
   if (segment.limits.lower > segment.limits.upper) {
     throw Error("invalid-chain", "joint '" + segment.joint + "': lower limit " +
-                                     std::to_string(segment.limits.lower) + " exceeds upper " +
-                                     std::to_string(segment.limits.upper));
+                                     exact_number(segment.limits.lower) + " exceeds upper " +
+                                     exact_number(segment.limits.upper));
   }
+  // Composing with the fixed joints before it can overflow what each stated.
   segment.X_PJ = pending_ * segment.X_PJ;
+  check_pose(segment.X_PJ,
+             "joint '" + segment.joint + "' (composed with the fixed joints before it)");
   pending_ = Pose::identity();
   tip_ = segment.link;
   segments_[static_cast<std::size_t>(count_)] = std::move(segment);
@@ -112,15 +118,22 @@ void Chain::add_segment(Segment segment) {
 
 void Chain::add_fixed(std::string link, const Pose& X_FL, const RigidInertia& inertia) {
   check_pose(X_FL, "fixed joint to link '" + link + "'");
-  check_inertia(inertia, link);
-  pending_ = pending_ * X_FL;
+  check_inertia(inertia, "link '" + link + "'");
+  // The composed offset and the merged inertia can overflow what each part
+  // stated (a 1e308 kg link folded into another): checked before they are kept.
+  const Pose pending = pending_ * X_FL;
+  check_pose(pending,
+             "fixed joint to link '" + link + "' (composed with the fixed joints before it)");
   if (count_ == 0) {
     root_folded_.push_back(link);
   } else {
     Segment& s = segments_[static_cast<std::size_t>(count_ - 1)];
-    s.inertia = s.inertia + inertia.expressed_in(pending_);
+    const RigidInertia merged = s.inertia + inertia.expressed_in(pending);
+    check_inertia(merged, "link '" + s.link + "' with link '" + link + "' folded in");
+    s.inertia = merged;
     s.folded_links.push_back(link);
   }
+  pending_ = pending;
   tip_ = std::move(link);
 }
 

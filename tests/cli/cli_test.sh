@@ -89,10 +89,33 @@ cat > arm.urdf <<'U'
   <joint name="cam" type="fixed"><parent link="base"/><child link="camera"/></joint>
 </robot>
 U
-expect urdf-two-leaves 2 "arm.urdf: error: robot 'arm' has 2 leaf links \\(camera, tool\\)" -- "$mospec" import-urdf arm.urdf
+expect urdf-two-leaves 2 "^arm\\.urdf:1:1: error: robot 'arm' has 2 leaf links \\(camera, tool\\)" -- "$mospec" import-urdf arm.urdf
 expect urdf-bad-tip 2 "has no link 'hand'" -- "$mospec" import-urdf arm.urdf --tip hand
 expect urdf-ok 0 '' -- "$mospec" import-urdf arm.urdf --tip tool --base https://ex.org/arm/ -o arm.jsonld
 grep -q '"https://ex.org/arm/"' arm.jsonld && grep -q 'RevoluteJoint' arm.jsonld ||
   { echo "FAIL urdf-ok: content"; failures=$((failures+1)); }
+# An untrusted URDF: refused at the element concerned, exit 2, nothing written.
+# A hundred thousand levels overflowed urdfdom's recursive XML parser.
+{ echo '<robot name="deep">'; awk 'BEGIN { for (i = 0; i < 100000; i++) printf "<a>"
+  for (i = 0; i < 100000; i++) printf "</a>" }'; echo '</robot>'; } > deep.urdf
+expect urdf-deep 2 '^deep\.urdf:2:190: error: element <a> is nested 65 levels deep' -- \
+  "$mospec" import-urdf deep.urdf -o deep.jsonld
+check urdf-deep-writes-nothing test ! -e deep.jsonld
+# Two finite masses folded into one infinite one were written as "mass": inf.
+cat > heavy.urdf <<'U'
+<robot name="heavy">
+  <link name="base"/>
+  <link name="upper"><inertial><mass value="1e308"/>
+    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <link name="tool"><inertial><mass value="1e308"/>
+    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 0 1"/><limit effort="10" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="flange" type="fixed"><parent link="upper"/><child link="tool"/></joint>
+</robot>
+U
+expect urdf-folded-inf 2 "^heavy\.urdf:9:3: error: fixed joint 'flange' folds link 'tool' into link 'upper': .*got inf kg" -- \
+  "$mospec" import-urdf heavy.urdf -o heavy.jsonld
+check urdf-folded-inf-writes-nothing test ! -e heavy.jsonld
 
 finish cli
