@@ -55,12 +55,6 @@ video::FrameSize parse_frame_size(const std::string& text) {
   return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
 }
 
-std::string located(const SourceFiles& files, const SourceLoc& where) {
-  if (!where.known()) return "";
-  return files.path(where.file) + ":" + std::to_string(where.line) + ":" +
-         std::to_string(where.column) + ": ";
-}
-
 std::string describe_pose(const runtime::Pose& X) {
   std::ostringstream s;
   s.precision(9);
@@ -79,15 +73,16 @@ void mount_arms(const ir::Program& program, const SourceFiles& files, sim::World
   std::string root;  // the frame the mounted solvers share: the platform's
   for (const ir::ArmSolver& a : program.arms) {
     if (a.mount_pose_iri.empty()) continue;
-    const std::string where = located(files, a.where);
+    const std::string file = a.where.known() ? files.path(a.where.file) : std::string();
     if (root.empty()) {
       root = a.root_frame;
     } else if (a.root_frame != root) {
       throw Error("mount-mismatch",
-                  where + "the arm solver '" + a.iri + "' is rooted at '" + a.root_frame +
+                  "the arm solver '" + a.iri + "' is rooted at '" + a.root_frame +
                       "', another mounted arm's solver at '" + root +
                       "'; the simulator mounts every arm on one platform: root the solvers of "
-                      "mounted arms at the platform's frame");
+                      "mounted arms at the platform's frame",
+                  file, a.where.line, a.where.column);
     }
     if (a.port < 0 || static_cast<size_t>(a.port) >= config.arms.size()) continue;
     sim::ArmSetup& arm = config.arms[static_cast<size_t>(a.port)];
@@ -95,12 +90,12 @@ void mount_arms(const ir::Program& program, const SourceFiles& files, sim::World
                       (arm.X_PB.p - a.X_RB.p).cwiseAbs().maxCoeff() <= 1e-9;
     if (!arm.mount_source.empty() && !same) {
       throw Error("mount-mismatch",
-                  where + "the arm solver '" + a.iri + "' mounts its chain at '" +
-                      a.mount_pose_iri + "' (" + describe_pose(a.X_RB) + "), but " +
-                      arm.mount_source + " puts the " + arm.name + " arm elsewhere (" +
-                      describe_pose(arm.X_PB) +
+                  "the arm solver '" + a.iri + "' mounts its chain at '" + a.mount_pose_iri +
+                      "' (" + describe_pose(a.X_RB) + "), but " + arm.mount_source + " puts the " +
+                      arm.name + " arm elsewhere (" + describe_pose(arm.X_PB) +
                       "); state the mount once, in the task models, and drop it from the "
-                      "world file");
+                      "world file",
+                  file, a.where.line, a.where.column);
     }
     arm.X_PB = a.X_RB;
     arm.mount_source = "the task models' '" + a.mount_pose_iri + "'";

@@ -148,10 +148,10 @@ struct State {
     errors.push_back(
         located(Severity::Error, loc, model.files(), std::move(code), std::move(message)));
   }
-  // "file:line" of an entity, for a message that names a second place.
+  // "file:line:col" of an entity, for a message that names a second place.
   std::string place(SourceLoc loc) const {
     if (!loc.known()) return "an unknown place";
-    return std::string(model.files().path(loc.file)) + ":" + std::to_string(loc.line);
+    return format_place(model.files().path(loc.file), loc.line, loc.column);
   }
   std::string place(TermId e) const { return place(where(e)); }
   void error(TermId at, std::string code, std::string message) const {

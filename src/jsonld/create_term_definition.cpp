@@ -322,10 +322,13 @@ void Processor::create_term(Builder& active, LocalCtx& lc, size_t idx, const Ter
       if (previous->where.known()) {
         first = " (protected definition at ";
         if (opts_.loader != nullptr && previous->where.file != 0) {
-          first += opts_.loader->files().path(previous->where.file) + ":";
+          first += format_place(opts_.loader->files().path(previous->where.file),
+                                previous->where.line, previous->where.column);
+        } else {
+          first += "line " + std::to_string(previous->where.line) + ", column " +
+                   std::to_string(previous->where.column);
         }
-        first += std::to_string(previous->where.line) + ":" +
-                 std::to_string(previous->where.column) + ")";
+        first += ")";
       }
       fail("protected term redefinition", name() + " is protected and cannot be redefined" + first,
            where);

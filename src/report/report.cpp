@@ -332,7 +332,7 @@ std::string render(const Input& in, const Assets& assets) {
     for (const Entity& e : in.entities) {
       o << "<tr><td>" << html_escape(e.kind) << "</td><td>" << html_escape(e.iri) << "</td><td>";
       if (!e.file.empty()) {
-        const std::string where = html_escape(e.file) + ":" + std::to_string(e.line);
+        const std::string where = html_escape(format_place(e.file, e.line, 0));
         const std::string href = link_to(e.file, in.page, in.absolute_links);
         if (href.empty())
           o << where;

@@ -117,11 +117,6 @@ std::string quote(std::string_view text) {
   return out;
 }
 
-std::string location(const SourceFiles* files, SourceLoc loc) {
-  if (!loc.known()) return {};
-  return describe_location(files, loc);
-}
-
 }  // namespace
 
 std::string result_component_iri(const Report& report, const Result& r) {
@@ -225,30 +220,38 @@ std::string to_text(const Report& report, const SourceFiles* data_files,
   const rdf::TermTable& t = report.terms;
   std::string out;
   for (const Result& r : report.results) {
-    // The project's one diagnostic shape: the finding at the model's node,
-    // then a note at the shape that fired.
-    std::string where = location(data_files, r.focus_loc);
-    out += where.empty() ? "mospec" : where;
-    out += ": ";
-    out += r.level == Level::Other ? rdf::to_ntriples(t, r.severity)
-                                   : std::string(diagnostic_level(r.level));
-    out += ": " + rdf::to_ntriples(t, r.focus) + ": " + pick_message(report, r);
-    out += " [";
-    out += r.component == Component::SparqlComponent ? rdf::to_ntriples(t, r.component_node)
-                                                     : std::string(component_name(r.component));
-    if (r.path) out += ", path " + path_to_sparql(t, *r.path);
-    if (!r.value.is_any()) out += ", value " + rdf::to_ntriples(t, r.value);
-    out += "]\n";
-    std::string at = location(shape_files, r.shape_loc);
-    out += at.empty() ? "mospec" : at;
-    out += ": note: the shape that fired: ";
-    out += t[r.shape].is_iri() ? rdf::to_ntriples(t, r.shape) : "[]";
-    out += "\n";
-    if (std::string v = location(data_files, r.value_loc); !v.empty())
-      out += v + ": note: the value " + rdf::to_ntriples(t, r.value) + " is here\n";
+    // The project's diagnostic shape: the finding at the model's node, then
+    // a note at the shape that fired and at the other nodes involved.
+    const auto file = [](const SourceFiles* files, SourceLoc loc) {
+      if (!loc.known()) return std::string();
+      std::string path = files != nullptr ? files->path(loc.file) : std::string();
+      return path.empty() ? std::string("<input>") : path;
+    };
+    std::string message = rdf::to_ntriples(t, r.focus) + ": " + pick_message(report, r) + " [";
+    message += r.component == Component::SparqlComponent ? rdf::to_ntriples(t, r.component_node)
+                                                         : std::string(component_name(r.component));
+    if (r.path) message += ", path " + path_to_sparql(t, *r.path);
+    if (!r.value.is_any()) message += ", value " + rdf::to_ntriples(t, r.value);
+    message += "]";
+    out += format(file(data_files, r.focus_loc), r.focus_loc.line, r.focus_loc.column,
+                  r.level == Level::Other ? rdf::to_ntriples(t, r.severity)
+                                          : std::string(diagnostic_level(r.level)),
+                  message);
+    out += '\n';
+    out += format(file(shape_files, r.shape_loc), r.shape_loc.line, r.shape_loc.column, "note",
+                  "the shape that fired: " +
+                      (t[r.shape].is_iri() ? rdf::to_ntriples(t, r.shape) : std::string("[]")));
+    out += '\n';
+    if (r.value_loc.known()) {
+      out += format(file(data_files, r.value_loc), r.value_loc.line, r.value_loc.column, "note",
+                    "the value " + rdf::to_ntriples(t, r.value) + " is here");
+      out += '\n';
+    }
     for (const Result::Related& x : r.related) {
-      if (std::string at = location(data_files, x.where); !at.empty())
-        out += at + ": note: " + x.name + " " + rdf::to_ntriples(t, x.node) + " is here\n";
+      if (!x.where.known()) continue;
+      out += format(file(data_files, x.where), x.where.line, x.where.column, "note",
+                    x.name + " " + rdf::to_ntriples(t, x.node) + " is here");
+      out += '\n';
     }
   }
   auto plural = [](size_t n, std::string_view one, std::string_view many) {

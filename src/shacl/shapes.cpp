@@ -81,11 +81,8 @@ std::string_view component_name(Component c) {
 
 std::string describe_location(const SourceFiles* files, SourceLoc loc) {
   if (!loc.known()) return {};
-  std::string out = files != nullptr ? files->path(loc.file) : std::string();
-  if (out.empty()) out = "<input>";
-  out += ':' + std::to_string(loc.line);
-  if (loc.column != 0) out += ':' + std::to_string(loc.column);
-  return out;
+  std::string file = files != nullptr ? files->path(loc.file) : std::string();
+  return format_place(file.empty() ? "<input>" : file, loc.line, loc.column);
 }
 
 std::string path_to_sparql(const rdf::TermTable& terms, const sparql::Path& p) {
@@ -926,10 +923,17 @@ class ShapesCompiler {
       std::string_view original = t_[literal.object].value;
       const auto newlines =
           static_cast<uint32_t>(std::count(original.begin(), original.end(), '\n'));
+      // On the query's first line the literal's opening quote is not known:
+      // at its line's start, or, for a one-line literal, where it ends.
       SourceLoc at = literal.where;
       if (at.known() && e.line() != 0 && newlines < at.line && e.line() <= newlines + 1) {
-        at.line = at.line - newlines + (e.line() - 1);
-        at.column = e.line() > 1 ? e.column() : 0;
+        if (e.line() > 1) {
+          at.line = at.line - newlines + (e.line() - 1);
+          at.column = e.column();
+        } else if (newlines > 0) {
+          at.line = at.line - newlines;
+          at.column = 1;
+        }
       }
       std::string m = "line " + std::to_string(e.line());
       m += ", column " + std::to_string(e.column());

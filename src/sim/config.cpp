@@ -238,9 +238,9 @@ class Reader {
     return out;
   }
 
-  std::string where(const json::Value& v) const {
+  Place where(const json::Value& v) const {
     const SourceLoc l = v.location();
-    return file_ + ":" + std::to_string(l.line) + ":" + std::to_string(l.column) + ": ";
+    return {file_, l.line, l.column};
   }
 
   std::string path(const std::string& p) const {

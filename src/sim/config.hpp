@@ -25,6 +25,7 @@
 #include "robot/interface.hpp"
 #include "runtime/kelo.hpp"
 #include "runtime/spatial.hpp"
+#include "support/diagnostics.hpp"
 
 namespace mospec::sim {
 
@@ -97,7 +98,7 @@ struct ArmSetup {
   // Where X_PB came from, for messages: empty for the default, else the world
   // file's key or the task model's mount pose that set it.
   std::string mount_source;
-  std::string where;  // "file:line:col: " of the world file's entry for this arm, or ""
+  Place where;  // the world file's entry for this arm (unknown for the default)
 };
 
 struct TableParameters {

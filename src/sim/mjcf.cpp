@@ -167,8 +167,10 @@ WorldLayout layout_world(const WorldConfig& c, std::span<const runtime::Chain> a
                               s.name + " arm has " + std::to_string(n) + " joints";
     const auto check = [&](size_t entries, const std::string& key, const std::string& in) {
       if (entries == n) return;
-      throw Error("invalid-world", s.where + chain + ", but " + in + key + " has " +
-                                       std::to_string(entries) + " entries; give one per joint");
+      throw Error("invalid-world",
+                  chain + ", but " + in + key + " has " + std::to_string(entries) +
+                      " entries; give one per joint",
+                  s.where.file, s.where.line, s.where.column);
     };
     const std::string in = s.actuation ? "arms." + s.name + "." : "the world's ";
     check(s.q0.size(), "arms." + s.name + ".q", "");
@@ -177,10 +179,11 @@ WorldLayout layout_world(const WorldConfig& c, std::span<const runtime::Chain> a
     check(act.upper.size(), "actuation.upper", in);
     for (size_t j = 0; j < n; ++j) {
       if (!(act.lower[j] < act.upper[j])) {
-        throw Error("invalid-world", s.where + in + "actuation: joint " + std::to_string(j) +
-                                         " of the " + s.name + " arm has lower limit " +
-                                         num(act.lower[j]) + " >= upper limit " +
-                                         num(act.upper[j]));
+        throw Error("invalid-world",
+                    in + "actuation: joint " + std::to_string(j) + " of the " + s.name +
+                        " arm has lower limit " + num(act.lower[j]) + " >= upper limit " +
+                        num(act.upper[j]),
+                    s.where.file, s.where.line, s.where.column);
       }
     }
     const runtime::AchdModel model(arm);

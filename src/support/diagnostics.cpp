@@ -100,22 +100,34 @@ std::string_view to_string(Severity s) {
   return "error";
 }
 
-std::string format(const Diagnostic& d) {
-  std::string out;
-  if (d.file.empty()) {
-    out = "mospec";
-  } else {
-    out = d.file;
-    if (d.line != 0) {
-      out += ':' + std::to_string(d.line);
-      if (d.column != 0) out += ':' + std::to_string(d.column);
-    }
-  }
-  out += ": ";
-  out += to_string(d.severity);
-  out += ": ";
-  out += d.message;
+std::string format_place(std::string_view file, uint32_t line, uint32_t column) {
+  std::string out(file);
+  out += ':' + std::to_string(line);
+  if (column != 0) out += ':' + std::to_string(column);
   return out;
+}
+
+std::string format(std::string_view file, uint32_t line, uint32_t column, std::string_view severity,
+                   std::string_view message) {
+  // Two shapes only: FILE:LINE:COL when the diagnostic has a place in a file,
+  // "mospec:" otherwise. A file with no place in it (one that cannot be read,
+  // a log too short) is named in the message instead of posing as a place.
+  const bool placed = !file.empty() && line != 0;
+  std::string out = placed ? format_place(file, line, column) : std::string("mospec");
+  out += ": ";
+  out += severity;
+  out += ": ";
+  out += message;
+  if (!placed && !file.empty() && message.find(file) == std::string_view::npos) {
+    out += " (in ";
+    out += file;
+    out += ')';
+  }
+  return out;
+}
+
+std::string format(const Diagnostic& d) {
+  return format(d.file, d.line, d.column, to_string(d.severity), d.message);
 }
 
 std::string exact_number(double value) {

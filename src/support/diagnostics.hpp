@@ -66,13 +66,36 @@ struct Diagnostic {
   std::string message;
 };
 
+// A place in a file as values carry it outside a SourceFiles table (a world
+// file's entry, a second definition named in a message).
+struct Place {
+  std::string file;
+  uint32_t line = 0;
+  uint32_t column = 0;
+  bool known() const { return !file.empty() && line != 0; }
+};
+
+// "file:line:col" (or "file:line" when the column is unknown) for a message
+// that names a second place; format() writes a diagnostic's own place. The
+// one home of that spelling (tests/layering/diagnostic_shape.sh).
+std::string format_place(std::string_view file, uint32_t line, uint32_t column);
+
 // A diagnostic at `loc` (file, line and column when known; unlocated otherwise).
 Diagnostic located(Severity severity, SourceLoc loc, const SourceFiles& files, std::string code,
                    std::string message);
 
-// "file:line:col: warning: message" (omits the parts that are unknown; a
-// diagnostic with no file starts with "mospec:").
+// "file:line:col: warning: message", or "mospec: warning: message" for a
+// diagnostic with no place in a file (a file without a line is named in the
+// message: "... (in FILE)" unless the message names it already). Every
+// producer that knows a line knows its column too; tests/cli's `expect`
+// fails on any "FILE:LINE: " without one.
 std::string format(const Diagnostic&);
+
+// The same two shapes for a severity that is not one of Severity's (a SHACL
+// report's "info", or a shape's own severity IRI): `file` empty or `line` 0
+// gives the "mospec:" shape.
+std::string format(std::string_view file, uint32_t line, uint32_t column,
+                   std::string_view severity, std::string_view message);
 
 // A number as messages quote it: every digit needed to read the same double
 // back ("%.17g"), so a message never hides the value that was rejected.

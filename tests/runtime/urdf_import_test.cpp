@@ -139,8 +139,8 @@ TEST(UrdfXml, MalformedXmlIsLocated) {
   EXPECT_EQ(error_of(robot("") + "<robot name=\"s\"/>"),
             "r.urdf:3:1: error: a second root element <robot> (a URDF is one <robot> element)");
   EXPECT_EQ(error_of(""),
-            "r.urdf: error: the document has no element (a URDF is one <robot> "
-            "element)");
+            "mospec: error: the document has no element (a URDF is one <robot> element) (in "
+            "r.urdf)");
   EXPECT_EQ(error_of("<link name=\"a\"/>"),
             "r.urdf:1:1: error: the root element is <link>; a URDF's is <robot>");
 }

@@ -50,7 +50,7 @@ within "ur5e: torques within the UR5e's limits" "$log" tau_ratio 0 0 0.999999
 sed 's/"q": \[ *0,/"q": [/' models/ur5e.world.json > "$work/short.world.json"
 sed -i 's|"\.\./robots/|"'"$src"'/robots/|; s|"\.\./metamodels"|"'"$src"'/metamodels"|' "$work/short.world.json"
 expect "ur5e: a q of 5 numbers for the 6-joint arm is refused, located" 2 \
-  'short.world.json:[0-9]+:[0-9]+: the chain .* of the right arm has 6 joints, but arms.right.q has 5 entries' \
+  'short.world.json:[0-9]+:[0-9]+: error: the chain .* of the right arm has 6 joints, but arms.right.q has 5 entries' \
   -- "$mospec" run models/ur5e.json --sim --interpret --duration 0.1 --world "$work/short.world.json"
 
 # --- sc0a with one arm ---

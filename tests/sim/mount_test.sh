@@ -41,7 +41,7 @@ PY
 expect "a world file's mount that differs from the models' is refused" 2 \
   "the arm solver 'https://mospec.example/models/slv-rightarm' mounts its chain at 'https://mospec.example/models/pose-rightarm-platform-shoulder' \(position \(0, 0, 0.1\) m\), but the world file's arms.right.mount puts the right arm elsewhere \(position \(0, -0.1, 0.1\) m\); state the mount once" -- \
   "$mospec" run models/sc0a.json --sim --interpret --duration 0.01
-check "the refusal is located at the solver" grep -Eq '^mospec: error: models/sc0a/07-scenario.json:[0-9]+:[0-9]+: the arm solver' "$work/stderr.txt"
+check "the refusal is located at the solver" grep -Eq '^models/sc0a/07-scenario.json:[0-9]+:[0-9]+: error: the arm solver' "$work/stderr.txt"
 
 # The same mount in both places is not a conflict.
 python3 - <<'PY'

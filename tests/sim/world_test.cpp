@@ -422,8 +422,8 @@ TEST(World, RejectsAChainThatDoesNotFitItsArm) {
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
-                 "mospec: error: w.json:1:21: the chain 'base_link' -> 'EndEffector_Link' of the "
-                 "left arm has 7 joints, but arms.left.q has 6 entries; give one per joint");
+                 "w.json:1:21: error: the chain 'base_link' -> 'EndEffector_Link' of the left arm "
+                 "has 7 joints, but arms.left.q has 6 entries; give one per joint");
   }
 }
 

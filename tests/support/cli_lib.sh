@@ -29,6 +29,15 @@ expect() {
   if grep -q -i -E 'terminate called|Segmentation|AddressSanitizer|runtime error|internal error' "$work/stderr.txt"; then
     fail "$name: crashed"; cat "$work/stderr.txt"; return
   fi
+  # Every diagnostic has one of the two shapes (docs/architecture.md):
+  # FILE:LINE:COL: severity: ..., or mospec: severity: ... with no place.
+  # (A place written into a "mospec:" message is the first shape built by hand.)
+  if grep -E '^[^[:space:]]+: (error|warning|note): ' "$work/stderr.txt" \
+      | grep -v -E '^mospec: |^[^[:space:]]+:[0-9]+:[0-9]+: ' > "$work/shape.txt" ||
+     grep -E '^mospec: (error|warning|note): [^[:space:]]+:[0-9]+(:[0-9]+)?: ' "$work/stderr.txt" \
+      > "$work/shape.txt"; then
+    fail "$name: a diagnostic of another shape"; sed 's/^/  /' "$work/shape.txt" | head -5; return
+  fi
   passed=$((passed+1))
 }
 
