@@ -1066,4 +1066,22 @@ std::string canonicalize(const Value& v) {
   return out;
 }
 
+std::string_view kind_name(Kind kind) {
+  switch (kind) {
+    case Kind::Null:
+      return "null";
+    case Kind::Boolean:
+      return "a boolean";
+    case Kind::Number:
+      return "a number";
+    case Kind::String:
+      return "a string";
+    case Kind::Array:
+      return "an array";
+    case Kind::Object:
+      return "an object";
+  }
+  return "a value";
+}
+
 }  // namespace mospec::json

@@ -114,6 +114,10 @@ class Object {
 
 enum class Kind : uint8_t { Null, Boolean, Number, String, Array, Object };
 
+// "null", "a boolean", "a number", "a string", "an array", "an object": a
+// kind as a message names it ("\"duration\" is a string; ...").
+std::string_view kind_name(Kind kind);
+
 class Value {
  public:
   Value() = default;  // null

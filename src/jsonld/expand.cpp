@@ -38,21 +38,7 @@ constexpr std::string_view kReverse = "@reverse";
 constexpr std::string_view kIncluded = "@included";
 
 std::string_view kind_name(const Value& v) {
-  switch (v.kind()) {
-    case json::Kind::Null:
-      return "null";
-    case json::Kind::Boolean:
-      return "a boolean";
-    case json::Kind::Number:
-      return "a number";
-    case json::Kind::String:
-      return "a string";
-    case json::Kind::Array:
-      return "an array";
-    case json::Kind::Object:
-      return "an object";
-  }
-  return "a value";
+  return json::kind_name(v.kind());
 }
 
 bool has_key(const Value& v, std::string_view key) {

@@ -9,24 +9,6 @@ namespace {
 
 constexpr std::string_view kCode = "report";
 
-const char* kind_name(json::Kind k) {
-  switch (k) {
-    case json::Kind::Null:
-      return "null";
-    case json::Kind::Boolean:
-      return "a boolean";
-    case json::Kind::Number:
-      return "a number";
-    case json::Kind::String:
-      return "a string";
-    case json::Kind::Array:
-      return "an array";
-    case json::Kind::Object:
-      return "an object";
-  }
-  return "a value";
-}
-
 // Reads the fields of one summary, each error located at the value (or, for
 // a missing member, at its object).
 class Reader {
@@ -41,8 +23,9 @@ class Reader {
   void expect(const json::Value& v, json::Kind kind, std::string_view what,
               std::string_view should) const {
     if (v.kind() == kind) return;
-    fail(v, std::string(what) + " is " + kind_name(v.kind()) + "; a run summary has " +
-                std::string(should) + " there (write summaries with `mospec run --summary`)");
+    fail(v, std::string(what) + " is " + std::string(json::kind_name(v.kind())) +
+                "; a run summary has " + std::string(should) +
+                " there (write summaries with `mospec run --summary`)");
   }
 
   std::string string(const json::Value& object, std::string_view key, std::string_view what) const {
