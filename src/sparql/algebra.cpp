@@ -82,30 +82,7 @@ class Builder {
     plan_.root = group(q.where, nullptr);
     const VarSet& scope = scope_[plan_.root];
     if (q.form == QueryForm::Select) {
-      if (q.star) {
-        for (Var v = 0; v < plan_.var_names.size(); ++v) {
-          if (!plan_.hidden[v] && scope.contains(v)) {
-            plan_.result_vars.push_back(v);
-            plan_.result_names.push_back(plan_.var_names[v]);
-          }
-        }
-      } else {
-        VarSet projected = scope;
-        for (const ast::Projection& pr : q.projection) {
-          const Var v = var(pr.var.value);
-          if (pr.has_expr) {
-            if (projected.contains(v))
-              ast::fail(kSyntax, pr.var.pos,
-                        "(... AS ?" + pr.var.value + "): variable ?" + pr.var.value +
-                            " is already in scope");
-            plan_.projected_exprs.emplace_back(v, expr(pr.expr));
-            plan_.assigned.emplace_back(v, pr.var.pos);
-            projected.insert(v);
-          }
-          plan_.result_vars.push_back(v);
-          plan_.result_names.push_back(pr.var.value);
-        }
-      }
+      project(q, scope, plan_.result_vars, plan_.result_names, plan_.projected_exprs);
     }
     for (const ast::OrderKey& k : q.order) plan_.order.push_back({expr(k.expr), k.descending});
   }
@@ -471,6 +448,38 @@ class Builder {
     return push(std::move(op), in_scope);
   }
 
+  // A SELECT's columns, for the query and its sub-SELECTs alike: every
+  // visible variable in scope for `*`, else the projection, whose
+  // `(expr AS ?v)` may not name a variable already in scope.
+  void project(const ast::Query& q, const VarSet& scope, std::vector<Var>& result_vars,
+               std::vector<std::string>& names,
+               std::vector<std::pair<Var, uint32_t>>& projected_exprs) {
+    if (q.star) {
+      for (Var v = 0; v < plan_.var_names.size(); ++v) {
+        if (!plan_.hidden[v] && scope.contains(v)) {
+          result_vars.push_back(v);
+          names.push_back(plan_.var_names[v]);
+        }
+      }
+      return;
+    }
+    VarSet projected = scope;
+    for (const ast::Projection& pr : q.projection) {
+      const Var v = var(pr.var.value);
+      if (pr.has_expr) {
+        if (projected.contains(v))
+          ast::fail(
+              kSyntax, pr.var.pos,
+              "(... AS ?" + pr.var.value + "): variable ?" + pr.var.value + " is already in scope");
+        projected_exprs.emplace_back(v, expr(pr.expr));
+        plan_.assigned.emplace_back(v, pr.var.pos);
+        projected.insert(v);
+      }
+      result_vars.push_back(v);
+      names.push_back(pr.var.value);
+    }
+  }
+
   // A sub-SELECT, built with a variable scope of its own: its variables that
   // it does not project are not the enclosing query's (18.2.1).
   uint32_t sub_select(const ast::Element& e) {
@@ -488,30 +497,7 @@ class Builder {
     sel.root = group(q.where, nullptr);
     const VarSet scope = scope_[sel.root];
     std::vector<std::string> names;
-    if (q.star) {
-      for (Var v = 0; v < plan_.var_names.size(); ++v) {
-        if (!plan_.hidden[v] && scope.contains(v)) {
-          sel.result_vars.push_back(v);
-          names.push_back(plan_.var_names[v]);
-        }
-      }
-    } else {
-      VarSet projected = scope;
-      for (const ast::Projection& pr : q.projection) {
-        const Var v = var(pr.var.value);
-        if (pr.has_expr) {
-          if (projected.contains(v))
-            ast::fail(kSyntax, pr.var.pos,
-                      "(... AS ?" + pr.var.value + "): variable ?" + pr.var.value +
-                          " is already in scope");
-          sel.projected_exprs.emplace_back(v, expr(pr.expr));
-          plan_.assigned.emplace_back(v, pr.var.pos);
-          projected.insert(v);
-        }
-        sel.result_vars.push_back(v);
-        names.push_back(pr.var.value);
-      }
-    }
+    project(q, scope, sel.result_vars, names, sel.projected_exprs);
     for (const ast::OrderKey& k : q.order) sel.order.push_back({expr(k.expr), k.descending});
     const VarSet certain = plan_.ops[sel.root].certain;
     for (const auto& [name, v] : vars_) plan_.hidden[v] = true;
