@@ -8,6 +8,7 @@
 // for mapping and relocating MuJoCo and the libraries it pulls in.
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cstdio>
@@ -18,6 +19,8 @@
 
 #include "cli/commands.hpp"
 #include "support/diagnostics.hpp"
+#include "support/paths.hpp"
+#include "support/spelling.hpp"
 
 namespace mospec::cli {
 
@@ -126,6 +129,7 @@ int main(int argc, char** argv) {
       "generated controllers"};
   app.name("mospec");
   app.require_subcommand(1);
+  app.set_version_flag("--version", "mospec " MOSPEC_VERSION);
   app.set_help_all_flag("--help-all", "Help for every command");
   std::vector<std::pair<CLI::App*, Action>> commands;
   Action rdf = add_rdf_command(app);
@@ -174,7 +178,28 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // A first word that is no command (`mospec valdate`): CLI11 would say only
+    // that a command is required.
+    const CLI::App& commands_app = app;
+    const std::vector<const CLI::App*> known =
+        commands_app.get_subcommands([](const CLI::App*) { return true; });
+    const auto is_command = [&](std::string_view word) {
+      return std::any_of(known.begin(), known.end(),
+                         [&](const CLI::App* c) { return c->get_name() == word; });
+    };
+    if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
+      mospec::Nearest nearest(argv[1]);
+      for (const CLI::App* c : known) nearest.offer(c->get_name());
+      std::cerr << "mospec: error: no command '" << mospec::escaped_bytes(argv[1]) << "'"
+                << (nearest.best().empty()
+                        ? std::string()
+                        : "; did you mean '" + std::string(nearest.best()) + "'?")
+                << " (run 'mospec --help' for the commands)\n";
+      return kExitBadInput;
+    }
     std::cerr << "mospec: " << e.what() << "\n(run 'mospec --help' for usage)\n";
     return kExitBadInput;
   }

@@ -40,6 +40,10 @@ J
 
 expect help 0 '' -- "$mospec" --help
 expect rdf-help 0 '' -- "$mospec" rdf --help
+expect version 0 '' -- "$mospec" --version
+stdout_has version '^mospec [0-9]+\.[0-9]+\.[0-9]+$'
+expect command-typo 2 "^mospec: error: no command 'valdate'; did you mean 'validate'\?" -- "$mospec" valdate x.json
+expect command-unknown 2 "^mospec: error: no command 'frobnicate' \(run 'mospec --help' for the commands\)" -- "$mospec" frobnicate
 expect no-command 2 'mospec:' -- "$mospec"
 expect no-input 2 'mospec:' -- "$mospec" rdf
 expect bad-format 2 'mospec:' -- "$mospec" rdf --format turtle good.json
