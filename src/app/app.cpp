@@ -21,6 +21,8 @@
 #include "rdf/iri.hpp"
 #include "support/arena.hpp"
 #include "support/paths.hpp"
+#include "support/spelling.hpp"
+#include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
 namespace mospec::app {
@@ -317,6 +319,11 @@ class Loader {
     std::vector<SourceLoc> import_locs;
     objects("import", app.imports, &import_locs);
     objects("constraints", app.constraints, nullptr);
+    if (rdf::TermId drop_p = lt.find_iri(vocab::term(vocab::mospec_app::ns, "drop"));
+        !drop_p.is_any()) {
+      for (uint32_t qi : local.match(any, drop_p, any))
+        app.drops.push_back({std::string(lt[local.quads()[qi].object].value), local.location(qi)});
+    }
 
     // Duplicates load once; keep the first mention.
     std::vector<std::string> unique;
@@ -613,6 +620,92 @@ class Loader {
   std::vector<ExpandBuffer> buffers_;  // see kExpandedArenaBytes
 };
 
+// "file:line:col" of each location, at most `max`, then "and N more".
+std::string places(const LoadedModel& model, const std::vector<SourceLoc>& statements,
+                   size_t max = 4) {
+  std::vector<std::string> locs;  // a node's statements share its line: once each
+  for (SourceLoc loc : statements) {
+    std::string place = model.describe(loc);
+    if (std::find(locs.begin(), locs.end(), place) == locs.end()) locs.push_back(std::move(place));
+  }
+  std::string out;
+  for (size_t i = 0; i < locs.size() && i < max; ++i)
+    out.append(i == 0 ? "" : ", ").append(locs[i]);
+  if (locs.size() > max)
+    out.append(" and ").append(std::to_string(locs.size() - max)).append(" more");
+  return out;
+}
+
+// Leaves out what the apps drop: statements about the entity (and the blank
+// nodes only they hold), and references to it. A drop that would cut an item
+// out of an ordered list, or a class out of its instances, is refused: what
+// remains would not be what any file says.
+void apply_drops(LoadedModel& model) {
+  rdf::Dataset& ds = model.dataset();
+  rdf::TermTable& terms = ds.terms();
+  const rdf::TermId any = rdf::TermId::any();
+  const rdf::TermId drop_p = terms.find_iri(vocab::term(vocab::mospec_app::ns, "drop"));
+  const rdf::TermId first_p = terms.find_iri(vocab::rdf::first);
+  const rdf::TermId type_p = terms.find_iri(vocab::rdf::type);
+  std::vector<uint32_t> gone;
+  for (const AppInfo& app : model.apps()) {
+    for (const Drop& d : app.drops) {
+      const auto refuse = [&](const std::string& why) {
+        throw Error("invalid-drop", "the app drops '" + d.iri + "', " + why,
+                    model.files().path(d.at.file), d.at.line, d.at.column);
+      };
+      const rdf::TermId e = terms.find_iri(d.iri);
+      std::vector<uint32_t> about = e.is_any() ? std::vector<uint32_t>{} : ds.match(e, any, any);
+      std::vector<uint32_t> refs;
+      if (!e.is_any()) {
+        for (uint32_t i : ds.match(any, any, e))
+          if (ds.quads()[i].predicate != drop_p) refs.push_back(i);
+      }
+      if (about.empty() && refs.empty()) {
+        Nearest nearest(d.iri);
+        std::unordered_set<uint32_t> offered;
+        for (const rdf::Quad& q : ds.quads()) {
+          if (terms[q.subject].kind == rdf::TermKind::Iri && offered.insert(q.subject.index).second)
+            nearest.offer(terms[q.subject].value);
+        }
+        refuse("which no loaded file mentions" +
+               (nearest.best().empty() ? std::string()
+                                       : "; did you mean '" + std::string(nearest.best()) + "'?"));
+      }
+      for (uint32_t i : refs) {
+        const rdf::Quad& q = ds.quads()[i];
+        if (q.predicate == first_p || q.predicate == type_p)
+          refuse(std::string("but ") + model.describe(ds.location(i)) +
+                 (q.predicate == first_p ? " lists it in an ordered list, which cannot lose one "
+                                           "item; drop the entity that holds the list"
+                                         : " gives it as a class; only entities can be dropped"));
+      }
+      // The blank nodes (nested objects, lists) only its statements hold.
+      std::vector<uint32_t> held = about;
+      for (size_t k = 0; k < held.size(); ++k) {
+        const rdf::TermId o = ds.quads()[held[k]].object;
+        if (terms[o].kind != rdf::TermKind::Blank || ds.count(any, any, o) != 1) continue;
+        for (uint32_t i : ds.match(o, any, any)) held.push_back(i);
+      }
+      std::vector<SourceLoc> stated, referenced;
+      for (uint32_t i : about)
+        if (ds.location(i).known()) stated.push_back(ds.location(i));
+      for (uint32_t i : refs)
+        if (ds.location(i).known()) referenced.push_back(ds.location(i));
+      std::string what = "dropped '" + d.iri + "'";
+      what.append(": ").append(std::to_string(about.size())).append(" statement(s) about it");
+      if (!stated.empty()) what.append(" (").append(places(model, stated)).append(")");
+      what.append(", ").append(std::to_string(refs.size())).append(" reference(s) to it");
+      if (!referenced.empty()) what.append(" (").append(places(model, referenced)).append(")");
+      model.diagnostics().report(
+          located(Severity::Note, d.at, model.files(), "dropped", std::move(what)));
+      gone.insert(gone.end(), held.begin(), held.end());
+      gone.insert(gone.end(), refs.begin(), refs.end());
+    }
+  }
+  if (!gone.empty()) ds.erase(gone);
+}
+
 }  // namespace
 
 std::string builtin_metamodels_dir() {
@@ -632,6 +725,7 @@ LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& opti
     for (const std::string& input : inputs) loader.load_input(input);
     model.dataset_.compact();
     model.dataset_.set_auto_compact(true);
+    apply_drops(model);
     return model;
   };
   unsigned threads = options.threads;

@@ -54,11 +54,18 @@ struct ModelFile {
   SourceLoc imported_at;  // where the app's import list names it (unknown for CLI inputs)
 };
 
+// An entity the app leaves out of the model it imports (mospec/app#drop).
+struct Drop {
+  std::string iri;
+  SourceLoc at;  // the app's statement
+};
+
 struct AppInfo {
   std::string file;                      // the app file's path
   std::vector<std::string> imports;      // model IRIs, duplicates removed, in order
   std::vector<std::string> constraints;  // shape-file IRIs
   std::vector<std::pair<std::string, std::string>> iri_map;  // prefix -> resolved dir
+  std::vector<Drop> drops;
 };
 
 class LoadedModel {
@@ -98,6 +105,8 @@ std::string builtin_metamodels_dir();
 
 // Loads each input (an app file or a plain JSON-LD model file). Warnings (dropped
 // keys, undefined types) are collected in diagnostics(); errors throw mospec::Error.
+// What an app drops (mospec/app#drop) is gone from the model: every statement
+// about the entity and every reference to it, each drop noted in diagnostics().
 LoadedModel load(const std::vector<std::string>& inputs, const LoadOptions& options = {});
 
 }  // namespace mospec::app

@@ -33,7 +33,8 @@ struct LoadFlags {
   app::LoadOptions to_options() const;  // throws mospec::Error on a malformed --map
 };
 
-// Prints the loader's warnings to stderr; returns how many there were.
+// Prints diagnostics to stderr; returns how many are warnings or errors (the
+// notes among them explain those, or say what was done).
 size_t print_diagnostics(const DiagnosticSink& sink);
 
 // The commands that run in mospec-full, the build of this CLI that links the

@@ -76,8 +76,12 @@ app::LoadOptions LoadFlags::to_options() const {
 }
 
 size_t print_diagnostics(const DiagnosticSink& sink) {
-  for (const Diagnostic& d : sink.diagnostics()) std::cerr << format(d) << '\n';
-  return sink.diagnostics().size();
+  size_t findings = 0;  // a note says what was done, not what is wrong
+  for (const Diagnostic& d : sink.diagnostics()) {
+    std::cerr << format(d) << '\n';
+    if (d.severity != Severity::Note) ++findings;
+  }
+  return findings;
 }
 
 #if MOSPEC_FRONT_DOOR

@@ -50,6 +50,7 @@ using lowering::State;
 struct PassInfo {
   std::string_view name;
   void (*run)(State&);
+  bool scheduled = false;  // runs on program.steps, in schedule order
 };
 
 // Lowering's passes, in order: what each lowers is in its name.
@@ -69,8 +70,9 @@ const PassInfo kPasses[] = {
     {"driver-directions", &lowering::check_driver_directions},
     {"motion-gates", &lowering::gate_arm_solves},
     {"producers", &lowering::check_inputs},
-    {"schedule", &lowering::schedule},
-    {"log", &lowering::build_log},
+    {"schedule", &lowering::schedule, true},
+    {"unlisted-controllers", &lowering::settle_unlisted_controllers, true},
+    {"log", &lowering::build_log, true},
 };
 
 // Reports lowering's warnings, located as its errors are.
@@ -89,27 +91,21 @@ struct Warnings {
 // the model asked for a control law that has no effect, which is said at the
 // controller. Steps are in schedule order, so one backward pass finds every
 // step whose output a solver reads, directly or not.
-void warn_controllers_reaching_no_solver(const Program& program, const Warnings& w) {
-  std::vector<char> reaches(program.data.size(), 0);  // a solver depends on it
-  std::vector<char> effective(program.steps.size(), 0);
-  for (size_t s = program.steps.size(); s-- > 0;) {
-    const Step& step = program.steps[s];
-    bool live = step.kind == StepKind::ArmSolve || step.kind == StepKind::BaseForceDistribution;
-    for (int o : step.out) live = live || reaches[static_cast<size_t>(o)];
-    if (!live) continue;
-    effective[s] = 1;
-    for (int i : step.in) reaches[static_cast<size_t>(i)] = 1;
-  }
+void warn_controllers_reaching_no_solver(const State& st, const Warnings& w) {
+  const Program& program = st.program;
+  const std::vector<char> effective = lowering::steps_reaching_a_solver(program);
   for (size_t s = 0; s < program.steps.size(); ++s) {
     const Step& step = program.steps[s];
     if (step.kind != StepKind::Controller || effective[s] || step.out.empty()) continue;
+    if (st.unlisted_controllers.count(st.term(step.iri).index)) continue;  // a note says so
     w.warn(step.where, "controller-reaches-no-solver",
            "the controller '" + step.iri + "' drives '" +
                program.data[static_cast<size_t>(step.out.front())].iri +
                "', which reaches no solver: no acceleration constraint or force of a solver's "
                "motion drivers depends on it, so the controller runs every tick and moves "
                "nothing; name it in an acceleration constraint (or the wrench of a force) that "
-               "a solver uses, or leave the controller out of the app");
+               "a solver uses, or take it out of the `controllers` of the handlers that list "
+               "it (it is then not used, and lowering notes that)");
   }
 }
 
@@ -128,12 +124,12 @@ Program lower(const app::LoadedModel& model, const LowerOptions& options) {
     if (!st.errors.empty()) {
       // Later passes would only report what follows from these problems,
       // except that every missing producer is worth knowing at once.
-      if (pass.name == "schedule" || pass.name == "producers" || pass.name == "log") break;
+      if (pass.name == "producers" || pass.scheduled) break;
       continue;
     }
     // Until "schedule" orders them, the steps so far are in st.steps, in
     // declaration order: lend them to the program for the check.
-    const bool ordered = pass.name == "schedule" || pass.name == "log";
+    const bool ordered = pass.scheduled;
     if (!ordered) std::swap(st.program.steps, st.steps);
     auto problems =
         check(st.program, &model.files(), ordered ? Stage::Scheduled : Stage::Unscheduled);
@@ -147,7 +143,8 @@ Program lower(const app::LoadedModel& model, const LowerOptions& options) {
   }
   if (!st.errors.empty()) throw LowerError(std::move(st.errors));
   if (options.warnings != nullptr) {
-    warn_controllers_reaching_no_solver(st.program, Warnings{model, *options.warnings});
+    warn_controllers_reaching_no_solver(st, Warnings{model, *options.warnings});
+    for (Diagnostic& n : st.notes) options.warnings->report(std::move(n));
   }
   return std::move(st.program);
 }

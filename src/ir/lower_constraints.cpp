@@ -513,22 +513,20 @@ void lower_handlers(State& st) {
     st.steps[static_cast<size_t>(it->second)].in.push_back(active);
   }
 
-  // A controller or an assignment no handler lists would act on the robot
-  // whatever the task does: refused, as the motion it serves is unknown.
-  const auto unhandled = [&](TermId entity, const std::string& what) {
-    st.error(entity, "unhandled",
-             "no constraint handler lists the " + what + " '" + st.str(entity) +
-                 "', so no motion says when it acts; list it in the `" +
-                 (what == "controller" ? "controllers" : "evaluators") +
-                 "` of the handler of each motion it serves");
-  };
-  std::set<uint32_t> controllers;
-  for (const ControllerKind& kind : controller_kinds())
-    for (TermId c : st.instances(kind.class_iri())) controllers.insert(c.index);
-  for (uint32_t c : controllers)
-    if (!flags_of_controller.count(TermId{c})) unhandled(TermId{c}, "controller");
+  // An assignment no handler lists would write whatever the task does:
+  // refused, as the motion it serves is unknown.
   for (TermId e : st.instances(vocab(ch, "AssignmentEvaluator")))
-    if (!flags_of_evaluator.count(e)) unhandled(e, "assignment evaluator");
+    if (!flags_of_evaluator.count(e))
+      st.error(e, "unhandled",
+               "no constraint handler lists the assignment evaluator '" + st.str(e) +
+                   "', so no motion says when it acts; list it in the `evaluators` of the "
+                   "handler of each motion it serves");
+  // A controller no handler lists is refused only if a solver reads what it
+  // drives (settle_unlisted_controllers, once the schedule shows that): one a
+  // scenario leaves out of its handlers, e.g. of a shared file, is not used.
+  for (const ControllerKind& kind : controller_kinds())
+    for (TermId c : st.instances(kind.class_iri()))
+      if (!flags_of_controller.count(c)) st.unlisted_controllers.insert(c.index);
 }
 
 }  // namespace mospec::ir::lowering

@@ -147,3 +147,54 @@ void build_log(State& st) {
 }
 
 }  // namespace mospec::ir::lowering
+
+namespace mospec::ir::lowering {
+
+std::vector<char> steps_reaching_a_solver(const Program& program) {
+  std::vector<char> reaches(program.data.size(), 0);  // a solver depends on the datum
+  std::vector<char> effective(program.steps.size(), 0);
+  for (size_t s = program.steps.size(); s-- > 0;) {
+    const Step& step = program.steps[s];
+    bool live = step.kind == StepKind::ArmSolve || step.kind == StepKind::BaseForceDistribution;
+    for (int o : step.out) live = live || reaches[static_cast<size_t>(o)];
+    if (!live) continue;
+    effective[s] = 1;
+    for (int i : step.in) reaches[static_cast<size_t>(i)] = 1;
+  }
+  return effective;
+}
+
+// A controller no handler lists has no motion that says when it acts. If a
+// solver reads what it drives, it would act whatever the task does: refused.
+// Otherwise it is a definition the app does not use (a scenario that leaves a
+// shared file's controller out of its handlers): it is switched off for good,
+// by a constant "active" flag, and a note says so.
+void settle_unlisted_controllers(State& st) {
+  if (st.unlisted_controllers.empty()) return;
+  const std::vector<char> reaching = steps_reaching_a_solver(st.program);
+  int never = -1;
+  for (size_t i = 0; i < st.program.steps.size(); ++i) {
+    Step& s = st.program.steps[i];
+    if (s.kind != StepKind::Controller || s.out.empty()) continue;
+    if (!st.unlisted_controllers.count(st.term(s.iri).index)) continue;
+    const std::string drives = st.program.data[static_cast<size_t>(s.out.front())].iri;
+    if (reaching[i]) {
+      st.error(s.where, "unhandled",
+               "no constraint handler lists the controller '" + s.iri +
+                   "', so no motion says when it acts, yet a solver reads what it drives ('" +
+                   drives +
+                   "'); list it in the `controllers` of the handler of each motion it serves");
+      continue;
+    }
+    if (never < 0) {
+      never = st.synthetic(st.program.app + "#never", "never", DataType::Flag, SourceLoc{});
+      st.program.data[static_cast<size_t>(never)].value = {0.0};
+    }
+    s.in.push_back(never);
+    st.note(s.where, "unused-controller",
+            "the controller '" + s.iri + "' is not used: no constraint handler lists it and no " +
+                "solver reads what it drives ('" + drives + "'), so it never acts");
+  }
+}
+
+}  // namespace mospec::ir::lowering

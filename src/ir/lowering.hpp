@@ -157,6 +157,12 @@ struct State {
   void error(TermId at, std::string code, std::string message) const {
     error(where(at), std::move(code), std::move(message));
   }
+  // What lowering left out of the program, and why: reported with the
+  // warnings (LowerOptions::warnings), never counted as one.
+  void note(SourceLoc loc, std::string code, std::string message) const {
+    notes.push_back(
+        located(Severity::Note, loc, model.files(), std::move(code), std::move(message)));
+  }
 
   // --- data ---------------------------------------------------------------
   // The vocabulary terms every datum is read through (type_of, datum,
@@ -262,6 +268,7 @@ struct State {
   // Mutable: the graph accessors, const otherwise, report a property that has
   // several values where one is read (once per subject and property).
   mutable std::vector<Diagnostic> errors;
+  mutable std::vector<Diagnostic> notes;
   mutable std::set<std::pair<uint32_t, std::string>> several_reported;
   mutable std::optional<DatumTerms> datum_terms_;  // datum_terms(), once looked up
   // The names and tables below live exactly as long as one lowering: their
@@ -283,6 +290,9 @@ struct State {
   std::pmr::map<uint32_t, int> monitor_step_of_monitor{&arena};
   // handlers -> controllers: the flag that activates a controller.
   std::pmr::map<uint32_t, int> active_of_controller{&arena};
+  // handlers -> unlisted-controllers: the controllers no handler lists, and
+  // the handlers of the app (where the advice points).
+  std::pmr::set<uint32_t> unlisted_controllers{&arena};
   // evaluators -> log: a bilateral constraint's satisfied flag -> its lower
   // and upper threshold data.
   std::pmr::map<int, std::pair<int, int>> bounds_of_satisfied{&arena};
@@ -320,5 +330,11 @@ void lower_views(State& st);
 void check_inputs(State& st);
 void schedule(State& st);
 void build_log(State& st);
+void settle_unlisted_controllers(State& st);
+
+// Per step of a scheduled program: whether a solver (an arm's solve or the
+// base's force distribution) reads its output, directly or through other
+// steps. Steps are in schedule order, so one backward pass finds them all.
+std::vector<char> steps_reaching_a_solver(const Program& program);
 
 }  // namespace mospec::ir::lowering

@@ -87,6 +87,26 @@ void Dataset::reserve(size_t quads) {
   position_.reserve(quads);
 }
 
+void Dataset::erase(std::span<const uint32_t> quad_indexes) {
+  std::vector<char> gone(quads_.size(), 0);
+  for (uint32_t i : quad_indexes) {
+    if (i < gone.size()) gone[i] = 1;
+  }
+  size_t kept = 0;
+  for (size_t i = 0; i < quads_.size(); ++i) {
+    if (gone[i]) continue;
+    quads_[kept] = quads_[i];
+    locations_[kept] = locations_[i];
+    ++kept;
+  }
+  quads_.resize(kept);
+  locations_.resize(kept);
+  position_.clear();
+  for (size_t i = 0; i < kept; ++i)
+    position_.insert(hash_quad(quads_[i]), static_cast<uint32_t>(i));
+  rebuild_indexes();
+}
+
 void Dataset::compact() {
   if (frozen_ != quads_.size()) rebuild_indexes();
 }

@@ -92,6 +92,9 @@ class Dataset {
   // saves the per-quad index updates and the folds in between. Turning it back
   // on does not fold by itself; the next add() indexes what is pending.
   void set_auto_compact(bool on) { auto_compact_ = on; }
+  // Removes the quads at these indexes (any order, duplicates allowed); the
+  // others keep their order and locations, but not their indexes. Terms stay.
+  void erase(std::span<const uint32_t> quad_indexes);
   // Room for `quads` quads in all, so a loader that knows its size grows once.
   void reserve(size_t quads);
   // Approximate heap use (terms, quads, locations, indexes).

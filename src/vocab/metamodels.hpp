@@ -63,6 +63,7 @@ MOSPEC_VOCAB_NS(mospec_solver, "mospec/solver")
 MOSPEC_VOCAB_NS(mospec_guards, "mospec/guards")
 MOSPEC_VOCAB_NS(mospec_joints, "mospec/joints")
 MOSPEC_VOCAB_NS(mospec_shapes, "mospec/shapes")
+MOSPEC_VOCAB_NS(mospec_app, "mospec/app")
 
 #undef MOSPEC_VOCAB_NS
 

@@ -134,12 +134,19 @@ Expectations parse_expectations(const std::string& text, const fs::path& case_di
     }
     rest = trim(rest);
     const size_t close = rest.find("]:");
-    e.warning = rest.rfind("warning[", 0) == 0;
-    if ((!e.warning && rest.rfind("error[", 0) != 0) || close == std::string::npos) {
-      fail("expected `error[CODE]: MESSAGE` or `warning[CODE]: MESSAGE` after the location");
+    size_t open = 0;
+    for (Severity sev : {Severity::Error, Severity::Warning, Severity::Note}) {
+      const std::string tag = std::string(to_string(sev)) + "[";
+      if (rest.rfind(tag, 0) == 0) {
+        e.severity = sev;
+        open = tag.size();
+      }
+    }
+    if (open == 0 || close == std::string::npos) {
+      fail("expected `error[CODE]: MESSAGE`, `warning[CODE]: MESSAGE` or `note[CODE]: MESSAGE` "
+           "after the location");
       continue;
     }
-    const size_t open = e.warning ? 8 : 6;
     e.code = rest.substr(open, close - open);
     e.text = trim(rest.substr(close + 2));
     if (e.code.empty() || e.text.empty()) {
@@ -220,7 +227,7 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     const bool anchored = e.text[0] == '^';
     const size_t at = d.message.find(anchored ? e.text.substr(1) : e.text);
     if (d.code != e.code || at == std::string::npos || (anchored && at != 0)) return false;
-    if (e.warning != (d.severity == Severity::Warning)) return false;
+    if (e.severity != d.severity) return false;
     if (e.file.empty()) return d.file.empty();
     return !d.file.empty() && canonical_or_same(d.file) == e.file && d.line == e.line;
   };
@@ -272,12 +279,12 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
   for (const std::string& m : matched) report << "  ok          " << m << "\n";
   for (const ExpectedDiagnostic* e : missing) {
     report << "  MISSING     " << show_location(e->file, e->line, case_dir) << ": "
-           << (e->warning ? "warning[" : "error[") << e->code << "]: ..." << e->text
+           << to_string(e->severity) << "[" << e->code << "]: ..." << e->text
            << "...   (expected.txt:" << e->source_line << ")\n";
   }
   for (const Diagnostic* d : unexpected) {
     report << "  UNEXPECTED  " << show_location(d->file, d->line, case_dir) << ": "
-           << (d->severity == Severity::Warning ? "warning[" : "error[") << d->code
+           << to_string(d->severity) << "[" << d->code
            << "]: " << d->message << "\n";
   }
   result.ok = ok;
@@ -305,7 +312,7 @@ std::set<std::string> lowering_codes(const fs::path& dir) {
     const std::string ext = entry.path().extension().string();
     if (!entry.is_regular_file() || (ext != ".cpp" && ext != ".hpp")) continue;
     const std::string src = read_file(entry.path().string());
-    for (const std::string_view call : {"error(", "warn("})
+    for (const std::string_view call : {"error(", "warn(", "note("})
       for (size_t at = src.find(call); at != std::string::npos; at = src.find(call, at + 1)) {
         // A call, not `foo_error(` or `LowerError(`.
         if (at > 0 && (std::isalnum(static_cast<unsigned char>(src[at - 1])) || src[at - 1] == '_'))

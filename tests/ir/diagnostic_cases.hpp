@@ -11,7 +11,7 @@
 //   -: error[some-code]: a diagnostic with no file:line
 //
 // `error[...]` is an error lowering throws (ir::LowerError), `warning[...]` a
-// warning it reports through LowerOptions::warnings.
+// warning and `note[...]` a note it reports through LowerOptions::warnings.
 //
 // `validation:` says what `mospec ir` would do before lowering: `clean` (the
 // app's shapes accept the model, so the CLI reaches this diagnostic) or
@@ -28,13 +28,15 @@
 #include <string>
 #include <vector>
 
+#include "support/diagnostics.hpp"
+
 namespace mospec::test {
 
 struct ExpectedDiagnostic {
   std::filesystem::path file;  // empty: not located
   uint32_t line = 0;
   std::string code;
-  bool warning = false;  // warning[CODE] rather than error[CODE]
+  Severity severity = Severity::Error;  // error[CODE], warning[CODE] or note[CODE]
   std::string text;      // a substring of the message
   std::string spelled;   // the line as written in expected.txt
   int source_line = 0;   // its line number in expected.txt

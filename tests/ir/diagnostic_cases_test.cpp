@@ -128,8 +128,8 @@ TEST(DiagnosticCases, IllFormedExpectationsFail) {
       {"validation: refused\nmodel.json:{{\"@id\": \"frame-}}: error[x]: y\n",
        "3 lines of model.json contain"},
       {"validation: refused\nmodel.json: error[x]: y\n", "a line number or {{TEXT}}"},
-      {"validation: refused\nmodel.json:26: note[x]: y\n",
-       "expected `error[CODE]: MESSAGE` or `warning[CODE]: MESSAGE`"},
+      {"validation: refused\nmodel.json:26: remark[x]: y\n",
+       "expected `error[CODE]: MESSAGE`, `warning[CODE]: MESSAGE` or `note[CODE]: MESSAGE`"},
       {"validation: refused\nmodel.json:26: error[x]:\n", "a code and a message substring"},
       {"validation: refused\nmodel.json:{{compose: error[x]: y\n", "ends with `}}:`"},
   };

@@ -104,6 +104,41 @@ TEST(Dataset, RejectsIdsOfOtherTables) {
   EXPECT_TRUE(d.match(TermId::any(), TermId::any(), TermId::any()).empty());
 }
 
+// erase() keeps the other quads in order with their locations, and every
+// index answers as if they had been the only ones added.
+TEST(Dataset, EraseKeepsTheRestInOrderAndIndexed) {
+  Dataset d;
+  Pools pools = make_pools(d.terms());
+  std::mt19937 rng(5);
+  add_random(d, pools, rng, 3000);
+  std::vector<Quad> kept;
+  std::vector<SourceLoc> kept_at;
+  std::vector<uint32_t> gone;
+  for (uint32_t i = 0; i < d.size(); ++i) {
+    if (i % 3 == 1) {
+      gone.push_back(i);
+      gone.push_back(i);  // duplicates are allowed
+    } else {
+      kept.push_back(d.quads()[i]);
+      kept_at.push_back(d.location(i));
+    }
+  }
+  d.erase(gone);
+  ASSERT_EQ(d.size(), kept.size());
+  for (uint32_t i = 0; i < d.size(); ++i) {
+    EXPECT_EQ(d.quads()[i], kept[i]);
+    EXPECT_EQ(d.location(i), kept_at[i]);
+    EXPECT_EQ(d.find(kept[i]), i);
+  }
+  check_all_patterns(d, pools, rng);
+  // An erased quad can be added again (it is gone from the deduplication set).
+  const Quad back{pools.s[0], pools.p[0], pools.o[0], pools.g[0]};
+  d.erase(d.match(back.subject, back.predicate, back.object, back.graph));
+  EXPECT_FALSE(d.contains(back));
+  EXPECT_TRUE(d.add(back));
+  check_all_patterns(d, pools, rng);
+}
+
 TEST(Dataset, EveryPatternMatchesBruteForceSmall) {
   Dataset d;
   Pools pools = make_pools(d.terms());
