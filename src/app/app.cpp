@@ -21,7 +21,6 @@
 #include "rdf/iri.hpp"
 #include "support/arena.hpp"
 #include "support/paths.hpp"
-#include "support/spelling.hpp"
 #include "vocab/metamodels.hpp"
 #include "vocab/w3c.hpp"
 
@@ -662,15 +661,9 @@ void apply_drops(LoadedModel& model) {
           if (ds.quads()[i].predicate != drop_p) refs.push_back(i);
       }
       if (about.empty() && refs.empty()) {
-        Nearest nearest(d.iri);
-        std::unordered_set<uint32_t> offered;
-        for (const rdf::Quad& q : ds.quads()) {
-          if (terms[q.subject].kind == rdf::TermKind::Iri && offered.insert(q.subject.index).second)
-            nearest.offer(terms[q.subject].value);
-        }
+        const std::string nearest = rdf::nearest_subject_iri(ds, d.iri);
         refuse("which no loaded file mentions" +
-               (nearest.best().empty() ? std::string()
-                                       : "; did you mean '" + std::string(nearest.best()) + "'?"));
+               (nearest.empty() ? std::string() : "; did you mean '" + nearest + "'?"));
       }
       for (uint32_t i : refs) {
         const rdf::Quad& q = ds.quads()[i];

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "support/spelling.hpp"
+
 namespace mospec::rdf {
 
 namespace {
@@ -204,6 +206,27 @@ size_t Dataset::memory_bytes() const {
              sizeof(uint32_t);
   }
   return bytes;
+}
+
+std::string nearest_subject_iri(const Dataset& data, std::string_view iri) {
+  const auto namespace_of = [](std::string_view i) {
+    const size_t k = i.find_last_of("#/");
+    return k == std::string_view::npos ? std::string_view{} : i.substr(0, k + 1);
+  };
+  const std::string_view ns = namespace_of(iri);
+  Nearest nearest(iri.substr(ns.size()));
+  std::string_view best;
+  const TermTable& terms = data.terms();
+  std::vector<char> offered(terms.size(), 0);
+  for (const Quad& q : data.quads()) {
+    if (offered[q.subject.index] || !terms[q.subject].is_iri()) continue;
+    offered[q.subject.index] = 1;
+    const std::string_view candidate = terms[q.subject].value;
+    if (candidate == iri || namespace_of(candidate) != ns) continue;
+    nearest.offer(candidate.substr(ns.size()));
+    if (nearest.best().data() == candidate.data() + ns.size()) best = candidate;
+  }
+  return std::string(best);
 }
 
 }  // namespace mospec::rdf

@@ -23,6 +23,8 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "rdf/id_hash_set.hpp"
@@ -200,5 +202,10 @@ void Dataset::scan(TermId s, TermId p, TermId o, TermId g, Visit&& visit) const 
     if (matches(q, -1) && !visit(q, i)) return;
   }
 }
+
+// For a misspelt reference: the IRI, among the subjects of `data`, nearest in
+// spelling to `iri` within its namespace (the part up to its last '/' or '#'),
+// or "" when none is within a typo's distance (support/spelling.hpp).
+std::string nearest_subject_iri(const Dataset& data, std::string_view iri);
 
 }  // namespace mospec::rdf

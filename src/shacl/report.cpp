@@ -219,6 +219,7 @@ std::string to_text(const Report& report, const SourceFiles* data_files,
                     const SourceFiles* shape_files) {
   const rdf::TermTable& t = report.terms;
   std::string out;
+  size_t followers = 0;
   for (const Result& r : report.results) {
     // The project's diagnostic shape: the finding at the model's node, then
     // a note at the shape that fired and at the other nodes involved.
@@ -227,16 +228,30 @@ std::string to_text(const Report& report, const SourceFiles* data_files,
       std::string path = files != nullptr ? files->path(loc.file) : std::string();
       return path.empty() ? std::string("<input>") : path;
     };
-    std::string message = rdf::to_ntriples(t, r.focus) + ": " + pick_message(report, r) + " [";
+    std::string message =
+        rdf::to_ntriples(t, r.focus) + ": " + pick_message(report, r) + r.hint + " [";
     message += r.component == Component::SparqlComponent ? rdf::to_ntriples(t, r.component_node)
                                                          : std::string(component_name(r.component));
     if (r.path) message += ", path " + path_to_sparql(t, *r.path);
     if (!r.value.is_any()) message += ", value " + rdf::to_ntriples(t, r.value);
     message += "]";
-    out += format(file(data_files, r.focus_loc), r.focus_loc.line, r.focus_loc.column,
-                  r.level == Level::Other ? rdf::to_ntriples(t, r.severity)
-                                          : std::string(diagnostic_level(r.level)),
-                  message);
+    std::string level = r.level == Level::Other ? rdf::to_ntriples(t, r.severity)
+                                                : std::string(diagnostic_level(r.level));
+    if (r.follows >= 0 && static_cast<size_t>(r.follows) < report.results.size()) {
+      const Result& cause = report.results[static_cast<size_t>(r.follows)];
+      message +=
+          " (likely a consequence of the " +
+          std::string(cause.level == Level::Other ? "result" : diagnostic_level(cause.level)) +
+          " at " +
+          (cause.focus_loc.known() ? format_place(file(data_files, cause.focus_loc),
+                                                  cause.focus_loc.line, cause.focus_loc.column)
+                                   : rdf::to_ntriples(t, cause.focus)) +
+          ", about " + rdf::to_ntriples(t, cause.value) + ": fix that first)";
+      level = "note";
+      ++followers;
+    }
+    out +=
+        format(file(data_files, r.focus_loc), r.focus_loc.line, r.focus_loc.column, level, message);
     out += '\n';
     out += format(file(shape_files, r.shape_loc), r.shape_loc.line, r.shape_loc.column, "note",
                   "the shape that fired: " +
@@ -262,6 +277,8 @@ std::string to_text(const Report& report, const SourceFiles* data_files,
          plural(report.count(Level::Info), "info", "infos");
   if (size_t other = report.count(Level::Other); other != 0)
     out += ", " + plural(other, "result of another severity", "results of other severities");
+  if (followers != 0)
+    out += " (" + std::to_string(followers) + " of them likely consequences of another, as noted)";
   out += "\n";
   return out;
 }

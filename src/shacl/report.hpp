@@ -40,6 +40,12 @@ struct Result {
     SourceLoc where;
   };
   std::vector<Related> related;
+  // For the text report only (the report graph is what SHACL says):
+  // a hint appended to the message ("did you mean <X>?"), and the index of
+  // the result this one most likely follows from (-1: none), which the text
+  // report prints as a note under that cause rather than as a second error.
+  std::string hint;
+  int follows = -1;
 };
 
 class Report {
@@ -71,7 +77,8 @@ std::string to_turtle(const Report& report);
 //   shapes.ttl:line:col: note: the shape that fired: <S>|[]
 // and a note where the value node is written, and where each other data node
 // a SPARQL constraint's row names is (?upper: "note: upper <U> is here"); then "shacl: N
-// violations, M warnings, K infos" (plus other severities when present). `data_files` names
+// violations, M warnings, K infos" (plus other severities when present). A result that
+// follows from another (Result::follows) is a note naming its cause. `data_files` names
 // Result::focus_loc, `shape_files` Result::shape_loc.
 std::string to_text(const Report& report, const SourceFiles* data_files,
                     const SourceFiles* shape_files = nullptr);

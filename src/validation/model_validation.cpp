@@ -4,6 +4,8 @@
 #include <cctype>
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <set>
 #include <span>
 #include <tuple>
 #include <unordered_map>
@@ -688,6 +690,60 @@ std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Data
   return out;
 }
 
+// ---- one cause, one error -------------------------------------------------
+
+void note_follow_on_results(shacl::Report& report, const rdf::Dataset& data) {
+  const rdf::TermId any = rdf::TermId::any();
+  const rdf::TermTable& rt = report.terms;
+  const auto in_data = [&](rdf::TermId r) {
+    return r.is_any() || !rt[r].is_iri() ? any : data.terms().find_iri(rt[r].value);
+  };
+  const auto undefined = [&](rdf::TermId value) {
+    if (value.is_any() || !rt[value].is_iri()) return false;
+    const rdf::TermId d = in_data(value);
+    return d.is_any() || data.count(d, any, any) == 0;
+  };
+  // The cause of each undefined value: the result of mos:DefinedReferences,
+  // which says exactly that. (Other IRIs no file defines, units and classes,
+  // are no cause of anything.)
+  const std::string defined_references = vocab::term(vocab::mospec_shapes::ns, "DefinedReferences");
+  std::map<uint32_t, int> cause_of_value;  // report term index -> result index
+  for (size_t i = 0; i < report.results.size(); ++i) {
+    const shacl::Result& r = report.results[i];
+    if (rt[r.shape].is_iri() && rt[r.shape].value == defined_references && undefined(r.value))
+      cause_of_value.emplace(r.value.index, static_cast<int>(i));
+  }
+  std::set<int> causes;
+  for (const auto& [value, i] : cause_of_value) {
+    shacl::Result& r = report.results[static_cast<size_t>(i)];
+    const std::string nearest = rdf::nearest_subject_iri(data, rt[r.value].value);
+    if (!nearest.empty()) r.hint = "; did you mean <" + nearest + ">?";
+    causes.insert(i);
+  }
+  for (size_t i = 0; i < report.results.size(); ++i) {
+    shacl::Result& r = report.results[i];
+    if (causes.count(static_cast<int>(i))) continue;
+    if (auto it = cause_of_value.find(r.value.index);
+        it != cause_of_value.end() && undefined(r.value)) {
+      r.follows = it->second;
+      continue;
+    }
+    // A node the cause's focus names (a handler's motion, a constraint's
+    // quantity): what is reported about it likely follows from the dangling
+    // reference beside it (a motion whose guard has no controller, because
+    // the handler's controller is misspelt).
+    const rdf::TermId focus = in_data(r.focus);
+    if (focus.is_any()) continue;
+    for (int c : causes) {
+      const rdf::TermId cause_focus = in_data(report.results[static_cast<size_t>(c)].focus);
+      if (!cause_focus.is_any() && data.count(cause_focus, any, focus) != 0) {
+        r.follows = c;
+        break;
+      }
+    }
+  }
+}
+
 // ---- the pipeline ----------------------------------------------------------
 
 ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOptions& options) {
@@ -709,6 +765,7 @@ ModelValidation validate_model(app::LoadedModel& model, const ModelValidationOpt
   ValidateOptions validate_options;
   validate_options.sparql_limits = options.sparql_limits;
   out.report = validate(*out.shapes, model.dataset(), validate_options);
+  note_follow_on_results(out.report, model.dataset());
   if (options.strict) out.strict_findings = strict_checks(model, *out.shapes, out.files);
   return out;
 }

@@ -91,6 +91,13 @@ std::vector<ShapeFile> vocabulary_shape_files(app::LoadedModel& model, rdf::Data
                                               DiagnosticSink* diagnostics = nullptr,
                                               std::span<const ShapeFile> read_before = {});
 
+// One cause, one error: a reference to an entity no loaded file defines is
+// reported once, by mos:DefinedReferences (with the nearest defined IRI as a
+// hint); the other results about the same value, and those about a node the
+// cause's focus names, are marked as following from it (Result::follows),
+// which the text report prints as notes. The report graph is unchanged.
+void note_follow_on_results(shacl::Report& report, const rdf::Dataset& data);
+
 // The whole pipeline on a loaded model: read shape files, compile (ill-formed
 // shapes throw mospec::Error "shacl-ill-formed", located), validate every graph
 // of the model's dataset as one graph. No shape files at all throws

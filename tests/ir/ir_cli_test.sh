@@ -157,7 +157,7 @@ expect "--dump-after log" 0 "" -- \
   "$mospec" ir --root "$D" "$D/tiny.json" --dump-after log -o "$work/after-log.json"
 check "... is the finished program" cmp -s "$work/after-log.json" "$work/tiny.json"
 expect "an unknown pass is refused, naming the passes" 2 \
-  "--dump-after: no lowering pass 'lowering'; the passes are properties, clocks, arm-solvers, operators, .*, schedule, log" -- \
+  "--dump-after: no lowering pass 'lowering'; the passes are properties, clocks, arm-solvers, operators, .*, schedule, unlisted-controllers, log" -- \
   "$mospec" ir --root "$D" "$D/tiny.json" --dump-after lowering
 
 finish ir-cli
