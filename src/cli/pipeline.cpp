@@ -131,8 +131,12 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
     // One located line per error, each starting with its file:line:col (an
     // editor's error parser reads it there; e.what() would put the first
     // behind "mospec: error: ").
-    for (const Diagnostic& d : e.diagnostics()) std::cerr << format(d) << '\n';
-    std::cerr << "mospec: the model cannot be lowered (" << e.diagnostics().size()
+    size_t errors = 0;  // the notes among them point at a second place of one
+    for (const Diagnostic& d : e.diagnostics()) {
+      std::cerr << format(d) << '\n';
+      errors += d.severity == Severity::Error ? 1 : 0;
+    }
+    std::cerr << "mospec: the model cannot be lowered (" << errors
               << " error(s)); nothing was generated\n";
     exit_code = kExitFindings;
     return std::nullopt;

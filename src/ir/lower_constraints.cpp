@@ -372,6 +372,47 @@ std::pmr::map<uint32_t, std::pmr::set<int>> acted_on(State& st) {
   return acted;
 }
 
+// The values of its quantity a constraint allows: [lo, hi] (closed: a bound
+// is met at equality within a tolerance of 0).
+struct Feasible {
+  double lo = -INFINITY, hi = INFINITY;
+};
+
+Feasible feasible(const runtime::ConstraintSpec& c) {
+  switch (c.kind) {
+    case runtime::ConstraintKind::Equality:
+      return {c.reference - c.tolerance, c.reference + c.tolerance};
+    case runtime::ConstraintKind::Assignment:
+      return {c.reference, c.reference};
+    case runtime::ConstraintKind::LessThan:
+      return {-INFINITY, c.threshold};
+    case runtime::ConstraintKind::GreaterThan:
+      return {c.threshold, INFINITY};
+    case runtime::ConstraintKind::Bilateral:
+      return {c.lower, c.upper};
+  }
+  return {};
+}
+
+// As a message says what a constraint allows: "= 0.3", "= 0.3 +- 0.01", "<= 2".
+std::string allowed(const runtime::ConstraintSpec& c, const std::string& unit) {
+  const std::string u = unit.empty() ? "" : " " + unit;
+  switch (c.kind) {
+    case runtime::ConstraintKind::Equality:
+      return "= " + exact_number(c.reference) +
+             (c.tolerance > 0.0 ? " +- " + exact_number(c.tolerance) : std::string()) + u;
+    case runtime::ConstraintKind::Assignment:
+      return "set to " + exact_number(c.reference) + u;
+    case runtime::ConstraintKind::LessThan:
+      return "<= " + exact_number(c.threshold) + u;
+    case runtime::ConstraintKind::GreaterThan:
+      return ">= " + exact_number(c.threshold) + u;
+    case runtime::ConstraintKind::Bilateral:
+      return "in [" + exact_number(c.lower) + ", " + exact_number(c.upper) + "]" + u;
+  }
+  return "";
+}
+
 }  // namespace
 
 void lower_handlers(State& st) {
@@ -401,6 +442,12 @@ void lower_handlers(State& st) {
       active = it->second;
     } else {
       Step s = st.step_for(StepKind::GuardedMotion, *m);
+      struct PerCondition {
+        int quantity;
+        TermId constraint;
+        runtime::ConstraintSpec spec;
+      };
+      std::vector<PerCondition> per_condition;  // the motion's `while`, as listed
       const auto guards = [&](const std::string& prop) {
         std::vector<int> flags;
         for (TermId c : st.objects(*m, vocab(mot, prop))) {
@@ -415,6 +462,9 @@ void lower_handlers(State& st) {
           }
           const Step& evaluate = st.steps[static_cast<size_t>(it->second)];
           if (prop == "while") {
+            const bool assigned = evaluate.constraint.kind == runtime::ConstraintKind::Assignment;
+            per_condition.push_back(
+                {assigned ? evaluate.out[1] : evaluate.in[0], c, evaluate.constraint});
             // A per-condition on a quantity the motion acts on is what the
             // motion enforces (its goal: sc1's tube, outside at the start);
             // any other is an invariant, checked every tick.
@@ -442,6 +492,30 @@ void lower_handlers(State& st) {
       };
       const std::vector<int> when = guards("when");
       const std::vector<int> whiles = guards("while");
+      // What the motion requires while it runs, on one quantity: the
+      // per-conditions' allowed values must overlap (pairwise suffices: if
+      // every two intervals meet, all of them do), or no state satisfies the
+      // motion and one of them is ignored whichever way the run goes.
+      for (size_t i = 0; i < per_condition.size(); ++i) {
+        for (size_t j = i + 1; j < per_condition.size(); ++j) {
+          const PerCondition &a = per_condition[i], &b = per_condition[j];
+          if (a.quantity != b.quantity) continue;
+          const Feasible fa = feasible(a.spec), fb = feasible(b.spec);
+          if (std::max(fa.lo, fb.lo) <= std::min(fa.hi, fb.hi)) continue;
+          const Data& q = st.program.data[static_cast<size_t>(a.quantity)];
+          st.error(st.where(a.constraint), "infeasible-motion",
+                   "the motion '" + st.str(*m) + "' requires, while it runs, both '" +
+                       st.str(a.constraint) + "' ('" + q.iri + "' " + allowed(a.spec, q.unit) +
+                       ") and '" + st.str(b.constraint) + "' (" + allowed(b.spec, q.unit) + ", " +
+                       st.place(b.constraint) +
+                       "), which no value satisfies at once; change one of them, or make them "
+                       "guards of different motions");
+          st.errors.push_back(located(Severity::Note, st.where(b.constraint), st.model.files(),
+                                      "infeasible-motion",
+                                      "the other constraint of the motion '" + st.str(*m) +
+                                          "' on '" + q.iri + "': '" + st.str(b.constraint) + "'"));
+        }
+      }
       const std::vector<int> until = guards("until");
       s.in = when;
       s.in.insert(s.in.end(), whiles.begin(), whiles.end());
