@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/faults.hpp"
+#include "cli/loop_check.hpp"
 #include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/verdict.hpp"
@@ -118,20 +119,6 @@ std::unique_ptr<robot::Controller> generated_controller(const ir::Program& progr
   }
   if (c.built) std::cerr << "mospec: generated and built the controller in " << c.project << '\n';
   return codegen::load_controller(c.library, c.sha256);
-}
-
-// Each arm solve's `.degraded` column (ir::lowering::build_log) and the ticks
-// it was raised, in log order.
-std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::RunResult& r) {
-  constexpr std::string_view kSuffix = ".degraded";
-  std::vector<std::pair<std::string, std::uint64_t>> out;
-  // r.columns[0] is "t"; the controller's columns follow, as flag_ticks is indexed.
-  for (size_t i = 0; i < r.flag_ticks.size() && i + 1 < r.columns.size(); ++i) {
-    const std::string& name = r.columns[i + 1];
-    if (name.size() > kSuffix.size() && name.ends_with(kSuffix))
-      out.emplace_back(name.substr(0, name.size() - kSuffix.size()), r.flag_ticks[i]);
-  }
-  return out;
 }
 
 std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted,
@@ -308,6 +295,14 @@ Action add_run_command(CLI::App& app) {
     options.log_every = flags->log_every;
     options.idle.assign(config.arms.size(), true);
     for (const ir::ArmSolver& a : program->arms) options.idle[static_cast<size_t>(a.port)] = false;
+    // Before anything runs: no loop whose gain drives its error away.
+    if (const std::vector<Diagnostic> loops = check_loop_signs(*program, config, arms, files);
+        !loops.empty()) {
+      for (const Diagnostic& d : loops) std::cerr << format(d) << '\n';
+      std::cerr << "mospec: " << loops.size()
+                << " controller gain(s) of the wrong sign; nothing was run\n";
+      return kExitFindings;
+    }
     const VerdictPlan plan = plan_verdict(*program);
     watch_for_verdict(plan, options);
     sim::World world(config, std::move(arms));

@@ -543,4 +543,18 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   return v;
 }
 
+// Each arm solve's `.degraded` column (ir::lowering::build_log) and the ticks
+// it was raised, in log order.
+std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::RunResult& r) {
+  constexpr std::string_view kSuffix = ".degraded";
+  std::vector<std::pair<std::string, std::uint64_t>> out;
+  // r.columns[0] is "t"; the controller's columns follow, as flag_ticks is indexed.
+  for (size_t i = 0; i < r.flag_ticks.size() && i + 1 < r.columns.size(); ++i) {
+    const std::string& name = r.columns[i + 1];
+    if (name.size() > kSuffix.size() && name.ends_with(kSuffix))
+      out.emplace_back(name.substr(0, name.size() - kSuffix.size()), r.flag_ticks[i]);
+  }
+  return out;
+}
+
 }  // namespace mospec::cli

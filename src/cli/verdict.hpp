@@ -13,9 +13,11 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ir/ir.hpp"
@@ -81,5 +83,9 @@ struct Verdict {
 };
 
 Verdict judge(const VerdictPlan& plan, const sim::RunResult& run);
+
+// Per arm solve of the run's controller: in how many ticks it lost constraint
+// directions (its `.degraded` log column).
+std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::RunResult& r);
 
 }  // namespace mospec::cli
