@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/faults.hpp"
+#include "cli/log_info.hpp"
 #include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
 #include "cli/verdict.hpp"
@@ -135,7 +136,7 @@ std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::Ru
 }
 
 std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted,
-                         const Verdict& verdict) {
+                         const Verdict& verdict, const plot::LogInfo& log) {
   nlohmann::ordered_json j;
   j["scenario"] = app;
   j["controller"] = interpreted ? "interpreted" : "generated";
@@ -218,6 +219,9 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
         std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
   }
   j["final"] = std::move(final_values);
+  // The log's units and the constraints' thresholds, for the figures and the
+  // report page (plot/log_info.hpp).
+  j["log"] = log_info_json(log);
   // What happened, in short (cli/verdict.hpp).
   j["verdict"] = verdict.json;
   return j.dump(2) + "\n";
@@ -309,6 +313,7 @@ Action add_run_command(CLI::App& app) {
     options.idle.assign(config.arms.size(), true);
     for (const ir::ArmSolver& a : program->arms) options.idle[static_cast<size_t>(a.port)] = false;
     const VerdictPlan plan = plan_verdict(*program);
+    const plot::LogInfo log = log_info(*program);
     watch_for_verdict(plan, options);
     sim::World world(config, std::move(arms));
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
@@ -333,7 +338,7 @@ Action add_run_command(CLI::App& app) {
     const Verdict verdict = judge(plan, r);
     if (!flags->log.empty()) write_output(flags->log, r.csv);
     if (!flags->summary.empty()) {
-      write_output(flags->summary, summary_json(app_path, r, flags->interpret, verdict));
+      write_output(flags->summary, summary_json(app_path, r, flags->interpret, verdict, log));
     }
     std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall
