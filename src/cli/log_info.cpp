@@ -1,6 +1,7 @@
 #include "cli/log_info.hpp"
 
 #include <cmath>
+#include <set>
 
 #include "ir/lowering.hpp"
 
@@ -9,6 +10,15 @@ namespace mospec::cli {
 plot::LogInfo log_info(const ir::Program& program) {
   plot::LogInfo info;
   for (const ir::LogColumn& c : program.log) info.units[c.name] = c.unit;
+  // The satisfied flags a motion waits for (its `when` and `until`; its
+  // `while` are goals it holds).
+  std::set<int> guards;
+  for (const ir::Step& s : program.steps) {
+    if (s.kind != ir::StepKind::GuardedMotion) continue;
+    const auto n_when = static_cast<size_t>(s.n_when), n_while = static_cast<size_t>(s.n_while);
+    for (size_t k = 0; k < s.in.size(); ++k)
+      if (k < n_when || k >= n_when + n_while) guards.insert(s.in[k]);
+  }
   for (const ir::Step& s : program.steps) {
     if (s.kind != ir::StepKind::Evaluate || s.out.empty()) continue;
     const std::string& flag = program.data[static_cast<size_t>(s.out[0])].iri;
@@ -39,6 +49,7 @@ plot::LogInfo log_info(const ir::Program& program) {
         break;
     }
     if (spec.kind != runtime::ConstraintKind::Assignment) c.tolerance = spec.tolerance;
+    c.guard = guards.count(s.out[0]) > 0;
     info.constraints[name] = std::move(c);
   }
   return info;
@@ -59,6 +70,7 @@ nlohmann::ordered_json log_info_json(const plot::LogInfo& info) {
     put("lower", c.lower);
     put("upper", c.upper);
     put("tolerance", c.tolerance);
+    if (c.guard) x["guard"] = true;
     constraints[name] = std::move(x);
   }
   Json j;

@@ -15,7 +15,7 @@ namespace mospec::cli {
 plot::LogInfo log_info(const ir::Program& program);
 
 // As the summary's "log" member: {"units": {column: unit}, "constraints":
-// {name: {"relation", "reference"|"lower"|"upper", "tolerance"}}}.
+// {name: {"relation", "reference"|"lower"|"upper", "tolerance", "guard"}}}.
 nlohmann::ordered_json log_info_json(const plot::LogInfo& info);
 
 }  // namespace mospec::cli

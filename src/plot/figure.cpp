@@ -475,22 +475,25 @@ void add_markers(const Table& run, Figure& figure) {
 
 namespace {
 
-// Of the columns `wanted` picks, those of the unit most of them share (the
-// first such unit in column order on a tie), at most kMaxDefaultCurves.
-template <class Wanted>
-std::vector<std::string> largest_unit_group(const Table& table, const LogInfo& info,
-                                            Wanted wanted) {
+// Of the columns `wanted` picks, those of one unit, at most
+// kMaxDefaultCurves: the unit whose columns score most in total (`score`:
+// a column's weight), then the one most of them share, then the first in
+// column order.
+template <class Wanted, class Score>
+std::vector<std::string> largest_unit_group(const Table& table, const LogInfo& info, Wanted wanted,
+                                            Score score) {
   std::vector<std::string> units;
-  std::map<std::string, size_t> count;
+  std::map<std::string, std::pair<size_t, size_t>> rank;  // unit -> (score, count)
   for (const std::string& c : table.columns) {
     if (!wanted(c)) continue;
     const std::string u = column_unit(info, c);
-    if (count[u]++ == 0) units.push_back(u);
+    if (rank[u].second++ == 0) units.push_back(u);
+    rank[u].first += score(c);
   }
   if (units.empty()) return {};
   std::string best = units.front();
   for (const std::string& u : units)
-    if (count[u] > count[best]) best = u;
+    if (rank[u] > rank[best]) best = u;
   std::vector<std::string> out;
   for (const std::string& c : table.columns) {
     if (out.size() < kMaxDefaultCurves && wanted(c) && column_unit(info, c) == best)
@@ -505,11 +508,28 @@ Selection effective_selection(const Table& table, const Selection& given, bool b
   Selection s = given;
   const bool distances = table.find(kRightDistance) && table.find(kLeftDistance);
   if (s.distances.empty() && !distances) {
-    s.distances = largest_unit_group(table, s.info, [&](const std::string& c) {
-      if (!ends_with(c, ".value")) return false;
+    // The constraints the task is about: those the controllers pursue (a
+    // motion's `when` and `until`, a timeout among them, left out), those
+    // with a setpoint or threshold other than 0 weighing most (holding a
+    // velocity at 0 is the usual background).
+    const auto constraint = [&](const std::string& c) -> const ConstraintInfo* {
       const auto it = s.info.constraints.find(c.substr(0, c.size() - 6));
-      return it == s.info.constraints.end() || it->second.relation != "assignment";
-    });
+      return it == s.info.constraints.end() ? nullptr : &it->second;
+    };
+    s.distances = largest_unit_group(
+        table, s.info,
+        [&](const std::string& c) {
+          if (!ends_with(c, ".value")) return false;
+          const ConstraintInfo* k = constraint(c);
+          return k == nullptr || (k->relation != "assignment" && !k->guard);
+        },
+        [&](const std::string& c) -> size_t {
+          const ConstraintInfo* k = constraint(c);
+          if (k == nullptr) return 0;
+          for (const std::optional<double>& v : {k->reference, k->lower, k->upper})
+            if (v && *v != 0.0) return 1;
+          return 0;
+        });
     if (s.distances.empty()) {
       throw Error("missing-column",
                   "no constraint's .value column to plot (choose columns with --distance); the "
@@ -520,8 +540,9 @@ Selection effective_selection(const Table& table, const Selection& given, bool b
   }
   const bool wrench = base_wrench && table.find(kBaseFx);
   if (s.forces.empty() && !wrench && distance_controller_outputs(table).empty()) {
-    s.forces = largest_unit_group(table, s.info,
-                                  [](const std::string& c) { return ends_with(c, ".output"); });
+    s.forces = largest_unit_group(
+        table, s.info, [](const std::string& c) { return ends_with(c, ".output"); },
+        [](const std::string&) -> size_t { return 0; });
     for (const std::string& d : s.distances) {
       if (!s.forces.empty() && !ends_with(s.forces.front(), ".error")) break;
       if (!ends_with(d, ".value")) continue;

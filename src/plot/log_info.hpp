@@ -18,6 +18,9 @@ struct ConstraintInfo {
   std::optional<double> lower;      // greater-than (its threshold), bilateral
   std::optional<double> upper;      // less-than (its threshold), bilateral
   std::optional<double> tolerance;
+  // A motion's `when` or `until`: a condition it waits for, not a goal the
+  // controllers pursue.
+  bool guard = false;
 };
 
 struct LogInfo {

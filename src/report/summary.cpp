@@ -158,6 +158,7 @@ Summary parse_summary(std::string_view text, const std::string& path, SourceFile
         info.lower = r.number(c, "lower", "a constraint's \"lower\"");
         info.upper = r.number(c, "upper", "a constraint's \"upper\"");
         info.tolerance = r.number(c, "tolerance", "a constraint's \"tolerance\"");
+        info.guard = r.boolean(c, "guard", "a constraint's \"guard\"", false);
         s.log.constraints[std::string(o.key(i))] = std::move(info);
       }
     }

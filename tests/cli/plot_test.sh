@@ -163,6 +163,13 @@ check "the equality's setpoint is drawn" has_text "$work/other.svg" "pos-z.setpo
 check "the limit's threshold is drawn" has_text "$work/other.svg" "pos-y.upper"
 check "right: the outputs in newtons" has_text "$work/other.svg" "ctl-z.output, ctl-y.output \[N\]"
 check "the torque output stays off that axis" sh -c '! grep -q "ctl-a.output" "$1"' - "$work/other.svg"
+# A motion's `until` is a condition, not a goal: left out of the default.
+cp "$work/other.csv" "$work/guard.csv"
+sed 's/"upper": 0.2, "tolerance": 0}/"upper": 0.2, "tolerance": 0, "guard": true}/' "$work/other.json" > "$work/guard.json"
+check "the guard is marked in the copy" grep -q '"guard": true' "$work/guard.json"
+expect "a run with a guard" 0 "wrote" -- "$mospec" plot "$work/guard.csv" -o "$work/guard.svg"
+check "the guard's value is not drawn" sh -c '! grep -q "pos-y.value" "$1"' - "$work/guard.svg"
+check "the goal's is" has_text "$work/guard.svg" "pos-z.value \[m\]"
 cp "$work/other.csv" "$work/bare.csv"
 expect "another app's run without a summary" 0 "wrote" -- "$mospec" plot "$work/bare.csv" -o "$work/bare.svg"
 check "its constraints' values, named" has_text "$work/bare.svg" "pos-z.value, pos-y.value and 1 more"
