@@ -135,6 +135,10 @@ for m in v["motions"]:
 for c in v["constraints"]:
     c["name"] = p; c["relation"] = p
 s["events"] = [{"tick": 1, "event": p, "edge": p}]
+# A unit lands in a chart's title and its axis label (which dygraphs writes
+# as HTML); a constraint's name is looked up, never shown.
+s["log"]["units"] = {k: p for k in s["log"]["units"]}
+s["log"]["constraints"] = {p: {"relation": p, "reference": 1, "tolerance": 0.5}}
 json.dump(s, open(sys.argv[2], "w"))
 PY
 { head -1 "$run_dir/sc0a.csv" | sed "s|^t,\([^,]*\),\([^,]*\),|t,\1,${payload//|/\|}.value,|"; tail -n +2 "$run_dir/sc0a.csv"; } > "$hostile/$name.csv"
@@ -148,6 +152,7 @@ check "no script from the data ran" bash -c "! grep -q 'data-pwned' '$work/dom.h
 check "no element from the data exists" bash -c "! grep -q '<img src=\"x\"' '$work/dom.html'"
 check "no console error (hostile)" bash -c "! grep -Eiq 'CONSOLE.*(error|uncaught)|Uncaught' '$work/console.txt'"
 check "the payload is shown as text" grep -q 'document.body.dataset.pwned=1&lt;/script&gt;' "$work/dom.html"
+cp "$work/dom.html" "$work/hostile-dom.html"
 
 # A video is inlined only from inside the run's directory and only when its
 # header says GIF or MP4.
@@ -182,4 +187,5 @@ cp "$run_dir/sc0a.csv" "$work/lonely.csv"
 expect "a JSON that is not a run summary" 2 "lonely.json:1:1: error: not a run summary" -- "$mospec" report "$work/lonely.json" -o "$work/none.html"
 check "nothing was written for them" test ! -e "$work/none.html"
 
+check "a hostile unit reaches an axis label as text" grep -q 'dygraph-ylabel[^>]*>\[&lt;/script&gt;' "$work/hostile-dom.html"
 finish report
