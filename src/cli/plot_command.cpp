@@ -11,6 +11,7 @@
 #include "plot/csv.hpp"
 #include "plot/figure.hpp"
 #include "plot/gnuplot.hpp"
+#include "report/summary.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
 
@@ -124,6 +125,31 @@ std::string run_scenario(const std::string& csv) {
   return "";
 }
 
+// The units and thresholds of a log's columns from the run's summary beside
+// it (X.json or X-summary.json for X.csv; a trials directory: its
+// trial-<i>.json), when there is one. A summary that does not read is said in
+// a warning: the figure is drawn from the names then.
+plot::LogInfo summary_log_info(const std::string& csv) {
+  fs::path stem(csv);
+  stem.replace_extension();
+  for (const fs::path& json :
+       {fs::path(stem.string() + ".json"), fs::path(stem.string() + "-summary.json")}) {
+    std::error_code ec;
+    if (!fs::is_regular_file(json, ec)) continue;
+    try {
+      SourceFiles files;
+      return report::parse_summary(read_file(json.string()), json.string(), files).log;
+    } catch (const Error& e) {
+      Diagnostic d = e.diagnostic();
+      d.severity = Severity::Warning;
+      d.message += " (the figure takes the columns' units from their names)";
+      std::cerr << format(d) << '\n';
+      return {};
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 Action add_plot_command(CLI::App& app) {
@@ -141,7 +167,10 @@ Action add_plot_command(CLI::App& app) {
       "d_r, d_l [m] with their thresholds, and the platform wrench F_perp, F_par [N], tau [N m] "
       "(or, "
       "without one, each arm's distance-controller output [N]) - or a directory of trials (`mospec "
-      "trials`) as Fig. 6: mean +- one standard deviation over the trials. Needs gnuplot.");
+      "trials`) as Fig. 6: mean +- one standard deviation over the trials. A log of another app "
+      "draws its constraints' values with their setpoints or thresholds dashed, and its "
+      "controllers' outputs (else the constraints' errors), each panel in one unit (from the "
+      "run's summary beside the log). Needs gnuplot.");
   cmd->add_option("input", flags->input, "A run's CSV log, or a directory of trial-<i>.csv logs")
       ->required()
       ->type_name("CSV|DIR");
@@ -169,6 +198,8 @@ Action add_plot_command(CLI::App& app) {
     if (fs::is_directory(flags->input, ec)) {
       std::vector<plot::Table> trials;
       for (const std::string& log : trial_logs(flags->input)) trials.push_back(plot::read_csv(log));
+      if (flags->selection.info.empty())
+        flags->selection.info = summary_log_info(trials.front().path);
       std::string title = flags->title;
       if (title.empty()) {
         title = scenario_name(fs::path(flags->input) / "trials.json", "app");
@@ -185,6 +216,7 @@ Action add_plot_command(CLI::App& app) {
                 << (trials.size() == 1 ? " trial)\n" : " trials)\n");
     } else {
       const plot::Table run = plot::read_csv(flags->input);
+      if (flags->selection.info.empty()) flags->selection.info = summary_log_info(flags->input);
       std::string title = flags->title;
       if (title.empty()) title = run_scenario(flags->input);
       if (title.empty()) title = fs::path(flags->input).filename().string();

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/log_info.hpp"
 #include "cli/pipeline.hpp"
 #include "report/report.hpp"
 #include "support/io.hpp"
@@ -122,6 +123,7 @@ void describe_model(const std::string& app, const ReportFlags& flags, report::In
     return;
   }
   in.model_ok = true;
+  in.log_info = log_info(*program);
   in.model_verdict = app + " validates and lowers today: " + std::to_string(program->steps.size()) +
                      " steps, " + std::to_string(program->arms.size()) + " arm solver(s).";
   for (const ir::Step& s : program->steps) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/faults.hpp"
+#include "cli/log_info.hpp"
 #include "cli/loop_check.hpp"
 #include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
@@ -122,7 +123,7 @@ std::unique_ptr<robot::Controller> generated_controller(const ir::Program& progr
 }
 
 std::string summary_json(const std::string& app, const sim::RunResult& r, bool interpreted,
-                         const Verdict& verdict) {
+                         const Verdict& verdict, const plot::LogInfo& log) {
   nlohmann::ordered_json j;
   j["scenario"] = app;
   j["controller"] = interpreted ? "interpreted" : "generated";
@@ -205,6 +206,9 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
         std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
   }
   j["final"] = std::move(final_values);
+  // The log's units and the constraints' thresholds, for the figures and the
+  // report page (plot/log_info.hpp).
+  j["log"] = log_info_json(log);
   // What happened, in short (cli/verdict.hpp).
   j["verdict"] = verdict.json;
   return j.dump(2) + "\n";
@@ -304,6 +308,7 @@ Action add_run_command(CLI::App& app) {
       return kExitFindings;
     }
     const VerdictPlan plan = plan_verdict(*program);
+    const plot::LogInfo log = log_info(*program);
     watch_for_verdict(plan, options);
     sim::World world(config, std::move(arms));
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
@@ -328,7 +333,7 @@ Action add_run_command(CLI::App& app) {
     const Verdict verdict = judge(plan, r);
     if (!flags->log.empty()) write_output(flags->log, r.csv);
     if (!flags->summary.empty()) {
-      write_output(flags->summary, summary_json(app_path, r, flags->interpret, verdict));
+      write_output(flags->summary, summary_json(app_path, r, flags->interpret, verdict, log));
     }
     std::cerr << "mospec: ran " << r.simulated << " s (" << r.ticks << " ticks, "
               << (flags->interpret ? "interpreted" : "generated") << " controller) in " << r.wall

@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <optional>
 
 #include "support/diagnostics.hpp"
 
@@ -56,11 +58,13 @@ Arm arm_of(std::string_view column) {
 // One curve before its values: the column it reads and how it looks.
 struct CurveSpec {
   std::string column;
-  Curve look;  // y and sd left empty
+  std::optional<double> constant;  // a setpoint or threshold the log does not hold
+  Curve look;                      // y and sd left empty
   size_t panel = 0;
 };
 
 struct Layout {
+  const LogInfo* info = nullptr;
   std::vector<CurveSpec> curves;
   bool torque = false;  // the force panel has a right-hand torque scale
 };
@@ -93,6 +97,29 @@ void add_distances(const Table& table, const Selection& selection, Layout& layou
     layout.curves.push_back(spec);
     if (!ends_with(column, ".value")) continue;
     const std::string base = column.substr(0, column.size() - std::string_view(".value").size());
+    if (!table.find(base + ".lower") && layout.info) {
+      // Not logged: the model's constants, as the summary recorded them.
+      if (const auto it = layout.info->constraints.find(base);
+          it != layout.info->constraints.end()) {
+        const ConstraintInfo& k = it->second;
+        std::vector<std::pair<std::string, double>> lines;
+        if (k.relation == "equality" && k.reference) lines.emplace_back(".setpoint", *k.reference);
+        if (k.relation != "equality" && k.relation != "assignment") {
+          if (k.lower) lines.emplace_back(".lower", *k.lower);
+          if (k.upper) lines.emplace_back(".upper", *k.upper);
+        }
+        for (const auto& [suffix, value] : lines) {
+          CurveSpec t;
+          t.column = base + suffix;
+          t.constant = value;
+          t.look.dashed = true;
+          t.look.color = kThreshold;
+          t.look.label = t.column;
+          t.look.label_enhanced = false;
+          thresholds.push_back(std::move(t));
+        }
+      }
+    }
     for (const char* bound : {".lower", ".upper"}) {
       std::string name = base;
       name.append(bound);
@@ -109,11 +136,14 @@ void add_distances(const Table& table, const Selection& selection, Layout& layou
   // Arms usually share their thresholds: draw each distinct one once, the
   // first titled d_thr, the rest untitled.
   std::vector<CurveSpec> distinct;
+  const auto values = [&](const CurveSpec& c) {
+    return c.constant ? std::vector<double>(table.rows(), *c.constant)
+                      : table.data[*table.find(c.column)];
+  };
   for (CurveSpec& t : thresholds) {
-    const auto& y = table.data[*table.find(t.column)];
-    const bool duplicate = std::any_of(distinct.begin(), distinct.end(), [&](const CurveSpec& d) {
-      return table.data[*table.find(d.column)] == y;
-    });
+    const std::vector<double> y = values(t);
+    const bool duplicate = std::any_of(distinct.begin(), distinct.end(),
+                                       [&](const CurveSpec& d) { return values(d) == y; });
     if (!duplicate) distinct.push_back(std::move(t));
   }
   const bool shared = distinct.size() <= 2;
@@ -221,9 +251,12 @@ std::string axis_label(const Layout& layout, size_t panel, bool right_axis) {
   if (names.size() >= 2) label.append(", ").append(names[1]);
   if (names.size() > 2)
     label.append(" and ").append(std::to_string(names.size() - 2)).append(" more");
-  const std::string unit = unit_of(names[0]);
-  const bool shared = std::all_of(names.begin(), names.end(),
-                                  [&](const std::string& n) { return unit_of(n) == unit; });
+  const LogInfo none;
+  const LogInfo& info = layout.info ? *layout.info : none;
+  const std::string unit = column_unit(info, names[0]);
+  const bool shared = std::all_of(names.begin(), names.end(), [&](const std::string& n) {
+    return column_unit(info, n) == unit;
+  });
   if (shared && !unit.empty()) label.append(" [").append(unit).append("]");
   return label;
 }
@@ -440,6 +473,92 @@ void add_markers(const Table& run, Figure& figure) {
   }
 }
 
+namespace {
+
+// Of the columns `wanted` picks, those of one unit, at most
+// kMaxDefaultCurves: the unit whose columns score most in total (`score`:
+// a column's weight), then the one most of them share, then the first in
+// column order.
+template <class Wanted, class Score>
+std::vector<std::string> largest_unit_group(const Table& table, const LogInfo& info, Wanted wanted,
+                                            Score score) {
+  std::vector<std::string> units;
+  std::map<std::string, std::pair<size_t, size_t>> rank;  // unit -> (score, count)
+  for (const std::string& c : table.columns) {
+    if (!wanted(c)) continue;
+    const std::string u = column_unit(info, c);
+    if (rank[u].second++ == 0) units.push_back(u);
+    rank[u].first += score(c);
+  }
+  if (units.empty()) return {};
+  std::string best = units.front();
+  for (const std::string& u : units)
+    if (rank[u] > rank[best]) best = u;
+  std::vector<std::string> out;
+  for (const std::string& c : table.columns) {
+    if (out.size() < kMaxDefaultCurves && wanted(c) && column_unit(info, c) == best)
+      out.push_back(c);
+  }
+  return out;
+}
+
+// The selection a figure draws: the given one, with the defaults for a log
+// that is not SC1/SC2's filled in (Selection).
+Selection effective_selection(const Table& table, const Selection& given, bool base_wrench) {
+  Selection s = given;
+  const bool distances = table.find(kRightDistance) && table.find(kLeftDistance);
+  if (s.distances.empty() && !distances) {
+    // The constraints the task is about: those the controllers pursue (a
+    // motion's `when` and `until`, a timeout among them, left out), those
+    // with a setpoint or threshold other than 0 weighing most (holding a
+    // velocity at 0 is the usual background).
+    const auto constraint = [&](const std::string& c) -> const ConstraintInfo* {
+      const auto it = s.info.constraints.find(c.substr(0, c.size() - 6));
+      return it == s.info.constraints.end() ? nullptr : &it->second;
+    };
+    s.distances = largest_unit_group(
+        table, s.info,
+        [&](const std::string& c) {
+          if (!ends_with(c, ".value")) return false;
+          const ConstraintInfo* k = constraint(c);
+          return k == nullptr || (k->relation != "assignment" && !k->guard);
+        },
+        [&](const std::string& c) -> size_t {
+          const ConstraintInfo* k = constraint(c);
+          if (k == nullptr) return 0;
+          for (const std::optional<double>& v : {k->reference, k->lower, k->upper})
+            if (v && *v != 0.0) return 1;
+          return 0;
+        });
+    if (s.distances.empty()) {
+      throw Error("missing-column",
+                  "no constraint's .value column to plot (choose columns with --distance); the "
+                  "columns are: " +
+                      join_names(table.columns),
+                  table.path, 1, 1);
+    }
+  }
+  const bool wrench = base_wrench && table.find(kBaseFx);
+  if (s.forces.empty() && !wrench && distance_controller_outputs(table).empty()) {
+    s.forces = largest_unit_group(
+        table, s.info, [](const std::string& c) { return ends_with(c, ".output"); },
+        [](const std::string&) -> size_t { return 0; });
+    for (const std::string& d : s.distances) {
+      if (!s.forces.empty() && !ends_with(s.forces.front(), ".error")) break;
+      if (!ends_with(d, ".value")) continue;
+      const std::string error = d.substr(0, d.size() - 6) + ".error";
+      if (table.find(error)) s.forces.push_back(error);
+    }
+  }
+  return s;
+}
+
+std::vector<double> curve_values(const Table& table, const CurveSpec& spec, size_t column) {
+  return spec.constant ? std::vector<double>(table.rows(), *spec.constant) : table.data[column];
+}
+
+}  // namespace
+
 Format format_of(const std::string& path) {
   std::string ext;
   const size_t dot = path.find_last_of('.');
@@ -454,15 +573,17 @@ Format format_of(const std::string& path) {
   throw Error("usage", message);
 }
 
-Figure run_figure(const Table& run, const Selection& selection, const std::string& title) {
+Figure run_figure(const Table& run, const Selection& given, const std::string& title) {
   const size_t t = run.require("t", "time [s]");
+  const Selection selection = effective_selection(run, given, /*base_wrench=*/true);
   Layout layout;
+  layout.info = &selection.info;
   add_distances(run, selection, layout);
   add_forces(run, selection, /*base_wrench=*/true, layout);
   Figure figure = make_figure(layout, selection, title, run.data[t]);
   for (const CurveSpec& spec : layout.curves) {
     Curve c = spec.look;
-    c.y = run.data[*run.find(spec.column)];
+    c.y = curve_values(run, spec, spec.constant ? 0 : *run.find(spec.column));
     figure.panels[spec.panel].curves.push_back(std::move(c));
   }
   decide_ranges(figure);
@@ -470,7 +591,7 @@ Figure run_figure(const Table& run, const Selection& selection, const std::strin
   return figure;
 }
 
-Figure trials_figure(const std::vector<Table>& trials, const Selection& selection,
+Figure trials_figure(const std::vector<Table>& trials, const Selection& given,
                      const std::string& title) {
   if (trials.empty()) throw Error("usage", "no trials to plot");
   const Table& first = trials.front();
@@ -516,15 +637,22 @@ Figure trials_figure(const std::vector<Table>& trials, const Selection& selectio
       }
     }
   }
+  const Selection selection = effective_selection(first, given, /*base_wrench=*/false);
   Layout layout;
+  layout.info = &selection.info;
   add_distances(first, selection, layout);
   add_forces(first, selection, /*base_wrench=*/false, layout);
   Figure figure = make_figure(layout, selection, title, first.data[t]);
   const size_t rows = first.rows();
   const double n = static_cast<double>(trials.size());
   for (const CurveSpec& spec : layout.curves) {
-    const size_t column = *first.find(spec.column);
     Curve c = spec.look;
+    if (spec.constant) {
+      c.y = curve_values(first, spec, 0);
+      figure.panels[spec.panel].curves.push_back(std::move(c));
+      continue;
+    }
+    const size_t column = *first.find(spec.column);
     c.y.assign(rows, 0.0);
     c.sd.assign(rows, 0.0);
     for (size_t r = 0; r < rows; ++r) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "plot/csv.hpp"
+#include "plot/log_info.hpp"
 
 namespace mospec::plot {
 
@@ -26,11 +27,20 @@ enum class Format { Svg, Png };
 // (code "usage") otherwise.
 Format format_of(const std::string& path);
 
-// Column choices; empty lists take the defaults named above.
+// Column choices; empty lists take the defaults named above. A log without
+// the shoulder-contact distances (any app but SC1/SC2's) defaults to its
+// constraints' values with their setpoints or thresholds dashed (left), and
+// its controllers' outputs, else those constraints' errors (right): of each,
+// the columns of the unit most of them share, at most kMaxDefaultCurves.
 struct Selection {
   std::vector<std::string> distances;
   std::vector<std::string> forces;
+  // The columns' units and the constraints' thresholds: from the run's
+  // summary beside the log when there is one (`mospec run --summary`).
+  LogInfo info;
 };
+
+inline constexpr std::size_t kMaxDefaultCurves = 8;
 
 struct Curve {
   std::string label;

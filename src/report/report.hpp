@@ -69,11 +69,26 @@ struct Input {
   std::string model_verdict;
   bool model_ok = false;
   std::vector<Entity> entities;
+  // The log's units and thresholds from the model, for a summary written
+  // without them (Summary::log is used when it has them).
+  plot::LogInfo log_info;
   // Where the page is written ("-": standard output), for links relative to
   // it; with absolute_links, file:// URLs instead (link_to()).
   std::string page = "-";
   bool absolute_links = false;
 };
+
+// A chart's rows decimated to what a screen shows: per bucket of rows (of
+// `buckets`), two output rows drawn at the bucket's first and last time that
+// hold each series' minimum and maximum in the order they occur (NaN aside).
+// Every series' extremes are kept exactly; a value is drawn less than one
+// bucket from its time. With rows <= 2 * buckets every row is kept.
+struct Decimation {
+  std::vector<size_t> time_row;          // per output row, the row whose time it is drawn at
+  std::vector<std::vector<size_t>> row;  // row[series][output row]: the row its value is from
+};
+Decimation decimate(const std::vector<const std::vector<double>*>& series, size_t rows,
+                    size_t buckets);
 
 // The page's script and style (dygraphs, inlined).
 struct Assets {

@@ -136,6 +136,33 @@ Summary parse_summary(std::string_view text, const std::string& path, SourceFile
     }
   }
   s.scenario = r.string(root, "scenario", "\"scenario\"");
+  if (const json::Value* log = root.get("log")) {
+    r.expect(*log, json::Kind::Object, "\"log\"", "an object");
+    if (const json::Value* units = log->get("units")) {
+      r.expect(*units, json::Kind::Object, "log.units", "an object of column: unit");
+      const json::Object& o = units->as_object();
+      for (size_t i = 0; i < o.size(); ++i) {
+        r.expect(o.value(i), json::Kind::String, "a unit of log.units", "a string");
+        s.log.units[std::string(o.key(i))] = std::string(o.value(i).as_string());
+      }
+    }
+    if (const json::Value* constraints = log->get("constraints")) {
+      r.expect(*constraints, json::Kind::Object, "log.constraints", "an object of name: relation");
+      const json::Object& o = constraints->as_object();
+      for (size_t i = 0; i < o.size(); ++i) {
+        const json::Value& c = o.value(i);
+        r.expect(c, json::Kind::Object, "a constraint of log.constraints", "an object");
+        plot::ConstraintInfo info;
+        info.relation = r.string(c, "relation", "a constraint's \"relation\"");
+        info.reference = r.number(c, "reference", "a constraint's \"reference\"");
+        info.lower = r.number(c, "lower", "a constraint's \"lower\"");
+        info.upper = r.number(c, "upper", "a constraint's \"upper\"");
+        info.tolerance = r.number(c, "tolerance", "a constraint's \"tolerance\"");
+        info.guard = r.boolean(c, "guard", "a constraint's \"guard\"", false);
+        s.log.constraints[std::string(o.key(i))] = std::move(info);
+      }
+    }
+  }
   return s;
 }
 

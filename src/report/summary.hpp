@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "plot/log_info.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::report {
@@ -44,6 +45,9 @@ struct Summary {
   std::vector<EventRow> events;
   std::vector<ConstraintRow> constraints;
   std::string scenario;  // the app the run came from, as `run` was given it
+  // The log's units and the constraints' thresholds ("log"); empty in a
+  // summary written before mospec recorded them.
+  plot::LogInfo log;
 };
 
 // Parses `text`, the content of the file `path` (registered in `files` for

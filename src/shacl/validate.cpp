@@ -930,6 +930,43 @@ class Validator {
     return found;
   }
 
+  // Where a node a result names is written, as the user reads it. A node the
+  // data describes (a subject) is where it is described. A node that is only
+  // ever an object, shared by many nodes (a unit, a quantity kind), has no
+  // place of its own: it is located where the result's nodes use it, the
+  // focus first, then the value, then a node the focus names (the
+  // constrained quantity of a constraint), so a note never points at an
+  // unrelated node in another file that happens to use it first.
+  SourceLoc locate_near(TermId node, TermId focus, TermId value) const {
+    if (options_.locate) return locate(node);
+    bool described = false;
+    data_.scan(node, TermId::any(), TermId::any(), TermId::any(), [&](const rdf::Quad&, uint32_t) {
+      described = true;
+      return false;
+    });
+    if (described) return locate(node);
+    const auto used_by = [&](TermId user) {
+      SourceLoc found;
+      if (user.is_any() || user.index >= base_ || dt_[user].is_literal()) return found;
+      data_.scan(user, TermId::any(), node, TermId::any(), [&](const rdf::Quad&, uint32_t i) {
+        found = data_.location(i);
+        return !found.known();
+      });
+      return found;
+    };
+    for (TermId user : {focus, value}) {
+      if (SourceLoc at = used_by(user); at.known()) return at;
+    }
+    SourceLoc found;
+    data_.scan(focus, TermId::any(), TermId::any(), TermId::any(),
+               [&](const rdf::Quad& q, uint32_t) {
+                 if (q.object == node || q.object == focus) return true;
+                 found = used_by(q.object);
+                 return !found.known();
+               });
+    return found.known() ? found : locate(node);
+  }
+
   Report render(const std::vector<RawResult>& raw) const {
     Report report;
     report.results.reserve(raw.size());
@@ -962,13 +999,13 @@ class Validator {
       // it (a node nothing describes is located at its first use).
       if (!x.value.is_any() && x.value != x.focus && x.value.index < base_ &&
           !dt_[x.value].is_literal()) {
-        const SourceLoc at = locate(x.value);
+        const SourceLoc at = locate_near(x.value, x.focus, TermId::any());
         if (!(at.file == r.focus_loc.file && at.line == r.focus_loc.line &&
               at.column == r.focus_loc.column))
           r.value_loc = at;
       }
       for (const auto& [name, node] : x.related) {
-        if (SourceLoc at = locate(node); at.known())
+        if (SourceLoc at = locate_near(node, x.focus, x.value); at.known())
           r.related.push_back({name, import(report, node), at});
       }
       r.shape_loc = s.where;

@@ -26,6 +26,7 @@ run_log() {  # run_log sc1|sc2 SCALE > FILE
 
 is_svg() { head -c 200 "$1" | grep -Eq '^(<\?xml|<svg)'; }
 is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
+has_text() { grep -q -- "$2" "$1"; }
 no_temp() { ! ls -a "$1" | grep -q '^\.mospec-plot-'; }
 
 run_log sc1 1 > "$work/sc1.csv"
@@ -49,9 +50,12 @@ check "chosen columns png" is_png "$work/pick.png"
 # Errors: exit 2, the file (and line) named, nothing written.
 expect "missing --force column" 2 "sc1.csv:1:1: error: no column 'nope' \(--force\); the columns are: t, cstr-dist" -- \
   "$mospec" plot "$work/sc1.csv" -o "$work/bad.svg" --force nope
+# A log without both distances is another app's: its own default (below).
 cut -d, -f1-4,8- "$work/sc1.csv" > "$work/no-right.csv"
-expect "missing distance column" 2 "no-right.csv:1:1: error: no column 'cstr-dist-rightarm-shoulder-ee.value' .*the columns are: t, " -- \
-  "$mospec" plot "$work/no-right.csv" -o "$work/bad.svg"
+expect "one distance only: the constraints' values" 0 "wrote" -- \
+  "$mospec" plot "$work/no-right.csv" -o "$work/no-right.svg"
+check "its left panel is the remaining constraint's value" \
+  has_text "$work/no-right.svg" "cstr-dist-leftarm-shoulder-ee.value \[m\]"
 cut -d, -f1-7,10 "$work/sc2.csv" > "$work/no-force.csv"
 expect "no force columns" 2 "no-force.csv:1:1: error: no force columns: .*--force" -- \
   "$mospec" plot "$work/no-force.csv" -o "$work/bad.svg"
@@ -104,7 +108,6 @@ expect "a manifest field of the wrong type" 2 "trials/trials.json:1:27: error: n
 # Issue #17: the title is the scenario's name (trials.json's app; a run's
 # summary next to its log); a start-up spike is clipped and said; markers at
 # motion starts and events, labelled; labels follow the chosen columns.
-has_text() { grep -q -- "$2" "$1"; }
 mkdir "$work/named"
 for i in 0 1; do run_log sc2 "1.$i" > "$work/named/trial-$i.csv"; done
 echo '{"app": "models/sc2.json", "trials": []}' > "$work/named/trials.json"
@@ -136,6 +139,53 @@ sed '2,$s/,0\.72,/,40,/g' "$work/sc2.csv" > "$work/far.csv"
 check "the copy has the far bound" grep -q ',40,' "$work/far.csv"
 expect "far threshold" 0 "wrote" -- "$mospec" plot "$work/far.csv" -o "$work/far.svg"
 check "the distance axis does not reach 40 m" sh -c '! grep -Eq ">(40|35|30|20|10)</text>" "$1"' - "$work/far.svg"
+
+# Any other app: its constraints' values of the unit most share, with their
+# setpoints and thresholds, and its controllers' outputs, one unit a panel.
+# The units and the constants come from the run's summary beside the log.
+awk 'BEGIN {
+  print "t,pos-z.value,pos-z.error,pos-y.value,pos-y.error,ang.value,ang.error,ctl-z.output,ctl-y.output,ctl-a.output"
+  for (i = 1; i <= 40; i++) { t = i * 0.05; z = 0.25 - 0.1 * exp(-t); y = 0.1 * exp(-t)
+    printf "%g,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.4f,%.4f\n", t, z, 0.25 - z, y, 0, 0.3 * t, 0, 40 * (0.25 - z), -y, 0.5 }
+}' > "$work/other.csv"
+cat > "$work/other.json" <<'JSON'
+{"scenario": "models/examples/other.json", "verdict": {"status": "ok"},
+ "log": {"units": {"pos-z.value": "M", "pos-z.error": "M", "pos-y.value": "M", "pos-y.error": "M",
+                   "ang.value": "RAD", "ang.error": "RAD",
+                   "ctl-z.output": "N", "ctl-y.output": "N", "ctl-a.output": "N-M"},
+         "constraints": {"pos-z": {"relation": "equality", "reference": 0.25, "tolerance": 0.001},
+                         "pos-y": {"relation": "less-than", "upper": 0.2, "tolerance": 0}}}}
+JSON
+expect "another app's run" 0 "wrote" -- "$mospec" plot "$work/other.csv" -o "$work/other.svg"
+check "left: the two values in metres" has_text "$work/other.svg" "pos-z.value, pos-y.value \[m\]"
+check "the radians stay off that axis" sh -c '! grep -q "ang.value" "$1"' - "$work/other.svg"
+check "the equality's setpoint is drawn" has_text "$work/other.svg" "pos-z.setpoint"
+check "the limit's threshold is drawn" has_text "$work/other.svg" "pos-y.upper"
+check "right: the outputs in newtons" has_text "$work/other.svg" "ctl-z.output, ctl-y.output \[N\]"
+check "the torque output stays off that axis" sh -c '! grep -q "ctl-a.output" "$1"' - "$work/other.svg"
+# A motion's `until` is a condition, not a goal: left out of the default.
+cp "$work/other.csv" "$work/guard.csv"
+sed 's/"upper": 0.2, "tolerance": 0}/"upper": 0.2, "tolerance": 0, "guard": true}/' "$work/other.json" > "$work/guard.json"
+check "the guard is marked in the copy" grep -q '"guard": true' "$work/guard.json"
+expect "a run with a guard" 0 "wrote" -- "$mospec" plot "$work/guard.csv" -o "$work/guard.svg"
+check "the guard's value is not drawn" sh -c '! grep -q "pos-y.value" "$1"' - "$work/guard.svg"
+check "the goal's is" has_text "$work/guard.svg" "pos-z.value \[m\]"
+cp "$work/other.csv" "$work/bare.csv"
+expect "another app's run without a summary" 0 "wrote" -- "$mospec" plot "$work/bare.csv" -o "$work/bare.svg"
+check "its constraints' values, named" has_text "$work/bare.svg" "pos-z.value, pos-y.value and 1 more"
+cut -d, -f1,2,4,6 "$work/other.csv" > "$work/no-out.csv"
+cp "$work/other.json" "$work/no-out.json"
+sed -i 's/"ang.value": "RAD", "ang.error": "RAD",//' "$work/no-out.json"
+expect "no controller outputs and no errors" 2 "no-out.csv:1:1: error: no force columns" -- \
+  "$mospec" plot "$work/no-out.csv" -o "$work/bad.svg"
+cut -d, -f1-7 "$work/other.csv" > "$work/errors.csv"
+cp "$work/other.json" "$work/errors.json"
+expect "no controller outputs: the errors" 0 "wrote" -- "$mospec" plot "$work/errors.csv" -o "$work/errors.svg"
+check "right: the plotted constraints' errors" has_text "$work/errors.svg" "pos-z.error, pos-y.error \[m\]"
+echo '{"verdict": {}, "log": {"units": {"pos-z.value": 3}}}' > "$work/broken.json"
+cp "$work/other.csv" "$work/broken.csv"
+expect "a summary that does not read: a warning" 0 "broken.json:1:[0-9]+: warning: a unit of log.units is a number" -- \
+  "$mospec" plot "$work/broken.csv" -o "$work/broken.svg"
 
 mkdir "$work/none"
 expect "no trials" 2 "no trial-<i>.csv" -- "$mospec" plot "$work/none" -o "$work/bad.svg"

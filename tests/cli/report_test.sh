@@ -45,6 +45,61 @@ check "the script ran to its end and drew every chart" \
   grep -q "data-charts=\"$charts\"" "$work/dom.html"
 check "every chart has its canvas" test "$(grep -o '<canvas' "$work/dom.html" | wc -l)" -ge "$charts"
 check "no console error" bash -c "! grep -Eiq 'CONSOLE.*(error|uncaught)|Uncaught' '$work/console.txt'"
+# dygraphs fills each chart's legend (labelsDiv) with its series at once
+# (legend: 'always'), not only on hover.
+legends=$(grep -o '<div class="legend" id="chart-[0-9]*-legend"><' "$work/dom.html" | wc -l)
+check "every chart's legend is drawn without hovering ($legends of $charts)" test "$legends" -eq "$charts"
+check "a legend names a series" grep -Eq 'id="chart-0-legend">.*[a-z0-9-]+\.running' "$work/dom.html"
+check "the controlled frame's position has its chart" \
+  grep -q "<h3>Controlled frames&#39; positions in W (simulator) <span class=\"note\">\[m\]" "$page"
+check "no chart mixes units: each title names one" \
+  bash -c "! grep -o '<h3>[^<]*<span class=\"note\">\[[^]]*\]' '$page' | grep -Eq '\[[^]]*, [^]]*\]'"
+
+# A real 30 s run (SC1, logged every other tick: 15000 rows): the page's chart data is decimated
+# to at most 1 MB, and a one-tick extreme of the log is still on the page.
+long="$work/long"
+mkdir -p "$long"
+expect "SC1 runs 30 s, logged every other tick" 0 "" -- "$mospec" run models/sc1.json --sim --interpret \
+  --duration 30 --log-every 2 --log "$long/sc1.csv" --summary "$long/sc1.json"
+expect "its report" 0 "" -- "$mospec" report "$long" -o "$work/long.html"
+data_bytes=$(python3 -c '
+import sys
+page = open(sys.argv[1]).read()
+at = page.index("const chartData = ") + len("const chartData = ")
+print(page.index(";\n", at) - at)' "$work/long.html")
+log_bytes=$(stat -c %s "$long/sc1.csv")
+check "the 30 s run's chart data is at most 1 MB ($data_bytes bytes; the log $log_bytes)" \
+  test "$data_bytes" -le 1000000
+check "the summary records the log's units" \
+  python3 -c 'import json, sys; u = json.load(open(sys.argv[1]))["log"]["units"]; sys.exit(u.get("cstr-dist-rightarm-shoulder-ee.value") != "M")' "$long/sc1.json"
+check "the largest platform force of the log is on the page" python3 -c '
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+col = "base-force-distribution.fx"
+peak = max((float(r[col]) for r in rows), key=abs)
+page = open(sys.argv[2]).read()
+at = page.index("const charts = ") + len("const charts = ")
+charts = json.loads(page[at:page.index(";\n", at)])
+at = page.index("const chartData = ") + len("const chartData = ")
+data = json.loads(page[at:page.index(";\n", at)])
+for c, d in zip(charts, data):
+    if col in c["labels"]:
+        k = c["labels"].index(col)
+        drawn = max((row[k] for row in d if row[k] is not None), key=abs)
+        sys.exit(abs(drawn - peak) > 1e-5 * max(1, abs(peak)))
+sys.exit(1)' "$long/sc1.csv" "$work/long.html"
+browse "$work/long.html"
+long_charts=$(grep -o '<div class="chart" id="chart-[0-9]*"' "$work/long.html" | wc -l)
+check "the 30 s run's charts are drawn" grep -q "data-charts=\"$long_charts\"" "$work/dom.html"
+check "no console error (30 s run)" bash -c "! grep -Eiq 'CONSOLE.*(error|uncaught)|Uncaught' '$work/console.txt'"
+
+# `mospec plot` draws any app's run by default: the lift example's (neither
+# SC1 nor SC2) constraint values with their setpoints, one unit an axis.
+expect "the lift example runs" 0 "" -- "$mospec" run models/examples/lift.json --sim --interpret \
+  --duration 1 --log "$work/lift.csv" --summary "$work/lift.json"
+expect "its plot, without flags" 0 "wrote" -- "$mospec" plot "$work/lift.csv" -o "$work/lift.svg"
+check "the plot draws its constraints' values" grep -q '\.value' "$work/lift.svg"
+check "and their setpoints or thresholds" grep -Eq '\.(setpoint|lower|upper)' "$work/lift.svg"
 
 # Trials: the mean and one standard deviation over the runs of a directory.
 trials="$work/trials"
@@ -80,6 +135,10 @@ for m in v["motions"]:
 for c in v["constraints"]:
     c["name"] = p; c["relation"] = p
 s["events"] = [{"tick": 1, "event": p, "edge": p}]
+# A unit lands in a chart's title and its axis label (which dygraphs writes
+# as HTML); a constraint's name is looked up, never shown.
+s["log"]["units"] = {k: p for k in s["log"]["units"]}
+s["log"]["constraints"] = {p: {"relation": p, "reference": 1, "tolerance": 0.5}}
 json.dump(s, open(sys.argv[2], "w"))
 PY
 { head -1 "$run_dir/sc0a.csv" | sed "s|^t,\([^,]*\),\([^,]*\),|t,\1,${payload//|/\|}.value,|"; tail -n +2 "$run_dir/sc0a.csv"; } > "$hostile/$name.csv"
@@ -93,6 +152,7 @@ check "no script from the data ran" bash -c "! grep -q 'data-pwned' '$work/dom.h
 check "no element from the data exists" bash -c "! grep -q '<img src=\"x\"' '$work/dom.html'"
 check "no console error (hostile)" bash -c "! grep -Eiq 'CONSOLE.*(error|uncaught)|Uncaught' '$work/console.txt'"
 check "the payload is shown as text" grep -q 'document.body.dataset.pwned=1&lt;/script&gt;' "$work/dom.html"
+cp "$work/dom.html" "$work/hostile-dom.html"
 
 # A video is inlined only from inside the run's directory and only when its
 # header says GIF or MP4.
@@ -127,4 +187,5 @@ cp "$run_dir/sc0a.csv" "$work/lonely.csv"
 expect "a JSON that is not a run summary" 2 "lonely.json:1:1: error: not a run summary" -- "$mospec" report "$work/lonely.json" -o "$work/none.html"
 check "nothing was written for them" test ! -e "$work/none.html"
 
+check "a hostile unit reaches an axis label as text" grep -q 'dygraph-ylabel[^>]*>\[&lt;/script&gt;' "$work/hostile-dom.html"
 finish report

@@ -18,9 +18,11 @@ for i in 0 1; do
   check "trial $i log" test -s "$work/tiny/trial-$i.csv"
   check "trial $i summary" grep -q '"ticks"' "$work/tiny/trial-$i.json"
 done
-# The tiny model has no distance columns: plot says which columns it has.
-expect "plot the tiny trials" 2 "no column 'cstr-dist-rightarm-shoulder-ee.value'.*the columns are: t, cstr-done" -- \
-  "$mospec" plot "$work/tiny" -o "$work/tiny.svg"
+# The tiny model has no distance columns: plot draws its constraints' values
+# and its controllers' outputs (the units from the trials' summaries).
+expect "plot the tiny trials" 0 "2 trials" -- "$mospec" plot "$work/tiny" -o "$work/default.svg"
+check "the default plot draws the tracked constraint" grep -q 'cstr-track.value' "$work/default.svg"
+check "and its controller's output" grep -q 'ctrl-track.output' "$work/default.svg"
 expect "plot chosen columns" 0 "2 trials" -- \
   "$mospec" plot "$work/tiny" -o "$work/tiny.svg" --distance cstr-track.value --force ctrl-track.output
 

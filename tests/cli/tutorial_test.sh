@@ -1,46 +1,89 @@
 #!/usr/bin/env bash
-# docs/tutorial.md stays true: every command in its ```sh blocks is run, in
-# order, in a fresh copy of the repository's models/, robots/ and metamodels/,
-# with mospec on PATH. A command must exit 0, or the status its line states
-# with a trailing "# exits N". Then the claims the guide makes about the
-# results are checked.
+# docs/tutorial.md and README.md stay true to the code.
+# - Every command in their ```sh blocks is run, in order, in a fresh copy of
+#   the repository's models/, robots/ and metamodels/ (one for each
+#   document), with mospec on PATH. A command must exit 0, or the status its
+#   line states with a trailing "# exits N"; a line continued with '\' is
+#   one command. `make` targets are not run (they build and test the whole
+#   tree; `make test` is this suite): the test says so.
+# - Every JSON key they name (`"key"`) is one mospec reads
+#   (tests/cli/docs_keys.py: a model term with its shape, a world file's or
+#   a run summary's key).
+# Then the claims the tutorial makes about the results are checked.
 # Usage: tutorial_test.sh MOSPEC_BINARY SOURCE_DIR
 source "$(dirname "$0")/../support/cli_lib.sh"
 src=$(realpath "$2")
-tree="$work/tree"
-mkdir -p "$tree/build/release/bin"
-cp -r "$src/models" "$src/robots" "$src/metamodels" "$tree/"
-# The guide's PATH line names build/release/bin under the repository's root.
-ln -s "$mospec" "$tree/build/release/bin/mospec"
-ln -s "$(dirname "$mospec")/mospec-full" "$tree/build/release/bin/mospec-full"
-cd "$tree" || exit 1
 
-# The commands of the ```sh blocks, one per line.
-awk '/^```sh$/ { on = 1; next } /^```/ { on = 0 } on' "$src/docs/tutorial.md" > "$work/commands.txt"
-check "the guide has commands" test -s "$work/commands.txt"
-n=0
-while IFS= read -r line; do
-  n=$((n + 1))
-  want=0
-  if [[ "$line" =~ \#\ exits\ ([0-9]+)$ ]]; then want=${BASH_REMATCH[1]}; fi
-  bash -c "export PATH=\"$tree/build/release/bin:\$PATH\"; $line" > "$work/out.txt" 2> "$work/err.txt" < /dev/null
-  got=$?
-  if [ "$got" -eq "$want" ]; then
-    passed=$((passed + 1))
-  else
-    fail "command $n exits $got, the guide says $want: $line"
-    sed 's/^/  stderr: /' "$work/err.txt" | tail -5
-  fi
-  cp "$work/out.txt" "$work/out-$n.txt"
-  cp "$work/err.txt" "$work/err-$n.txt"
-done < "$work/commands.txt"
+# A copy of the model tree with mospec on PATH as the guides name it.
+make_tree() {  # make_tree DIR
+  mkdir -p "$1/build/release/bin"
+  cp -r "$src/models" "$src/robots" "$src/metamodels" "$1/"
+  # The guides' PATH line names build/release/bin under the repository's root.
+  ln -s "$mospec" "$1/build/release/bin/mospec"
+  ln -s "$(dirname "$mospec")/mospec-full" "$1/build/release/bin/mospec-full"
+}
+
+# run_commands DOC TREE TAG: every command of DOC's ```sh blocks, in TREE;
+# each one's output in $work/TAG-out-N.txt and TAG-err-N.txt.
+run_commands() {
+  local doc=$1 tree=$2 tag=$3 n=0 line want got
+  awk '/^```sh$/ { on = 1; next } /^```/ { on = 0 }
+       on { if (sub(/\\$/, "")) { held = held $0; next } print held $0; held = "" }' \
+    "$doc" > "$work/$tag-commands.txt"
+  check "$tag has commands" test -s "$work/$tag-commands.txt"
+  while IFS= read -r line; do
+    n=$((n + 1))
+    if [[ "$line" =~ ^make\  ]]; then
+      echo "SKIP ($tag command $n): '$line' builds and tests the whole tree (make test is this suite)"
+      continue
+    fi
+    want=0
+    if [[ "$line" =~ \#\ exits\ ([0-9]+)$ ]]; then want=${BASH_REMATCH[1]}; fi
+    (cd "$tree" && bash -c "export PATH=\"$tree/build/release/bin:\$PATH\"; $line") \
+      > "$work/out.txt" 2> "$work/err.txt" < /dev/null
+    got=$?
+    if [ "$got" -eq "$want" ]; then
+      passed=$((passed + 1))
+    else
+      fail "$tag command $n exits $got, the document says $want: $line"
+      sed 's/^/  stderr: /' "$work/err.txt" | tail -5
+    fi
+    cp "$work/out.txt" "$work/$tag-out-$n.txt"
+    cp "$work/err.txt" "$work/$tag-err-$n.txt"
+  done < "$work/$tag-commands.txt"
+}
+
+# The key check can fail: a tube's keys misnamed beside its class are found.
+printf -- '- a tube (`BilateralConstraint`, `"lower"` and `"upper"`)\n' > "$work/misnamed.md"
+expect "a misnamed model key is found" 1 "" -- python3 "$src/tests/cli/docs_keys.py" "$src" "$work/misnamed.md"
+check "it names the key and the line" grep -q 'misnamed.md:1: `"lower"` (beside `BilateralConstraint`' "$work/stdout.txt"
+
+readme="$work/readme-tree"
+make_tree "$readme"
+run_commands "$src/README.md" "$readme" readme
+summaries=$(find "$readme" -maxdepth 2 -name '*.json' -newer "$work/readme-commands.txt" | grep -v '/models/' | head -20)
+expect "the README's JSON keys are mospec's" 0 "" -- \
+  python3 "$src/tests/cli/docs_keys.py" "$src" "$src/README.md" --json $summaries
+sed 's/^/  /' "$work/stdout.txt"
+
+tree="$work/tree"
+make_tree "$tree"
+cd "$tree" || exit 1
+run_commands "$src/docs/tutorial.md" "$tree" tutorial
+expect "the tutorial's JSON keys are mospec's" 0 "" -- \
+  python3 "$src/tests/cli/docs_keys.py" "$src" "$src/docs/tutorial.md" --json "$tree/run.json"
+sed 's/^/  /' "$work/stdout.txt"
 
 # What the guide says about the results.
 check "the copy's files are the scenario's" test -f models/push-harder/07-scenario.json
+check "the copy's entities keep their IRIs (the guide says so)" python3 -c '
+import json, sys
+ids = lambda f: sorted(n["@id"] for n in json.load(open(f))["@graph"])
+sys.exit(ids(sys.argv[1]) != ids(sys.argv[2]))' models/push-harder/00-misc.json "$src/models/sc0a/00-misc.json"
 check "the shared files stay shared" \
   grep -q '"https://mospec.example/models/right-arm/00-misc.json"' models/push-harder.json
 check "the broken value is refused at its file and line" \
-  grep -Rq 'models/push-harder/00-misc.json:[0-9]*:[0-9]*' "$work"/out-*.txt "$work"/err-*.txt
+  grep -Rq 'models/push-harder/00-misc.json:[0-9]*:[0-9]*' "$work"/tutorial-out-*.txt "$work"/tutorial-err-*.txt
 check "the run's verdict is in the summary" \
   python3 -c 'import json, sys; sys.exit(json.load(open("run.json"))["verdict"]["status"] != "ok")'
 # The contact force the table exerts over the last second: 30 N, as edited.

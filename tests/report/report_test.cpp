@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 
 #include "report/html.hpp"
 #include "report/summary.hpp"
@@ -158,6 +160,10 @@ Input hostile_input() {
   s.constraints.push_back({kHostile, kHostile, false, 1.0, 0.0, true, true});
   r.log = plot::parse_csv("t,a.value,\"b\".error\n0,1,2\n1,2,3\n", "log.csv");
   r.log.columns[1] = kHostile + ".value";
+  // A unit lands in a chart's title and in its axis label, which dygraphs
+  // writes as HTML.
+  s.log.units[kHostile + ".value"] = kHostile;
+  s.log.constraints[kHostile] = {"equality", 1.0, std::nullopt, std::nullopt, 0.5};
   in.runs.push_back(std::move(r));
   return in;
 }
@@ -270,6 +276,198 @@ TEST_F(RunDir, AVideoWhoseHeaderIsNotItsKindIsRefused) {
 TEST_F(RunDir, ALogWithoutATimeColumnIsALocatedError) {
   write("run/r.csv", "x\n1\n");
   EXPECT_NE(load_error(run()).find("r.csv:1:1: error: a run log has a `t` column"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace mospec::report
+
+namespace mospec::report {
+namespace {
+
+// A log of `rows` rows at 1 kHz with the given columns, each a sine of its
+// own frequency.
+plot::Table synthetic_log(const std::vector<std::string>& columns, size_t rows) {
+  plot::Table t;
+  t.path = "log.csv";
+  t.columns = {"t"};
+  t.data.emplace_back(rows);
+  for (size_t r = 0; r < rows; ++r) t.data[0][r] = 0.001 * static_cast<double>(r);
+  for (size_t c = 0; c < columns.size(); ++c) {
+    t.columns.push_back(columns[c]);
+    t.data.emplace_back(rows);
+    for (size_t r = 0; r < rows; ++r)
+      t.data.back()[r] = std::sin(0.001 * static_cast<double>(r * (c + 1))) * (1.0 + c);
+  }
+  return t;
+}
+
+Input input_with(plot::Table log, Summary summary = {}) {
+  Input in;
+  in.title = "t";
+  LoadedRun r;
+  r.name = "run";
+  r.summary = std::move(summary);
+  r.summary.status = "ok";
+  r.summary.duration = log.data[0].empty() ? 0.0 : log.data[0].back();
+  r.log = std::move(log);
+  in.runs.push_back(std::move(r));
+  return in;
+}
+
+// The page's chart data: the JSON after "const chartData = ".
+std::string chart_data(const std::string& page) {
+  const size_t at = page.find("const chartData = ");
+  if (at == std::string::npos) return "";
+  const size_t begin = at + std::string("const chartData = ").size();
+  return page.substr(begin, page.find(";\n", begin) - begin);
+}
+
+std::vector<std::string> chart_titles(const std::string& page) {
+  std::vector<std::string> out;
+  static const std::regex kTitle("<h3>([^<]*) <span class=\"note\">\\[([^\\]]*)\\]");
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), kTitle);
+       it != std::sregex_iterator(); ++it)
+    out.push_back((*it)[1].str() + " [" + (*it)[2].str() + "]");
+  return out;
+}
+
+TEST(Decimate, KeepsEverySeriesExtremesAndAtMostTwoRowsPerBucket) {
+  const size_t rows = 30001;
+  std::vector<double> a(rows), b(rows), c(rows, std::nan(""));
+  for (size_t r = 0; r < rows; ++r) {
+    a[r] = std::sin(0.01 * static_cast<double>(r));
+    b[r] = std::cos(0.003 * static_cast<double>(r));
+  }
+  a[12345] = 40.0;   // a one-row spike
+  a[23456] = -40.0;  // and its opposite
+  b[7] = -3.0;
+  const Decimation d = decimate({&a, &b, &c}, rows, 1000);
+  ASSERT_EQ(d.time_row.size(), 2000u);
+  ASSERT_EQ(d.row.size(), 3u);
+  for (const auto& rs : d.row) ASSERT_EQ(rs.size(), d.time_row.size());
+  const auto extreme = [&](const std::vector<double>& v, const std::vector<size_t>& rs, bool max) {
+    double e = max ? -INFINITY : INFINITY;
+    for (size_t r : rs) e = max ? std::max(e, v[r]) : std::min(e, v[r]);
+    return e;
+  };
+  EXPECT_EQ(extreme(a, d.row[0], true), 40.0);
+  EXPECT_EQ(extreme(a, d.row[0], false), -40.0);
+  EXPECT_EQ(extreme(b, d.row[1], false), -3.0);
+  EXPECT_EQ(extreme(b, d.row[1], true), *std::max_element(b.begin(), b.end()));
+  // Drawn in time order, each value within its bucket (at most 31 rows from
+  // the time it is drawn at).
+  for (size_t i = 1; i < d.time_row.size(); ++i) EXPECT_LE(d.time_row[i - 1], d.time_row[i]);
+  for (size_t k = 0; k < 3; ++k) {
+    for (size_t i = 0; i < d.time_row.size(); ++i) {
+      const size_t bucket = i / 2;
+      EXPECT_GE(d.row[k][i], bucket * rows / 1000);
+      EXPECT_LT(d.row[k][i], (bucket + 1) * rows / 1000);
+    }
+  }
+  // A short log is kept whole.
+  const Decimation whole = decimate({&a}, 1500, 1000);
+  EXPECT_EQ(whole.time_row.size(), 1500u);
+  EXPECT_EQ(whole.row[0], whole.time_row);
+}
+
+TEST(Render, OneUnitPerChartAndTheControlledFramesPositions) {
+  Summary s;
+  s.log.units = {{"d.value", "M"}, {"ang.value", "RAD"}, {"z.value", "M"},
+                 {"d.error", "M"}, {"base.fx", "N"},     {"base.mz", "N-M"}};
+  const std::string page =
+      render(input_with(synthetic_log({"d.value", "ang.value", "z.value", "d.error", "base.fx",
+                                       "base.mz", "right_ee_x", "right_ee_y", "right_ee_z",
+                                       "ground_fx", "ground_mz", "base_x", "base_yaw"},
+                                      100),
+                        s),
+             {"/*js*/", "/*css*/"});
+  const std::vector<std::string> titles = chart_titles(page);
+  const std::vector<std::string> expected = {
+      "Constraint values [m]",
+      "Constraint values [rad]",
+      "Constraint errors [m]",
+      "Platform twist and wrench [N]",
+      "Platform twist and wrench [N·m]",
+      "Controlled frames&#39; positions in W (simulator) [m]",
+      "Contact and ground forces (simulator) [N]",
+      "Contact and ground forces (simulator) [N·m]",
+      "Base pose (simulator) [m]",
+      "Base pose (simulator) [rad]",
+  };
+  EXPECT_EQ(titles, expected);
+  EXPECT_NE(page.find(R"("labels":["t","d.value","z.value"])"), std::string::npos);
+  EXPECT_NE(page.find(R"("labels":["t","right_ee_x","right_ee_y","right_ee_z"])"),
+            std::string::npos);
+  // Every chart has its legend, always shown.
+  EXPECT_EQ(count(page, "class=\"legend\""), titles.size());
+  EXPECT_NE(page.find("legend: \"always\""), std::string::npos);
+}
+
+TEST(Render, ThresholdsAreBandsFromTheLogOrTheModel) {
+  Summary s;
+  s.log.units = {{"tube.value", "M"}, {"set.value", "M"}, {"lim.value", "M"}};
+  s.log.constraints["set"] = {"equality", 1.0, std::nullopt, std::nullopt, 0.25};
+  s.log.constraints["lim"] = {"less-than", std::nullopt, std::nullopt, 0.5, 0.0};
+  const std::string page = render(
+      input_with(
+          synthetic_log({"tube.value", "tube.lower", "tube.upper", "set.value", "lim.value"}, 50),
+          s),
+      {"/*js*/", "/*css*/"});
+  // The tube's logged thresholds are hidden series of its chart, drawn as its band.
+  EXPECT_NE(
+      page.find(
+          R"("labels":["t","tube.value","set.value","lim.value","tube.lower","tube.upper"],"visible":[true,true,true,false,false])"),
+      std::string::npos)
+      << page;
+  EXPECT_NE(page.find(R"({"s":0,"lo":null,"hi":null,"loS":3,"hiS":4})"), std::string::npos);
+  // The setpoint ± its tolerance; the limit up to its threshold.
+  EXPECT_NE(page.find(R"({"s":1,"lo":0.75,"hi":1.25,"loS":null,"hiS":null})"), std::string::npos);
+  EXPECT_NE(page.find(R"({"s":2,"lo":null,"hi":0.5,"loS":null,"hiS":null})"), std::string::npos);
+}
+
+TEST(Render, MotionsInTheOrderTheyStart) {
+  Summary s;
+  s.motions.push_back({"second", 2.0, 3.0, "until"});
+  s.motions.push_back({"never", std::nullopt, std::nullopt, "never-started"});
+  s.motions.push_back({"first", 0.0, 2.0, "until"});
+  plot::Table log = synthetic_log({"never.running", "second.running", "first.running"}, 4);
+  log.data[1] = {0, 0, 0, 0};
+  log.data[2] = {0, 0, 1, 1};
+  log.data[3] = {1, 1, 0, 0};
+  const std::string page = render(input_with(std::move(log), s), {"/*js*/", "/*css*/"});
+  const size_t first = page.find("<tr><td>first</td>"), second = page.find("<tr><td>second</td>"),
+               never = page.find("<tr><td>never</td>");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_LT(first, second);
+  EXPECT_LT(second, never);
+  EXPECT_NE(page.find(R"("labels":["t","first.running","second.running","never.running"])"),
+            std::string::npos);
+}
+
+TEST(Render, ALongRunsDataStaysUnderOneMegabyte) {
+  // 30 s at 1 kHz, 160 columns: two 7-joint arms' q, qd, tau, the world's
+  // columns and a hundred of the controller's.
+  std::vector<std::string> columns;
+  for (const char* arm : {"right_", "left_"}) {
+    for (const char* f : {"q", "qd", "tau"}) {
+      for (int j = 0; j < 7; ++j) {
+        std::string name = arm;
+        name.append(f).append(1, static_cast<char>('0' + j));
+        columns.push_back(std::move(name));
+      }
+    }
+  }
+  for (int c = 0; c < 100; ++c)
+    columns.push_back(std::string("c").append(std::to_string(c)).append(".value"));
+  for (int c = 0; c < 18; ++c) columns.push_back(std::string("ground_f").append(std::to_string(c)));
+  const plot::Table log = synthetic_log(columns, 30001);
+  const std::string page = render(input_with(log), {"/*js*/", "/*css*/"});
+  const std::string data = chart_data(page);
+  ASSERT_FALSE(data.empty());
+  EXPECT_LE(data.size(), 1000u * 1000u);
+  EXPECT_GT(data.size(), 100u * 1000u);  // still hundreds of points per series
+  EXPECT_NE(page.find("30001 logged rows drawn as each series' minimum and maximum over"),
             std::string::npos);
 }
 
