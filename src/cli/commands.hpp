@@ -37,6 +37,10 @@ struct LoadFlags {
 // notes among them explain those, or say what was done).
 size_t print_diagnostics(const DiagnosticSink& sink);
 
+// Throws a usage error naming the app beside it when `path` is a world file
+// (NAME.world.json) given where a model goes (pipeline.cpp).
+void refuse_world_file_as_model(const std::string& path);
+
 // The commands that run in mospec-full, the build of this CLI that links the
 // simulator (MuJoCo), the URDF reader and libcrypto: the `mospec` users call
 // lists them under these summaries and execs mospec-full, installed beside

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "ir/ir.hpp"
-#include "runtime/chain.hpp"
 #include "sim/config.hpp"
+#include "sim/world.hpp"
 #include "support/diagnostics.hpp"
 
 namespace mospec::cli {

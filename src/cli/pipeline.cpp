@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "cli/commands.hpp"
 #include "shacl/report.hpp"
 #include "sim/config.hpp"
 #include "validation/model_validation.hpp"
@@ -24,7 +25,20 @@ void PipelineFlags::add_to(CLI::App& cmd) {
   load.add_budget_to(cmd);
 }
 
+void refuse_world_file_as_model(const std::string& path) {
+  constexpr std::string_view kWorld = ".world.json";
+  if (!path.ends_with(kWorld)) return;
+  const std::string app = path.substr(0, path.size() - kWorld.size()) + ".json";
+  std::error_code ec;
+  throw Error("usage", "'" + path +
+                           "' is a world file (the robot and the simulated world, "
+                           "docs/simulation.md), not a model: give the app it goes with" +
+                           (std::filesystem::is_regular_file(app, ec) ? ", '" + app + "'" : "") +
+                           " (`mospec run APP` reads the world file beside it, or --world FILE)");
+}
+
 std::string resolve_app(const std::string& path) {
+  refuse_world_file_as_model(path);
   std::error_code ec;
   if (std::filesystem::exists(path, ec)) {
     if (std::filesystem::is_directory(path, ec)) {

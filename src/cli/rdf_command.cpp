@@ -30,6 +30,7 @@ Action add_rdf_command(CLI::App& app) {
   flags->load.add_to(*cmd);
 
   return [flags]() {
+    for (const std::string& input : flags->inputs) refuse_world_file_as_model(input);
     app::LoadedModel model = app::load(flags->inputs, flags->load.to_options());
     size_t warnings = print_diagnostics(model.diagnostics());
     if (flags->load.strict && warnings > 0) {

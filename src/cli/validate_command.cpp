@@ -40,6 +40,7 @@ Action add_validate_command(CLI::App& app) {
   flags->load.add_budget_to(*cmd);
 
   return [flags]() {
+    for (const std::string& input : flags->inputs) refuse_world_file_as_model(input);
     app::LoadedModel model = app::load(flags->inputs, flags->load.to_options());
     size_t warnings = print_diagnostics(model.diagnostics());
 

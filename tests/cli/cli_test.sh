@@ -43,6 +43,11 @@ expect rdf-help 0 '' -- "$mospec" rdf --help
 expect version 0 '' -- "$mospec" --version
 stdout_has version '^mospec [0-9]+\.[0-9]+\.[0-9]+$'
 expect command-typo 2 "^mospec: error: no command 'valdate'; did you mean 'validate'\?" -- "$mospec" valdate x.json
+# A world file given where a model goes: said so, with the app beside it.
+echo '{ "base": "fixed" }' > task.world.json
+cp good.json task.json
+expect world-file-as-model 2 "^mospec: error: 'task.world.json' is a world file \(the robot and the simulated world, docs/simulation.md\), not a model: give the app it goes with, 'task.json'" -- "$mospec" validate task.world.json
+expect world-file-as-model-ir 2 "is a world file" -- "$mospec" ir task.world.json
 expect command-unknown 2 "^mospec: error: no command 'frobnicate' \(run 'mospec --help' for the commands\)" -- "$mospec" frobnicate
 expect no-command 2 'mospec:' -- "$mospec"
 expect no-input 2 'mospec:' -- "$mospec" rdf
