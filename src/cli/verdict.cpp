@@ -111,9 +111,22 @@ VerdictPlan plan_verdict(const ir::Program& program) {
                 q != producer.end() && q->second->kind == StepKind::ReadClock;
     return g;
   };
+  // The data read by controllers whose outputs reach a solver (through any
+  // chain of steps; steps are in schedule order, so one backward pass finds
+  // them): a controller reaching none acts on nothing (lowering warns,
+  // controller-reaches-no-solver).
   std::set<int> read_by_controllers;
-  for (const ir::Step& s : program.steps)
-    if (s.kind == StepKind::Controller) read_by_controllers.insert(s.in.begin(), s.in.end());
+  {
+    std::vector<char> reaches(program.data.size(), 0);
+    for (size_t k = program.steps.size(); k-- > 0;) {
+      const ir::Step& s = program.steps[k];
+      bool live = s.kind == StepKind::ArmSolve || s.kind == StepKind::BaseForceDistribution;
+      for (int o : s.out) live = live || reaches[static_cast<size_t>(o)];
+      if (!live) continue;
+      for (int i : s.in) reaches[static_cast<size_t>(i)] = 1;
+      if (s.kind == StepKind::Controller) read_by_controllers.insert(s.in.begin(), s.in.end());
+    }
+  }
   std::set<int> guard_flags, goal_flags;
   for (const ir::Step& s : program.steps) {
     switch (s.kind) {
@@ -147,6 +160,8 @@ VerdictPlan plan_verdict(const ir::Program& program) {
           g.tolerance_source = tolerance_source(evaluate.tolerance_source);
           g.is_while = k < static_cast<size_t>(s.n_goal_whiles);
           g.acted_on = evaluate.out.size() > 1 && read_by_controllers.count(evaluate.out[1]) > 0;
+          // Read only by controllers that reach no solver: not enforced.
+          if (!g.is_while && !g.acted_on) continue;
           const std::ptrdiff_t satisfied = column(g.name + ".satisfied");
           if (satisfied < 0) continue;
           g.satisfied = static_cast<size_t>(satisfied);

@@ -43,7 +43,7 @@ struct VerdictPlan {
     runtime::ConstraintSpec spec;
     std::string tolerance_source;  // "stated", "default" or "none"
     bool is_while = false;         // listed in the motion's `while`
-    bool acted_on = false;         // a controller reads its error
+    bool acted_on = false;         // a controller whose output reaches a solver reads its error
     std::size_t satisfied = 0;
     std::ptrdiff_t value = -1, error = -1;
   };
