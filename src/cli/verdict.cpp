@@ -453,7 +453,8 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
       } else if (ended) {
         line += " when it ended (tick " + std::to_string(at->tick) + ")";
       } else {
-        line += " at the run's end (tick " + std::to_string(last_tick) + ", still running)";
+        line += " at the run's end (tick " + std::to_string(last_tick) +
+                "; still running, judged when it ends)";
       }
       size_t met = 0, column = 0;
       std::vector<std::string> unmet, held_after, lapsed, never;
@@ -477,6 +478,7 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
         x["while"] = g.is_while;
         x["acted_on"] = g.acted_on;
         x["judged_at"] = !started ? Json(nullptr) : Json(ended ? "motion-end" : "run-end");
+        x["judged"] = ended;
         x["tick"] = !started ? Json(nullptr) : Json(ended ? at->tick : last_tick);
         x["value"] = started ? number_or_null(value) : Json(nullptr);
         x["reference"] = reference_json(g);
@@ -514,8 +516,11 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
       }
       if (started) {
         line += ": " + std::to_string(met) + " of " + std::to_string(m.goals.size()) + " met";
-        for (size_t i = 0; i < unmet.size(); ++i) line += (i ? "; " : "; NOT MET: ") + unmet[i];
-        if (!unmet.empty()) {
+        const char* what = ended ? "; NOT MET: " : "; not met yet: ";
+        for (size_t i = 0; i < unmet.size(); ++i) line += (i ? "; " : what) + unmet[i];
+        // A motion still running has not reached its end: its goals are due
+        // then, and a run cut short of it does not fail on them.
+        if (ended && !unmet.empty()) {
           std::string why = "the motion '" + m.name + "' did not meet " +
                             std::to_string(unmet.size()) + " of its goals";
           for (size_t i = 0; i < unmet.size(); ++i)

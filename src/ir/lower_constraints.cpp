@@ -132,6 +132,20 @@ void lower_evaluators(State& st) {
         continue;
       }
       spec.threshold = *t;
+      // The model's tolerance: satisfied while beyond the threshold by no
+      // more than it (a one-sided row releases within it: mark_one_sided).
+      if (auto tol = st.object(*c, tolerance_p)) {
+        const auto v = constant("tolerance", tolerance_p);
+        if (!v) continue;
+        if (!(*v >= 0.0)) {
+          st.error(*tol, "invalid-constraint",
+                   "the tolerance '" + st.str(*tol) + "' of '" + st.str(*c) + "' is " +
+                       exact_number(*v) + "; a tolerance is a bound on |error|, >= 0");
+          continue;
+        }
+        spec.tolerance = *v;
+        s.tolerance_source = Step::Tolerance::Stated;
+      }
       // A timeout: a threshold on a clock's time, which starts at 0 and only
       // grows. A threshold <= 0 s is decided before the first tick (a
       // greater-than constraint holds at once, a less-than never does).

@@ -51,6 +51,38 @@ expect "runs (generated)" 0 "" -- "$mospec" run "$app" --sim --duration 3 --log 
   --summary "$work/gen.json" --cache "$work/cache"
 check "generated and interpreted logs are byte-identical" cmp -s "$work/run.csv" "$work/gen.csv"
 
+# --- #33 item 5: a tolerance the model states on the limit (5 mm) ----------
+tree="$work/stated"
+mkdir -p "$tree"
+cp -r "$src/models" "$src/robots" "$src/metamodels" "$tree/"
+python3 - "$tree/models/examples/ceiling" <<'PY'
+import json, sys
+d = sys.argv[1]
+c = json.load(open(d + "/03-constraints.json"))
+c["@context"].insert(1, "https://comp-rob2b.github.io/metamodels/mospec/guards.json")
+next(e for e in c["@graph"] if e["@id"] == "cstr-pos-rightarm-ee-ceiling")["tolerance"] = "pos-rightarm-ee-ceiling-tolerance"
+json.dump(c, open(d + "/03-constraints.json", "w"), indent=4)
+m = json.load(open(d + "/00-misc.json"))
+m["@graph"].append({"@id": "pos-rightarm-ee-ceiling-tolerance", "@type": ["Quantity", "Position"],
+                    "quantity-kind": "Position", "unit": "M", "value": "0.005"})
+json.dump(m, open(d + "/00-misc.json", "w"), indent=4)
+PY
+cd "$tree" || exit 1
+validates_clean "$app"
+expect "a stated tolerance of 5 mm on the limit: lowers" 0 "" -- "$mospec" ir "$app" -o "$work/stated.ir.json"
+check "the IR records the stated tolerance, on the limit and its row" \
+  test "$(python3 -c '
+import json, sys
+p = json.load(open(sys.argv[1]))
+c = [s["constraint"] for s in p["schedule"] if s["name"] == "eval_pos_rightarm_ee_ceiling"][0]
+rows = [a["engaged-tolerance"] for s in p["arms"] for a in s["acceleration-constraints"] if "engaged-tolerance" in a]
+print(c["tolerance"], c["tolerance-source"], rows)' "$work/stated.ir.json")" = "0.005 stated [0.005]"
+expect "a stated tolerance of 5 mm (interpreted): runs" 0 "^mospec: verdict: ok$" -- \
+  "$mospec" run "$app" --sim --interpret --duration 3 --log "$work/stated.csv"
+check "the stated tolerance holds the tip at 0.40 m within 5 mm, beyond the default's 1 mm" \
+  holds "$(csv_at "$work/stated.csv" $z 2) > 0.401 && $(csv_at "$work/stated.csv" $z 2) < 0.405 && $(csv_at "$work/stated.csv" $z 3) > 0.401 && $(csv_at "$work/stated.csv" $z 3) < 0.405"
+cd "$src" || exit 1
+
 # --- #33 item 5: starts beyond the limit, a force into the feasible side ----
 tree="$work/tree"
 mkdir -p "$tree"

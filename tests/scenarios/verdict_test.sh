@@ -15,14 +15,17 @@
 #     1 cm tolerance the model states;
 #   - (#33 item 1) a copy whose elbow height reference is 2.7 cm above the
 #     start, its PD 100 times softer and its tolerance not stated: the elbow
-#     stays 2.7 cm off for the whole run, nothing else goes wrong; the goal is
-#     judged against the default tolerance of a position (1 mm): FAILED,
-#     naming the constraint, its value, its reference and the tolerance's
-#     source, exit 1 (this run said "ok" before);
+#     stays 2.7 cm off for the whole run, nothing else goes wrong; run for
+#     3 s, the motion still runs and the goal is "not met yet" (exit 0); run
+#     to its 30 s timeout, the goal is judged against the default tolerance
+#     of a position (1 mm): FAILED, naming the constraint, its value, its
+#     reference and the tolerance's source, exit 1 (this run said "ok"
+#     before);
 #   - (#33 item 3) sc1 with its shoulder-contact tubes narrowed to
 #     [0.68, 0.701] m: the tubes are `while`s no controller acts on (the
-#     distance setpoint's PD does); the verdict watches them while the motions
-#     run (left after holding) and judges them at the end: not met, exit 1.
+#     distance setpoint's PD does), and its timeouts at 6 s: the verdict
+#     watches the tubes while the motions run (left after holding) and judges
+#     them when the motions end: not met, exit 1.
 # Interpreted and generated controllers give the same verdict, console and
 # summary. (The while-violated abort: tests/models/guards_test.sh.)
 # Usage: verdict_test.sh MOSPEC SOURCE_DIR
@@ -139,21 +142,25 @@ open(sys.argv[1], "w").write(re.sub(r',\s*"tolerance": "pos-rightarm-elbow-heigh
 PY
 check "the copy: elbow reference 0.52 m, a soft PD, no stated tolerance" \
   eq "$(grep -c '"value": "0.52"\|"proportional-gain": "2.0"\|elbow-height-tolerance"$' models/sc0a/00-misc.json models/right-arm/05-constraint-handler.json models/right-arm/03-constraints.json | cut -d: -f2 | tr '\n' ' ')" "1 1 0 "
-expect "an elbow 2.7 cm off (interpreted): the goal not met by the default tolerance, exit 1" 1 \
+expect "an elbow 2.7 cm off for 3 s: the motion still runs, its goal not met yet, exit 0" 0 \
+  "^mospec: verdict: ok$" -- "$mospec" run models/sc0a.json --sim --interpret --duration 3
+check "off, 3 s: the goal is listed as not met yet" \
+  grep -Eq '^  goals of motion-rightarm at the run.s end \(tick 2999; still running, judged when it ends\): 5 of 6 met; not met yet: cstr-pos-rightarm-elbow-height = 0\.49[0-9]* M \(wants = 0\.52, error 0\.02[0-9]*; tolerance 0\.001 M, the default for M\)$' "$work/stderr.txt"
+expect "an elbow 2.7 cm off to the motion's end (interpreted): the goal not met by the default tolerance, exit 1" 1 \
   "^mospec: verdict: FAILED: the motion 'motion-rightarm' did not meet 1 of its goals: cstr-pos-rightarm-elbow-height$" -- \
-  "$mospec" run models/sc0a.json --sim --interpret --duration 3 --summary "$work/off.json"
+  "$mospec" run models/sc0a.json --sim --interpret --duration 31 --summary "$work/off.json"
 verdict_lines "$work/stderr.txt" > "$work/off.txt"
 check "off: the console names value, reference, error, tolerance and its source" \
-  grep -Eq '^  goals of motion-rightarm at the run.s end \(tick 2999, still running\): 5 of 6 met; NOT MET: cstr-pos-rightarm-elbow-height = 0\.49[0-9]* M \(wants = 0\.52, error 0\.02[0-9]*; tolerance 0\.001 M, the default for M\)$' "$work/off.txt"
+  grep -Eq '^  goals of motion-rightarm when it ended \(tick 30000\): 5 of 6 met; NOT MET: cstr-pos-rightarm-elbow-height = 0\.49[0-9]* M \(wants = 0\.52, error 0\.02[0-9]*; tolerance 0\.001 M, the default for M\)$' "$work/off.txt"
 check "off: the elbow never held while the motion ran" \
-  grep -Eq '^  whiles of motion-rightarm while it ran: .*never held: cstr-pos-rightarm-elbow-height in 3000 ticks$' "$work/off.txt"
+  grep -Eq '^  whiles of motion-rightarm while it ran: .*never held: cstr-pos-rightarm-elbow-height in 30000 ticks$' "$work/off.txt"
 check "off: nothing else went wrong" \
   grep -Pzq '  limits: none breached\n  non-finite commands: none\n' "$work/off.txt"
 check "off summary: the goal, its value, reference, tolerance and source" \
   eq "$(field "$work/off.json" '[(g["met"], round(g["value"], 2), g["reference"], g["tolerance"], g["tolerance_source"], g["judged_at"]) for g in v["goals"] if g["name"] == "cstr-pos-rightarm-elbow-height"], v["status"]')" \
-  "([(False, 0.49, 0.52, 0.001, 'default', 'run-end')], 'failed')"
+  "([(False, 0.49, 0.52, 0.001, 'default', 'motion-end')], 'failed')"
 expect "an elbow 2.7 cm off (generated): the same verdict" 1 "^mospec: verdict: FAILED: the motion 'motion-rightarm'" -- \
-  "$mospec" run models/sc0a.json --sim --duration 3 --summary "$work/off-gen.json" --cache "$work/cache"
+  "$mospec" run models/sc0a.json --sim --duration 31 --summary "$work/off-gen.json" --cache "$work/cache"
 check "off: generated and interpreted print the same verdict" \
   cmp -s "$work/off.txt" <(verdict_lines "$work/stderr.txt")
 check "off: generated and interpreted summaries hold the same verdict" \
@@ -161,15 +168,16 @@ check "off: generated and interpreted summaries hold the same verdict" \
 
 # --- #33 item 3: a `while` no controller acts on, watched and judged ---------
 rm -rf models && cp -r "$SRC/models" .
-sed -i 's/"value": "0.72"/"value": "0.701"/' models/sc1/00-misc.json
-check "the copy: both tubes' upper bounds at 0.701 m" eq "$(grep -c '"value": "0.701"' models/sc1/00-misc.json)" 2
+sed -i 's/"value": "0.72"/"value": "0.701"/; s/"value": "60.0"/"value": "6.0"/' models/sc1/00-misc.json
+check "the copy: both tubes' upper bounds at 0.701 m, the timeouts at 6 s" \
+  eq "$(grep -c '"value": "0.701"\|"value": "6.0"' models/sc1/00-misc.json)" 3
 expect "sc1, tubes narrowed to [0.68, 0.701]: the tubes not met, exit 1" 1 \
   "^mospec: verdict: FAILED: the motion 'motion-sc1-leftarm' did not meet 1 of its goals: cstr-dist-leftarm-shoulder-ee; the motion 'motion-sc1-rightarm' did not meet 1 of its goals: cstr-dist-rightarm-shoulder-ee$" -- \
-  "$mospec" run models/sc1.json --sim --interpret --duration 6 --summary "$work/tube.json"
+  "$mospec" run models/sc1.json --sim --interpret --duration 6.5 --summary "$work/tube.json"
 check "tube: the right tube is named as a while no controller acts on, left after holding" \
   grep -Eq '^  whiles of motion-sc1-rightarm while it ran: .*LEFT after holding: .*cstr-dist-rightarm-shoulder-ee \(no controller acts on it\) [0-9]+ times? from tick [0-9]+ \([0-9]+ ticks in all\)' "$work/stderr.txt"
 check "tube: not met, with the band and the default tolerance" \
-  grep -Eq '^  goals of motion-sc1-rightarm at the run.s end \(tick 5999, still running\): 7 of 8 met; NOT MET: cstr-dist-rightarm-shoulder-ee = 0\.70[0-9]* M \(wants in \[0\.68, 0\.701\], error -0\.00[0-9]*; tolerance 0\.001 M, the default for M\)$' "$work/stderr.txt"
+  grep -Eq '^  goals of motion-sc1-rightarm when it ended \(tick 6000\): 7 of 8 met; NOT MET: cstr-dist-rightarm-shoulder-ee = 0\.70[0-9]* M \(wants in \[0\.68, 0\.701\], error -0\.00[0-9]*; tolerance 0\.001 M, the default for M\)$' "$work/stderr.txt"
 check "tube summary: the tube, a while not acted on, its lapses counted" \
   eq "$(field "$work/tube.json" '[(g["while"], g["acted_on"], g["met"], g["reference"], g["lapses"] > 0, g["running_ticks"]) for g in v["goals"] if g["name"] == "cstr-dist-rightarm-shoulder-ee"]')" \
   "[(True, False, False, [0.68, 0.701], True, 6000)]"
