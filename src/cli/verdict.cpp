@@ -42,6 +42,18 @@ const char* relation_name(runtime::ConstraintKind kind) {
   return "?";
 }
 
+const char* tolerance_source(ir::Step::Tolerance t) {
+  switch (t) {
+    case ir::Step::Tolerance::Stated:
+      return "stated";
+    case ir::Step::Tolerance::Default:
+      return "default";
+    case ir::Step::Tolerance::None:
+      break;
+  }
+  return "none";
+}
+
 // A number as the console shows it: 4 significant digits.
 std::string num(double x) {
   char b[32];
@@ -99,7 +111,23 @@ VerdictPlan plan_verdict(const ir::Program& program) {
                 q != producer.end() && q->second->kind == StepKind::ReadClock;
     return g;
   };
-  std::set<int> guard_flags;
+  // The data read by controllers whose outputs reach a solver (through any
+  // chain of steps; steps are in schedule order, so one backward pass finds
+  // them): a controller reaching none acts on nothing (lowering warns,
+  // controller-reaches-no-solver).
+  std::set<int> read_by_controllers;
+  {
+    std::vector<char> reaches(program.data.size(), 0);
+    for (size_t k = program.steps.size(); k-- > 0;) {
+      const ir::Step& s = program.steps[k];
+      bool live = s.kind == StepKind::ArmSolve || s.kind == StepKind::BaseForceDistribution;
+      for (int o : s.out) live = live || reaches[static_cast<size_t>(o)];
+      if (!live) continue;
+      for (int i : s.in) reaches[static_cast<size_t>(i)] = 1;
+      if (s.kind == StepKind::Controller) read_by_controllers.insert(s.in.begin(), s.in.end());
+    }
+  }
+  std::set<int> guard_flags, goal_flags;
   for (const ir::Step& s : program.steps) {
     switch (s.kind) {
       case StepKind::GuardedMotion: {
@@ -118,6 +146,29 @@ VerdictPlan plan_verdict(const ir::Program& program) {
           if (k < n_when || k >= n_when + n_while) guard_flags.insert(s.in[k]);
           if (k < n_when) continue;
           if (auto g = guard(s.in[k])) (k < n_when + n_while ? m.whiles : m.untils).push_back(*g);
+        }
+        for (size_t k = 0; k < s.goals.size(); ++k) {
+          const auto p = producer.find(s.goals[k]);
+          if (p == producer.end() || p->second->kind != StepKind::Evaluate) continue;
+          const ir::Step& evaluate = *p->second;
+          VerdictPlan::Goal g;
+          g.constraint = owner_iri(program.data[static_cast<size_t>(s.goals[k])].iri);
+          g.name = local_name(g.constraint);
+          g.relation = relation_name(evaluate.constraint.kind);
+          g.unit = program.data[static_cast<size_t>(evaluate.in[0])].unit;
+          g.spec = evaluate.constraint;
+          g.tolerance_source = tolerance_source(evaluate.tolerance_source);
+          g.is_while = k < static_cast<size_t>(s.n_goal_whiles);
+          g.acted_on = evaluate.out.size() > 1 && read_by_controllers.count(evaluate.out[1]) > 0;
+          // Read only by controllers that reach no solver: not enforced.
+          if (!g.is_while && !g.acted_on) continue;
+          const std::ptrdiff_t satisfied = column(g.name + ".satisfied");
+          if (satisfied < 0) continue;
+          g.satisfied = static_cast<size_t>(satisfied);
+          g.value = column(g.name + ".value");
+          g.error = column(g.name + ".error");
+          goal_flags.insert(s.goals[k]);
+          m.goals.push_back(std::move(g));
         }
         plan.motions.push_back(std::move(m));
         break;
@@ -145,7 +196,9 @@ VerdictPlan plan_verdict(const ir::Program& program) {
     if (s.constraint.kind != runtime::ConstraintKind::Assignment)
       c.error = column(c.name + ".error");
     c.guard = guard_flags.count(s.out[0]) > 0;
+    c.goal = goal_flags.count(s.out[0]) > 0;
     c.tolerance = s.constraint.tolerance;
+    c.tolerance_source = tolerance_source(s.tolerance_source);
     c.judged = s.constraint.kind != runtime::ConstraintKind::Equality || c.tolerance > 0.0;
     plan.constraints.push_back(std::move(c));
   }
@@ -192,6 +245,20 @@ void watch_for_verdict(const VerdictPlan& plan, sim::RunOptions& options) {
     for (const VerdictPlan::Guard& g : m.untils) watch.insert(g.satisfied);
   }
   options.watch.assign(watch.begin(), watch.end());
+  options.snapshots.clear();
+  options.held.clear();
+  for (const VerdictPlan::Motion& m : plan.motions) {
+    if (m.goals.empty()) continue;
+    sim::RunOptions::Snapshot snapshot;
+    snapshot.at = m.ended;
+    for (const VerdictPlan::Goal& g : m.goals) {
+      snapshot.columns.push_back(g.satisfied);
+      for (const std::ptrdiff_t c : {g.value, g.error})
+        if (c >= 0) snapshot.columns.push_back(static_cast<size_t>(c));
+      options.held.push_back({g.satisfied, m.running});
+    }
+    options.snapshots.push_back(std::move(snapshot));
+  }
   options.pushing.resize(std::max(options.pushing.size(), plan.arms.size()));
   for (size_t a = 0; a < plan.arms.size(); ++a) options.pushing[a] = plan.arms[a].columns;
 }
@@ -207,6 +274,44 @@ double watched_value(const sim::RunResult& r, size_t column, std::uint64_t tick)
     if (c.column == column) v = c.value;
   }
   return v;
+}
+
+// What a goal wants, as the console says it: "= 0.4926", "<= 0.4",
+// "in [0.1, 0.2]".
+std::string wanted(const VerdictPlan::Goal& g) {
+  switch (g.spec.kind) {
+    case runtime::ConstraintKind::Equality:
+    case runtime::ConstraintKind::Assignment:
+      return "= " + num(g.spec.reference);
+    case runtime::ConstraintKind::LessThan:
+      return "<= " + num(g.spec.threshold);
+    case runtime::ConstraintKind::GreaterThan:
+      return ">= " + num(g.spec.threshold);
+    case runtime::ConstraintKind::Bilateral:
+      return "in [" + num(g.spec.lower) + ", " + num(g.spec.upper) + "]";
+  }
+  return "?";
+}
+
+Json reference_json(const VerdictPlan::Goal& g) {
+  switch (g.spec.kind) {
+    case runtime::ConstraintKind::LessThan:
+    case runtime::ConstraintKind::GreaterThan:
+      return g.spec.threshold;
+    case runtime::ConstraintKind::Bilateral:
+      return Json::array({g.spec.lower, g.spec.upper});
+    default:
+      return g.spec.reference;
+  }
+}
+
+// Where a goal's tolerance comes from, as the console says it.
+std::string tolerance_text(const VerdictPlan::Goal& g) {
+  if (g.tolerance_source == "none")
+    return "no tolerance: the model states none and " + g.unit +
+           " has no default; state its `tolerance`";
+  return "tolerance " + num(g.spec.tolerance) + " " + g.unit + ", " +
+         (g.tolerance_source == "stated" ? "stated" : "the default for " + g.unit);
 }
 
 }  // namespace
@@ -329,6 +434,118 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     details << '\n';
   }
 
+  // Each motion's goals: judged when it ended (at the run's end while it
+  // runs), and how its `while` goals held while it ran.
+  Json goals = Json::array();
+  {
+    size_t snapshot = 0, held = 0;
+    for (const VerdictPlan::Motion& m : plan.motions) {
+      if (m.goals.empty()) continue;
+      const sim::Snapshot* at = snapshot < r.snapshots.size() ? &r.snapshots[snapshot] : nullptr;
+      ++snapshot;
+      bool started = false;
+      for (const sim::RunChange& c : r.changes) started = started || c.column == m.running + 1;
+      const bool ended = at && at->taken;
+      started = started || ended;
+      std::string line = "  goals of " + m.name;
+      if (!started) {
+        line += ": not judged, the motion never started";
+      } else if (ended) {
+        line += " when it ended (tick " + std::to_string(at->tick) + ")";
+      } else {
+        line += " at the run's end (tick " + std::to_string(last_tick) +
+                "; still running, judged when it ends)";
+      }
+      size_t met = 0, column = 0;
+      std::vector<std::string> unmet, held_after, lapsed, never;
+      for (const VerdictPlan::Goal& g : m.goals) {
+        // Its values where it is judged: the snapshot's columns in their order.
+        const auto value_at = [&](std::ptrdiff_t c) -> double {
+          if (c < 0) return std::nan("");
+          if (ended) return column < at->values.size() ? at->values[column++] : std::nan("");
+          return last(static_cast<size_t>(c));
+        };
+        const double sat = value_at(static_cast<std::ptrdiff_t>(g.satisfied));
+        const double value = value_at(g.value), error = value_at(g.error);
+        const bool holds = sat != 0.0 && !std::isnan(sat);
+        const sim::HeldRecord h = held < r.held.size() ? r.held[held] : sim::HeldRecord{};
+        ++held;
+        Json x;
+        x["motion"] = m.iri;
+        x["constraint"] = g.constraint;
+        x["name"] = g.name;
+        x["relation"] = g.relation;
+        x["while"] = g.is_while;
+        x["acted_on"] = g.acted_on;
+        x["judged_at"] = !started ? Json(nullptr) : Json(ended ? "motion-end" : "run-end");
+        x["judged"] = ended;
+        x["tick"] = !started ? Json(nullptr) : Json(ended ? at->tick : last_tick);
+        x["value"] = started ? number_or_null(value) : Json(nullptr);
+        x["reference"] = reference_json(g);
+        x["error"] = started ? number_or_null(error) : Json(nullptr);
+        x["tolerance"] = g.spec.tolerance;
+        x["tolerance_source"] = g.tolerance_source;
+        x["unit"] = g.unit;
+        x["met"] = started ? Json(holds) : Json(nullptr);
+        x["running_ticks"] = h.during_ticks;
+        x["held_ticks"] = h.held_ticks;
+        x["first_held_tick"] = h.ever_held ? Json(h.first_held_tick) : Json(nullptr);
+        x["lapses"] = h.lapses;
+        x["lapsed_ticks"] = h.lapsed_ticks;
+        x["first_lapse_tick"] = h.lapses ? Json(h.first_lapse_tick) : Json(nullptr);
+        goals.push_back(std::move(x));
+        if (!started) continue;
+        if (holds) {
+          ++met;
+        } else {
+          unmet.push_back(g.name + " = " + num(value) + " " + g.unit + " (wants " + wanted(g) +
+                          ", error " + num(error) + "; " + tolerance_text(g) + ")");
+        }
+        if (!g.is_while || h.during_ticks == 0) continue;
+        const std::string who = g.name + (g.acted_on ? "" : " (no controller acts on it)");
+        if (!h.ever_held) {
+          never.push_back(who + " in " + std::to_string(h.during_ticks) + " ticks");
+        } else if (h.lapses > 0) {
+          lapsed.push_back(who + " " + std::to_string(h.lapses) + " time" +
+                           (h.lapses == 1 ? "" : "s") + " from tick " +
+                           std::to_string(h.first_lapse_tick) + " (" +
+                           std::to_string(h.lapsed_ticks) + " ticks in all)");
+        } else if (h.held_ticks < h.during_ticks) {
+          held_after.push_back(who + " from tick " + std::to_string(h.first_held_tick));
+        }
+      }
+      if (started) {
+        line += ": " + std::to_string(met) + " of " + std::to_string(m.goals.size()) + " met";
+        const char* what = ended ? "; NOT MET: " : "; not met yet: ";
+        for (size_t i = 0; i < unmet.size(); ++i) line += (i ? "; " : what) + unmet[i];
+        // A motion still running has not reached its end: its goals are due
+        // then, and a run cut short of it does not fail on them.
+        if (ended && !unmet.empty()) {
+          std::string why = "the motion '" + m.name + "' did not meet " +
+                            std::to_string(unmet.size()) + " of its goals";
+          for (size_t i = 0; i < unmet.size(); ++i)
+            why += (i ? ", " : ": ") + unmet[i].substr(0, unmet[i].find(' '));
+          v.why.push_back(why);
+        }
+      }
+      details << line << '\n';
+      size_t whiles = 0;
+      for (const VerdictPlan::Goal& g : m.goals) whiles += g.is_while ? 1 : 0;
+      if (whiles == 0 || !started) continue;
+      const size_t throughout = whiles - held_after.size() - lapsed.size() - never.size();
+      details << "  whiles of " << m.name << " while it ran: " << throughout << " of " << whiles
+              << " held throughout";
+      const auto list = [&](const char* what, const std::vector<std::string>& items) {
+        for (size_t i = 0; i < items.size(); ++i) details << (i ? ", " : what) << items[i];
+      };
+      list("; held once reached: ", held_after);
+      list("; LEFT after holding: ", lapsed);
+      list("; never held: ", never);
+      details << '\n';
+    }
+  }
+  j["goals"] = std::move(goals);
+
   // Each constraint at the end.
   Json constraints = Json::array();
   size_t counted = 0, met = 0;
@@ -346,11 +563,12 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     const double error = c.error >= 0 ? last(static_cast<size_t>(c.error)) : std::nan("");
     x["final_error"] = c.error >= 0 ? number_or_null(error) : Json(nullptr);
     x["satisfied"] = holds;
-    x["tolerance"] =
-        c.judged && c.relation == std::string("equality") ? Json(c.tolerance) : Json(nullptr);
+    x["goal"] = c.goal;
+    x["tolerance"] = c.judged ? Json(c.tolerance) : Json(nullptr);
+    x["tolerance_source"] = c.tolerance_source;
     x["judged"] = c.judged;
     constraints.push_back(std::move(x));
-    if (c.guard) continue;
+    if (c.guard || c.goal) continue;
     if (!c.judged) {
       tracked.push_back(c.name + " " + num(error));
       continue;
@@ -363,7 +581,8 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     }
   }
   j["constraints"] = std::move(constraints);
-  details << "  constraints at the end (guards aside): " << met << " of " << counted << " met";
+  details << "  other constraints at the end (goals and guards aside): " << met << " of " << counted
+          << " met";
   if (!unmet.empty()) {
     details << "; not met:";
     for (size_t i = 0; i < unmet.size(); ++i) details << (i ? ", " : " ") << unmet[i];

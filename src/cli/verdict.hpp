@@ -36,19 +36,36 @@ struct VerdictPlan {
     std::size_t satisfied = 0;
     bool timeout = false;  // a greater-than on the clock's time
   };
+  // A constraint the motion enforces (ir::Step::goals): judged when the
+  // motion ends (its `.ended` event; at the run's end while it runs),
+  // against its tolerance, and watched every tick it runs.
+  struct Goal {
+    std::string constraint, name, relation;
+    std::string unit;  // the quantity's (QUDT local name)
+    runtime::ConstraintSpec spec;
+    std::string tolerance_source;  // "stated", "default" or "none"
+    bool is_while = false;         // listed in the motion's `while`
+    bool acted_on = false;         // a controller whose output reaches a solver reads its error
+    std::size_t satisfied = 0;
+    std::ptrdiff_t value = -1, error = -1;
+  };
   struct Motion {
     std::string iri, name;
     std::size_t running = 0, ended = 0;
     bool has_when = false;
     std::vector<Guard> whiles, untils;  // the checked per-conditions, the post-conditions
+    std::vector<Goal> goals;
   };
   struct Constraint {
     std::string iri, name, relation;
     std::ptrdiff_t value = -1, error = -1;  // -1: not logged (an assignment has no error)
     std::size_t satisfied = 0;
     bool guard = false;  // a motion's `when` or `until`
-    // An equality the model gives no tolerance (mos-grd:tolerance) holds only
-    // at an error of exactly 0: its final error is reported, not judged.
+    bool goal = false;   // a goal of some motion (Motion::goals), judged there
+    std::string tolerance_source;
+    // An equality without a tolerance (none stated, and no motion enforces
+    // it, so none by default) holds only at an error of exactly 0: its final
+    // error is reported, not judged.
     bool judged = true;
     double tolerance = 0.0;
   };
@@ -72,7 +89,10 @@ struct VerdictPlan {
 
 VerdictPlan plan_verdict(const ir::Program& program);
 
-// Adds the columns the verdict watches to `options`.
+// Adds the columns the verdict watches to `options`, and the snapshots (a
+// motion's goals when it ends) and held records (its goals while it runs) it
+// reads, in plan order: per motion with goals, one snapshot; per goal, one
+// held record.
 void watch_for_verdict(const VerdictPlan& plan, sim::RunOptions& options);
 
 struct Verdict {

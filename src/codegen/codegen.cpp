@@ -962,8 +962,10 @@ class Builder {
           put(e, "column", std::to_string(c));
           put(e, "source", ref(a.acceleration_constraints[c].energy));
           put(e, "iri", comment_text(a.acceleration_constraints[c].iri));
-          if (a.acceleration_constraints[c].engaged_by >= 0)
+          if (a.acceleration_constraints[c].engaged_by >= 0) {
             put(e, "engaged_by", ref(a.acceleration_constraints[c].engaged_by));
+            put(e, "engaged_tolerance", cpp_double(a.acceleration_constraints[c].tolerance));
+          }
           append(betas, std::move(e));
         }
         put(s, "forces", std::move(forces));

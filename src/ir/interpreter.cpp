@@ -255,8 +255,9 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       for (size_t k = 0; k < solver.acceleration_constraints.size(); ++k) {
         const AccelerationConstraint& ac = solver.acceleration_constraints[k];
         arm.ws.beta[static_cast<Eigen::Index>(k)] = s_.scalars[slot(ac.energy)];
-        // NaN != 0: a faulty bound stays engaged (and faults the solve).
-        arm.ws.engaged[k] = ac.engaged_by < 0 || s_.scalars[slot(ac.engaged_by)] != 0.0;
+        if (ac.engaged_by >= 0)
+          arm.ws.engaged[k] = steps::one_sided_engaged(
+              arm.ws.engaged[k], s_.scalars[slot(ac.engaged_by)], ac.tolerance);
       }
       steps::arm_solve(arm.task_model, arm.model, arm.data, arm.ws,
                        command.arm_tau[static_cast<size_t>(solver.port)]);

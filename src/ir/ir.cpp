@@ -71,6 +71,36 @@ runtime::AchdModel achd_model(const ArmSolver& arm, bool physical) {
   return model;
 }
 
+namespace {
+
+// Tight enough that a goal met is met for the task (a millimetre of a
+// position, half a degree of an angle, half a newton of a force), loose
+// enough for a PD that converges exponentially to reach it within a motion.
+constexpr DefaultTolerance kDefaultTolerances[] = {
+    {"M", 1e-3, "length, position: 1 mm"},
+    {"RAD", 0.01, "angle: 0.01 rad (0.57 deg)"},
+    {"M-PER-SEC", 0.01, "linear velocity: 1 cm/s"},
+    {"RAD-PER-SEC", 0.05, "angular velocity: 0.05 rad/s (2.9 deg/s)"},
+    {"M-PER-SEC2", 0.05, "linear acceleration: 0.05 m/s^2"},
+    {"RAD-PER-SEC2", 0.1, "angular acceleration: 0.1 rad/s^2"},
+    {"N", 0.5, "force: 0.5 N"},
+    {"N-M", 0.1, "torque: 0.1 N m"},
+    {"SEC", 1e-3, "time: 1 ms (one control tick at 1 kHz)"},
+    {"UNITLESS", 0.01, "a ratio: 0.01"},
+};
+
+}  // namespace
+
+std::span<const DefaultTolerance> default_tolerances() {
+  return kDefaultTolerances;
+}
+
+std::optional<double> default_tolerance(std::string_view unit) {
+  for (const DefaultTolerance& d : kDefaultTolerances)
+    if (d.unit == unit) return d.tolerance;
+  return std::nullopt;
+}
+
 double idle_time_constant(const ArmSolver& arm) {
   return arm.idle == ArmSolver::Idle::BrakeAndHold ? arm.idle_time_constant
                                                    : runtime::steps::kFloatTimeConstant;
@@ -471,6 +501,15 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
                        " while- and " + std::to_string(n_until) + " until-guards; at most " +
                        std::to_string(kMaxGuards) + " each");
     }
+    if (st.kind == StepKind::GuardedMotion) {
+      if (st.n_goal_whiles < 0 || static_cast<size_t>(st.n_goal_whiles) > st.goals.size())
+        f.step(st, std::to_string(st.n_goal_whiles) + " goal-whiles of " +
+                       std::to_string(st.goals.size()) + " goals");
+      for (int g : st.goals) {
+        if (!f.valid_datum(g) || p.data[static_cast<size_t>(g)].type != DataType::Flag)
+          f.step(st, "goal " + f.describe(g) + " must be a constraint's satisfied flag");
+      }
+    }
     if (st.kind == StepKind::EdgeMonitor) {
       const auto e = static_cast<int>(st.edges);
       if (e < 1 || e > 3)
@@ -721,7 +760,10 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     for (const AccelerationConstraint& c : a.acceleration_constraints) {
       Json e = {
           {"iri", c.iri}, {"component", c.component}, {"energy", c.energy}, {"level", c.level}};
-      if (c.engaged_by >= 0) e["engaged-by"] = c.engaged_by;
+      if (c.engaged_by >= 0) {
+        e["engaged-by"] = c.engaged_by;
+        e["engaged-tolerance"] = c.tolerance;
+      }
       acc.push_back(std::move(e));
     }
     e["acceleration-constraints"] = std::move(acc);
@@ -791,11 +833,17 @@ std::string to_json(const Program& p, const SourceFiles* files) {
       c["lower"] = st.constraint.lower;
       c["upper"] = st.constraint.upper;
       c["tolerance"] = st.constraint.tolerance;
+      if (st.kind == StepKind::Evaluate) {
+        static constexpr const char* kSources[] = {"none", "stated", "default"};
+        c["tolerance-source"] = kSources[static_cast<int>(st.tolerance_source)];
+      }
       e["constraint"] = std::move(c);
     }
     if (st.kind == StepKind::GuardedMotion) {
       e["when"] = st.n_when;
       e["while"] = st.n_while;
+      e["goals"] = st.goals;
+      e["goal-whiles"] = st.n_goal_whiles;
     }
     if (st.kind == StepKind::EdgeMonitor) {
       static constexpr const char* kEdges[] = {"", "rising", "falling", "both"};

@@ -26,6 +26,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "robot/controller.hpp"
@@ -122,10 +123,23 @@ struct Step {
   int solver = -1;                     // ArmKinematics, ArmSolve: arm solver index
   std::vector<int> views;              // ViewRead: 1 component; ViewWrite: one per input
   runtime::ConstraintSpec constraint;  // Evaluate
-  bool has_error_output = false;       // Evaluate: out[1] is the error (else none/output)
-  int n_when = 0;                      // GuardedMotion: ins[0, n_when) are `when`,
-  int n_while = 0;                     // then n_while `while` (checked per-conditions),
-                                       // then the `until`
+  // Evaluate: where constraint.tolerance comes from: the model's
+  // (mos-grd:tolerance), the default of its unit (default_tolerance(), for a
+  // constraint a motion enforces), or none (0: satisfied only exactly, or
+  // inside an inequality's bounds).
+  enum class Tolerance : uint8_t { None, Stated, Default } tolerance_source = Tolerance::None;
+  bool has_error_output = false;  // Evaluate: out[1] is the error (else none/output)
+  int n_when = 0;                 // GuardedMotion: ins[0, n_when) are `when`,
+  int n_while = 0;                // then n_while `while` (checked per-conditions),
+                                  // then the `until`
+  // GuardedMotion: the satisfied flags of the constraints the motion enforces
+  // (its goals), which the step does not read: the verdict judges them when
+  // the motion ends and watches them while it runs. goals[0, n_goal_whiles)
+  // are the `while` constraints on quantities the motion acts on (not
+  // checked by the step), the rest the constraints whose errors its
+  // controllers read that its `while` does not list.
+  std::vector<int> goals;
+  int n_goal_whiles = 0;
   runtime::Edges edges = runtime::Edges::Rising;  // EdgeMonitor: the edges it reports
   int controller = -1;                            // Controller: index into controller_kinds()
   std::vector<double> parameters;                 // Controller: one value per parameter of its kind
@@ -169,10 +183,13 @@ struct AccelerationConstraint {
   int energy = -1;    // scalar data: the constraint's value (beta)
   int level = 0;      // priority level (0 = highest)
   // One-sided: the error of the less-than/greater-than constraint whose
-  // controller produces `energy`. The direction is constrained only while
-  // that error is non-zero (the inequality violated); while it is satisfied
-  // the direction moves freely. -1: always constrained.
+  // controller produces `energy`, and that constraint's tolerance. The
+  // direction is constrained only while the quantity is beyond the bound
+  // (runtime::steps::one_sided_engaged: by more than half the tolerance, until
+  // back within a quarter of it); otherwise it moves freely. -1: always
+  // constrained.
   int engaged_by = -1;
+  double tolerance = 0.0;
 };
 struct CartesianForce {
   std::string iri;
@@ -280,6 +297,18 @@ struct Program {
                : 0;
   }
 };
+
+// The tolerance of a constraint a motion enforces when the model states none,
+// by the constrained quantity's unit (QUDT local name): 1 mm, 0.01 rad, 0.5 N,
+// ... (docs/simulation.md, "Default tolerances"); none for another unit.
+std::optional<double> default_tolerance(std::string_view unit);
+// The table itself, for the docs' test: (unit, tolerance, what it is).
+struct DefaultTolerance {
+  std::string_view unit;
+  double tolerance;
+  std::string_view kind;
+};
+std::span<const DefaultTolerance> default_tolerances();
 
 // Most `when`, checked `while` or `until` guards one guarded motion may have.
 inline constexpr int kMaxGuards = 16;

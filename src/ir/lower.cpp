@@ -65,6 +65,7 @@ const PassInfo kPasses[] = {
     {"evaluators", &lowering::lower_evaluators},
     {"monitors", &lowering::lower_monitors},
     {"handlers", &lowering::lower_handlers},
+    {"goals", &lowering::lower_goals},
     {"controllers", &lowering::lower_controllers},
     {"views", &lowering::lower_views},
     {"driver-directions", &lowering::check_driver_directions},

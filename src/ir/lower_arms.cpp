@@ -645,8 +645,10 @@ void check_acceleration_energies(State& st, const ArmSolver& arm) {
 
 // A controller acting directly on the error of a less-than/greater-than
 // constraint drives its acceleration constraint one-sided: the row is engaged
-// only while the inequality is violated (a non-zero error), so a satisfied
-// bound leaves its direction free instead of locking it. An inequality reached
+// only while the quantity is beyond the bound, within the constraint's
+// tolerance (runtime::steps::one_sided_engaged), so a satisfied bound leaves
+// its direction free instead of locking it, and a bound a PD approaches
+// asymptotically is released once the quantity is close enough. An inequality reached
 // through anything else (an operator mixing it with other signals) has no
 // single error that says when the bound is reached: refused.
 bool evaluates_inequality(const Step& step) {
@@ -663,8 +665,10 @@ void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
     if (controller.kind == StepKind::Controller && !controller.in.empty()) {
       const auto e = st.producer.find(controller.in[0]);
       if (e != st.producer.end() && e->second >= 0) {
-        if (evaluates_inequality(st.steps[static_cast<size_t>(e->second)])) {
+        if (const Step& evaluate = st.steps[static_cast<size_t>(e->second)];
+            evaluates_inequality(evaluate)) {
           ac.engaged_by = controller.in[0];
+          ac.tolerance = evaluate.constraint.tolerance;
           solve.in.push_back(ac.engaged_by);
           continue;
         }

@@ -132,6 +132,20 @@ void lower_evaluators(State& st) {
         continue;
       }
       spec.threshold = *t;
+      // The model's tolerance: satisfied while beyond the threshold by no
+      // more than it (a one-sided row releases within it: mark_one_sided).
+      if (auto tol = st.object(*c, tolerance_p)) {
+        const auto v = constant("tolerance", tolerance_p);
+        if (!v) continue;
+        if (!(*v >= 0.0)) {
+          st.error(*tol, "invalid-constraint",
+                   "the tolerance '" + st.str(*tol) + "' of '" + st.str(*c) + "' is " +
+                       exact_number(*v) + "; a tolerance is a bound on |error|, >= 0");
+          continue;
+        }
+        spec.tolerance = *v;
+        s.tolerance_source = Step::Tolerance::Stated;
+      }
       // A timeout: a threshold on a clock's time, which starts at 0 and only
       // grows. A threshold <= 0 s is decided before the first tick (a
       // greater-than constraint holds at once, a less-than never does).
@@ -177,6 +191,7 @@ void lower_evaluators(State& st) {
           continue;
         }
         spec.tolerance = *t;
+        s.tolerance_source = Step::Tolerance::Stated;
       }
     } else {
       st.error(*c, "unsupported-constraint",
@@ -601,6 +616,83 @@ void lower_handlers(State& st) {
   for (const ControllerKind& kind : controller_kinds())
     for (TermId c : st.instances(kind.class_iri()))
       if (!flags_of_controller.count(c)) st.unlisted_controllers.insert(c.index);
+}
+
+// A motion's goals: the `while` constraints on the quantities it acts on
+// (lower_handlers leaves them to the motion's controllers and assignments
+// rather than checking them every tick), then the constraints whose errors
+// its controllers read. Each gets a tolerance: the model's, or the default of
+// its unit (default_tolerance()), also for the monitors watching its error;
+// the verdict judges every goal against it when the motion ends, and a
+// one-sided row releases its bound within it (mark_one_sided).
+void lower_goals(State& st) {
+  const std::string ch = "task/constraint-handler";
+  const std::string mot = "task/motion-specification";
+  const std::pmr::map<uint32_t, std::pmr::set<int>> acted = acted_on(st);
+  std::pmr::map<int, int> evaluate_of_error{&st.arena};  // error datum -> its Evaluate step
+  for (const auto& [evaluator, step] : st.evaluate_step_of_evaluator) {
+    const Step& ev = st.steps[static_cast<size_t>(step)];
+    if (ev.constraint.kind != runtime::ConstraintKind::Assignment && ev.out.size() > 1)
+      evaluate_of_error[ev.out[1]] = step;
+  }
+  std::pmr::map<uint32_t, std::pmr::vector<TermId>> handlers_of{&st.arena};
+  for (TermId h : st.instances(vocab(ch, "ConstraintHandler")))
+    if (const auto m = st.graph.object(h, st.term(vocab(ch, "motion"))))
+      handlers_of[m->index].push_back(h);
+  std::pmr::set<int> defaulted{&st.arena};  // Evaluate steps given a default tolerance
+  for (Step& motion : st.steps) {
+    if (motion.kind != StepKind::GuardedMotion) continue;
+    const TermId m = st.term(motion.iri);
+    std::vector<int> goals;  // Evaluate steps
+    const auto add = [&](int step) {
+      if (std::find(goals.begin(), goals.end(), step) == goals.end()) goals.push_back(step);
+    };
+    const auto a = acted.find(m.index);
+    for (TermId c : st.objects(m, vocab(mot, "while"))) {
+      const auto it = st.evaluator_of_constraint.find(c.index);
+      if (it == st.evaluator_of_constraint.end() || a == acted.end()) continue;
+      const Step& ev = st.steps[static_cast<size_t>(it->second)];
+      if (ev.constraint.kind == runtime::ConstraintKind::Assignment) continue;
+      if (a->second.count(ev.in[0])) add(it->second);
+    }
+    const auto n_whiles = goals.size();
+    if (const auto hs = handlers_of.find(m.index); hs != handlers_of.end()) {
+      for (TermId h : hs->second) {
+        for (TermId k : st.objects(h, vocab(ch, "controllers"))) {
+          st.graph.each_statement(k, [&](const Graph::Statement& s) {
+            const auto d = st.data_of.find(s.object.index);
+            if (d == st.data_of.end()) return;
+            if (const auto e = evaluate_of_error.find(d->second); e != evaluate_of_error.end())
+              add(e->second);
+          });
+        }
+      }
+    }
+    // The controllers' in the order of their steps (the map's order is the model's).
+    std::sort(goals.begin() + static_cast<std::ptrdiff_t>(n_whiles), goals.end());
+    motion.goals.clear();
+    for (int g : goals) {
+      Step& ev = st.steps[static_cast<size_t>(g)];
+      motion.goals.push_back(ev.out[0]);
+      if (ev.tolerance_source != Step::Tolerance::None) continue;
+      const auto tolerance = default_tolerance(st.program.data[static_cast<size_t>(ev.in[0])].unit);
+      if (!tolerance) continue;  // the verdict says there is none
+      ev.constraint.tolerance = *tolerance;
+      ev.tolerance_source = Step::Tolerance::Default;
+      defaulted.insert(g);
+    }
+    motion.n_goal_whiles = static_cast<int>(n_whiles);
+  }
+  // The monitors watching a goal's error use its tolerance (lower_monitors
+  // copied the constraint before it had one).
+  for (int g : defaulted) {
+    const Step& ev = st.steps[static_cast<size_t>(g)];
+    for (Step& monitor : st.steps) {
+      if ((monitor.kind == StepKind::LevelMonitor || monitor.kind == StepKind::EdgeMonitor) &&
+          !monitor.in.empty() && monitor.in[0] == ev.out[1])
+        monitor.constraint = ev.constraint;
+    }
+  }
 }
 
 }  // namespace mospec::ir::lowering

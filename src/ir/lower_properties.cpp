@@ -153,7 +153,8 @@ std::string advice(std::string_view type, std::string_view property) {
 }
 
 // mospec's guard extension (metamodels/mospec/guards.json): lower_evaluators
-// reads `tolerance` on an equality constraint, lower_monitors `edge` on an
+// reads `tolerance` on an equality, less-than or greater-than constraint,
+// lower_monitors `edge` on an
 // edge-triggered monitor. On any other constraint or monitor, or any other
 // term of the extension, it would be ignored: refused.
 void refuse_misplaced_guard_terms(State& st) {
@@ -172,22 +173,25 @@ void refuse_misplaced_guard_terms(State& st) {
         const std::string_view p = st.graph.str(statement.predicate);
         if (!p.starts_with(ns) || !reported.insert(p).second) return;
         const std::string local(p.substr(ns.size()));
-        const bool equality = st.has_type(e, cstr + "EqualityConstraint");
+        const bool equality = st.has_type(e, cstr + "EqualityConstraint") ||
+                              st.has_type(e, cstr + "LessThanConstraint") ||
+                              st.has_type(e, cstr + "GreaterThanConstraint");
         const bool edge = st.has_type(e, hdl + "EdgeTriggeredMonitor");
         if ((local == "tolerance" && equality) || (local == "edge" && edge)) return;
         std::string why;
         if (local == "tolerance")
           why =
-              "a tolerance widens an equality constraint; an inequality or a band is satisfied "
-              "inside its bounds, and a monitor uses its constraint's tolerance";
+              "a tolerance widens an equality, a less-than or a greater-than constraint; a "
+              "band is satisfied inside its bounds, and a monitor uses its constraint's "
+              "tolerance";
         else if (local == "edge")
           why =
               "only an edge-triggered monitor reports edges (a level-triggered one raises a "
               "flag while its constraint holds)";
         else
           why =
-              "mospec's guard extension has `tolerance` (equality constraints) and `edge` "
-              "(edge-triggered monitors)";
+              "mospec's guard extension has `tolerance` (equality, less-than and greater-than "
+              "constraints) and `edge` (edge-triggered monitors)";
         std::string message = "'";
         message.append(st.str(e)).append("' states `").append(local).append("` (mos-grd:");
         message.append(local).append("), which mospec does not read for it, so it would be ");

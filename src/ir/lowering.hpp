@@ -322,6 +322,7 @@ void lower_base(State& st);
 void lower_evaluators(State& st);
 void lower_monitors(State& st);
 void lower_handlers(State& st);
+void lower_goals(State& st);
 // lower_controllers.cpp
 void lower_controllers(State& st);
 // lower_views.cpp

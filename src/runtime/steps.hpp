@@ -33,9 +33,10 @@ struct ArmWorkspace {
   ConstraintMatrix alpha_To_B;  // 6 x nc, filled at setup (unit columns)
   ConstraintVector beta;        // nc, filled every tick from the drivers
   // Which columns constrain this tick (filled with beta). A column driven from
-  // a one-sided (less-than/greater-than) constraint is engaged only while
-  // that inequality is violated; a disengaged column leaves its direction to
-  // the least-constrained motion, as if the column were not there.
+  // a one-sided (less-than/greater-than) constraint is engaged only while its
+  // quantity is beyond the bound (one_sided_engaged); a disengaged column
+  // leaves its direction to the least-constrained motion, as if the column
+  // were not there. Kept from tick to tick (its hysteresis).
   std::array<bool, kMaxConstraints> engaged{};
   ConstraintMatrix alpha_engaged;  // the engaged columns, packed left (setup-sized)
   ConstraintVector beta_engaged;
@@ -137,6 +138,26 @@ void arm_hold(const AchdModel& physical_model, AchdData& data, ArmWorkspace& ws,
 inline constexpr double kFaultHoldTimeConstant = 0.1;  // [s]
 // The Float behaviour's time constant.
 inline constexpr double kFloatTimeConstant = std::numeric_limits<double>::infinity();
+
+// Whether a one-sided row is engaged this tick, given whether it was in the
+// last and its inequality's error (0 inside the bound) and tolerance: engaged
+// once the quantity is beyond the bound by more than kEngageBeyond of the
+// tolerance, released once back within kReleaseWithin of it. The controller
+// on the error drives the quantity towards the bound itself, which a PD
+// reaches only asymptotically: released short of it, the direction is free
+// again, so a force into the feasible side moves the quantity away from the
+// bound. Engaging at half the tolerance, not at its edge, keeps a force that
+// pushes out (a row that engages and releases, tick after tick) within the
+// band the constraint is satisfied in, overshoot included. A tolerance of 0:
+// engaged while the error is not 0. A NaN error: engaged (the solve then
+// faults on its NaN output).
+inline constexpr double kEngageBeyond = 0.5;
+inline constexpr double kReleaseWithin = 0.25;
+inline bool one_sided_engaged(bool engaged, double error, double tolerance) noexcept {
+  const double beyond = std::abs(error);
+  if (std::isnan(beyond)) return true;
+  return beyond > (engaged ? kReleaseWithin : kEngageBeyond) * tolerance;
+}
 
 // ---------------------------------------------------------------------------
 // Views (1D <-> 3D).

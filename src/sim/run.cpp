@@ -155,6 +155,20 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
         throw Error("invalid-run-options", "a pushing log column is out of range");
     }
   }
+  for (const RunOptions::Snapshot& s : options.snapshots) {
+    bool fits = s.at < columns.size();
+    for (const std::size_t i : s.columns) fits = fits && i < columns.size();
+    if (!fits) throw Error("invalid-run-options", "a snapshot's log column is out of range");
+    Snapshot taken;
+    taken.values.assign(s.columns.size(), 0.0);
+    r.snapshots.push_back(std::move(taken));
+  }
+  for (const RunOptions::Held& h : options.held) {
+    if (h.flag >= columns.size() || h.during >= columns.size())
+      throw Error("invalid-run-options", "a held log column is out of range");
+  }
+  r.held.assign(options.held.size(), HeldRecord{});
+  std::vector<bool> lapsing(options.held.size(), false);
   std::vector<double> watched(options.watch.size(), 0.0);
   std::vector<bool> pushing(arms, false);
   std::vector<bool> touched(arms, false);    // contact since the force was last not commanded
@@ -166,7 +180,8 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
   }
   std::vector<const ArmActuation*> actuation;
   for (size_t a = 0; a < arms; ++a) actuation.push_back(&arm_actuation(config, a));
-  const bool read_values = !latched.empty() || !options.watch.empty() || any_pushing;
+  const bool read_values = !latched.empty() || !options.watch.empty() || any_pushing ||
+                           !options.snapshots.empty() || !options.held.empty();
   const auto start = std::chrono::steady_clock::now();
   if (options.observer) options.observer->observe(world);
   for (std::uint64_t k = 0; k < ticks; ++k) {
@@ -203,6 +218,37 @@ RunResult run(World& world, robot::Controller& controller, const RunOptions& opt
         } else {
           ++r.changes_dropped;
         }
+      }
+      // Snapshots and held records: preallocated above, nothing allocated here.
+      for (size_t n = 0; n < options.snapshots.size(); ++n) {
+        const RunOptions::Snapshot& s = options.snapshots[n];
+        Snapshot& taken = r.snapshots[n];
+        if (taken.taken || !(values[s.at] != 0.0)) continue;
+        taken.taken = true;
+        taken.tick = k;
+        taken.time = state.clock.t;
+        for (size_t i = 0; i < s.columns.size(); ++i) taken.values[i] = values[s.columns[i]];
+      }
+      for (size_t n = 0; n < options.held.size(); ++n) {
+        if (!(values[options.held[n].during] != 0.0)) {
+          lapsing[n] = false;
+          continue;
+        }
+        HeldRecord& h = r.held[n];
+        const bool holds = values[options.held[n].flag] != 0.0;
+        ++h.during_ticks;
+        h.last = holds;
+        if (holds) {
+          ++h.held_ticks;
+          if (!h.ever_held) h.first_held_tick = k;
+          h.ever_held = true;
+          lapsing[n] = false;
+          continue;
+        }
+        if (!h.ever_held) continue;
+        if (!lapsing[n] && h.lapses++ == 0) h.first_lapse_tick = k;
+        lapsing[n] = true;
+        ++h.lapsed_ticks;
       }
       for (size_t a = 0; a < arms; ++a) {
         pushing[a] = false;

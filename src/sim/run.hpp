@@ -58,7 +58,44 @@ struct RunOptions {
   // means the controller commands a force on that arm's end effector
   // (RunResult::contact). Empty, or shorter than the arms: none.
   std::vector<std::vector<std::size_t>> pushing;
+  // Log columns kept as they were after the first tick in which the event
+  // column `at` was not 0 (e.g. a motion's goals when it ended:
+  // RunResult::snapshots, one per entry).
+  struct Snapshot {
+    std::size_t at = 0;
+    std::vector<std::size_t> columns;
+  };
+  std::vector<Snapshot> snapshots;
+  // Whether the flag column `flag` held in the ticks after which the flag
+  // column `during` was set (a motion's `while` while the motion ran:
+  // RunResult::held, one per entry).
+  struct Held {
+    std::size_t flag = 0, during = 0;
+  };
+  std::vector<Held> held;
   StepObserver* observer = nullptr;  // not owned; none when null
+};
+
+// RunOptions::snapshots' values.
+struct Snapshot {
+  bool taken = false;          // the event column was not 0 after some tick
+  std::uint64_t tick = 0;      // the first such tick
+  double time = 0.0;           // the controller's clock at that tick [s]
+  std::vector<double> values;  // the columns' values after it, in RunOptions' order
+};
+
+// How a flag held while another was set (RunOptions::held). A lapse is a run
+// of ticks in which it did not hold after it first held (within the ticks
+// `during` was set).
+struct HeldRecord {
+  std::uint64_t during_ticks = 0;  // ticks with `during` set
+  std::uint64_t held_ticks = 0;    // ... and the flag up
+  bool ever_held = false;
+  std::uint64_t first_held_tick = 0;
+  std::uint64_t lapses = 0;        // lapses, as above
+  std::uint64_t lapsed_ticks = 0;  // ticks within them
+  std::uint64_t first_lapse_tick = 0;
+  bool last = false;  // the flag in the last tick `during` was set
 };
 
 // One event a controller signalled: a column of kind robot::LogColumnKind::Event
@@ -147,6 +184,8 @@ struct RunResult {
   bool joint_limit_exceeded = false;  // a measured joint position left its limits
   JointLimitRecord joint_limit;
   std::vector<ContactRecord> contact;  // per arm
+  std::vector<Snapshot> snapshots;     // per RunOptions::snapshots entry
+  std::vector<HeldRecord> held;        // per RunOptions::held entry
   int instabilities = 0;               // MuJoCo warnings (untrustworthy when > 0)
 };
 

@@ -5,6 +5,7 @@
 // either lacks a kind; this test covers what the compiler cannot see.
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -49,6 +50,31 @@ TEST(StepKinds, StateSlotsAreThoseOfStatefulKinds) {
   EXPECT_EQ(info(StepKind::EdgeMonitor).state, StateKind::Monitor);
   EXPECT_EQ(info(StepKind::GuardedMotion).state, StateKind::Motion);
   EXPECT_EQ(info(StepKind::Operator).state, std::nullopt);
+}
+
+// The default tolerances of a motion's goals (issue #33 item 1) are
+// documented: docs/simulation.md's table under "Default tolerances" has one
+// row per entry of default_tolerances(), with its unit and value, and no other.
+TEST(DefaultTolerances, TheDocumentedTableIsTheCodes) {
+  const std::string doc =
+      mospec::test::slurp(std::filesystem::path(MOSPEC_SOURCE_DIR) / "docs" / "simulation.md");
+  const size_t start = doc.find("*Default tolerances.*");
+  ASSERT_NE(start, std::string::npos);
+  const size_t end = doc.find("\n\n", doc.find("| `", start));
+  const std::string table = doc.substr(start, end - start);
+  size_t rows = 0;
+  for (size_t at = table.find("\n| `"); at != std::string::npos; at = table.find("\n| `", at + 1))
+    ++rows;
+  EXPECT_EQ(rows, default_tolerances().size()) << table;
+  for (const DefaultTolerance& d : default_tolerances()) {
+    char number[32];
+    const auto [p, ec] = std::to_chars(number, number + sizeof number, d.tolerance);
+    ASSERT_EQ(ec, std::errc());
+    const std::string row = "| `" + std::string(d.unit) + "` | " + std::string(number, p) + " ";
+    EXPECT_NE(table.find(row), std::string::npos) << "no row '" << row << "' in\n" << table;
+    EXPECT_EQ(default_tolerance(d.unit), d.tolerance);
+  }
+  EXPECT_EQ(default_tolerance("KiloGM"), std::nullopt);
 }
 
 }  // namespace

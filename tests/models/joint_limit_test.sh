@@ -39,8 +39,11 @@ check "joint 4 starts at the world file's q0 (-2.1654 rad)" \
 check "the joint limit is passed by at most 10 mrad" holds "$(peak $q) < -2.04"
 check "the joint force pushes back (the limit's torque reaches -1 N·m)" \
   holds "$(trough ctrl-q-rightarm-j4-limit.output) < -1"
-check "the limit holds joint 4 at -2.05 rad (within 1 mrad at 2.5 s and 3 s)" \
-  holds "$(at $q 2.5) > -2.051 && $(at $q 2.5) < -2.049 && $(at $q 3) > -2.051 && $(at $q 3) < -2.049"
+# (Within 5 mrad: the tip's ceiling, a one-sided row, now releases within
+# its 1 mm tolerance instead of at exactly 0 (#33 item 5), and the arm
+# settles with joint 4 a few mrad either side of its limit.)
+check "the limit holds joint 4 at -2.05 rad (within 5 mrad at 2.5 s and 3 s)" \
+  holds "$(at $q 2.5) > -2.055 && $(at $q 2.5) < -2.045 && $(at $q 3) > -2.055 && $(at $q 3) < -2.045"
 check "joint 4's velocity is guarded: the slow-joint monitor drops while it moves fast" \
   holds "$(trough mon-qd-rightarm-j4-slow.flag) == 0 && $(at mon-qd-rightarm-j4-slow.flag 3) == 1"
 check "the measured torque is read (its invariant holds, the values are not all 0)" \

@@ -203,10 +203,10 @@ bad estimated-wrench mospec/estimated-wrench.ttl 2 \
 good guards mospec/guards.ttl
 bad guards mospec/guards.ttl 12 \
   '<https://ex.org/motion-while>: <https://ex.org/exact> is a per-condition on a quantity no controller or assignment of the motion acts on' \
-  '<https://ex.org/band>: only an equality constraint has a tolerance' \
+  '<https://ex.org/band>: only an equality, a less-than or a greater-than constraint has a tolerance' \
   '<https://ex.org/negative>: a tolerance is a number >= 0' \
   "<https://ex.org/seconds>: a tolerance is in the constrained quantity's unit" \
-  '<https://ex.org/twice>: an equality constraint has at most one tolerance' \
+  '<https://ex.org/twice>: a constraint has at most one tolerance' \
   '<https://ex.org/twice>: a tolerance has exactly one value' \
   '<https://ex.org/motion>: <https://ex.org/exact> is an equality constraint without a tolerance.*motion-specification#until' \
   '<https://ex.org/motion>: <https://ex.org/exact> is an equality constraint without a tolerance.*motion-specification#when' \

@@ -136,6 +136,36 @@ TEST(ArmSteps, ADisengagedColumnLeavesItsDirectionFree) {
   }
 }
 
+TEST(ArmSteps, AOneSidedRowEngagesBeyondHalfItsToleranceAndReleasesWithinAQuarter) {
+  // An inequality with a 1 mm tolerance (a position's default): the error is
+  // 0 inside the bound, the signed distance to it beyond.
+  constexpr double tol = 1e-3;
+  // Inside the bound: never engaged.
+  EXPECT_FALSE(steps::one_sided_engaged(false, 0.0, tol));
+  EXPECT_FALSE(steps::one_sided_engaged(true, 0.0, tol));
+  // Starts 1 cm beyond (violated): engaged, and stays so while a PD brings it
+  // back, until within a quarter of the tolerance (it need not reach the
+  // bound, which a PD reaches only asymptotically).
+  bool engaged = true;  // ArmWorkspace's initial state
+  std::vector<bool> trace;
+  for (double error : {-1e-2, -5e-3, -1e-3, -6e-4, -3e-4, -2.4e-4, -1e-4, -2e-4, -4e-4})
+    trace.push_back(engaged = steps::one_sided_engaged(engaged, error, tol));
+  // Released at -2.4e-4 (<= 2.5e-4); not re-engaged at -4e-4 (<= 5e-4).
+  EXPECT_EQ(trace, (std::vector<bool>{true, true, true, true, true, false, false, false, false}));
+  // Pushed out again: engaged beyond half the tolerance, inside the band
+  // (1 mm) where the constraint is satisfied.
+  EXPECT_TRUE(steps::one_sided_engaged(false, -5.1e-4, tol));
+  EXPECT_FALSE(steps::one_sided_engaged(false, -5e-4, tol));
+  EXPECT_TRUE(steps::one_sided_engaged(true, -3e-4, tol));
+  // The sign does not matter (a greater-than's error is positive beyond).
+  EXPECT_TRUE(steps::one_sided_engaged(false, 6e-4, tol));
+  // Without a tolerance: engaged exactly while the error is not 0.
+  EXPECT_TRUE(steps::one_sided_engaged(false, -1e-12, 0.0));
+  EXPECT_FALSE(steps::one_sided_engaged(true, 0.0, 0.0));
+  // A NaN error keeps the row engaged (the solve then faults on it).
+  EXPECT_TRUE(steps::one_sided_engaged(false, std::nan(""), tol));
+}
+
 TEST(ArmSteps, BrakeAndHoldDecaysEveryJointVelocityWithTheModelsTimeConstant) {
   const Arm arm;
   const AchdModel physical(arm.chain, kGravity);

@@ -10,6 +10,8 @@
 // and, in a world without the table, the past-the-table guard ends the motion.
 // Usage: scenarios_contact_test MOSPEC SOURCE_DIR APP
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -19,8 +21,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -33,7 +33,6 @@ using mospec::testing::read_csv;
 using mospec::testing::shell_quote;
 
 std::string g_mospec, g_source, g_app;
-
 
 struct Stats {
   double min = INFINITY, max = -INFINITY, sum = 0;
@@ -50,13 +49,14 @@ struct Stats {
 class Scenario : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / ("mospec-scenario-" + g_app + "-" + std::to_string(::getpid()));
+    dir_ =
+        fs::temp_directory_path() / ("mospec-scenario-" + g_app + "-" + std::to_string(::getpid()));
     fs::create_directories(dir_);
     const fs::path log = dir_ / "run.csv", summary = dir_ / "summary.json", out = dir_ / "out.txt";
-    const std::string cmd = "cd " + shell_quote(g_source) + " && " + shell_quote(g_mospec) + " run models/" + g_app +
-                            ".json --sim --interpret --duration 10 --log " + shell_quote(log.string()) +
-                            " --summary " + shell_quote(summary.string()) + " > " + shell_quote(out.string()) +
-                            " 2>&1";
+    const std::string cmd =
+        "cd " + shell_quote(g_source) + " && " + shell_quote(g_mospec) + " run models/" + g_app +
+        ".json --sim --interpret --duration 10 --log " + shell_quote(log.string()) + " --summary " +
+        shell_quote(summary.string()) + " > " + shell_quote(out.string()) + " 2>&1";
     status_ = std::system(cmd.c_str());
     csv_ = read_csv(log);
     std::ifstream in(out);
@@ -85,7 +85,8 @@ TEST_F(Scenario, RunsForTenSecondsWithoutNaN) {
   for (const auto& row : csv_.rows) {
     ASSERT_EQ(row.size(), csv_.header.size());
     for (size_t i = 0; i < row.size(); ++i) {
-      ASSERT_TRUE(std::isfinite(row[i])) << csv_.header[i] << " at t = " << row[static_cast<size_t>(t)];
+      ASSERT_TRUE(std::isfinite(row[i]))
+          << csv_.header[i] << " at t = " << row[static_cast<size_t>(t)];
     }
   }
 }
@@ -99,7 +100,8 @@ TEST_F(Scenario, TheMotionRunsThroughoutAndTorquesStayInLimits) {
     const int running = csv_.column("motion-" + arm_name(side) + ".running");
     ASSERT_GE(running, 0) << "motion-" << arm_name(side) << ".running";
     for (const auto& row : csv_.rows) {
-      ASSERT_EQ(row[static_cast<size_t>(running)], 1.0) << side << " motion stopped at t = " << row[static_cast<size_t>(t)];
+      ASSERT_EQ(row[static_cast<size_t>(running)], 1.0)
+          << side << " motion stopped at t = " << row[static_cast<size_t>(t)];
     }
   }
   double worst = 0;
@@ -123,8 +125,8 @@ TEST_F(Scenario, ContactForceAndElbowHeightHoldAfterOneSecond) {
       height.add(row[static_cast<size_t>(elbow)]);
     }
     ASSERT_GT(force.n, 0);
-    std::printf("%s: contact force [%.3f, %.3f] N (mean %.3f); elbow error [%.4f, %.4f] m\n", side.c_str(),
-                force.min, force.max, force.mean(), height.min, height.max);
+    std::printf("%s: contact force [%.3f, %.3f] N (mean %.3f); elbow error [%.4f, %.4f] m\n",
+                side.c_str(), force.min, force.max, force.mean(), height.min, height.max);
     EXPECT_GE(force.min, 18.0) << side;
     EXPECT_LE(force.max, 22.0) << side;
     EXPECT_LE(std::max(std::abs(height.min), std::abs(height.max)), 0.02) << side;
@@ -136,17 +138,21 @@ TEST_F(Scenario, ContactForceAndElbowHeightHoldAfterOneSecond) {
 // more than 5 cm ahead of the contact position) within half a second, and the
 // edge-triggered monitor reports it once.
 TEST_F(Scenario, WithoutTheTableTheMotionEndsPastTheFace) {
-  const fs::path world = dir_ / "no-table.world.json", log = dir_ / "no-table.csv", out = dir_ / "no-table.txt";
+  const fs::path world = dir_ / "no-table.world.json", log = dir_ / "no-table.csv",
+                 out = dir_ / "no-table.txt";
   std::ofstream(world) << "{ \"base\": \"fixed\", \"table\": { \"present\": false },\n"
                           "  \"robot\": { \"model\": \""
                        << (fs::path(g_source) / "robots" / "kinova-gen3.jsonld").string()
                        << "\",\n    \"map\": { \"https://comp-rob2b.github.io/metamodels/\": \""
                        << (fs::path(g_source) / "metamodels").string() << "\" } } }\n";
-  const std::string cmd = "cd " + shell_quote(g_source) + " && " + shell_quote(g_mospec) + " run models/" + g_app +
-                          ".json --sim --interpret --duration 1 --log-every 1 --world " +
-                          shell_quote(world.string()) + " --log " + shell_quote(log.string()) + " > " +
-                          shell_quote(out.string()) + " 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::string cmd =
+      "cd " + shell_quote(g_source) + " && " + shell_quote(g_mospec) + " run models/" + g_app +
+      ".json --sim --interpret --duration 1 --log-every 1 --world " + shell_quote(world.string()) +
+      " --log " + shell_quote(log.string()) + " > " + shell_quote(out.string()) + " 2>&1";
+  // Exit 1 when the verdict finds the motion's goals not met as it ends past
+  // the face (issue #33 item 1); never a refusal (2) or a crash.
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) <= 1) << cmd;
   const Csv csv = read_csv(log);
   ASSERT_FALSE(csv.rows.empty());
   const int t = csv.column("t");
