@@ -54,7 +54,7 @@ std::map<std::string, int> arm_ports(const sim::WorldConfig& world,
                                      const std::vector<std::string>& binds) {
   std::map<std::string, int> ports;
   for (size_t k = 0; k < world.arms.size(); ++k) {
-    ports[world.arms[k].chain_iri] = static_cast<int>(k);
+    ports[sim::arm_chain(world, k)] = static_cast<int>(k);
   }
   for (const std::string& b : binds) {
     const auto eq = b.find('=');

@@ -241,6 +241,7 @@ void lower_arm(State& st, TermId solver) {
     // A solver rooted at, e.g., the platform: the chain hangs from it by a
     // constant mount pose, which becomes part of the first joint's placement.
     std::optional<runtime::Pose> X_RB;
+    std::optional<TermId> mount;  // the pose X_RB is read from
     for (TermId p : st.instances(vocab("geometry/spatial-relations", "Pose"))) {
       auto of = st.object(p, vocab("geometry/spatial-relations", "of"));
       auto wrt = st.object(p, vocab("geometry/spatial-relations", "with-respect-to"));
@@ -249,11 +250,30 @@ void lower_arm(State& st, TermId solver) {
           st.str(*wrt) != arm.root_frame || st.str(*seen) != arm.root_frame)
         continue;
       const int d = st.datum(p, DataType::Pose, solver, "mount pose");
-      if (st.program.data[static_cast<size_t>(d)].value.empty()) continue;
-      X_RB = constant_pose(st.program.data[static_cast<size_t>(d)].value);
+      const std::vector<double>& value = st.program.data[static_cast<size_t>(d)].value;
+      if (value.empty()) continue;
+      if (mount) {
+        // A second constant pose of the same mount: the chain and the
+        // simulated arm can hang at only one, and which one would be the
+        // order of the graph. The same numbers twice are one mount.
+        const std::vector<double>& first =
+            st.program.data[static_cast<size_t>(
+                                st.datum(*mount, DataType::Pose, solver, "mount pose"))]
+                .value;
+        if (first != value) {
+          st.error(p, "mount-mismatch",
+                   "'" + st.str(p) + "' is a second, different mount pose of '" +
+                       chain_root_frame + "' w.r.t. '" + arm.root_frame + "' (the root of '" +
+                       arm.chain_iri + "', which the solver '" + arm.iri + "' drives); '" +
+                       st.str(*mount) + "' (" + st.place(*mount) +
+                       ") already mounts it elsewhere. State the arm's mount once");
+        }
+        continue;
+      }
+      X_RB = constant_pose(value);
+      mount = p;
       arm.mount_pose_iri = st.str(p);
       arm.X_RB = *X_RB;
-      break;
     }
     if (!X_RB) {
       st.error(solver, "unsupported-root",

@@ -75,7 +75,8 @@ WorldConfig default_world() {
   // gravity vectors in models/00-common/01-world-model.json confirm.
   c.arms.resize(2);
   c.arms[robot::kRightArm].name = "right";
-  c.arms[robot::kRightArm].chain_iri = vocab::robots::kinova_gen3_chain;
+  // The right arm is the world's `robot` itself: its chain binds by the
+  // robot's `chain` (arm_chain), whatever IRI a world file gives it.
   c.arms[robot::kRightArm].X_PB =
       pose_from_cosines({0.130526192, 0.0, 0.991444861}, {-0.701057385, -0.707106781, 0.0922959556},
                         {0.701057385, -0.707106781, -0.0922959556}, {0.0, -0.1, 0.1});
@@ -94,6 +95,11 @@ WorldConfig default_world() {
   c.arms[robot::kRightArm].q0 = {-0.1989, 1.7282, -0.9470, -2.1654, -0.3097, 0.4927, 0.0};
   c.arms[robot::kLeftArm].q0 = {0.0984, 1.7898, 0.9763, -2.1188, 0.3954, 0.4859, 0.0341};
   return c;
+}
+
+const std::string& arm_chain(const WorldConfig& config, std::size_t arm) {
+  const ArmSetup& a = config.arms[arm];
+  return a.chain_iri.empty() ? config.robot.chain_iri : a.chain_iri;
 }
 
 const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm) {
@@ -342,7 +348,7 @@ void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
                   r.file(), l.line, l.column);
     }
     const json::Object& a =
-        r.object(o.value(k), what, {"present", "robot", "q", "mount", "actuation"});
+        r.object(o.value(k), what, {"present", "robot", "chain", "q", "mount", "actuation"});
     auto it = std::find_if(c.arms.begin(), c.arms.end(),
                            [&](const ArmSetup& s) { return s.name == name; });
     if (auto* p = a.find("present"); p && !r.boolean(*p, what + ".present")) {
@@ -376,6 +382,17 @@ void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
         r.fail(*x, what + ".robot: expected the `model` file and the `chain` IRI in it");
       }
       arm.chain_iri = arm.robot.chain_iri;
+    }
+    if (auto* x = a.find("chain")) {
+      // The name the task models give an arm that is the world's `robot`
+      // (two arms of one description need two chain IRIs); an arm with its
+      // own `robot` is bound by that robot's `chain`.
+      if (a.find("robot")) {
+        r.fail(*x, what + ".chain: an arm with its own `robot` is bound by `robot.chain`; state "
+                          "the chain IRI once, there");
+      }
+      arm.chain_iri = r.string(*x, what + ".chain");
+      if (arm.chain_iri.empty()) r.fail(*x, what + ".chain: expected a chain IRI");
     }
     if (auto* q = a.find("q"))
       arm.q0 = r.joint_numbers(*q, what + ".q", -kMaxAngle, kMaxAngle, "rad");
@@ -535,6 +552,26 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       if (auto* x = o.find("pivot_q")) {
         c.perturbation.pivot_q = r.non_negative(*x, "pivot_q", kPi, "rad");
       }
+    }
+  }
+  // Each chain drives one arm: a second arm bound by the same IRI would leave
+  // which arm a solver drives to the order of the map.
+  for (size_t k = 0; k < c.arms.size(); ++k) {
+    for (size_t j = 0; j < k; ++j) {
+      if (arm_chain(c, j) != arm_chain(c, k)) continue;
+      const Place& at = c.arms[k].where.known() ? c.arms[k].where : c.arms[j].where;
+      const auto bound_by = [&](size_t i) {
+        return c.arms[i].chain_iri.empty() ? std::string("the world's `robot.chain`")
+                                           : "arms." + c.arms[i].name;
+      };
+      throw Error("invalid-world",
+                  "arms " + c.arms[j].name + " and " + c.arms[k].name +
+                      " are both bound to the chain '" + arm_chain(c, k) + "' (by " +
+                      bound_by(j) + " and " + bound_by(k) +
+                      "); give each arm the chain IRI its task models name it by (`arms.<arm>."
+                      "chain`, or its own `robot`)",
+                  at.known() ? at.file : file_name, at.known() ? at.line : 0,
+                  at.known() ? at.column : 0);
     }
   }
   return c;

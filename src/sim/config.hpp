@@ -86,7 +86,9 @@ struct RobotModelSource {
 struct ArmSetup {
   std::string name;  // "right" / "left": prefixes the arm's MJCF names, sensors, log columns
   // The kinematic chain task models name for this arm: an arm solver of that
-  // chain drives this arm (ir::LowerOptions::ports).
+  // chain drives this arm (ir::LowerOptions::ports). Empty: the world's
+  // `robot.chain` (arm_chain()), so a world file that renames the robot's
+  // chain renames the arm it binds with it.
   std::string chain_iri;
   // Where the simulator reads the chain from when no arm solver of the
   // program gives it (an idle arm, `mospec sim`); an empty model: the world's
@@ -181,8 +183,12 @@ WorldConfig default_world();
 
 // The actuation of arm `arm`: its own, else the world's.
 const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm);
+// The chain IRI the task models name arm `arm` by: its own, else the world's
+// `robot.chain`.
+const std::string& arm_chain(const WorldConfig& config, std::size_t arm);
 // Where the chain of arm `arm` is read from: its own source, else the world's
-// `robot` (with the arm's chain IRI when it names none).
+// `robot` (an arm bound by another chain IRI, as the default robot's left
+// arm, is the same description under the name its task models give it).
 RobotModelSource arm_source(const WorldConfig& config, std::size_t arm);
 // The robot interface's shape: the arms' names and joint counts (`joints`,
 // one per arm, from their chains) and the base's drives (config.drives).

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "codegen/build.hpp"
+#include "default_robot_ports.hpp"
 #include "ir/interpreter.hpp"
 #include "ir/lower.hpp"
 #include "load_controller.hpp"
@@ -147,7 +148,9 @@ TEST(GeneratedController, ScenarioMatchesTheInterpreterBitForBit) {
       "MOSPEC_SCENARIO_CONTROLLER",
       [&] {
         const app::LoadedModel model = app::load({app}, app::LoadOptions{});
-        return ir::lower(model);
+        ir::LowerOptions lower_options;
+        lower_options.ports = testing::default_robot_ports();
+        return ir::lower(model, lower_options);
       },
       3000);
 }
