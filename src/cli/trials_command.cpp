@@ -102,8 +102,9 @@ Action add_trials_command(CLI::App& app) {
                          "only if every trial "
                          "exited 0. `mospec plot DIR` draws the trials' mean and spread.");
   cmd->add_option("app", flags->app, "App model")->required()->type_name("APP");
-  cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the only target so far)")
-      ->required();
+  // As `mospec run`'s: the simulation is the only target, so the default;
+  // `--sim` stays accepted but is not listed.
+  cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the default)")->group("");
   cmd->add_option("-n", flags->n, "Number of trials")->required()->check(CLI::Range(1u, 100000u));
   cmd->add_option("--jobs,-j", flags->jobs, "Trials run at a time (default: the number of cores)")
       ->check(CLI::Range(1u, 4096u));
@@ -155,11 +156,15 @@ Action add_trials_command(CLI::App& app) {
         flags->jobs > 0 ? flags->jobs : std::max(1u, std::thread::hardware_concurrency());
 
     auto argv_of = [&](const Trial& t) {
-      std::vector<std::string> argv = {self,        "run",
-                                       flags->app,  "--sim",
-                                       "--seed",    std::to_string(t.seed),
-                                       "--log",     (dir / trial_file(t.index, ".csv")).string(),
-                                       "--summary", (dir / trial_file(t.index, ".json")).string()};
+      std::vector<std::string> argv = {self,
+                                       "run",
+                                       flags->app,
+                                       "--seed",
+                                       std::to_string(t.seed),
+                                       "--log",
+                                       (dir / trial_file(t.index, ".csv")).string(),
+                                       "--summary",
+                                       (dir / trial_file(t.index, ".json")).string()};
       if (flags->interpret) argv.emplace_back("--interpret");
       if (flags->duration) argv.insert(argv.end(), {"--duration", exact_number(*flags->duration)});
       for (const std::string& m : flags->maps) argv.insert(argv.end(), {"--map", m});

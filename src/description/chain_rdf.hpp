@@ -24,7 +24,9 @@ using runtime::Chain;
 // the last link's frame is the tip. Link and joint names are the ids' last path
 // segment without the "frame-" / "joint-" prefix. Lengths must be in M,
 // masses in KiloGM, inertias in KiloGM-M2 (QUDT). Joint limits are not part of
-// the vocabulary and stay unbounded.
+// the published vocabulary: mospec/joints' JointPositionLimits,
+// JointVelocityLimit and JointEffortLimit of a joint (chain_to_jsonld) give
+// them; without, they stay unbounded.
 // Throws mospec::Error naming the entity and what is missing or wrong.
 Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri);
 

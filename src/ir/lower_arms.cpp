@@ -7,6 +7,7 @@
 #include "description/chain_rdf.hpp"
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
+#include "support/spelling.hpp"
 
 namespace mospec::ir::lowering {
 
@@ -110,13 +111,38 @@ std::optional<ArmOutput::What> joint_quantity(State& st, TermId o) {
   return std::nullopt;
 }
 
+// "no joint 'X' in the chain 'C'; its joints are ...": what a reference to a
+// joint the solver's chain lacks is told, with the nearest joint when X looks
+// like a typo of it. The joints in chain order, their common IRI prefix once.
+std::string no_joint(const ArmSolver& arm, const description::ChainFrames& frames,
+                     const std::string& joint) {
+  std::string prefix;
+  for (size_t i = 0; i < frames.segments.size(); ++i) {
+    const std::string& j = frames.segments[i].joint;
+    const std::string p = j.substr(0, j.rfind('/') + 1);
+    prefix = i == 0 || p == prefix ? p : "";
+  }
+  std::string names;
+  Nearest nearest(joint);
+  for (const description::FrameEntities& s : frames.segments) {
+    names += (names.empty() ? "" : ", ") + s.joint.substr(prefix.size());
+    nearest.offer(s.joint);
+  }
+  std::string message = "no joint '" + joint + "' in the chain '" + arm.chain_iri +
+                        "'; its joints are " + (names.empty() ? std::string("none") : names) +
+                        (prefix.empty() ? "" : " (under " + prefix + ")");
+  if (!nearest.best().empty()) message += "; did you mean '" + std::string(nearest.best()) + "'?";
+  return message;
+}
+
 // A joint position, velocity or measured torque the solver outputs: a scalar
 // of the joint its `of-joint` names, in the units of the joint's type: RAD,
 // RAD-PER-SEC or N-M on a revolute joint; M, M-PER-SEC or N (a force) on a
 // prismatic one (mos-jnt:PrismaticJoint).
 template <class JointIndex>
 void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What what,
-                        const JointIndex& joint_index, Step& kin) {
+                        const JointIndex& joint_index, const description::ChainFrames& frames,
+                        Step& kin) {
   namespace mj = mospec::vocab::mospec_joints;
   const std::string of_joint = mospec::vocab::term(mj::ns, "of-joint");
   const int d = st.datum(o, DataType::Scalar, st.term(arm.iri), "output");
@@ -135,10 +161,9 @@ void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What wha
   const int j = joint_index(st.str(*joint));
   if (j < 0) {
     st.error(st.where(o, of_joint, *joint), "unknown-joint",
-             std::string("the ") + kind + " '" + dd.iri + "' is of '" + st.str(*joint) +
-                 "', which is no joint of '" + arm.chain_iri + "' (the chain the solver '" +
-                 arm.iri +
-                 "' reads); name one of the chain's `joints`, or output it from the "
+             no_joint(arm, frames, st.str(*joint)) + ": the " + kind + " '" + dd.iri +
+                 "' is of it, and the solver '" + arm.iri +
+                 "' reads that chain; name one of its joints, or output the quantity from the "
                  "solver of that joint's chain");
     return;
   }
@@ -257,15 +282,15 @@ void lower_arm(State& st, TermId solver) {
         // simulated arm can hang at only one, and which one would be the
         // order of the graph. The same numbers twice are one mount.
         const std::vector<double>& first =
-            st.program.data[static_cast<size_t>(
-                                st.datum(*mount, DataType::Pose, solver, "mount pose"))]
+            st.program
+                .data[static_cast<size_t>(st.datum(*mount, DataType::Pose, solver, "mount pose"))]
                 .value;
         if (first != value) {
           st.error(p, "mount-mismatch",
-                   "'" + st.str(p) + "' is a second, different mount pose of '" +
-                       chain_root_frame + "' w.r.t. '" + arm.root_frame + "' (the root of '" +
-                       arm.chain_iri + "', which the solver '" + arm.iri + "' drives); '" +
-                       st.str(*mount) + "' (" + st.place(*mount) +
+                   "'" + st.str(p) + "' is a second, different mount pose of '" + chain_root_frame +
+                       "' w.r.t. '" + arm.root_frame + "' (the root of '" + arm.chain_iri +
+                       "', which the solver '" + arm.iri + "' drives); '" + st.str(*mount) + "' (" +
+                       st.place(*mount) +
                        ") already mounts it elsewhere. State the arm's mount once");
         }
         continue;
@@ -341,7 +366,7 @@ void lower_arm(State& st, TermId solver) {
   };
   for (TermId o : st.objects(solver, vocab(slv, "output"))) {
     if (auto joint_output = joint_quantity(st, o)) {
-      lower_joint_output(st, arm, o, *joint_output, joint_index, kin);
+      lower_joint_output(st, arm, o, *joint_output, joint_index, frames, kin);
       continue;
     }
     if (st.has_type(o, mospec::vocab::term(mospec::vocab::mospec_joints::ns, "EstimatedWrench"))) {
@@ -588,9 +613,9 @@ void lower_arm(State& st, TermId solver) {
       jf.joint = joint_index(st.str(*joint));
       if (jf.joint < 0) {
         st.error(st.where(spec, vocab(slv, "attached-to"), *joint), "unknown-joint",
-                 "'" + jf.iri + "' is attached to '" + st.str(*joint) +
-                     "', which is no joint of '" + arm.chain_iri + "' (the chain the solver '" +
-                     arm.iri + "' drives); attach it to one of the chain's `joints`");
+                 no_joint(arm, frames, st.str(*joint)) + ": '" + jf.iri +
+                     "' is attached to it, and the solver '" + arm.iri +
+                     "' drives that chain; attach it to one of its joints");
         continue;
       }
       jf.force = st.datum(*force, DataType::Scalar, spec, "force");

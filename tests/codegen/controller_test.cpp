@@ -73,8 +73,8 @@ void expect_like_the_interpreter(const char* env, const std::function<ir::Progra
                             ca.arm_tau[arm].size() * sizeof(double)))
           << "tick " << k;
     }
-    ASSERT_TRUE(same_bits(ca.wheel_tau.data(), cb.wheel_tau.data(),
-                          ca.wheel_tau.size() * sizeof(double)))
+    ASSERT_TRUE(
+        same_bits(ca.wheel_tau.data(), cb.wheel_tau.data(), ca.wheel_tau.size() * sizeof(double)))
         << "tick " << k;
     if (k == 0) first_gen = b;
     last_gen = b;

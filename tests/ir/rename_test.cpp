@@ -176,9 +176,9 @@ TEST(RenamedModel, Sc1LowersToTheSameProgramUpToNamesAndTicksToTheSameLog) {
           << "tick " << k;
     }
     ASSERT_EQ(ca.wheel_tau.size(), cb.wheel_tau.size());
-    ASSERT_EQ(std::memcmp(ca.wheel_tau.data(), cb.wheel_tau.data(),
-                          ca.wheel_tau.size() * sizeof(double)),
-              0)
+    ASSERT_EQ(
+        std::memcmp(ca.wheel_tau.data(), cb.wheel_tau.data(), ca.wheel_tau.size() * sizeof(double)),
+        0)
         << "tick " << k;
   }
 }

@@ -187,6 +187,13 @@ bad joints mospec/joints.ttl 11 \
   '<https://ex.org/f-lift-nm>: the unit of a measured joint torque follows its joint.*unit/N-M>' \
   '<https://ex.org/q-j4-m>: the unit of a joint position follows its joint.*unit/M>'
 
+# Joint limits (issue #33 item 7: what import-urdf keeps of a URDF's <limit>).
+good joint-limits mospec/joint-limits.ttl
+bad joint-limits mospec/joint-limits.ttl 4 \
+  '<https://ex.org/pos-swapped>: the lower position limit exceeds the upper one' \
+  '<https://ex.org/pos-deg>: joint position limits have exactly one unit: RAD \(revolute joint\) or M' \
+  '<https://ex.org/vel-negative>: a joint velocity limit states exactly one limit, not negative' \
+  '<https://ex.org/eff-link>: a joint effort limit is of exactly one joint'
 good prismatic-joint mospec/prismatic-joint.ttl
 bad prismatic-joint mospec/prismatic-joint.ttl 5 \
   '<https://ex.org/lift-no-axis>: a prismatic joint translates along exactly one common-axis.*MinCount' \

@@ -342,8 +342,8 @@ TEST(WorldFile, ErrorsAreLocated) {
             "w.json:1:29: error: arms.right.q: expected an array of 1 to 64 numbers, one per "
             "joint");
   EXPECT_EQ(error_of("{ \"arms\": { \"third\": { \"q\": [0] } } }"),
-            "w.json:1:22: error: arms.third: a new arm needs its `robot` (model and chain), `q` "
-            "and `actuation` (mospec's default robot has the arms right and left)");
+            "w.json:1:22: error: arms.third: a new arm needs its `robot` (model and chain) and "
+            "`q` (mospec's default robot has the arms right and left)");
   {
     // A hostile file cannot grow the robot without bound: the 17th arm is refused.
     std::string many = "{ \"arms\": {";
