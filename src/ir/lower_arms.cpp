@@ -113,9 +113,10 @@ std::optional<ArmOutput::What> joint_quantity(State& st, TermId o) {
 
 // "no joint 'X' in the chain 'C'; its joints are ...": what a reference to a
 // joint the solver's chain lacks is told, with the nearest joint when X looks
-// like a typo of it. The joints in chain order, their common IRI prefix once.
+// like a typo of it (after `how`, what to do). The joints in chain order,
+// their common IRI prefix once.
 std::string no_joint(const ArmSolver& arm, const description::ChainFrames& frames,
-                     const std::string& joint) {
+                     const std::string& joint, const std::string& how) {
   std::string prefix;
   for (size_t i = 0; i < frames.segments.size(); ++i) {
     const std::string& j = frames.segments[i].joint;
@@ -131,6 +132,7 @@ std::string no_joint(const ArmSolver& arm, const description::ChainFrames& frame
   std::string message = "no joint '" + joint + "' in the chain '" + arm.chain_iri +
                         "'; its joints are " + (names.empty() ? std::string("none") : names) +
                         (prefix.empty() ? "" : " (under " + prefix + ")");
+  message += how;
   if (!nearest.best().empty()) message += "; did you mean '" + std::string(nearest.best()) + "'?";
   return message;
 }
@@ -161,10 +163,11 @@ void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What wha
   const int j = joint_index(st.str(*joint));
   if (j < 0) {
     st.error(st.where(o, of_joint, *joint), "unknown-joint",
-             no_joint(arm, frames, st.str(*joint)) + ": the " + kind + " '" + dd.iri +
-                 "' is of it, and the solver '" + arm.iri +
-                 "' reads that chain; name one of its joints, or output the quantity from the "
-                 "solver of that joint's chain");
+             no_joint(arm, frames, st.str(*joint),
+                      std::string(": the ") + kind + " '" + dd.iri +
+                          "' is of it, and the solver '" + arm.iri +
+                          "' reads that chain; name one of its joints, or output the quantity "
+                          "from the solver of that joint's chain"));
     return;
   }
   const bool prismatic = arm.chain.segment(j).type == runtime::JointType::Prismatic;
@@ -613,9 +616,9 @@ void lower_arm(State& st, TermId solver) {
       jf.joint = joint_index(st.str(*joint));
       if (jf.joint < 0) {
         st.error(st.where(spec, vocab(slv, "attached-to"), *joint), "unknown-joint",
-                 no_joint(arm, frames, st.str(*joint)) + ": '" + jf.iri +
-                     "' is attached to it, and the solver '" + arm.iri +
-                     "' drives that chain; attach it to one of its joints");
+                 no_joint(arm, frames, st.str(*joint),
+                          ": '" + jf.iri + "' is attached to it, and the solver '" + arm.iri +
+                              "' drives that chain; attach it to one of its joints"));
         continue;
       }
       jf.force = st.datum(*force, DataType::Scalar, spec, "force");

@@ -49,8 +49,10 @@ cp "$work/twice.world.json" models/twice.world.json
 expect "two arms bound to one chain: refused at the second arm's entry" 2 \
   "^models/twice.world.json:4:[0-9]+: error: arms right and left are both bound to the chain 'https://mospec.example/robots/kinova-gen3/my-arm-chain' \(by the world's \`robot.chain\` and arms.left\)" -- \
   "$mospec" ir models/sc0a.json --world models/twice.world.json
+echo '{"arms": {"right": {"robot": {"model": "../robots/kinova-gen3.jsonld", "chain": "x"}, "chain": "y"}}}' \
+  > models/both.world.json
 expect "an arm with its own robot names its chain there, once" 2 \
-  "arms.right.chain: an arm with its own \`robot\` is bound by \`robot.chain\`" -- \
-  "$mospec" ir models/sc0a.json --world <(echo '{"arms": {"right": {"robot": {"model": "../robots/kinova-gen3.jsonld", "chain": "x"}, "chain": "y"}}}')
+  "^models/both.world.json:1:96: error: arms.right.chain: an arm with its own \`robot\` is bound by \`robot.chain\`; state the chain IRI once, there" -- \
+  "$mospec" ir models/sc0a.json --world models/both.world.json
 
 finish arm_binding

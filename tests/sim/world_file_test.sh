@@ -15,23 +15,23 @@ first() {  # the value of column NAME in the log's first row
 # --- Angles: a bare number is radians; degrees are written as such ---------
 echo '{"base": "planar", "initial": {"base_yaw": 20}}' > bare-degrees.json
 expect "a bare angle beyond a turn (degrees meant) is refused, saying how to write degrees" 2 \
-  '^bare-degrees.json:1:46: error: base_yaw: 20 is outside the accepted range \[-6.283185307179586, 6.283185307179586\] rad; a bare number is in radians, an angle in degrees is written as such: "20 deg"' -- \
+  '^bare-degrees.json:1:44: error: base_yaw: 20 is outside the accepted range \[-6.283185307179586, 6.283185307179586\] rad; a bare number is in radians, an angle in degrees is written as such: "20 deg"' -- \
   "$mospec" sim bare-degrees.json --duration 0.01
 echo '{"base": "planar", "initial": {"base_yaw": "20 degrees"}}' > bad-unit.json
 expect "an unknown unit is refused, naming the accepted ones" 2 \
-  "^bad-unit.json:1:46: error: base_yaw: '20 degrees' is not a number and its unit, one space apart, the unit one of rad, deg" -- \
+  "^bad-unit.json:1:44: error: base_yaw: '20 degrees' is not a number and its unit, one space apart, the unit one of rad, deg" -- \
   "$mospec" sim bad-unit.json --duration 0.01
 echo '{"base": "planar", "initial": {"base_x": "-60 deg"}}' > angle-for-length.json
 expect "an angle's unit for a length is refused" 2 \
-  "^angle-for-length.json:1:44: error: base_x: '-60 deg' is not a number and its unit, one space apart, the unit one of m, cm, mm" -- \
+  "^angle-for-length.json:1:42: error: base_x: '-60 deg' is not a number and its unit, one space apart, the unit one of m, cm, mm" -- \
   "$mospec" sim angle-for-length.json --duration 0.01
 echo '{"base": "planar", "initial": {"base_yaw": "400 deg"}}' > too-far.json
 expect "a value with a unit is range-checked in SI" 2 \
-  "^too-far.json:1:46: error: base_yaw: '400 deg' \(6.981317007977318\) is outside the accepted range" -- \
+  "^too-far.json:1:44: error: base_yaw: '400 deg' \(6.981317007977318\) is outside the accepted range" -- \
   "$mospec" sim too-far.json --duration 0.01
 echo '{"base": "planar", "initial": {"base_yaw": true}}' > not-a-number.json
 expect "a value of another JSON kind names both forms" 2 \
-  '^not-a-number.json:1:46: error: base_yaw: expected a number \[rad\] or a string of a number and its unit \("1 rad", "1 deg"\)' -- \
+  '^not-a-number.json:1:44: error: base_yaw: expected a number \[rad\] or a string of a number and its unit \("1 rad", "1 deg"\)' -- \
   "$mospec" sim not-a-number.json --duration 0.01
 
 # "10 deg" and "66 cm" are the same world as their radians and metres.
@@ -57,7 +57,7 @@ check "the robot's own y and yaw stay what the world file says (0)" \
   holds "$(first base_y moved.csv) == 0 && $(first base_yaw moved.csv) == 0"
 echo '{"table": {"pose": {"z": 0.1}}}' > table-z.json
 expect "a table pose has x, y and yaw only" 2 \
-  "^table-z.json:1:24: error: table.pose: unknown key 'z' \(expected one of: x, y, yaw\)" -- \
+  "^table-z.json:1:21: error: table.pose: unknown key 'z' \(expected one of: x, y, yaw\)" -- \
   "$mospec" sim table-z.json --duration 0.01
 
 finish world_file
