@@ -1,5 +1,5 @@
-// `mospec trials APP --sim -n N -o DIR`: N seeded runs of one app, each a child
-// process `mospec run APP --sim --seed K+i --log DIR/trial-<i>.csv --summary
+// `mospec trials APP -n N -o DIR`: N seeded runs of one app, each a child
+// process `mospec run APP --seed K+i --log DIR/trial-<i>.csv --summary
 // DIR/trial-<i>.json` (its messages in DIR/trial-<i>.log), J at a time. The
 // manifest DIR/trials.json is written last and atomically, so a directory
 // without it is an unfinished (or interrupted) set of trials.
@@ -94,7 +94,7 @@ Action add_trials_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd =
       app.add_subcommand("trials",
-                         "Run N seeded simulations of an app (each `mospec run APP --sim --seed "
+                         "Run N seeded simulations of an app (each `mospec run APP --seed "
                          "K+i`, in parallel child "
                          "processes) into DIR: trial-<i>.csv (log), trial-<i>.json (summary), "
                          "trial-<i>.log (messages), "

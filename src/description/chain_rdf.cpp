@@ -650,6 +650,8 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
   if (!tips.empty()) {
     const rdf::TermId tip = r.one(tips.front(), V::of);
     chain.add_fixed(r.local_name(tip, "frame-"), r.pose(tips.front()), {});
+    out.frames.tip = {r.name(tip), origin_of(tip), body_of(tip), {}};
+    out.frames.tip_pose = r.name(tips.front());
   }
   return out;
 }

@@ -42,6 +42,10 @@ struct FrameEntities {
 struct ChainFrames {
   FrameEntities root;                   // the chain's root frame (the base link's)
   std::vector<FrameEntities> segments;  // segment i's frame S_i (the moving link's)
+  // The tip frame fixed to the last segment's frame (a tool0, a flange), and
+  // the Pose that places it there; empty when the chain names none.
+  FrameEntities tip;
+  std::string tip_pose;
 };
 struct ChainDescription {
   Chain chain;

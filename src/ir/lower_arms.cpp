@@ -406,6 +406,21 @@ void lower_arm(State& st, TermId solver) {
       const bool in_chain_root = arm.root_frame != chain_root_frame &&
                                  dd.with_respect_to == chain_root_frame &&
                                  dd.as_seen_by == chain_root_frame;
+      if (seg < 0 && !frames.tip.frame.empty() && dd.of == frames.tip.frame) {
+        // A tool frame fixed to the last link (tool0, a flange): the solver
+        // computes the segments' frames only, but the tool's pose is one
+        // constant pose away, which the models can compose themselves.
+        const std::string& last = frames.segments.back().frame;
+        st.error(o, "unsupported-output",
+                 "'" + dd.of + "' is the chain's tip frame, fixed to the frame '" + last +
+                     "' of its last moving link by '" + frames.tip_pose + "'; the solver '" +
+                     arm.iri + "' outputs the poses of the segments' frames only. To get '" +
+                     dd.iri + "': output the pose of '" + last + "' w.r.t. and seen by '" +
+                     arm.root_frame + "', and compose '" + frames.tip_pose +
+                     "' onto it (a ComposePose: in1 that output, in2 '" + frames.tip_pose +
+                     "', composite '" + dd.iri + "')");
+        continue;
+      }
       if (seg < 0 || !(in_root || in_chain_root)) {
         st.error(o, "unsupported-output",
                  "the solver '" + arm.iri +

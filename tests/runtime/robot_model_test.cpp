@@ -278,17 +278,22 @@ TEST(RobotModelPrismatic, ToyArmReadsBackIntoTheSameChain) {
   expect_same_chain(loaded, toy, 1e-12);
 }
 
-// An all-revolute chain's document uses the published vocabulary alone.
+// An all-revolute chain without joint limits uses the published vocabulary
+// alone; its limits (the published vocabulary has none) need the extension.
 TEST(RobotModelPrismatic, RevoluteChainsNeedNoExtension) {
   Chain chain = chain_from_urdf(kLiftUrdf, "base", "tool");
-  Chain revolute("base");
+  Chain revolute("base"), limited("base");
   for (int i = 0; i < chain.size(); ++i) {
     Segment s = chain.segment(i);
     s.type = JointType::Revolute;
+    limited.add_segment(s);
+    s.limits = JointLimits{};
     revolute.add_segment(s);
   }
   EXPECT_EQ(chain_to_jsonld(revolute).find("mospec/joints"), std::string::npos);
   EXPECT_EQ(chain_to_jsonld(revolute).find("PrismaticJoint"), std::string::npos);
+  EXPECT_NE(chain_to_jsonld(limited).find("mospec/joints.json"), std::string::npos);
+  EXPECT_NE(chain_to_jsonld(limited).find("JointEffortLimit"), std::string::npos);
 }
 
 // A joint of the chain that is neither or both kinds is refused, by name.

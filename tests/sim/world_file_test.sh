@@ -60,4 +60,34 @@ expect "a table pose has x, y and yaw only" 2 \
   "^table-z.json:1:21: error: table.pose: unknown key 'z' \(expected one of: x, y, yaw\)" -- \
   "$mospec" sim table-z.json --duration 0.01
 
+# --- `mospec run`: the world it used, the simulation by default --------------
+expect "run names the world file beside the app, and needs no --sim" 0 \
+  "^mospec: world: models/sc0a.world.json$" -- \
+  env -C "$src" "$mospec" run models/sc0a.json --interpret --duration 0.01
+check "the world is the run's first line" bash -c "head -1 '$work/stderr.txt' | grep -q '^mospec: world: '"
+cp "$src/models/sc0a.world.json" "$work/other.world.json"
+sed -i 's#"\.\./robots/#"'"$src"'/robots/#; s#"\.\./metamodels"#"'"$src"'/metamodels"#' "$work/other.world.json"
+expect "run names the --world file" 0 "^mospec: world: $work/other.world.json$" -- \
+  env -C "$src" "$mospec" run models/sc0a.json --world "$work/other.world.json" --interpret --duration 0.01
+cp "$src/models/sc0a.json" "$work/lonely.json"
+expect "run says when it found no world file" 0 \
+  "^mospec: world: mospec's default world \(there is no $work/lonely.world.json\)$" -- \
+  env -C "$src" "$mospec" run "$work/lonely.json" --interpret --duration 0.01
+expect "--sim is still accepted" 0 "" -- \
+  env -C "$src" "$mospec" run models/sc0a.json --sim --interpret --duration 0.01
+
+# --- --help lists only flags that act -----------------------------------------
+"$mospec" run --help > run-help.txt
+check "run --help does not list --sim (the only target)" bash -c "! grep -q -- '--sim' run-help.txt"
+"$mospec" trials --help > trials-help.txt
+check "trials --help does not list --sim" bash -c "! grep -q -- '--sim' trials-help.txt"
+for cmd in rdf stats new; do
+  "$mospec" "$cmd" --help > "$cmd-help.txt"
+  check "$cmd --help does not list --listed-shapes-only (it validates nothing)" \
+    bash -c "! grep -q -- '--listed-shapes-only' $cmd-help.txt"
+done
+check "new --help does not list --strict (it reports no loader warnings)" \
+  bash -c "! grep -q -- '--strict' new-help.txt"
+check "validate --help lists --listed-shapes-only" grep -q -- '--listed-shapes-only' <("$mospec" validate --help)
+
 finish world_file
