@@ -48,6 +48,11 @@ Action add_import_urdf_command(CLI::App& app) {
                       std::string(vocab::robots::imported_base) +
                       "NAME/, NAME the URDF's robot name)")
       ->type_name("IRI");
+  cmd->add_flag_callback(
+      "--no-limits", [flags] { flags->jsonld.limits = false; },
+      "Leave the joints' <limit>s out: the model then uses the published vocabulary alone (for "
+      "models read with metamodels that lack mospec's joint extension), and a world file "
+      "states the arm's actuation");
 
   return [flags]() {
     const description::UrdfChain imported =

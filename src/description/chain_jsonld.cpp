@@ -180,7 +180,7 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
     joints.push_back(quoted("joint-" + s.joint));
     // The joint's limits (the URDF's <limit>), each a node of its own with
     // its unit: the world file's actuation defaults to them.
-    const JointLimits& lim = s.limits;
+    const JointLimits& lim = options.limits ? s.limits : JointLimits{};
     if (std::isfinite(lim.lower) && std::isfinite(lim.upper)) {
       Node n;
       n.add("@id", quoted("position-limits-" + s.joint))

@@ -17,6 +17,11 @@ struct ChainJsonldOptions {
   std::string base = std::string(vocab::robots::imported_base) + "robot/";
   // Where the published metamodel contexts live (IRI prefix).
   std::string metamodels = std::string(vocab::kMetamodels);
+  // Whether to state the joints' limits (mospec's extension). Off for a
+  // description that must load against the published metamodels alone (the
+  // Gen3's, read with the authors' metamodels; its limits are the world's
+  // default actuation).
+  bool limits = true;
 };
 
 // The document, deterministic to the byte (numbers in shortest round-trip

@@ -109,6 +109,8 @@ check urdf-base-after-robot grep -q '"@base": "https://mospec.example/robots/arm
 check urdf-effort-limit grep -Fq '"@id": "effort-limit-shoulder"' arm-default.jsonld
 check urdf-position-limits grep -Fq '"@id": "position-limits-shoulder"' arm-default.jsonld
 check urdf-velocity-limit grep -Fq '"@id": "velocity-limit-shoulder"' arm-default.jsonld
+expect urdf-no-limits 0 '' -- "$mospec" import-urdf arm.urdf --tip tool --no-limits -o arm-plain.jsonld
+check urdf-no-limits-published-vocabulary-only bash -c "! grep -q 'limit\|mospec/joints' arm-plain.jsonld"
 sed 's/robot name="arm"/robot name="my arm"/' arm.urdf > my-arm.urdf
 expect urdf-base-of-a-spaced-name 0 '' -- "$mospec" import-urdf my-arm.urdf --tip tool -o my-arm.jsonld
 check urdf-base-iri-safe grep -q '"@base": "https://mospec.example/robots/my-arm/"' my-arm.jsonld

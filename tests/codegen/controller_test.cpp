@@ -149,7 +149,7 @@ TEST(GeneratedController, ScenarioMatchesTheInterpreterBitForBit) {
       [&] {
         const app::LoadedModel model = app::load({app}, app::LoadOptions{});
         ir::LowerOptions lower_options;
-        lower_options.ports = testing::default_robot_ports();
+        lower_options.ports = mospec::testing::default_robot_ports();
         return ir::lower(model, lower_options);
       },
       3000);

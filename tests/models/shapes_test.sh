@@ -176,7 +176,7 @@ bad arm-behaviour mospec/solver.ttl 11 \
 good joints mospec/joints.ttl
 bad joints mospec/joints.ttl 11 \
   '<https://ex.org/q-deg>: a joint position has exactly one unit: RAD \(revolute joint\) or M' \
-  '<https://ex.org/q-link>: a joint position is of exactly one joint' \
+  '<https://ex.org/q-link>: <https://ex.org/[^>]*> is no joint: no loaded file defines it as a kc-ent:Joint' \
   '<https://ex.org/q-orphan>: a joint position is the output of exactly one solver' \
   '<https://ex.org/qd-rad>: a joint velocity is of exactly one joint' \
   '<https://ex.org/qd-rad>: a joint velocity has exactly one unit: RAD-PER-SEC \(revolute joint\) or M-PER-SEC' \
@@ -239,7 +239,7 @@ bad joint-force task/joint-force-drivers.ttl 7 \
   '<https://ex.org/jf-none>: a joint-force specification applies exactly one joint force' \
   '<https://ex.org/jf-none>: a joint-force driver is attached to exactly one joint' \
   "<https://ex.org/jf-link>: nothing produces the joint force.*tau-nowhere" \
-  '<https://ex.org/jf-link>: a joint-force driver is attached to exactly one joint' \
+  '<https://ex.org/jf-link>: <https://ex.org/link> is no joint: no loaded file defines it as a kc-ent:Joint' \
   '<https://ex.org/jf-unit>: a force on a revolute joint is a torque: its unit must be N-M' \
   '<https://ex.org/jf-slide-unit>: a force on a prismatic joint is a force: its unit must be N.*unit/N-M>' \
   '<https://ex.org/drv>: a joint-force driver must be a joint-force specification.*not-a-driver'

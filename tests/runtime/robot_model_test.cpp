@@ -49,6 +49,9 @@ TEST(RobotModel, CommittedGen3FileIsTheGeneratorsOutput) {
   NEED(kUrdf);
   ChainJsonldOptions options;
   options.base = kBase;
+  // The Gen3's description loads against the authors' metamodels, which have
+  // no joint extension: its limits are the world's default actuation instead.
+  options.limits = false;
   const std::string generated = chain_to_jsonld(gen3_from_urdf(), options);
   // MOSPEC_REGENERATE_ROBOTS=1 rewrites the committed file instead of comparing.
   if (const char* regen = std::getenv("MOSPEC_REGENERATE_ROBOTS"); regen && *regen == '1') {

@@ -443,16 +443,16 @@ TEST(UrdfImport, JointLimitsAreKeptAsModelQuantities) {
                  {{"https://comp-rob2b.github.io/metamodels/", std::string(MOSPEC_SOURCE_DIR) +
                                                                "/metamodels"}});
   ASSERT_EQ(back.size(), 3);
-  const JointLimits& j1 = back.segment(0).limits;
+  const runtime::JointLimits& j1 = back.segment(0).limits;
   EXPECT_EQ(j1.lower, -2.5);
   EXPECT_EQ(j1.upper, 2.0);
   EXPECT_EQ(j1.velocity, 1.3);
   EXPECT_EQ(j1.effort, 39.0);
-  const JointLimits& j2 = back.segment(1).limits;
+  const runtime::JointLimits& j2 = back.segment(1).limits;
   EXPECT_TRUE(std::isinf(j2.lower) && std::isinf(j2.upper));
   EXPECT_EQ(j2.velocity, 2.5);
   EXPECT_EQ(j2.effort, 9.0);
-  const JointLimits& j3 = back.segment(2).limits;
+  const runtime::JointLimits& j3 = back.segment(2).limits;
   EXPECT_EQ(j3.lower, 0.0);
   EXPECT_EQ(j3.upper, 0.2);
   EXPECT_EQ(j3.effort, 100.0);
