@@ -517,9 +517,24 @@ void lower_arm(State& st, TermId solver) {
                 st.str(spec) + "' is attached to '" +
                 (link ? st.str(*link) : std::string("nothing")) + "'");
       } else if (!link || st.str(*link) != last_link) {
+        // Attached to the tool fixed to the last link (its frame, or a link
+        // named after it): say how the tool is reached instead.
+        const std::string tip = frames.tip.frame;
+        const std::string tip_name = tip.empty() ? "" : local_name(tip);
+        const bool tool =
+            link && !tip.empty() &&
+            (st.str(*link) == tip || (tip_name.starts_with("frame-") &&
+                                      local_name(st.str(*link)) == "link-" + tip_name.substr(6)));
         st.error(spec, "unsupported-attachment",
                  "ACHD constrains the chain's last segment '" + last_link + "'; '" + st.str(spec) +
-                     "' is attached to '" + (link ? st.str(*link) : std::string("nothing")) + "'");
+                     "' is attached to '" + (link ? st.str(*link) : std::string("nothing")) + "'" +
+                     (tool ? ", the tool frame '" + tip + "' fixed to it by '" + frames.tip_pose +
+                                 "': attach the driver to '" + last_link +
+                                 "' (it acts at that link's origin) and state the constraints on "
+                                 "the tool's pose, the output pose of '" +
+                                 frames.segments.back().frame + "' composed with '" +
+                                 frames.tip_pose + "' (ComposePose)"
+                           : std::string()));
       }
       for (TermId c : st.objects(spec, vocab(slv, "constraints"))) {
         AccelerationConstraint ac;
