@@ -402,22 +402,24 @@ TEST(UrdfTree, ALongChainIsFreedWithoutRecursion) {
   EXPECT_EQ(job.tip, std::string("l").append(std::to_string(n)));
 }
 
-
 // import-urdf keeps the URDF's joint limits as model quantities (issue #33
 // item 7): position limits where the joint has them (not on a continuous
 // joint), velocity and effort limits, each in its joint type's unit, read back
 // by chain_from_rdf as the URDF states them.
 TEST(UrdfImport, JointLimitsAreKeptAsModelQuantities) {
-  const std::string urdf = robot(
-      "<link name=\"base\"/>\n<link name=\"l1\">" + inertial("1") + "</link>\n<link name=\"l2\">" +
-      inertial("1") + "</link>\n<link name=\"l3\">" + inertial("1") + "</link>\n<link name=\"tool0\"/>\n" +
-      joint("j1", "revolute", "base", "l1", "0 0 0.1",
-            "<axis xyz=\"0 0 1\"/><limit lower=\"-2.5\" upper=\"2\" effort=\"39\" velocity=\"1.3\"/>") +
-      joint("j2", "continuous", "l1", "l2", "0 0 0.1",
-            "<axis xyz=\"0 1 0\"/><limit effort=\"9\" velocity=\"2.5\"/>") +
-      joint("j3", "prismatic", "l2", "l3", "0 0 0.1",
-            "<axis xyz=\"1 0 0\"/><limit lower=\"0\" upper=\"0.2\" effort=\"100\" velocity=\"0.1\"/>") +
-      joint("flange", "fixed", "l3", "tool0"));
+  const std::string urdf =
+      robot("<link name=\"base\"/>\n<link name=\"l1\">" + inertial("1") +
+            "</link>\n<link name=\"l2\">" + inertial("1") + "</link>\n<link name=\"l3\">" +
+            inertial("1") + "</link>\n<link name=\"tool0\"/>\n" +
+            joint("j1", "revolute", "base", "l1", "0 0 0.1",
+                  "<axis xyz=\"0 0 1\"/><limit lower=\"-2.5\" upper=\"2\" effort=\"39\" "
+                  "velocity=\"1.3\"/>") +
+            joint("j2", "continuous", "l1", "l2", "0 0 0.1",
+                  "<axis xyz=\"0 1 0\"/><limit effort=\"9\" velocity=\"2.5\"/>") +
+            joint("j3", "prismatic", "l2", "l3", "0 0 0.1",
+                  "<axis xyz=\"1 0 0\"/><limit lower=\"0\" upper=\"0.2\" effort=\"100\" "
+                  "velocity=\"0.1\"/>") +
+            joint("flange", "fixed", "l3", "tool0"));
   const UrdfChain imported = import_urdf(urdf, "", "", "r.urdf");
   EXPECT_EQ(imported.robot, "r");
   // tool0 hangs on the last moving link by a fixed joint: import-urdf says so.
@@ -438,10 +440,9 @@ TEST(UrdfImport, JointLimitsAreKeptAsModelQuantities) {
 
   const std::string file = ::testing::TempDir() + "limits.jsonld";
   write_output(file, text);
-  const Chain back =
-      load_chain(file, "https://ex.org/r/chain",
-                 {{"https://comp-rob2b.github.io/metamodels/", std::string(MOSPEC_SOURCE_DIR) +
-                                                               "/metamodels"}});
+  const Chain back = load_chain(file, "https://ex.org/r/chain",
+                                {{"https://comp-rob2b.github.io/metamodels/",
+                                  std::string(MOSPEC_SOURCE_DIR) + "/metamodels"}});
   ASSERT_EQ(back.size(), 3);
   const runtime::JointLimits& j1 = back.segment(0).limits;
   EXPECT_EQ(j1.lower, -2.5);
