@@ -28,7 +28,11 @@ struct LoadFlags {
   // The SPARQL budget of the command's validation (sparql::Limits).
   double sparql_seconds = 60;
   uint64_t sparql_steps = uint64_t{1} << 32;
-  void add_to(CLI::App& cmd);
+  // --map, --root, and the flags that act on what the command does with the
+  // model: --strict (`strict`: it reports the loader's warnings) and
+  // --listed-shapes-only (`validates`: it runs SHACL). A command lists only
+  // flags that act.
+  void add_to(CLI::App& cmd, bool strict = true, bool validates = true);
   void add_budget_to(CLI::App& cmd);    // --sparql-seconds, --sparql-steps (commands that validate)
   app::LoadOptions to_options() const;  // throws mospec::Error on a malformed --map
 };
@@ -55,10 +59,12 @@ inline constexpr const char* kRunSummary =
     "Validate an app model, lower it and run its controller against the simulated robot; "
     "write a CSV log (every constraint's value, error and satisfaction, every monitor, motion "
     "and controller output, and the world's ground truth) and a JSON summary. The world is "
-    "--world, else APP's sibling <name>.world.json, else the default world.";
+    "--world, else APP's sibling <name>.world.json, else the default world; the run names it "
+    "first.";
 inline constexpr const char* kImportUrdfSummary =
     "Convert the serial chain of a URDF (root link to tip link; fixed joints folded into "
-    "the previous segment) into a kinematic-chain JSON-LD model with units";
+    "the previous segment) into a kinematic-chain JSON-LD model with units, keeping the "
+    "joints' position, velocity and effort limits";
 inline constexpr const char* kBuildSummary =
     "Configure and build a project `mospec generate` wrote (in DIR/build, Release, with "
     "-Werror) against mospec's runtime package, and print the path of the built controller "

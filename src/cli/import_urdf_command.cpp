@@ -1,11 +1,30 @@
 // `mospec import-urdf`: a URDF serial chain as a kinematic-chain JSON-LD model in
 // the published vocabulary, so robot descriptions compose with task models.
+#include <iostream>
+
 #include "cli/commands.hpp"
 #include "description/chain_jsonld.hpp"
 #include "description/urdf_import.hpp"
+#include "support/diagnostics.hpp"
 #include "support/io.hpp"
 
 namespace mospec::cli {
+
+namespace {
+
+// The robot's name as one IRI path segment: characters an IRI path takes
+// unescaped are kept, any other becomes '-'.
+std::string iri_segment(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                       c == '-' || c == '.' || c == '_' || c == '~';
+    out.push_back(plain ? c : '-');
+  }
+  return out.empty() || out == "." || out == ".." ? "robot" : out;
+}
+
+}  // namespace
 
 Action add_import_urdf_command(CLI::App& app) {
   struct Flags {
@@ -15,6 +34,7 @@ Action add_import_urdf_command(CLI::App& app) {
     description::ChainJsonldOptions jsonld;
   };
   auto flags = std::make_shared<Flags>();
+  flags->jsonld.base.clear();  // default: after the robot's name
   CLI::App* cmd = app.add_subcommand("import-urdf", kImportUrdfSummary);
   cmd->add_option("urdf", flags->input, "URDF file")->required()->type_name("FILE.urdf");
   cmd->add_option("-o,--output", flags->output, "Output file ('-' = standard output)")
@@ -23,14 +43,51 @@ Action add_import_urdf_command(CLI::App& app) {
       ->type_name("LINK");
   cmd->add_option("--tip", flags->tip, "Tip link of the chain (default: the only leaf link)")
       ->type_name("LINK");
-  cmd->add_option("--base", flags->jsonld.base, "Base IRI of the entities in the model")
-      ->type_name("IRI")
-      ->capture_default_str();
+  cmd->add_option("--base", flags->jsonld.base,
+                  "Base IRI of the entities in the model (default: " +
+                      std::string(vocab::robots::imported_base) +
+                      "NAME/, NAME the URDF's robot name)")
+      ->type_name("IRI");
+  cmd->add_flag_callback(
+      "--no-limits", [flags] { flags->jsonld.limits = false; },
+      "Leave the joints' <limit>s out: the model then uses the published vocabulary alone (for "
+      "models read with metamodels that lack mospec's joint extension), and a world file "
+      "states the arm's actuation");
 
   return [flags]() {
-    const runtime::Chain chain =
-        description::chain_from_urdf_file(flags->input, flags->root, flags->tip);
-    write_output(flags->output, description::chain_to_jsonld(chain, flags->jsonld));
+    const description::UrdfChain imported =
+        description::import_urdf_file(flags->input, flags->root, flags->tip);
+    description::ChainJsonldOptions options = flags->jsonld;
+    if (options.base.empty()) {
+      options.base = std::string(vocab::robots::imported_base) + iri_segment(imported.robot) + "/";
+    }
+    write_output(flags->output, description::chain_to_jsonld(imported.chain, options));
+    const runtime::Chain& chain = imported.chain;
+    if (!imported.tip_joints.empty() && chain.size() > 0) {
+      // A tool link (tool0, a flange) fixed to the last moving link: its frame
+      // is written as the chain's tip frame, but mospec's arm solvers output
+      // and drive the last moving link's frame, so say how to reach the tool.
+      const std::string& last = chain.segment(chain.size() - 1).link;
+      const std::string& tip = chain.tip();
+      std::string joints;
+      for (const std::string& j : imported.tip_joints) joints += (joints.empty() ? "" : ", ") + j;
+      std::cerr << format(Diagnostic{
+                       Severity::Note, "", 0, 0, "fixed-tip",
+                       "the tip link '" + tip + "' is fixed to the last moving link '" + last +
+                           "' (fixed joint " + joints + "): the model states its frame <" +
+                           options.base + "frame-" + tip + "> as the chain's tip, posed by <" +
+                           options.base + "pose-" + tip + "> in <" + options.base + "frame-" +
+                           last + ">. An arm solver outputs and drives the frame of '" + last +
+                           "' (its motion drivers are attached to <" + options.base + "link-" +
+                           last + ">, at its origin), never a frame fixed to it: to constrain " +
+                           "the tool, output the pose of <" + options.base + "frame-" + last +
+                           "> and compose <" + options.base + "pose-" + tip +
+                           "> onto it (ComposePose, docs/runtime.md): the tool's pose w.r.t. "
+                           "the solver's root, for constraints and monitors; the motion "
+                           "drivers still act at the origin of '" +
+                           last + "'"})
+                << '\n';
+    }
     return kExitOk;
   };
 }

@@ -24,7 +24,7 @@
 
 namespace mospec::cli {
 
-void LoadFlags::add_to(CLI::App& cmd) {
+void LoadFlags::add_to(CLI::App& cmd, bool with_strict, bool validates) {
   cmd.add_option("--map", maps,
                  "Map an IRI prefix to a local directory (IRI=DIR); repeatable. Nothing is "
                  "ever fetched from the network.")
@@ -33,11 +33,15 @@ void LoadFlags::add_to(CLI::App& cmd) {
                  "Resolve the app model's iri-map paths against DIR instead of the current "
                  "directory")
       ->type_name("DIR");
-  cmd.add_flag("--strict", strict, "Treat warnings (dropped keys, undefined types) as findings");
-  cmd.add_flag("--listed-shapes-only", listed_shapes_only,
-               "Apply only the shape files the app lists (and --shapes), not mospec's shapes for "
-               "every term of mospec's vocabulary the model uses; to test shapes, or what "
-               "lowering refuses by itself, in isolation");
+  if (with_strict) {
+    cmd.add_flag("--strict", strict, "Treat warnings (dropped keys, undefined types) as findings");
+  }
+  if (validates) {
+    cmd.add_flag("--listed-shapes-only", listed_shapes_only,
+                 "Apply only the shape files the app lists (and --shapes), not mospec's shapes "
+                 "for every term of mospec's vocabulary the model uses; to test shapes, or what "
+                 "lowering refuses by itself, in isolation");
+  }
 }
 
 void LoadFlags::add_budget_to(CLI::App& cmd) {

@@ -251,7 +251,7 @@ Action add_new_command(CLI::App& app) {
                   "sc1, sc2)")
       ->required()
       ->type_name("SCENARIO");
-  flags->load.add_to(*cmd);
+  flags->load.add_to(*cmd, /*strict=*/false, /*validates=*/false);
   return [flags]() { return run_new(*flags); };
 }
 

@@ -52,23 +52,31 @@ std::string resolve_app(const std::string& path) {
   return path;
 }
 
+std::string default_world_file_name(const std::string& app) {
+  std::filesystem::path w(app);
+  if (w.extension() != ".json") return "";
+  w.replace_extension(".world.json");
+  return w.string();
+}
+
+std::string scenario_world_file(const std::string& app, const std::string& world_file) {
+  if (!world_file.empty()) return world_file;
+  const std::string w = default_world_file_name(app);
+  std::error_code ec;
+  return !w.empty() && std::filesystem::exists(w, ec) ? w : "";
+}
+
 sim::WorldConfig scenario_world(const std::string& app, const std::string& world_file,
                                 bool check_files) {
-  if (!world_file.empty()) return sim::load_world_config(world_file, check_files);
-  std::filesystem::path p(app);
-  if (p.extension() == ".json") {
-    std::filesystem::path w = p;
-    w.replace_extension(".world.json");
-    if (std::filesystem::exists(w)) return sim::load_world_config(w.string(), check_files);
-  }
-  return sim::default_world();
+  const std::string w = scenario_world_file(app, world_file);
+  return w.empty() ? sim::default_world() : sim::load_world_config(w, check_files);
 }
 
 std::map<std::string, int> arm_ports(const sim::WorldConfig& world,
                                      const std::vector<std::string>& binds) {
   std::map<std::string, int> ports;
   for (size_t k = 0; k < world.arms.size(); ++k) {
-    ports[world.arms[k].chain_iri] = static_cast<int>(k);
+    ports[sim::arm_chain(world, k)] = static_cast<int>(k);
   }
   for (const std::string& b : binds) {
     const auto eq = b.find('=');

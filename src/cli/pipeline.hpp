@@ -28,6 +28,12 @@ struct PipelineFlags {
 // is the JSON file next to it (`models/sc1.json`); other paths are unchanged.
 std::string resolve_app(const std::string& path);
 
+// APP's sibling "<name>.world.json" (empty when APP is not a .json file).
+std::string default_world_file_name(const std::string& app);
+// The world file a scenario runs in: `world_file`, else APP's sibling when it
+// exists; empty: the default world.
+std::string scenario_world_file(const std::string& app, const std::string& world_file);
+
 // The scenario's world: `world_file`, else APP's sibling "<name>.world.json",
 // else the default world (mospec's robot: two Gen3 arms on the KELO base).
 // `check_files`: as sim::load_world_config.

@@ -27,7 +27,7 @@ Action add_rdf_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("-o,--output", flags->output, "Output file ('-' = standard output)")
       ->type_name("FILE");
-  flags->load.add_to(*cmd);
+  flags->load.add_to(*cmd, /*strict=*/true, /*validates=*/false);
 
   return [flags]() {
     for (const std::string& input : flags->inputs) refuse_world_file_as_model(input);

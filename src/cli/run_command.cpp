@@ -236,8 +236,9 @@ Action add_run_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand("run", kRunSummary);
   flags->pipeline.add_to(*cmd);
-  cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the only target so far)")
-      ->required();
+  // The MuJoCo simulation is the only target, so it is the default; `--sim`
+  // stays accepted (scripts and docs of earlier versions) but is not listed.
+  cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the default)")->group("");
   cmd->add_flag("--interpret", flags->interpret,
                 "Execute the IR directly instead of generating and building C++");
   cmd->add_option("--duration", flags->duration,
@@ -256,16 +257,20 @@ Action add_run_command(CLI::App& app) {
   cmd->add_option("--summary", flags->summary, "JSON summary file ('-' = standard output)")
       ->type_name("FILE.json");
   cmd->add_option("--fault", flags->faults, kFaultHelp)->type_name("SPEC");
-  cmd->add_option("--video", flags->video,
-                  "Video of the run, rendered offscreen by MuJoCo at 30 frames per simulated "
-                  "second and encoded by ffmpeg: .mp4 (H.264) or .gif")
-      ->type_name("FILE.mp4|FILE.gif");
+  CLI::Option* video =
+      cmd->add_option("--video", flags->video,
+                      "Video of the run, rendered offscreen by MuJoCo at 30 frames per simulated "
+                      "second and encoded by ffmpeg: .mp4 (H.264) or .gif")
+          ->type_name("FILE.mp4|FILE.gif");
+  // Without --video they would do nothing: refused instead.
   cmd->add_option("--video-size", flags->video_size, "The video's frame size in pixels")
+      ->needs(video)
       ->check(frame_size())
       ->capture_default_str();
   cmd->add_option("--video-camera", flags->video_camera,
                   "Where the video's camera looks from: corner (behind the robot's right, 30 "
                   "degrees down) or top (straight down)")
+      ->needs(video)
       ->check(CLI::IsMember({"corner", "top"}))
       ->capture_default_str();
   cmd->add_option("--cache", flags->cache,
@@ -278,6 +283,15 @@ Action add_run_command(CLI::App& app) {
     // The world is read once: the program's arms are bound to the arms of
     // the file that is simulated (a second read could see another file).
     const std::string app_path = resolve_app(flags->pipeline.inputs.front());
+    const std::string world_file = scenario_world_file(app_path, flags->pipeline.world);
+    // Which world the run is in: a world file found (or not) beside the app
+    // changes the robot, so the run names it.
+    const std::string sibling = default_world_file_name(app_path);
+    std::cerr << "mospec: world: "
+              << (!world_file.empty() ? world_file
+                  : sibling.empty()   ? std::string("mospec's default world")
+                                      : "mospec's default world (there is no " + sibling + ")")
+              << '\n';
     sim::WorldConfig config = scenario_world(app_path, flags->pipeline.world);
     auto program = load_validate_lower(flags->pipeline, code, &files, {}, &config);
     if (!program) return code;
@@ -288,6 +302,7 @@ Action add_run_command(CLI::App& app) {
                           static_cast<std::uint64_t>(flags->log_every));
     mount_arms(*program, files, config);
     std::vector<runtime::Chain> arms = arm_chains(config, &*program);
+    sim::actuation_from_chains(config, arms);
     // The simulated base is the program's (the numbers lowering read from the
     // configuration its platform solvers name); a program without a base
     // drives none, and the world's base is the default robot description's.

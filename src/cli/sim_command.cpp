@@ -64,7 +64,9 @@ Action add_sim_command(CLI::App& app) {
     if (flags->mount) config.mount.active = true;
     config.drives =
         description::load_base(config.base_model.model, config.base_model.configuration);
-    sim::World world(config, arm_chains(config, nullptr));
+    std::vector<runtime::Chain> chains = arm_chains(config, nullptr);
+    sim::actuation_from_chains(config, chains);
+    sim::World world(config, std::move(chains));
     for (const std::string& f : flags->faults) add_fault(world.faults(), f);
     std::vector<runtime::Pose> X_PB;
     for (const sim::ArmSetup& a : config.arms) X_PB.push_back(a.X_PB);

@@ -105,7 +105,7 @@ Action add_stats_command(CLI::App& app) {
       ->check(CLI::IsMember({"table", "row"}))
       ->capture_default_str();
   cmd->add_flag("--files", flags->files, "Also list every imported file with its domain and count");
-  flags->load.add_to(*cmd);
+  flags->load.add_to(*cmd, /*strict=*/true, /*validates=*/false);
 
   return [flags]() {
     for (const std::string& input : flags->inputs) refuse_world_file_as_model(input);

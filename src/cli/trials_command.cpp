@@ -1,5 +1,5 @@
-// `mospec trials APP --sim -n N -o DIR`: N seeded runs of one app, each a child
-// process `mospec run APP --sim --seed K+i --log DIR/trial-<i>.csv --summary
+// `mospec trials APP -n N -o DIR`: N seeded runs of one app, each a child
+// process `mospec run APP --seed K+i --log DIR/trial-<i>.csv --summary
 // DIR/trial-<i>.json` (its messages in DIR/trial-<i>.log), J at a time. The
 // manifest DIR/trials.json is written last and atomically, so a directory
 // without it is an unfinished (or interrupted) set of trials.
@@ -94,7 +94,7 @@ Action add_trials_command(CLI::App& app) {
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd =
       app.add_subcommand("trials",
-                         "Run N seeded simulations of an app (each `mospec run APP --sim --seed "
+                         "Run N seeded simulations of an app (each `mospec run APP --seed "
                          "K+i`, in parallel child "
                          "processes) into DIR: trial-<i>.csv (log), trial-<i>.json (summary), "
                          "trial-<i>.log (messages), "
@@ -102,8 +102,9 @@ Action add_trials_command(CLI::App& app) {
                          "only if every trial "
                          "exited 0. `mospec plot DIR` draws the trials' mean and spread.");
   cmd->add_option("app", flags->app, "App model")->required()->type_name("APP");
-  cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the only target so far)")
-      ->required();
+  // As `mospec run`'s: the simulation is the only target, so the default;
+  // `--sim` stays accepted but is not listed.
+  cmd->add_flag("--sim", flags->sim, "Run against the MuJoCo simulation (the default)")->group("");
   cmd->add_option("-n", flags->n, "Number of trials")->required()->check(CLI::Range(1u, 100000u));
   cmd->add_option("--jobs,-j", flags->jobs, "Trials run at a time (default: the number of cores)")
       ->check(CLI::Range(1u, 4096u));
@@ -155,11 +156,15 @@ Action add_trials_command(CLI::App& app) {
         flags->jobs > 0 ? flags->jobs : std::max(1u, std::thread::hardware_concurrency());
 
     auto argv_of = [&](const Trial& t) {
-      std::vector<std::string> argv = {self,        "run",
-                                       flags->app,  "--sim",
-                                       "--seed",    std::to_string(t.seed),
-                                       "--log",     (dir / trial_file(t.index, ".csv")).string(),
-                                       "--summary", (dir / trial_file(t.index, ".json")).string()};
+      std::vector<std::string> argv = {self,
+                                       "run",
+                                       flags->app,
+                                       "--seed",
+                                       std::to_string(t.seed),
+                                       "--log",
+                                       (dir / trial_file(t.index, ".csv")).string(),
+                                       "--summary",
+                                       (dir / trial_file(t.index, ".json")).string()};
       if (flags->interpret) argv.emplace_back("--interpret");
       if (flags->duration) argv.insert(argv.end(), {"--duration", exact_number(*flags->duration)});
       for (const std::string& m : flags->maps) argv.insert(argv.end(), {"--map", m});

@@ -1,6 +1,7 @@
 #include "description/chain_jsonld.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <string_view>
 #include <vector>
 
@@ -144,11 +145,13 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
   add_link(graph, chain.root(), nullptr);
   std::vector<std::string> joints;
   std::string parent = chain.root();
-  bool prismatic = false;  // needs mospec's joint extension (mospec/joints.json)
+  // Needs mospec's joint extension (mospec/joints.json): a prismatic joint or
+  // joint limits.
+  bool extension = false;
   for (int i = 0; i < chain.size(); ++i) {
     const Segment& s = chain.segment(i);
     const bool slides = s.type == JointType::Prismatic;
-    prismatic = prismatic || slides;
+    extension = extension || slides;
     add_link(graph, s.link, &s.inertia);
     const std::string attachment = "frame-" + s.joint + "-attachment";
     Node a;
@@ -175,6 +178,39 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
         .add("common-axis", quoted("axis-" + s.joint));
     graph.push_back(j);
     joints.push_back(quoted("joint-" + s.joint));
+    // The joint's limits (the URDF's <limit>), each a node of its own with
+    // its unit: the world file's actuation defaults to them.
+    const JointLimits& lim = options.limits ? s.limits : JointLimits{};
+    if (std::isfinite(lim.lower) && std::isfinite(lim.upper)) {
+      Node n;
+      n.add("@id", quoted("position-limits-" + s.joint))
+          .add("@type", quoted("JointPositionLimits"))
+          .add("of-joint", quoted("joint-" + s.joint))
+          .add("unit", quoted(slides ? "M" : "RAD"))
+          .add("lower", num(lim.lower))
+          .add("upper", num(lim.upper));
+      graph.push_back(n);
+      extension = true;
+    }
+    const struct {
+      const char* id;
+      const char* type;
+      double value;
+      const char* unit;
+    } single[] = {{"velocity-limit-", "JointVelocityLimit", lim.velocity,
+                   slides ? "M-PER-SEC" : "RAD-PER-SEC"},
+                  {"effort-limit-", "JointEffortLimit", lim.effort, slides ? "N" : "N-M"}};
+    for (const auto& l : single) {
+      if (!std::isfinite(l.value)) continue;
+      Node n;
+      n.add("@id", quoted(l.id + s.joint))
+          .add("@type", quoted(l.type))
+          .add("of-joint", quoted("joint-" + s.joint))
+          .add("unit", quoted(l.unit))
+          .add("limit", num(l.value));
+      graph.push_back(n);
+      extension = true;
+    }
     parent = s.link;
   }
   if (chain.tip() != parent) {
@@ -202,7 +238,7 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
                           "newtonian-rigid-body-dynamics/coordinates.json", "qudt.json"}) {
     out += "        " + quoted(mm + ctx) + ",\n";
   }
-  if (prismatic) out += "        " + quoted(mm + "mospec/joints.json") + ",\n";
+  if (extension) out += "        " + quoted(mm + "mospec/joints.json") + ",\n";
   out += "        { \"@base\": " + quoted(options.base) + " }\n    ],\n";
   out += "    \"@id\": " + quoted(options.base) + ",\n";
   out += "    \"@graph\": [\n";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <initializer_list>
 #include <map>
 #include <optional>
@@ -69,6 +70,18 @@ enum class V : uint8_t {
   M,
   KiloGM_M2,
   KiloGM,  // qudt units
+  of_joint,
+  JointPositionLimits,
+  JointVelocityLimit,
+  JointEffortLimit,
+  lower,
+  upper,
+  limit,  // mospec/joints
+  RAD,
+  M_PER_SEC,
+  RAD_PER_SEC,
+  N,
+  N_M,  // qudt units
   count
 };
 constexpr size_t kVocabSize = static_cast<size_t>(V::count);
@@ -118,6 +131,18 @@ constexpr std::array<Term, kVocabSize> kTerms{{
     {kUnit, "M"},
     {kUnit, "KiloGM-M2"},
     {kUnit, "KiloGM"},
+    {vocab::mospec_joints::ns, "of-joint"},
+    {vocab::mospec_joints::ns, "JointPositionLimits"},
+    {vocab::mospec_joints::ns, "JointVelocityLimit"},
+    {vocab::mospec_joints::ns, "JointEffortLimit"},
+    {vocab::mospec_joints::ns, "lower"},
+    {vocab::mospec_joints::ns, "upper"},
+    {vocab::mospec_joints::ns, "limit"},
+    {kUnit, "RAD"},
+    {kUnit, "M-PER-SEC"},
+    {kUnit, "RAD-PER-SEC"},
+    {kUnit, "N"},
+    {kUnit, "N-M"},
 }};
 const Term& term(V v) {
   return kTerms[static_cast<size_t>(v)];
@@ -472,6 +497,48 @@ ChainDescription describe_chain(const rdf::Dataset& dataset, std::span<const rdf
 
 namespace {
 
+// The joint's limits (mos-jnt:JointPositionLimits, JointVelocityLimit,
+// JointEffortLimit of it), in its type's units; none stated: unbounded.
+void read_limits(const Reader& r, rdf::TermId joint, Segment& s) {
+  const bool slides = s.type == JointType::Prismatic;
+  const auto finite = [&](rdf::TermId node, V p, bool non_negative) {
+    const double v = r.number(node, p);
+    if (!std::isfinite(v) || (non_negative && v < 0)) {
+      throw Error("invalid-robot-model", r.name(node) + ": <" + text(p) + "> must be finite" +
+                                             (non_negative ? " and >= 0" : ""));
+    }
+    return v;
+  };
+  const auto once = [&](rdf::TermId node, double& seen) {
+    if (!std::isnan(seen)) {
+      throw Error("invalid-robot-model",
+                  r.name(node) + ": a second limit of the same kind for joint " + r.name(joint));
+    }
+  };
+  double lower = std::nan(""), velocity = std::nan(""), effort = std::nan("");
+  for (rdf::TermId node : r.subjects(V::of_joint, joint)) {
+    if (r.has_type(node, V::JointPositionLimits)) {
+      once(node, lower);
+      r.require_units(node, {slides ? V::M : V::RAD});
+      lower = finite(node, V::lower, false);
+      const double upper = finite(node, V::upper, false);
+      if (lower > upper) {
+        throw Error("invalid-robot-model", r.name(node) + ": lower limit > upper limit");
+      }
+      s.limits.lower = lower;
+      s.limits.upper = upper;
+    } else if (r.has_type(node, V::JointVelocityLimit)) {
+      once(node, velocity);
+      r.require_units(node, {slides ? V::M_PER_SEC : V::RAD_PER_SEC});
+      velocity = s.limits.velocity = finite(node, V::limit, true);
+    } else if (r.has_type(node, V::JointEffortLimit)) {
+      once(node, effort);
+      r.require_units(node, {slides ? V::N : V::N_M});
+      effort = s.limits.effort = finite(node, V::limit, true);
+    }
+  }
+}
+
 ChainDescription describe(const Reader& r, std::string_view chain_iri) {
   const rdf::TermId chain_id = r.id(chain_iri);
   if (chain_id.is_any() || !r.has_type(chain_id, V::KinematicChain)) {
@@ -560,6 +627,7 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
     s.axis_J = Vec3(r.take_number(axis, V::x, xyz[0]), r.take_number(axis, V::y, xyz[1]),
                     r.take_number(axis, V::z, xyz[2]));
     s.inertia = r.inertia(info.child);
+    read_limits(r, info.joint, s);
     chain.add_segment(std::move(s));
     out.frames.segments.push_back(
         {r.name(info.child), origin_of(info.child), body_of(info.child), r.name(info.joint)});
@@ -582,6 +650,8 @@ ChainDescription describe(const Reader& r, std::string_view chain_iri) {
   if (!tips.empty()) {
     const rdf::TermId tip = r.one(tips.front(), V::of);
     chain.add_fixed(r.local_name(tip, "frame-"), r.pose(tips.front()), {});
+    out.frames.tip = {r.name(tip), origin_of(tip), body_of(tip), {}};
+    out.frames.tip_pose = r.name(tips.front());
   }
   return out;
 }

@@ -24,7 +24,9 @@ using runtime::Chain;
 // the last link's frame is the tip. Link and joint names are the ids' last path
 // segment without the "frame-" / "joint-" prefix. Lengths must be in M,
 // masses in KiloGM, inertias in KiloGM-M2 (QUDT). Joint limits are not part of
-// the vocabulary and stay unbounded.
+// the published vocabulary: mospec/joints' JointPositionLimits,
+// JointVelocityLimit and JointEffortLimit of a joint (chain_to_jsonld) give
+// them; without, they stay unbounded.
 // Throws mospec::Error naming the entity and what is missing or wrong.
 Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri);
 
@@ -40,6 +42,10 @@ struct FrameEntities {
 struct ChainFrames {
   FrameEntities root;                   // the chain's root frame (the base link's)
   std::vector<FrameEntities> segments;  // segment i's frame S_i (the moving link's)
+  // The tip frame fixed to the last segment's frame (a tool0, a flange), and
+  // the Pose that places it there; empty when the chain names none.
+  FrameEntities tip;
+  std::string tip_pose;
 };
 struct ChainDescription {
   Chain chain;

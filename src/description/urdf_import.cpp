@@ -429,7 +429,7 @@ urdf::ModelInterfaceSharedPtr parse(const std::string& urdf_xml, const Places& p
 
 }  // namespace
 
-Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root_link,
+UrdfChain import_urdf(const std::string& urdf_xml, const std::string& root_link,
                       const std::string& tip_link, const std::string& source) {
   const XmlOutline outline = scan_xml(urdf_xml, source);
   if (outline.elements[0].name != "robot") {
@@ -551,12 +551,31 @@ Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root_link,
       places.fail(at, what + ": composed with the fixed joints before it, the tip pose: " + p);
     }
   }
-  return chain;
+  UrdfChain out{std::move(chain), model->getName(), {}};
+  // The fixed joints between the last moving link and the tip, tip last.
+  for (const auto& joint : path) {
+    if (joint->type != urdf::Joint::FIXED) {
+      out.tip_joints.clear();
+    } else {
+      out.tip_joints.push_back(joint->name);
+    }
+  }
+  return out;
+}
+
+Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root, const std::string& tip,
+                      const std::string& source) {
+  return import_urdf(urdf_xml, root, tip, source).chain;
+}
+
+UrdfChain import_urdf_file(const std::string& path, const std::string& root,
+                           const std::string& tip) {
+  return import_urdf(read_file(path), root, tip, path);
 }
 
 Chain chain_from_urdf_file(const std::string& path, const std::string& root,
                            const std::string& tip) {
-  return chain_from_urdf(read_file(path), root, tip, path);
+  return import_urdf_file(path, root, tip).chain;
 }
 
 }  // namespace mospec::description

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "runtime/chain.hpp"
 
@@ -40,6 +41,19 @@ Chain chain_from_urdf(const std::string& urdf_xml, const std::string& root, cons
 
 // The same, reading the file at `path`.
 Chain chain_from_urdf_file(const std::string& path, const std::string& root,
+                           const std::string& tip);
+
+// The chain with what `mospec import-urdf` tells about it: the robot's name
+// (<robot name>) and the fixed joints that attach the tip link to the last
+// moving link (a tool0/flange link), in path order from that link.
+struct UrdfChain {
+  Chain chain;
+  std::string robot;
+  std::vector<std::string> tip_joints;
+};
+UrdfChain import_urdf(const std::string& urdf_xml, const std::string& root, const std::string& tip,
+                      const std::string& source = "<urdf>");
+UrdfChain import_urdf_file(const std::string& path, const std::string& root,
                            const std::string& tip);
 
 }  // namespace mospec::description

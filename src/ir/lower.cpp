@@ -7,14 +7,8 @@
 #include <unordered_map>
 
 #include "ir/lowering.hpp"
-#include "vocab/metamodels.hpp"
 
 namespace mospec::ir {
-
-std::map<std::string, int> LowerOptions::default_ports() {
-  return {{std::string(vocab::robots::kinova_gen3_chain), 0},
-          {std::string(vocab::robots::kinova_gen3_left_chain), 1}};
-}
 
 namespace {
 

@@ -29,11 +29,11 @@ namespace mospec::ir {
 
 struct LowerOptions {
   // Which arm of the robot (its index in the robot interface's arms) each
-  // kinematic chain drives. The CLI takes them from the scenario's world file
-  // (sim::WorldConfig::arms); the defaults are mospec's default robot
-  // (robots/kinova-gen3.jsonld -> 0, the right arm; its left twin -> 1).
-  std::map<std::string, int> ports = default_ports();
-  static std::map<std::string, int> default_ports();
+  // kinematic chain drives. Lowering knows no robot of its own: the CLI takes
+  // them from the scenario's world file (sim::WorldConfig::arms, the default
+  // world's when there is none); an arm solver of a chain not listed here is
+  // refused ("unbound-chain").
+  std::map<std::string, int> ports;
   // Called after each pass (lowering_passes()) with the program so far: its
   // steps in declaration order until the "schedule" pass orders them.
   std::function<void(std::string_view pass, const Program&)> after_pass;

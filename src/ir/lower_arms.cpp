@@ -7,6 +7,7 @@
 #include "description/chain_rdf.hpp"
 #include "ir/controllers.hpp"
 #include "ir/lowering.hpp"
+#include "support/spelling.hpp"
 
 namespace mospec::ir::lowering {
 
@@ -110,13 +111,40 @@ std::optional<ArmOutput::What> joint_quantity(State& st, TermId o) {
   return std::nullopt;
 }
 
+// "no joint 'X' in the chain 'C'; its joints are ...": what a reference to a
+// joint the solver's chain lacks is told, with the nearest joint when X looks
+// like a typo of it (after `how`, what to do). The joints in chain order,
+// their common IRI prefix once.
+std::string no_joint(const ArmSolver& arm, const description::ChainFrames& frames,
+                     const std::string& joint, const std::string& how) {
+  std::string prefix;
+  for (size_t i = 0; i < frames.segments.size(); ++i) {
+    const std::string& j = frames.segments[i].joint;
+    const std::string p = j.substr(0, j.rfind('/') + 1);
+    prefix = i == 0 || p == prefix ? p : "";
+  }
+  std::string names;
+  Nearest nearest(joint);
+  for (const description::FrameEntities& s : frames.segments) {
+    names += (names.empty() ? "" : ", ") + s.joint.substr(prefix.size());
+    nearest.offer(s.joint);
+  }
+  std::string message = "no joint '" + joint + "' in the chain '" + arm.chain_iri +
+                        "'; its joints are " + (names.empty() ? std::string("none") : names) +
+                        (prefix.empty() ? "" : " (under " + prefix + ")");
+  message += how;
+  if (!nearest.best().empty()) message += "; did you mean '" + std::string(nearest.best()) + "'?";
+  return message;
+}
+
 // A joint position, velocity or measured torque the solver outputs: a scalar
 // of the joint its `of-joint` names, in the units of the joint's type: RAD,
 // RAD-PER-SEC or N-M on a revolute joint; M, M-PER-SEC or N (a force) on a
 // prismatic one (mos-jnt:PrismaticJoint).
 template <class JointIndex>
 void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What what,
-                        const JointIndex& joint_index, Step& kin) {
+                        const JointIndex& joint_index, const description::ChainFrames& frames,
+                        Step& kin) {
   namespace mj = mospec::vocab::mospec_joints;
   const std::string of_joint = mospec::vocab::term(mj::ns, "of-joint");
   const int d = st.datum(o, DataType::Scalar, st.term(arm.iri), "output");
@@ -135,11 +163,11 @@ void lower_joint_output(State& st, ArmSolver& arm, TermId o, ArmOutput::What wha
   const int j = joint_index(st.str(*joint));
   if (j < 0) {
     st.error(st.where(o, of_joint, *joint), "unknown-joint",
-             std::string("the ") + kind + " '" + dd.iri + "' is of '" + st.str(*joint) +
-                 "', which is no joint of '" + arm.chain_iri + "' (the chain the solver '" +
-                 arm.iri +
-                 "' reads); name one of the chain's `joints`, or output it from the "
-                 "solver of that joint's chain");
+             no_joint(arm, frames, st.str(*joint),
+                      std::string(": the ") + kind + " '" + dd.iri +
+                          "' is of it, and the solver '" + arm.iri +
+                          "' reads that chain; name one of its joints, or output the quantity "
+                          "from the solver of that joint's chain"));
     return;
   }
   const bool prismatic = arm.chain.segment(j).type == runtime::JointType::Prismatic;
@@ -241,6 +269,7 @@ void lower_arm(State& st, TermId solver) {
     // A solver rooted at, e.g., the platform: the chain hangs from it by a
     // constant mount pose, which becomes part of the first joint's placement.
     std::optional<runtime::Pose> X_RB;
+    std::optional<TermId> mount;  // the pose X_RB is read from
     for (TermId p : st.instances(vocab("geometry/spatial-relations", "Pose"))) {
       auto of = st.object(p, vocab("geometry/spatial-relations", "of"));
       auto wrt = st.object(p, vocab("geometry/spatial-relations", "with-respect-to"));
@@ -249,11 +278,30 @@ void lower_arm(State& st, TermId solver) {
           st.str(*wrt) != arm.root_frame || st.str(*seen) != arm.root_frame)
         continue;
       const int d = st.datum(p, DataType::Pose, solver, "mount pose");
-      if (st.program.data[static_cast<size_t>(d)].value.empty()) continue;
-      X_RB = constant_pose(st.program.data[static_cast<size_t>(d)].value);
+      const std::vector<double>& value = st.program.data[static_cast<size_t>(d)].value;
+      if (value.empty()) continue;
+      if (mount) {
+        // A second constant pose of the same mount: the chain and the
+        // simulated arm can hang at only one, and which one would be the
+        // order of the graph. The same numbers twice are one mount.
+        const std::vector<double>& first =
+            st.program
+                .data[static_cast<size_t>(st.datum(*mount, DataType::Pose, solver, "mount pose"))]
+                .value;
+        if (first != value) {
+          st.error(p, "mount-mismatch",
+                   "'" + st.str(p) + "' is a second, different mount pose of '" + chain_root_frame +
+                       "' w.r.t. '" + arm.root_frame + "' (the root of '" + arm.chain_iri +
+                       "', which the solver '" + arm.iri + "' drives); '" + st.str(*mount) + "' (" +
+                       st.place(*mount) +
+                       ") already mounts it elsewhere. State the arm's mount once");
+        }
+        continue;
+      }
+      X_RB = constant_pose(value);
+      mount = p;
       arm.mount_pose_iri = st.str(p);
       arm.X_RB = *X_RB;
-      break;
     }
     if (!X_RB) {
       st.error(solver, "unsupported-root",
@@ -321,7 +369,7 @@ void lower_arm(State& st, TermId solver) {
   };
   for (TermId o : st.objects(solver, vocab(slv, "output"))) {
     if (auto joint_output = joint_quantity(st, o)) {
-      lower_joint_output(st, arm, o, *joint_output, joint_index, kin);
+      lower_joint_output(st, arm, o, *joint_output, joint_index, frames, kin);
       continue;
     }
     if (st.has_type(o, mospec::vocab::term(mospec::vocab::mospec_joints::ns, "EstimatedWrench"))) {
@@ -358,6 +406,21 @@ void lower_arm(State& st, TermId solver) {
       const bool in_chain_root = arm.root_frame != chain_root_frame &&
                                  dd.with_respect_to == chain_root_frame &&
                                  dd.as_seen_by == chain_root_frame;
+      if (seg < 0 && !frames.tip.frame.empty() && dd.of == frames.tip.frame) {
+        // A tool frame fixed to the last link (tool0, a flange): the solver
+        // computes the segments' frames only, but the tool's pose is one
+        // constant pose away, which the models can compose themselves.
+        const std::string& last = frames.segments.back().frame;
+        st.error(o, "unsupported-output",
+                 "'" + dd.of + "' is the chain's tip frame, fixed to the frame '" + last +
+                     "' of its last moving link by '" + frames.tip_pose + "'; the solver '" +
+                     arm.iri + "' outputs the poses of the segments' frames only. To get '" +
+                     dd.iri + "': output the pose of '" + last + "' w.r.t. and seen by '" +
+                     arm.root_frame + "', and compose '" + frames.tip_pose +
+                     "' onto it (a ComposePose: in1 that output, in2 '" + frames.tip_pose +
+                     "', composite '" + dd.iri + "')");
+        continue;
+      }
       if (seg < 0 || !(in_root || in_chain_root)) {
         st.error(o, "unsupported-output",
                  "the solver '" + arm.iri +
@@ -454,9 +517,24 @@ void lower_arm(State& st, TermId solver) {
                 st.str(spec) + "' is attached to '" +
                 (link ? st.str(*link) : std::string("nothing")) + "'");
       } else if (!link || st.str(*link) != last_link) {
+        // Attached to the tool fixed to the last link (its frame, or a link
+        // named after it): say how the tool is reached instead.
+        const std::string tip = frames.tip.frame;
+        const std::string tip_name = tip.empty() ? "" : local_name(tip);
+        const bool tool =
+            link && !tip.empty() &&
+            (st.str(*link) == tip || (tip_name.starts_with("frame-") &&
+                                      local_name(st.str(*link)) == "link-" + tip_name.substr(6)));
         st.error(spec, "unsupported-attachment",
                  "ACHD constrains the chain's last segment '" + last_link + "'; '" + st.str(spec) +
-                     "' is attached to '" + (link ? st.str(*link) : std::string("nothing")) + "'");
+                     "' is attached to '" + (link ? st.str(*link) : std::string("nothing")) + "'" +
+                     (tool ? ", the tool frame '" + tip + "' fixed to it by '" + frames.tip_pose +
+                                 "': attach the driver to '" + last_link +
+                                 "' (it acts at that link's origin) and state the constraints on "
+                                 "the tool's pose, the output pose of '" +
+                                 frames.segments.back().frame + "' composed with '" +
+                                 frames.tip_pose + "' (ComposePose)"
+                           : std::string()));
       }
       for (TermId c : st.objects(spec, vocab(slv, "constraints"))) {
         AccelerationConstraint ac;
@@ -568,9 +646,9 @@ void lower_arm(State& st, TermId solver) {
       jf.joint = joint_index(st.str(*joint));
       if (jf.joint < 0) {
         st.error(st.where(spec, vocab(slv, "attached-to"), *joint), "unknown-joint",
-                 "'" + jf.iri + "' is attached to '" + st.str(*joint) +
-                     "', which is no joint of '" + arm.chain_iri + "' (the chain the solver '" +
-                     arm.iri + "' drives); attach it to one of the chain's `joints`");
+                 no_joint(arm, frames, st.str(*joint),
+                          ": '" + jf.iri + "' is attached to it, and the solver '" + arm.iri +
+                              "' drives that chain; attach it to one of its joints"));
         continue;
       }
       jf.force = st.datum(*force, DataType::Scalar, spec, "force");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <initializer_list>
+#include <span>
 
 #include "json/json.hpp"
 #include "support/diagnostics.hpp"
@@ -75,7 +76,8 @@ WorldConfig default_world() {
   // gravity vectors in models/00-common/01-world-model.json confirm.
   c.arms.resize(2);
   c.arms[robot::kRightArm].name = "right";
-  c.arms[robot::kRightArm].chain_iri = vocab::robots::kinova_gen3_chain;
+  // The right arm is the world's `robot` itself: its chain binds by the
+  // robot's `chain` (arm_chain), whatever IRI a world file gives it.
   c.arms[robot::kRightArm].X_PB =
       pose_from_cosines({0.130526192, 0.0, 0.991444861}, {-0.701057385, -0.707106781, 0.0922959556},
                         {0.701057385, -0.707106781, -0.0922959556}, {0.0, -0.1, 0.1});
@@ -96,6 +98,11 @@ WorldConfig default_world() {
   return c;
 }
 
+const std::string& arm_chain(const WorldConfig& config, std::size_t arm) {
+  const ArmSetup& a = config.arms[arm];
+  return a.chain_iri.empty() ? config.robot.chain_iri : a.chain_iri;
+}
+
 const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm) {
   const ArmSetup& a = config.arms[arm];
   return a.actuation ? *a.actuation : config.actuation;
@@ -104,6 +111,29 @@ const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm) {
 RobotModelSource arm_source(const WorldConfig& config, std::size_t arm) {
   const ArmSetup& a = config.arms[arm];
   return a.robot.model.empty() ? config.robot : a.robot;
+}
+
+void actuation_from_chains(WorldConfig& config, std::span<const runtime::Chain> chains) {
+  if (config.actuation_stated) return;
+  for (size_t k = 0; k < config.arms.size() && k < chains.size(); ++k) {
+    ArmSetup& arm = config.arms[k];
+    const runtime::Chain& chain = chains[k];
+    if (arm.actuation || chain.size() == 0) continue;
+    ArmActuation a;
+    a.effort_limit.clear();
+    a.lower.clear();
+    a.upper.clear();
+    bool efforts = true;
+    for (int i = 0; i < chain.size(); ++i) {
+      const runtime::JointLimits& l = chain.segment(i).limits;
+      efforts = efforts && std::isfinite(l.effort) && l.effort > 0;
+      a.effort_limit.push_back(l.effort);
+      const bool bounded = std::isfinite(l.lower) && std::isfinite(l.upper) && l.lower < l.upper;
+      a.lower.push_back(bounded ? l.lower : -1e9);
+      a.upper.push_back(bounded ? l.upper : 1e9);
+    }
+    if (efforts) arm.actuation = std::move(a);
+  }
 }
 
 robot::RobotShape robot_shape(const WorldConfig& config, const std::vector<int>& joints) {
@@ -123,11 +153,13 @@ namespace {
 constexpr double kMinControlPeriod = 1e-5;  // [s]: 100 kHz
 constexpr double kMaxControlPeriod = 1.0;   // [s]
 constexpr double kMaxLength = 100.0;        // [m]: sizes, positions, offsets
-constexpr double kMaxAngle = 100.0;         // [rad]: joint and heading angles
-constexpr double kMaxMass = 1e4;            // [kg]
-constexpr double kMaxTorque = 1e4;          // [N·m]: effort and hub torque limits
-constexpr double kMaxDamping = 1e3;         // [N·m·s/rad]
-constexpr double kMaxFriction = 10.0;       // Coulomb coefficients
+// [rad]: joint and heading angles. One turn: a bare 20 meant as degrees is
+// refused (with the way to write degrees) rather than read as 20 rad.
+constexpr double kMaxAngle = 6.283185307179586;
+constexpr double kMaxMass = 1e4;       // [kg]
+constexpr double kMaxTorque = 1e4;     // [N·m]: effort and hub torque limits
+constexpr double kMaxDamping = 1e3;    // [N·m·s/rad]
+constexpr double kMaxFriction = 10.0;  // Coulomb coefficients
 
 // A number as a message quotes it: the shortest form that reads back the same.
 std::string shortest(double x) {
@@ -174,15 +206,71 @@ class Reader {
     return v.as_number();
   }
 
+  // A value of a key whose SI unit is `unit`: a bare number is in that unit;
+  // an angle (rad) or a length (m) may also be a string "NUMBER UNIT" in
+  // another unit of its kind (docs/simulation.md, "Units"): "20 deg", "5 cm".
+  double quantity(const json::Value& v, std::string_view what, std::string_view unit) const {
+    struct Scale {
+      std::string_view name;
+      double factor;  // to the SI unit
+    };
+    static constexpr Scale kAngles[] = {{"rad", 1.0}, {"deg", 3.141592653589793 / 180.0}};
+    static constexpr Scale kLengths[] = {{"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}};
+    const std::span<const Scale> scales = unit == "rad" ? std::span<const Scale>(kAngles)
+                                          : unit == "m" ? std::span<const Scale>(kLengths)
+                                                        : std::span<const Scale>();
+    if (!v.is_string() || scales.empty()) {
+      if (!v.is_number()) {
+        std::string forms;
+        for (const Scale& s : scales)
+          forms += std::string(forms.empty() ? "" : ", ") + "\"1 " + std::string(s.name) + "\"";
+        fail(v,
+             std::string(what) + ": expected a number" +
+                 (scales.empty() ? std::string()
+                                 : " [" + std::string(unit) +
+                                       "] or a string of a number and its unit (" + forms + ")"));
+      }
+      return number(v, what);
+    }
+    const std::string_view text = v.as_string();
+    const size_t space = text.find(' ');
+    const std::string_view digits = text.substr(0, space);
+    const std::string_view name =
+        space == std::string_view::npos ? std::string_view() : text.substr(space + 1);
+    double x = 0.0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), x);
+    const Scale* scale = nullptr;
+    for (const Scale& s : scales) {
+      if (s.name == name) scale = &s;
+    }
+    if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() ||
+        !std::isfinite(x) || scale == nullptr) {
+      std::string names;
+      for (const Scale& s : scales) names += (names.empty() ? "" : ", ") + std::string(s.name);
+      fail(v, std::string(what) + ": '" + escaped_bytes(text) +
+                  "' is not a number and its unit, one space apart, the unit one of " + names +
+                  " (e.g. \"" + (unit == "rad" ? "20 deg" : "5 cm") + "\")");
+    }
+    return x * scale->factor;
+  }
+
   // A number in [lo, hi], or (lo, hi] with `lo_open`; the message names the
   // key, the value and the accepted range with its unit.
   double in_range(const json::Value& v, std::string_view what, double lo, double hi,
                   std::string_view unit, bool lo_open = false) const {
-    const double x = number(v, what);
+    const double x = quantity(v, what, unit);
     if (x < lo || (lo_open && x == lo) || x > hi) {
-      fail(v, std::string(what) + ": " + shortest(x) + " is outside the accepted range " +
-                  (lo_open ? "(" : "[") + shortest(lo) + ", " + shortest(hi) + "]" +
-                  (unit.empty() ? "" : " ") + std::string(unit));
+      // A bare angle beyond a turn is most likely degrees written as a number.
+      const bool degrees = unit == "rad" && v.is_number() && hi == kMaxAngle;
+      fail(v, std::string(what) + ": " +
+                  (v.is_string() ? "'" + escaped_bytes(v.as_string()) + "' (" + shortest(x) + ")"
+                                 : shortest(x)) +
+                  " is outside the accepted range " + (lo_open ? "(" : "[") + shortest(lo) + ", " +
+                  shortest(hi) + "]" + (unit.empty() ? "" : " ") + std::string(unit) +
+                  (degrees ? "; a bare number is in radians, an angle in degrees is written as "
+                             "such: \"" +
+                                 shortest(x) + " deg\""
+                           : ""));
     }
     return x;
   }
@@ -342,7 +430,7 @@ void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
                   r.file(), l.line, l.column);
     }
     const json::Object& a =
-        r.object(o.value(k), what, {"present", "robot", "q", "mount", "actuation"});
+        r.object(o.value(k), what, {"present", "robot", "chain", "q", "mount", "actuation"});
     auto it = std::find_if(c.arms.begin(), c.arms.end(),
                            [&](const ArmSetup& s) { return s.name == name; });
     if (auto* p = a.find("present"); p && !r.boolean(*p, what + ".present")) {
@@ -358,11 +446,12 @@ void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
       if (c.arms.size() >= kMaxArms) {
         r.fail(o.value(k), what + ": a robot has at most " + std::to_string(kMaxArms) + " arms");
       }
-      if (!a.find("robot") || !a.find("q") || !a.find("actuation")) {
+      // Its actuation may come from its robot description's joint limits
+      // (actuation_from_chains), so only the robot and q are required.
+      if (!a.find("robot") || !a.find("q")) {
         r.fail(o.value(k), what +
-                               ": a new arm needs its `robot` (model and chain), `q` and "
-                               "`actuation` (mospec's default robot has the arms right and "
-                               "left)");
+                               ": a new arm needs its `robot` (model and chain) and `q` "
+                               "(mospec's default robot has the arms right and left)");
       }
       c.arms.emplace_back();
       c.arms.back().name = name;
@@ -376,6 +465,18 @@ void read_arms(const Reader& r, const json::Value& v, WorldConfig& c) {
         r.fail(*x, what + ".robot: expected the `model` file and the `chain` IRI in it");
       }
       arm.chain_iri = arm.robot.chain_iri;
+    }
+    if (auto* x = a.find("chain")) {
+      // The name the task models give an arm that is the world's `robot`
+      // (two arms of one description need two chain IRIs); an arm with its
+      // own `robot` is bound by that robot's `chain`.
+      if (a.find("robot")) {
+        r.fail(*x, what +
+                       ".chain: an arm with its own `robot` is bound by `robot.chain`; state "
+                       "the chain IRI once, there");
+      }
+      arm.chain_iri = r.string(*x, what + ".chain");
+      if (arm.chain_iri.empty()) r.fail(*x, what + ".chain: expected a chain IRI");
     }
     if (auto* q = a.find("q"))
       arm.q0 = r.joint_numbers(*q, what + ".q", -kMaxAngle, kMaxAngle, "rad");
@@ -454,6 +555,7 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       read_arms(r, v, c);
     } else if (key == "actuation") {
       c.actuation = read_actuation(r, v, "actuation", c.actuation);
+      c.actuation_stated = true;
     } else if (key == "end_effector") {
       const json::Object& o = r.object(v, "end_effector", {"radius", "friction"});
       if (auto* x = o.find("radius")) c.end_effector.radius = r.positive(*x, "radius", 1.0, "m");
@@ -488,8 +590,8 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
         p.wheel_friction = r.positive(*x, "wheel_friction", kMaxFriction, "");
       }
     } else if (key == "table") {
-      const json::Object& o =
-          r.object(v, "table", {"present", "depth", "width", "edge_height_offset", "friction"});
+      const json::Object& o = r.object(
+          v, "table", {"present", "depth", "width", "edge_height_offset", "friction", "pose"});
       if (auto* x = o.find("present")) c.table.present = r.boolean(*x, "present");
       if (auto* x = o.find("depth")) c.table.depth = r.positive(*x, "depth", kMaxLength, "m");
       if (auto* x = o.find("width")) c.table.width = r.positive(*x, "width", kMaxLength, "m");
@@ -499,6 +601,16 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       }
       if (auto* x = o.find("friction")) {
         c.table.friction = r.non_negative(*x, "friction", kMaxFriction, "");
+      }
+      if (auto* x = o.find("pose")) {
+        const json::Object& po = r.object(*x, "table.pose", {"x", "y", "yaw"});
+        if (auto* e = po.find("x"))
+          c.table.x = r.in_range(*e, "table.pose.x", -kMaxLength, kMaxLength, "m");
+        if (auto* e = po.find("y"))
+          c.table.y = r.in_range(*e, "table.pose.y", -kMaxLength, kMaxLength, "m");
+        if (auto* e = po.find("yaw")) {
+          c.table.yaw = r.in_range(*e, "table.pose.yaw", -kMaxAngle, kMaxAngle, "rad");
+        }
       }
     } else if (key == "mount") {
       const json::Object& o = r.object(v, "mount", {"active", "time_constant"});
@@ -535,6 +647,25 @@ WorldConfig parse_world_config(std::string_view text, const std::string& file_na
       if (auto* x = o.find("pivot_q")) {
         c.perturbation.pivot_q = r.non_negative(*x, "pivot_q", kPi, "rad");
       }
+    }
+  }
+  // Each chain drives one arm: a second arm bound by the same IRI would leave
+  // which arm a solver drives to the order of the map.
+  for (size_t k = 0; k < c.arms.size(); ++k) {
+    for (size_t j = 0; j < k; ++j) {
+      if (arm_chain(c, j) != arm_chain(c, k)) continue;
+      const Place& at = c.arms[k].where.known() ? c.arms[k].where : c.arms[j].where;
+      const auto bound_by = [&](size_t i) {
+        return c.arms[i].chain_iri.empty() ? std::string("the world's `robot.chain`")
+                                           : "arms." + c.arms[i].name;
+      };
+      throw Error(
+          "invalid-world",
+          "arms " + c.arms[j].name + " and " + c.arms[k].name + " are both bound to the chain '" +
+              arm_chain(c, k) + "' (by " + bound_by(j) + " and " + bound_by(k) +
+              "); give each arm the chain IRI its task models name it by (`arms.<arm>."
+              "chain`, or its own `robot`)",
+          at.known() ? at.file : file_name, at.known() ? at.line : 0, at.known() ? at.column : 0);
     }
   }
   return c;

@@ -17,12 +17,14 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "robot/interface.hpp"
+#include "runtime/chain.hpp"
 #include "runtime/kelo.hpp"
 #include "runtime/spatial.hpp"
 #include "support/diagnostics.hpp"
@@ -86,7 +88,9 @@ struct RobotModelSource {
 struct ArmSetup {
   std::string name;  // "right" / "left": prefixes the arm's MJCF names, sensors, log columns
   // The kinematic chain task models name for this arm: an arm solver of that
-  // chain drives this arm (ir::LowerOptions::ports).
+  // chain drives this arm (ir::LowerOptions::ports). Empty: the world's
+  // `robot.chain` (arm_chain()), so a world file that renames the robot's
+  // chain renames the arm it binds with it.
   std::string chain_iri;
   // Where the simulator reads the chain from when no arm solver of the
   // program gives it (an idle arm, `mospec sim`); an empty model: the world's
@@ -109,6 +113,11 @@ struct TableParameters {
   // of the nominal initial configuration, plus this offset [m].
   double edge_height_offset = 0.0;
   double friction = 0.1;  // low, so contacts slide along the edge
+  // The table's pose on the floor: its frame (origin below the middle of the
+  // front top edge, x into the table) at (x, y) in W, turned by yaw about z.
+  // Zero: the table frame is W.
+  double x = 0.0, y = 0.0;  // [m]
+  double yaw = 0.0;         // [rad]
 };
 
 struct EndEffectorParameters {
@@ -125,12 +134,13 @@ struct MountParameters {
 
 // Where the base starts, relative to the table (frame W).
 struct InitialConditions {
-  // Platform origin x; unset: the end-effectors of the nominal configuration
-  // stand `contact_gap` in front of the table's face at yaw 0.
+  // Platform origin x in W; unset: the end-effectors of the nominal
+  // configuration stand `contact_gap` in front of the table's face at yaw 0
+  // (measured along W's x from the table's x).
   std::optional<double> base_x;
-  double contact_gap = 0.0;      // [m]
-  double base_y = 0.0;           // [m]
-  double base_yaw = 0.0;         // [rad]
+  double contact_gap = 0.0;     // [m]
+  double base_y = 0.0;          // [m]
+  double base_yaw = 0.0;        // [rad]
   std::vector<double> pivot_q;  // one per drive [rad]; empty: every pivot at 0
 };
 
@@ -157,9 +167,10 @@ struct WorldConfig {
   int command_delay_ticks = 1;    // 0 or 1: a command acts from the next tick on
   std::uint64_t seed = 0;
 
-  RobotModelSource robot;      // the default source of every arm's chain
-  std::vector<ArmSetup> arms;  // the robot's arms, in port order
-  ArmActuation actuation;      // of every arm that states none of its own
+  RobotModelSource robot;         // the default source of every arm's chain
+  std::vector<ArmSetup> arms;     // the robot's arms, in port order
+  ArmActuation actuation;         // of every arm that states none of its own
+  bool actuation_stated = false;  // the world file states `actuation`
   EndEffectorParameters end_effector;
   PlatformParameters platform;
   // The mobile base's drives: geometry and the weights of Eq. 2-3. Not a
@@ -181,9 +192,20 @@ WorldConfig default_world();
 
 // The actuation of arm `arm`: its own, else the world's.
 const ArmActuation& arm_actuation(const WorldConfig& config, std::size_t arm);
+// The chain IRI the task models name arm `arm` by: its own, else the world's
+// `robot.chain`.
+const std::string& arm_chain(const WorldConfig& config, std::size_t arm);
 // Where the chain of arm `arm` is read from: its own source, else the world's
-// `robot` (with the arm's chain IRI when it names none).
+// `robot` (an arm bound by another chain IRI, as the default robot's left
+// arm, is the same description under the name its task models give it).
 RobotModelSource arm_source(const WorldConfig& config, std::size_t arm);
+// The default of an arm's actuation is its robot description's: an arm
+// whose world file states no `actuation` (neither the arm's nor the world's)
+// takes the limits of its chain (`chains`, one per arm) when the description
+// states an effort limit for every joint (mos-jnt:JointEffortLimit, written by
+// `mospec import-urdf` from the URDF's <limit>): those efforts, and the
+// position limits where stated (elsewhere none). Otherwise the Gen3's.
+void actuation_from_chains(WorldConfig& config, std::span<const runtime::Chain> chains);
 // The robot interface's shape: the arms' names and joint counts (`joints`,
 // one per arm, from their chains) and the base's drives (config.drives).
 robot::RobotShape robot_shape(const WorldConfig& config, const std::vector<int>& joints);

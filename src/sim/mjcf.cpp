@@ -167,9 +167,17 @@ WorldLayout layout_world(const WorldConfig& c, std::span<const runtime::Chain> a
                               s.name + " arm has " + std::to_string(n) + " joints";
     const auto check = [&](size_t entries, const std::string& key, const std::string& in) {
       if (entries == n) return;
+      // The Gen3's figures reach another arm only when neither the world file
+      // nor the arm's robot description states its limits.
+      const bool defaulted = !s.actuation && !c.actuation_stated && key != "arms." + s.name + ".q";
       throw Error("invalid-world",
                   chain + ", but " + in + key + " has " + std::to_string(entries) +
-                      " entries; give one per joint",
+                      " entries; give one per joint" +
+                      (defaulted ? " (the world file states no `actuation` and the arm's robot "
+                                   "description no joint effort limits, so these are the Gen3's: "
+                                   "state the arm's `actuation`, or import its description with "
+                                   "`mospec import-urdf`, which keeps the URDF's <limit>)"
+                                 : ""),
                   s.where.file, s.where.line, s.where.column);
     };
     const std::string in = s.actuation ? "arms." + s.name + "." : "the world's ";
@@ -205,7 +213,7 @@ WorldLayout layout_world(const WorldConfig& c, std::span<const runtime::Chain> a
   if (c.initial.base_x) {
     l.base_x = *c.initial.base_x;
   } else {
-    l.base_x = -(reach + c.end_effector.radius + c.initial.contact_gap);
+    l.base_x = c.table.x - (reach + c.end_effector.radius + c.initial.contact_gap);
   }
   return l;
 }
@@ -232,7 +240,8 @@ std::string world_mjcf(const WorldConfig& c, std::span<const runtime::Chain> arm
        "\n";
   if (c.table.present) {
     const double h = l.table_height;
-    x += "<body name=\"table\">\n";
+    x += R"(<body name="table" pos=")" + nums({c.table.x, c.table.y, 0}) + R"(" quat=")" +
+         yaw_quat(c.table.yaw) + "\">\n";
     x += R"(<geom name="table" type="box" size=")" +
          nums({c.table.depth / 2, c.table.width / 2, h / 2}) + R"(" pos=")" +
          nums({c.table.depth / 2, 0, h / 2}) + R"(" contype=")" + std::to_string(kTableBit) +

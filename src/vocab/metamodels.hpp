@@ -93,8 +93,9 @@ inline constexpr std::string_view kinova_gen3_left_chain =
     "https://mospec.example/robots/kinova-gen3-left/chain";
 // The paper's mobile base (robots/kelo-base.jsonld): its CastorDriveBase.
 inline constexpr std::string_view kelo_base = "https://mospec.example/robots/kelo-base/base";
-// The default base of a description written by `mospec import-urdf`.
-inline constexpr std::string_view imported_base = "https://mospec.example/robots/robot/";
+// Where `mospec import-urdf` names a robot by default: this, the URDF's robot
+// name and "/" (two robots imported side by side get two bases).
+inline constexpr std::string_view imported_base = "https://mospec.example/robots/";
 }  // namespace robots
 
 }  // namespace mospec::vocab

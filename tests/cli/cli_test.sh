@@ -103,6 +103,22 @@ expect urdf-bad-tip 2 "has no link 'hand'" -- "$mospec" import-urdf arm.urdf --t
 expect urdf-ok 0 '' -- "$mospec" import-urdf arm.urdf --tip tool --base https://ex.org/arm/ -o arm.jsonld
 grep -q '"https://ex.org/arm/"' arm.jsonld && grep -q 'RevoluteJoint' arm.jsonld ||
   { echo "FAIL urdf-ok: content"; failures=$((failures+1)); }
+# The default base is named after the robot (issue #33 item 7), the URDF's
+# <limit> is kept as model quantities, and a tip link fixed to the last moving
+# link (a tool0/flange) is written as the chain's tip, with a note that says how
+# a task reaches it.
+expect urdf-fixed-tool-note 0 \
+  "^mospec: note: the tip link 'tool' is fixed to the last moving link 'upper' \(fixed joint flange\): the model states its frame <https://mospec.example/robots/arm/frame-tool> as the chain's tip, posed by <https://mospec.example/robots/arm/pose-tool> in <https://mospec.example/robots/arm/frame-upper>\. An arm solver outputs and drives the frame of 'upper' .*compose <https://mospec.example/robots/arm/pose-tool> onto it \(ComposePose" -- \
+  "$mospec" import-urdf arm.urdf --tip tool -o arm-default.jsonld
+check urdf-base-after-robot grep -q '"@base": "https://mospec.example/robots/arm/"' arm-default.jsonld
+check urdf-effort-limit grep -Fq '"@id": "effort-limit-shoulder"' arm-default.jsonld
+check urdf-position-limits grep -Fq '"@id": "position-limits-shoulder"' arm-default.jsonld
+check urdf-velocity-limit grep -Fq '"@id": "velocity-limit-shoulder"' arm-default.jsonld
+expect urdf-no-limits 0 '' -- "$mospec" import-urdf arm.urdf --tip tool --no-limits -o arm-plain.jsonld
+check urdf-no-limits-published-vocabulary-only bash -c "! grep -q 'limit\|mospec/joints' arm-plain.jsonld"
+sed 's/robot name="arm"/robot name="my arm"/' arm.urdf > my-arm.urdf
+expect urdf-base-of-a-spaced-name 0 '' -- "$mospec" import-urdf my-arm.urdf --tip tool -o my-arm.jsonld
+check urdf-base-iri-safe grep -q '"@base": "https://mospec.example/robots/my-arm/"' my-arm.jsonld
 # An untrusted URDF: refused at the element concerned, exit 2, nothing written.
 # A hundred thousand levels overflowed urdfdom's recursive XML parser.
 { echo '<robot name="deep">'; awk 'BEGIN { for (i = 0; i < 100000; i++) printf "<a>"

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "codegen/build.hpp"
+#include "default_robot_ports.hpp"
 #include "ir/interpreter.hpp"
 #include "ir/lower.hpp"
 #include "load_controller.hpp"
@@ -72,8 +73,8 @@ void expect_like_the_interpreter(const char* env, const std::function<ir::Progra
                             ca.arm_tau[arm].size() * sizeof(double)))
           << "tick " << k;
     }
-    ASSERT_TRUE(same_bits(ca.wheel_tau.data(), cb.wheel_tau.data(),
-                          ca.wheel_tau.size() * sizeof(double)))
+    ASSERT_TRUE(
+        same_bits(ca.wheel_tau.data(), cb.wheel_tau.data(), ca.wheel_tau.size() * sizeof(double)))
         << "tick " << k;
     if (k == 0) first_gen = b;
     last_gen = b;
@@ -147,7 +148,9 @@ TEST(GeneratedController, ScenarioMatchesTheInterpreterBitForBit) {
       "MOSPEC_SCENARIO_CONTROLLER",
       [&] {
         const app::LoadedModel model = app::load({app}, app::LoadOptions{});
-        return ir::lower(model);
+        ir::LowerOptions lower_options;
+        lower_options.ports = mospec::testing::default_robot_ports();
+        return ir::lower(model, lower_options);
       },
       3000);
 }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "app/app.hpp"
+#include "default_robot_ports.hpp"
 #include "description/robot_model.hpp"
 #include "ir/lower.hpp"
 #include "kelo_base.hpp"
@@ -30,7 +31,9 @@ Program lower_app(const std::string& app) {
   app::LoadOptions options;
   options.root = kSource;
   app::LoadedModel model = app::load({kSource + "/" + app}, options);
-  return lower(model);
+  LowerOptions lower_options;
+  lower_options.ports = testing::default_robot_ports();
+  return lower(model, lower_options);
 }
 
 const Program& diamond() {

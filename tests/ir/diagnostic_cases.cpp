@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/app.hpp"
+#include "default_robot_ports.hpp"
 #include "ir/lower.hpp"
 #include "support/diagnostics.hpp"
 #include "support/io.hpp"
@@ -195,6 +196,7 @@ CaseResult check_case(const fs::path& source_dir, const fs::path& case_dir,
     if (!validation_clean) validation_text = shacl::to_text(v.report, &model.files());
     DiagnosticSink warnings;
     ir::LowerOptions lower_options;
+    lower_options.ports = testing::default_robot_ports();
     lower_options.warnings = &warnings;
     try {
       ir::lower(model, lower_options);

@@ -13,6 +13,7 @@
 #include "../codegen/programs.hpp"
 #include "alloc_counter.hpp"  // NOLINT(llvm-include-order): after every other header
 #include "app/app.hpp"
+#include "default_robot_ports.hpp"
 #include "ir/lower.hpp"
 #include "robot/limits.hpp"
 #include "runtime/kelo.hpp"
@@ -26,7 +27,9 @@ Program lower_app(const std::string& app, const std::string& root) {
   app::LoadOptions options;
   options.root = root;
   app::LoadedModel model = app::load({app}, options);
-  return lower(model);
+  LowerOptions lower_options;
+  lower_options.ports = testing::default_robot_ports();
+  return lower(model, lower_options);
 }
 
 Program tiny() {
@@ -180,6 +183,7 @@ TEST(Lowering, RunsEveryPassInOrderEachProgramChecked) {
   app::LoadedModel model =
       app::load({std::string(MOSPEC_SOURCE_DIR) + "/models/sc0a.json"}, options);
   LowerOptions lower_options;
+  lower_options.ports = testing::default_robot_ports();
   std::vector<std::string> seen;
   size_t steps_before_schedule = 0;
   lower_options.after_pass = [&](std::string_view pass, const Program& p) {

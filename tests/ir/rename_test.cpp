@@ -13,6 +13,7 @@
 #include <regex>
 
 #include "app/app.hpp"
+#include "default_robot_ports.hpp"
 #include "ir/interpreter.hpp"
 #include "ir/lower.hpp"
 #include "sim/config.hpp"
@@ -109,7 +110,7 @@ TEST(RenamedModel, Sc1LowersToTheSameProgramUpToNamesAndTicksToTheSameLog) {
   ASSERT_EQ(robot.find("\"frame-"), std::string::npos);
   ASSERT_NE(robot.find("\"kinematic-chain-1\""), std::string::npos);
 
-  const Program a = lower_sc1(src, LowerOptions::default_ports());
+  const Program a = lower_sc1(src, testing::default_robot_ports());
   const Program b =
       lower_sc1(root, {{"https://mospec.example/robots/kinova-gen3/kinematic-chain-1", 0},
                        {"https://mospec.example/robots/kinova-gen3-left/kinematic-chain-1", 1}});
@@ -175,9 +176,9 @@ TEST(RenamedModel, Sc1LowersToTheSameProgramUpToNamesAndTicksToTheSameLog) {
           << "tick " << k;
     }
     ASSERT_EQ(ca.wheel_tau.size(), cb.wheel_tau.size());
-    ASSERT_EQ(std::memcmp(ca.wheel_tau.data(), cb.wheel_tau.data(),
-                          ca.wheel_tau.size() * sizeof(double)),
-              0)
+    ASSERT_EQ(
+        std::memcmp(ca.wheel_tau.data(), cb.wheel_tau.data(), ca.wheel_tau.size() * sizeof(double)),
+        0)
         << "tick " << k;
   }
 }

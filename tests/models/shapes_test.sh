@@ -176,7 +176,7 @@ bad arm-behaviour mospec/solver.ttl 11 \
 good joints mospec/joints.ttl
 bad joints mospec/joints.ttl 11 \
   '<https://ex.org/q-deg>: a joint position has exactly one unit: RAD \(revolute joint\) or M' \
-  '<https://ex.org/q-link>: a joint position is of exactly one joint' \
+  '<https://ex.org/q-link>: <https://ex.org/[^>]*> is no joint: no loaded file defines it as a kc-ent:Joint' \
   '<https://ex.org/q-orphan>: a joint position is the output of exactly one solver' \
   '<https://ex.org/qd-rad>: a joint velocity is of exactly one joint' \
   '<https://ex.org/qd-rad>: a joint velocity has exactly one unit: RAD-PER-SEC \(revolute joint\) or M-PER-SEC' \
@@ -187,6 +187,13 @@ bad joints mospec/joints.ttl 11 \
   '<https://ex.org/f-lift-nm>: the unit of a measured joint torque follows its joint.*unit/N-M>' \
   '<https://ex.org/q-j4-m>: the unit of a joint position follows its joint.*unit/M>'
 
+# Joint limits (issue #33 item 7: what import-urdf keeps of a URDF's <limit>).
+good joint-limits mospec/joint-limits.ttl
+bad joint-limits mospec/joint-limits.ttl 4 \
+  '<https://ex.org/pos-swapped>: the lower position limit exceeds the upper one' \
+  '<https://ex.org/pos-deg>: joint position limits have exactly one unit: RAD \(revolute joint\) or M' \
+  '<https://ex.org/vel-negative>: a joint velocity limit states exactly one limit, not negative' \
+  '<https://ex.org/eff-link>: a joint effort limit is of exactly one joint'
 good prismatic-joint mospec/prismatic-joint.ttl
 bad prismatic-joint mospec/prismatic-joint.ttl 5 \
   '<https://ex.org/lift-no-axis>: a prismatic joint translates along exactly one common-axis.*MinCount' \
@@ -232,7 +239,7 @@ bad joint-force task/joint-force-drivers.ttl 7 \
   '<https://ex.org/jf-none>: a joint-force specification applies exactly one joint force' \
   '<https://ex.org/jf-none>: a joint-force driver is attached to exactly one joint' \
   "<https://ex.org/jf-link>: nothing produces the joint force.*tau-nowhere" \
-  '<https://ex.org/jf-link>: a joint-force driver is attached to exactly one joint' \
+  '<https://ex.org/jf-link>: <https://ex.org/link> is no joint: no loaded file defines it as a kc-ent:Joint' \
   '<https://ex.org/jf-unit>: a force on a revolute joint is a torque: its unit must be N-M' \
   '<https://ex.org/jf-slide-unit>: a force on a prismatic joint is a force: its unit must be N.*unit/N-M>' \
   '<https://ex.org/drv>: a joint-force driver must be a joint-force specification.*not-a-driver'

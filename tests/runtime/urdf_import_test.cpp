@@ -9,10 +9,13 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "description/chain_jsonld.hpp"
+#include "description/robot_model.hpp"
 #include "description/xml_outline.hpp"
 #include "support/diagnostics.hpp"
+#include "support/io.hpp"
 
 namespace mospec::description {
 namespace {
@@ -397,6 +400,63 @@ TEST(UrdfTree, ALongChainIsFreedWithoutRecursion) {
   ASSERT_EQ(pthread_join(thread, nullptr), 0);
   pthread_attr_destroy(&attributes);
   EXPECT_EQ(job.tip, std::string("l").append(std::to_string(n)));
+}
+
+// import-urdf keeps the URDF's joint limits as model quantities (issue #33
+// item 7): position limits where the joint has them (not on a continuous
+// joint), velocity and effort limits, each in its joint type's unit, read back
+// by chain_from_rdf as the URDF states them.
+TEST(UrdfImport, JointLimitsAreKeptAsModelQuantities) {
+  const std::string urdf =
+      robot("<link name=\"base\"/>\n<link name=\"l1\">" + inertial("1") +
+            "</link>\n<link name=\"l2\">" + inertial("1") + "</link>\n<link name=\"l3\">" +
+            inertial("1") + "</link>\n<link name=\"tool0\"/>\n" +
+            joint("j1", "revolute", "base", "l1", "0 0 0.1",
+                  "<axis xyz=\"0 0 1\"/><limit lower=\"-2.5\" upper=\"2\" effort=\"39\" "
+                  "velocity=\"1.3\"/>") +
+            joint("j2", "continuous", "l1", "l2", "0 0 0.1",
+                  "<axis xyz=\"0 1 0\"/><limit effort=\"9\" velocity=\"2.5\"/>") +
+            joint("j3", "prismatic", "l2", "l3", "0 0 0.1",
+                  "<axis xyz=\"1 0 0\"/><limit lower=\"0\" upper=\"0.2\" effort=\"100\" "
+                  "velocity=\"0.1\"/>") +
+            joint("flange", "fixed", "l3", "tool0"));
+  const UrdfChain imported = import_urdf(urdf, "", "", "r.urdf");
+  EXPECT_EQ(imported.robot, "r");
+  // tool0 hangs on the last moving link by a fixed joint: import-urdf says so.
+  EXPECT_EQ(imported.tip_joints, std::vector<std::string>{"flange"});
+  ChainJsonldOptions options;
+  options.base = "https://ex.org/r/";
+  options.metamodels = "https://comp-rob2b.github.io/metamodels/";
+  const std::string text = chain_to_jsonld(imported.chain, options);
+  for (const char* stated :
+       {"\"@id\": \"position-limits-j1\"", "\"lower\": -2.5", "\"upper\": 2",
+        "\"@id\": \"effort-limit-j1\"", "\"limit\": 39", "\"@id\": \"velocity-limit-j2\"",
+        "\"unit\": \"RAD-PER-SEC\"", "\"@id\": \"effort-limit-j3\"", "\"unit\": \"N\"",
+        "\"unit\": \"M-PER-SEC\"", "mospec/joints.json"}) {
+    EXPECT_NE(text.find(stated), std::string::npos) << stated << " in\n" << text;
+  }
+  // A continuous joint has no position limits to state.
+  EXPECT_EQ(text.find("position-limits-j2"), std::string::npos);
+
+  const std::string file = ::testing::TempDir() + "limits.jsonld";
+  write_output(file, text);
+  const Chain back = load_chain(file, "https://ex.org/r/chain",
+                                {{"https://comp-rob2b.github.io/metamodels/",
+                                  std::string(MOSPEC_SOURCE_DIR) + "/metamodels"}});
+  ASSERT_EQ(back.size(), 3);
+  const runtime::JointLimits& j1 = back.segment(0).limits;
+  EXPECT_EQ(j1.lower, -2.5);
+  EXPECT_EQ(j1.upper, 2.0);
+  EXPECT_EQ(j1.velocity, 1.3);
+  EXPECT_EQ(j1.effort, 39.0);
+  const runtime::JointLimits& j2 = back.segment(1).limits;
+  EXPECT_TRUE(std::isinf(j2.lower) && std::isinf(j2.upper));
+  EXPECT_EQ(j2.velocity, 2.5);
+  EXPECT_EQ(j2.effort, 9.0);
+  const runtime::JointLimits& j3 = back.segment(2).limits;
+  EXPECT_EQ(j3.lower, 0.0);
+  EXPECT_EQ(j3.upper, 0.2);
+  EXPECT_EQ(j3.effort, 100.0);
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ expect effort-negative 2 'effort_limit\[3\]: -1 is outside the accepted range \(
 world size '{ "platform": { "size": [0.6, 0, 0.25] } }'
 expect size-zero 2 'size\[1\]: 0 is outside' -- "$mospec" sim size.json
 world yaw '{ "initial": { "base_yaw": -1e200 } }'
-expect yaw-huge 2 'base_yaw: -1e\+200 is outside the accepted range \[-100, 100\] rad' -- "$mospec" sim yaw.json
+expect yaw-huge 2 'base_yaw: -1e\+200 is outside the accepted range \[-6.283185307179586, 6.283185307179586\] rad; a bare number is in radians' -- "$mospec" sim yaw.json
 world pert '{ "perturbation": { "base_xy": 50 } }'
 expect perturbation-huge 2 'base_xy: 50 is outside the accepted range \[0, 1\] m' -- "$mospec" sim pert.json
 

@@ -38,7 +38,12 @@ check ".mp4 is H.264 at 160x120 (got $codec)" test "$codec" = "h264,160,120"
 
 # Rendering does not touch the simulation: the same log with and without a video.
 expect "--log with --video" 0 "" -- run --video "$work/logged.mp4" --log "$work/with.csv"
-expect "--log without --video" 0 "" -- run --log "$work/without.csv"
+expect "--log without --video" 0 "" -- \
+  "$mospec" run models/sc1.json --interpret --duration 1 --log "$work/without.csv"
+# --video-size and --video-camera act only on a video: alone they are refused,
+# not ignored (issue #33 item 10).
+expect "--video-size without --video" 2 "^mospec: --video-size requires --video" -- \
+  "$mospec" run models/sc1.json --interpret --duration 1 --video-size 160x120
 check "the log is the same with and without a video" cmp -s "$work/with.csv" "$work/without.csv"
 
 # The second camera, from above.

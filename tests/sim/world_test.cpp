@@ -301,9 +301,9 @@ TEST(WorldFile, OverridesTheDefaults) {
   const WorldConfig c = parse_world_config(R"({
     "base": "planar", "seed": 7, "substeps": 1,
     "initial": { "base_x": -1.5, "base_yaw": 0.1, "pivot_q": [0, 0.1, 0.2, 0.3] },
-    "arms": { "left": { "q": [1, 2, 3, 4, 5, 6, 7] } },
+    "arms": { "left": { "q": [1, 2, 3, 4, 5, 6, "180 deg"], "chain": "https://ex.org/left" } },
     "perturbation": { "arm_q": 0.01 },
-    "table": { "present": false },
+    "table": { "present": false, "pose": { "x": "50 cm", "y": -0.2, "yaw": "-90 deg" } },
     "mount": { "active": true },
     "robot": { "model": "robots/x.jsonld", "map": { "https://ex.org/": "ctx" } }
   })",
@@ -313,7 +313,13 @@ TEST(WorldFile, OverridesTheDefaults) {
   EXPECT_EQ(c.substeps, 1);
   EXPECT_EQ(*c.initial.base_x, -1.5);
   EXPECT_EQ(c.initial.pivot_q[3], 0.3);
-  EXPECT_EQ(c.arms[robot::kLeftArm].q0[6], 7.0);
+  EXPECT_DOUBLE_EQ(c.arms[robot::kLeftArm].q0[6], 3.141592653589793);
+  EXPECT_EQ(arm_chain(c, robot::kLeftArm), "https://ex.org/left");
+  // The right arm is the world's robot: bound by its chain, the default's here.
+  EXPECT_EQ(arm_chain(c, robot::kRightArm), c.robot.chain_iri);
+  EXPECT_DOUBLE_EQ(c.table.x, 0.5);
+  EXPECT_EQ(c.table.y, -0.2);
+  EXPECT_DOUBLE_EQ(c.table.yaw, -1.5707963267948966);
   EXPECT_EQ(c.arms[robot::kRightArm].q0, test_world().arms[robot::kRightArm].q0);
   EXPECT_EQ(c.perturbation.arm_q, 0.01);
   EXPECT_FALSE(c.table.present);
@@ -342,8 +348,8 @@ TEST(WorldFile, ErrorsAreLocated) {
             "w.json:1:29: error: arms.right.q: expected an array of 1 to 64 numbers, one per "
             "joint");
   EXPECT_EQ(error_of("{ \"arms\": { \"third\": { \"q\": [0] } } }"),
-            "w.json:1:22: error: arms.third: a new arm needs its `robot` (model and chain), `q` "
-            "and `actuation` (mospec's default robot has the arms right and left)");
+            "w.json:1:22: error: arms.third: a new arm needs its `robot` (model and chain) and "
+            "`q` (mospec's default robot has the arms right and left)");
   {
     // A hostile file cannot grow the robot without bound: the 17th arm is refused.
     std::string many = "{ \"arms\": {";
