@@ -54,9 +54,9 @@ run_commands() {
 }
 
 # The key check can fail: a tube's keys misnamed beside its class are found.
-printf -- '- a tube (`BilateralConstraint`, `"lower"` and `"upper"`)\n' > "$work/misnamed.md"
+printf -- '- a tube (`BilateralConstraint`, `"low"` and `"high"`)\n' > "$work/misnamed.md"
 expect "a misnamed model key is found" 1 "" -- python3 "$src/tests/cli/docs_keys.py" "$src" "$work/misnamed.md"
-check "it names the key and the line" grep -q 'misnamed.md:1: `"lower"` (beside `BilateralConstraint`' "$work/stdout.txt"
+check "it names the key and the line" grep -q 'misnamed.md:1: `"low"` (beside `BilateralConstraint`' "$work/stdout.txt"
 
 readme="$work/readme-tree"
 make_tree "$readme"
