@@ -319,6 +319,8 @@ std::string tolerance_text(const VerdictPlan::Goal& g) {
 Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   Verdict v;
   Json& j = v.json;
+  size_t pending_goals = 0;                  // not met by a motion still running at the end
+  std::vector<std::string> pending_motions;  // those motions
   std::ostringstream text;
   std::ostringstream details;
   const auto last = [&](size_t column) {
@@ -520,6 +522,10 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
         for (size_t i = 0; i < unmet.size(); ++i) line += (i ? "; " : what) + unmet[i];
         // A motion still running has not reached its end: its goals are due
         // then, and a run cut short of it does not fail on them.
+        if (!ended && !unmet.empty()) {
+          pending_goals += unmet.size();
+          pending_motions.push_back(m.name);
+        }
         if (ended && !unmet.empty()) {
           std::string why = "the motion '" + m.name + "' did not meet " +
                             std::to_string(unmet.size()) + " of its goals";
@@ -738,6 +744,7 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   }
   v.failed = !v.why.empty();
   j["status"] = v.failed ? "failed" : "ok";
+  j["goals_not_met_yet"] = pending_goals;
   j["exit_status"] = v.failed ? 1 : 0;
   j["why"] = v.why;
   // The status first, in the object and on the console.
@@ -751,7 +758,15 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
   }
   j = std::move(ordered);
   text << "mospec: verdict: ";
-  if (!v.failed) {
+  if (!v.failed && pending_goals > 0) {
+    // "ok" means every goal is met: a run cut short of a motion's end has
+    // not judged the goals that motion has not met yet.
+    text << "ok so far: " << pending_goals << " goal(s) not met yet, as ";
+    for (size_t i = 0; i < pending_motions.size(); ++i)
+      text << (i ? ", " : "") << pending_motions[i];
+    text << (pending_motions.size() == 1 ? " was" : " were")
+         << " still running when the run ended (run longer to judge them)\n";
+  } else if (!v.failed) {
     text << "ok\n";
   } else {
     text << "FAILED: ";
