@@ -6,37 +6,13 @@
 #include <array>
 #include <cstdio>
 
-#include "support/spelling.hpp"
+#include "rdf/dataset.hpp"
 
 namespace mospec::ir::lowering {
 
-namespace {
-
-std::string_view namespace_of(std::string_view iri) {
-  const size_t k = iri.find_last_of("#/");
-  return k == std::string_view::npos ? std::string_view{} : iri.substr(0, k + 1);
-}
-
-}  // namespace
-
 std::string State::did_you_mean(TermId e) const {
-  const std::string_view iri = graph.str(e);
-  const std::string_view ns = namespace_of(iri);
-  Nearest nearest(iri.substr(ns.size()));
-  std::string_view best;
-  const rdf::TermTable& terms = graph.terms();
-  for (uint32_t k = 0; k < terms.size(); ++k) {
-    const TermId t{k};
-    if (!terms[t].is_iri() || t == e) continue;
-    const std::string_view candidate = terms[t].value;
-    if (namespace_of(candidate) != ns || !graph.defined(t)) continue;
-    nearest.offer(candidate.substr(ns.size()));
-    if (nearest.best().data() == candidate.data() + ns.size()) best = candidate;
-  }
-  if (best.empty()) return "";
-  std::string out = "; did you mean '";
-  out.append(best).append("'?");
-  return out;
+  const std::string best = rdf::nearest_subject_iri(model.dataset(), graph.str(e));
+  return best.empty() ? std::string() : "; did you mean '" + best + "'?";
 }
 
 void State::several_values(TermId s, const std::string& p,
