@@ -25,25 +25,19 @@ plot::LogInfo log_info(const ir::Program& program) {
     const std::string name = ir::lowering::local_name(flag.substr(0, flag.find('#')));
     const runtime::ConstraintSpec& spec = s.constraint;
     plot::ConstraintInfo c;
+    c.relation = ir::relation_name(spec.kind);
     switch (spec.kind) {
       case runtime::ConstraintKind::Equality:
-        c.relation = "equality";
-        c.reference = spec.reference;
-        break;
       case runtime::ConstraintKind::Assignment:
-        c.relation = "assignment";
         c.reference = spec.reference;
         break;
       case runtime::ConstraintKind::LessThan:
-        c.relation = "less-than";
         c.upper = spec.threshold;
         break;
       case runtime::ConstraintKind::GreaterThan:
-        c.relation = "greater-than";
         c.lower = spec.threshold;
         break;
       case runtime::ConstraintKind::Bilateral:
-        c.relation = "bilateral";
         c.lower = spec.lower;
         c.upper = spec.upper;
         break;

@@ -26,22 +26,6 @@ std::string owner_iri(const std::string& iri) {
   return iri.substr(0, iri.find('#'));
 }
 
-const char* relation_name(runtime::ConstraintKind kind) {
-  switch (kind) {
-    case runtime::ConstraintKind::Equality:
-      return "equality";
-    case runtime::ConstraintKind::LessThan:
-      return "less-than";
-    case runtime::ConstraintKind::GreaterThan:
-      return "greater-than";
-    case runtime::ConstraintKind::Bilateral:
-      return "bilateral";
-    case runtime::ConstraintKind::Assignment:
-      return "assignment";
-  }
-  return "?";
-}
-
 const char* tolerance_source(ir::Step::Tolerance t) {
   switch (t) {
     case ir::Step::Tolerance::Stated:
@@ -154,7 +138,7 @@ VerdictPlan plan_verdict(const ir::Program& program) {
           VerdictPlan::Goal g;
           g.constraint = owner_iri(program.data[static_cast<size_t>(s.goals[k])].iri);
           g.name = local_name(g.constraint);
-          g.relation = relation_name(evaluate.constraint.kind);
+          g.relation = std::string(ir::relation_name(evaluate.constraint.kind));
           g.unit = program.data[static_cast<size_t>(evaluate.in[0])].unit;
           g.spec = evaluate.constraint;
           g.tolerance_source = tolerance_source(evaluate.tolerance_source);
@@ -188,7 +172,7 @@ VerdictPlan plan_verdict(const ir::Program& program) {
     VerdictPlan::Constraint c;
     c.iri = owner_iri(program.data[static_cast<size_t>(s.out[0])].iri);
     c.name = local_name(c.iri);
-    c.relation = relation_name(s.constraint.kind);
+    c.relation = std::string(ir::relation_name(s.constraint.kind));
     const std::ptrdiff_t satisfied = column(c.name + ".satisfied");
     if (satisfied < 0) continue;
     c.satisfied = static_cast<size_t>(satisfied);

@@ -95,6 +95,22 @@ std::span<const DefaultTolerance> default_tolerances() {
   return kDefaultTolerances;
 }
 
+std::string_view relation_name(runtime::ConstraintKind kind) {
+  switch (kind) {
+    case runtime::ConstraintKind::Equality:
+      return "equality";
+    case runtime::ConstraintKind::LessThan:
+      return "less-than";
+    case runtime::ConstraintKind::GreaterThan:
+      return "greater-than";
+    case runtime::ConstraintKind::Bilateral:
+      return "bilateral";
+    case runtime::ConstraintKind::Assignment:
+      return "assignment";
+  }
+  return "?";
+}
+
 std::optional<double> default_tolerance(std::string_view unit) {
   for (const DefaultTolerance& d : kDefaultTolerances)
     if (d.unit == unit) return d.tolerance;
@@ -824,10 +840,8 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     if (!st.views.empty()) e["views"] = st.views;
     if (st.kind == StepKind::Evaluate || st.kind == StepKind::LevelMonitor ||
         st.kind == StepKind::EdgeMonitor) {
-      static constexpr const char* kKinds[] = {"equality", "less-than", "greater-than", "bilateral",
-                                               "assignment"};
       Json c;
-      c["relation"] = kKinds[static_cast<int>(st.constraint.kind)];
+      c["relation"] = relation_name(st.constraint.kind);
       c["reference"] = st.constraint.reference;
       c["threshold"] = st.constraint.threshold;
       c["lower"] = st.constraint.lower;

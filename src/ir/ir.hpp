@@ -302,6 +302,10 @@ struct Program {
 // by the constrained quantity's unit (QUDT local name): 1 mm, 0.01 rad, 0.5 N,
 // ... (docs/simulation.md, "Default tolerances"); none for another unit.
 std::optional<double> default_tolerance(std::string_view unit);
+
+// A constraint's relation as the IR's JSON, the run summary and the report
+// spell it: "equality", "less-than", "greater-than", "bilateral", "assignment".
+std::string_view relation_name(runtime::ConstraintKind kind);
 // The table itself, for the docs' test: (unit, tolerance, what it is).
 struct DefaultTolerance {
   std::string_view unit;
