@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <string>
 #include <utility>
 
@@ -15,40 +16,72 @@ namespace mospec::cli {
 
 namespace {
 
-// A gain of a controller kind whose law is u = sum of K x, x the error, its
-// integral or its derivative: its Spec member and the power of time that
-// makes K x comparable to the error over the probe (1, T or 1/T).
-struct Gain {
-  std::string_view member;
-  int time_power = 0;
-};
-std::vector<Gain> gains_of(std::string_view kind) {
-  if (kind == "pid") return {{"kp", 0}, {"ki", 1}, {"kd", -1}};
-  if (kind == "impedance") return {{"stiffness", 0}, {"damping", -1}};
-  return {};
+// The indices of a kind's loop gains (ir::ControllerParameter::gain).
+std::vector<size_t> gains_of(const ir::ControllerKind& kind) {
+  std::vector<size_t> gains;
+  for (size_t p = 0; p < kind.parameters.size(); ++p)
+    if (kind.parameters[p].gain) gains.push_back(p);
+  return gains;
 }
 
-// Below this, a loop changes its error by less than 1 % over the probe: too
-// weak to drive it anywhere, and too weak to be measured with its sign.
-constexpr double kWeakLoop = 0.01;
+// A response this small per unit of output is rounding, not a loop.
+constexpr double kResolvable = 1e-12;
+// The fit must explain the response within this (relative RMS residual).
+constexpr double kFitTolerance = 0.1;
 
-// Runs `program` for `ticks` control ticks from the world's start state.
-template <typename Read>
-auto run_from_start(ir::Program program, int ticks, const sim::WorldConfig& config,
-                    const std::vector<runtime::Chain>& arms, Read read) {
+// Records one datum of the controller after every step.
+class ErrorTrace final : public sim::StepObserver {
+ public:
+  ErrorTrace(const ir::Interpreter& controller, int data, size_t ticks)
+      : controller_(controller), data_(data) {
+    values_.reserve(ticks + 1);
+  }
+  void observe(const sim::World&) override { values_.push_back(controller_.value(data_)); }
+  // The datum the controller computed from the state after k steps, k = 0..:
+  // the first observation is before any tick, and a tick's values are seen
+  // after its step.
+  std::vector<double> after_steps() const {
+    return values_.size() < 2 ? std::vector<double>{}
+                              : std::vector<double>(values_.begin() + 1, values_.end());
+  }
+
+ private:
+  const ir::Interpreter& controller_;
+  int data_;
+  std::vector<double> values_;
+};
+
+struct Probe {
+  std::vector<double> error;  // after 0, 1, ... steps
+  bool degraded = false;      // a solve lost directions: no linearisation of anything
+};
+
+// Runs `program` for `ticks` control ticks from the world's start state,
+// recording the datum `trace`.
+Probe run_from_start(ir::Program program, int ticks, const sim::WorldConfig& config,
+                     const std::vector<runtime::Chain>& arms, int trace,
+                     std::vector<double>* first_outputs = nullptr) {
   std::vector<bool> idle(config.arms.size(), true);
   for (const ir::ArmSolver& a : program.arms) idle[static_cast<size_t>(a.port)] = false;
+  const std::vector<ir::Step> steps = program.steps;
   ir::Interpreter controller(std::move(program));
   sim::World world(config, arms);
+  ErrorTrace recorder(controller, trace, static_cast<size_t>(ticks));
   sim::RunOptions options;
   options.duration = ticks * config.control_period;
   options.log_every = ticks;
   options.idle = std::move(idle);
+  options.observer = &recorder;
   const sim::RunResult r = sim::run(world, controller, options);
-  // A solve that lost directions is no linearisation of anything: not judged.
-  bool degraded = false;
-  for (const auto& [solver, ticks] : degraded_solves(r)) degraded = degraded || ticks > 0;
-  return std::make_pair(read(controller), degraded);
+  Probe p{.error = recorder.after_steps()};
+  for (const auto& [solver, lost] : degraded_solves(r)) p.degraded = p.degraded || lost > 0;
+  if (first_outputs) {
+    first_outputs->assign(steps.size(), 0.0);
+    for (size_t i = 0; i < steps.size(); ++i)
+      if (steps[i].kind == ir::StepKind::Controller && !steps[i].out.empty())
+        (*first_outputs)[i] = controller.value(steps[i].out.front());
+  }
+  return p;
 }
 
 // The program with every controller held at its output of the first tick
@@ -69,78 +102,132 @@ ir::Program held_open(const ir::Program& program, const std::vector<double>& hel
   return open;
 }
 
+// The sign of d(error)/d(output) over the first kSignTicks steps, or 0 when
+// the response there is not one growing effect of one sign.
+int early_sign(const std::vector<double>& response) {
+  if (response.size() <= static_cast<size_t>(kSignTicks)) return 0;
+  const double last = response[kSignTicks];
+  if (!(std::abs(last) > kResolvable)) return 0;
+  const int sign = last > 0 ? 1 : -1;
+  double previous = 0.0;
+  for (int k = 1; k <= kSignTicks; ++k) {
+    const double v = sign * response[static_cast<size_t>(k)];
+    if (!(v > previous)) return 0;
+    previous = v;
+  }
+  return sign;
+}
+
+// The growth rate [1/s] of the fastest-growing pole (ln |z| per tick / h).
+double growth_rate(const std::vector<std::complex<double>>& poles, double period) {
+  double r = 0.0;
+  for (const std::complex<double>& p : poles) r = std::max(r, std::abs(p));
+  return r > 0.0 ? std::log(r) / period : -1e300;
+}
+
+std::string quantity_of(const ir::Program& program, const ir::Step& c) {
+  // The quantity the error is of: the Evaluate step that writes it reads it.
+  std::string quantity = program.data[static_cast<size_t>(c.in.front())].iri;
+  for (const ir::Step& s : program.steps) {
+    if (s.kind == ir::StepKind::Evaluate && s.out.size() > 1 && s.out[1] == c.in.front())
+      quantity = program.data[static_cast<size_t>(s.in.front())].iri;
+  }
+  return quantity;
+}
+
 }  // namespace
 
-std::vector<Diagnostic> check_loop_signs(const ir::Program& program, const sim::WorldConfig& world,
-                                         const std::vector<runtime::Chain>& arms,
-                                         const SourceFiles& files) {
+std::vector<Diagnostic> check_loops(const ir::Program& program, const sim::WorldConfig& world,
+                                    const std::vector<runtime::Chain>& arms,
+                                    const SourceFiles& files) {
   std::vector<Diagnostic> problems;
   const auto kinds = ir::controller_kinds();
   const auto probed = [&](size_t i) {
     const ir::Step& c = program.steps[i];
     return c.kind == ir::StepKind::Controller && !c.in.empty() && !c.out.empty() &&
-           !gains_of(kinds[static_cast<size_t>(c.controller)].name).empty();
+           !gains_of(kinds[static_cast<size_t>(c.controller)]).empty();
   };
-  std::vector<double> held(program.steps.size(), 0.0);
   bool any = false;
   for (size_t i = 0; i < program.steps.size(); ++i) any = any || probed(i);
   if (!any) return problems;
-  held = run_from_start(program, 1, world, arms, [&](const ir::Interpreter& c) {
-           std::vector<double> out(program.steps.size(), 0.0);
-           for (size_t i = 0; i < program.steps.size(); ++i) {
-             const ir::Step& s = program.steps[i];
-             if (s.kind == ir::StepKind::Controller && !s.out.empty())
-               out[i] = c.value(s.out.front());
-           }
-           return out;
-         }).first;
+  std::vector<double> held;
+  (void)run_from_start(program, 1, world, arms, 0, &held);
+  const double h = world.control_period;
+  const double horizon = kProbeTicks * h;
   for (size_t i = 0; i < program.steps.size(); ++i) {
     if (!probed(i)) continue;
     const ir::Step& c = program.steps[i];
     const ir::ControllerKind& kind = kinds[static_cast<size_t>(c.controller)];
-    const std::vector<Gain> gains = gains_of(kind.name);
-    const auto error_of = [&](const ir::Interpreter& run) { return run.value(c.in.front()); };
-    const auto [up, up_degraded] =
-        run_from_start(held_open(program, held, i, kProbe), kProbeTicks, world, arms, error_of);
-    const auto [down, down_degraded] =
-        run_from_start(held_open(program, held, i, -kProbe), kProbeTicks, world, arms, error_of);
-    if (up_degraded || down_degraded) continue;
-    const double slope = (up - down) / (2 * kProbe);  // d(error)/d(output), at the start
-    if (!std::isfinite(slope)) continue;
-    const double horizon = kProbeTicks * world.control_period;
-    // The loop's first nonzero term (proportional before integral before
-    // derivative), relative to the error, over the probe.
-    double strength = 0.0;
-    for (const Gain& g : gains) {
-      const int p = kind.parameter(g.member);
-      const double k = p < 0 ? 0.0 : c.parameters[static_cast<size_t>(p)];
-      if (k == 0.0) continue;
-      strength = std::abs(k * slope) * std::pow(horizon, g.time_power);
-      break;
-    }
-    if (strength < kWeakLoop) continue;  // the probes hardly move the error
-    const ir::Data& error = program.data[static_cast<size_t>(c.in.front())];
+    const Probe up =
+        run_from_start(held_open(program, held, i, kProbe), kProbeTicks, world, arms, c.in.front());
+    const Probe down = run_from_start(held_open(program, held, i, -kProbe), kProbeTicks, world,
+                                      arms, c.in.front());
+    if (up.degraded || down.degraded || up.error.size() != down.error.size()) continue;
+    std::vector<double> response(up.error.size());  // d(error)/d(output) after k steps
+    for (size_t k = 0; k < response.size(); ++k)
+      response[k] = (up.error[k] - down.error[k]) / (2 * kProbe);
+    const int sign = early_sign(response);
+    if (sign == 0) continue;  // the probes do not move the error (consistently)
     const ir::Data& output = program.data[static_cast<size_t>(c.out.front())];
-    // The quantity the error is of: the Evaluate step that writes it reads it.
-    std::string quantity = error.iri;
-    for (const ir::Step& s : program.steps) {
-      if (s.kind == ir::StepKind::Evaluate && s.out.size() > 1 && s.out[1] == c.in.front())
-        quantity = program.data[static_cast<size_t>(s.in.front())].iri;
-    }
-    for (const Gain& g : gains) {
-      const int p = kind.parameter(g.member);
-      if (p < 0) continue;
-      const double k = c.parameters[static_cast<size_t>(p)];
-      if (!(k * slope > 0.0)) continue;
-      const std::string_view property = kind.parameters[static_cast<size_t>(p)].property;
+    const std::string quantity = quantity_of(program, c);
+    const size_t before = problems.size();
+    for (const size_t p : gains_of(kind)) {
+      const double k = c.parameters[p];
+      if (!(k * sign > 0.0)) continue;
+      const std::string_view property = kind.parameters[p].property;
       problems.push_back(located(
           Severity::Error, c.where, files, "loop-sign",
           "the controller '" + c.iri + "' drives the error of '" + quantity +
               "' away from 0: at the start, a larger output '" + output.iri + "' makes the error " +
-              (slope > 0 ? "larger" : "smaller") + " (" + exact_number(slope) + " per unit over " +
-              std::to_string(kProbeTicks) + " ticks), so its " + std::string(property) +
-              " must be " + (slope > 0 ? "<= 0" : ">= 0") + ", and it is " + exact_number(k)));
+              (sign > 0 ? "larger" : "smaller") + " (" + console_number(response[kSignTicks]) +
+              " per unit after " + std::to_string(kSignTicks) + " ticks), so its " +
+              std::string(property) + " must be " + (sign > 0 ? "<= 0" : ">= 0") + ", and it is " +
+              exact_number(k)));
     }
+    if (problems.size() != before || !kind.linear()) continue;
+    const runtime::IdentifiedPlant fit = ir::identify_loop_plant(response);
+    if (!(fit.misfit <= kFitTolerance)) continue;  // not a second-order linear plant over the probe
+    const auto rate = [&](double scale) {
+      std::vector<double> scaled = c.parameters;
+      for (const size_t p : gains_of(kind)) scaled[p] *= scale;
+      return growth_rate(kind.closed_loop_poles(scaled, h, fit.plant), h);
+    };
+    // Unstable: growing e-fold within the probe, and faster than the plant
+    // alone (the probe holds the rest of the task open, so the plant may
+    // drift slowly by itself; a loop that adds nothing to that drift is not
+    // what diverges).
+    const double limit = 1.0 / horizon + std::max(0.0, rate(0.0));
+    const double growth = rate(1.0);
+    if (!(growth > limit)) continue;
+    // The largest common scale of the gains at which the linearised loop is
+    // stable (no pole beyond the plant's own), by bisection from a scale small
+    // enough to be.
+    const double neutral = std::max(0.0, rate(0.0));
+    std::string advice;
+    double stable = 1e-6, unstable = 1.0;
+    if (rate(stable) <= neutral) {
+      for (int n = 0; n < 60; ++n) {
+        const double mid = std::sqrt(stable * unstable);
+        (rate(mid) <= neutral ? stable : unstable) = mid;
+      }
+      advice = "; with every gain scaled by " + console_number(stable) +
+               " or less that pole is inside the unit circle (leave a margin: the probe holds the "
+               "other loops open)";
+    }
+    std::string gains;
+    for (const size_t p : gains_of(kind))
+      gains += (gains.empty() ? "" : ", ") + std::string(kind.parameters[p].property) + " " +
+               exact_number(c.parameters[p]);
+    problems.push_back(
+        located(Severity::Error, c.where, files, "unstable-loop",
+                "the loop of the controller '" + c.iri + "' on '" + quantity +
+                    "' is unstable at the start: closed around the plant from its output '" +
+                    output.iri + "' to its error as the probes identify it (the error moves " +
+                    console_number(response.back()) + " per unit of output over " +
+                    std::to_string(response.size() - 1) + " ticks of " + exact_number(h) +
+                    " s), its gains (" + gains + ") put a pole at |z| = " +
+                    console_number(std::exp(growth * h)) + ", which grows the error e-fold every " +
+                    console_number(1000.0 / growth) + " ms" + advice));
   }
   return problems;
 }

@@ -315,11 +315,11 @@ Action add_run_command(CLI::App& app) {
     options.idle.assign(config.arms.size(), true);
     for (const ir::ArmSolver& a : program->arms) options.idle[static_cast<size_t>(a.port)] = false;
     // Before anything runs: no loop whose gain drives its error away.
-    if (const std::vector<Diagnostic> loops = check_loop_signs(*program, config, arms, files);
+    if (const std::vector<Diagnostic> loops = check_loops(*program, config, arms, files);
         !loops.empty()) {
       for (const Diagnostic& d : loops) std::cerr << format(d) << '\n';
       std::cerr << "mospec: " << loops.size()
-                << " controller gain(s) of the wrong sign; nothing was run\n";
+                << " controller loop(s) that would diverge; nothing was run\n";
       return kExitFindings;
     }
     const VerdictPlan plan = plan_verdict(*program);

@@ -12,6 +12,12 @@
 
 namespace mospec::cli {
 
+std::string console_number(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", x);
+  return b;
+}
+
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -36,13 +42,6 @@ const char* tolerance_source(ir::Step::Tolerance t) {
       break;
   }
   return "none";
-}
-
-// A number as the console shows it: 4 significant digits.
-std::string num(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", x);
-  return b;
 }
 
 Json number_or_null(double x) {
@@ -266,13 +265,13 @@ std::string wanted(const VerdictPlan::Goal& g) {
   switch (g.spec.kind) {
     case runtime::ConstraintKind::Equality:
     case runtime::ConstraintKind::Assignment:
-      return "= " + num(g.spec.reference);
+      return "= " + console_number(g.spec.reference);
     case runtime::ConstraintKind::LessThan:
-      return "<= " + num(g.spec.threshold);
+      return "<= " + console_number(g.spec.threshold);
     case runtime::ConstraintKind::GreaterThan:
-      return ">= " + num(g.spec.threshold);
+      return ">= " + console_number(g.spec.threshold);
     case runtime::ConstraintKind::Bilateral:
-      return "in [" + num(g.spec.lower) + ", " + num(g.spec.upper) + "]";
+      return "in [" + console_number(g.spec.lower) + ", " + console_number(g.spec.upper) + "]";
   }
   return "?";
 }
@@ -294,7 +293,7 @@ std::string tolerance_text(const VerdictPlan::Goal& g) {
   if (g.tolerance_source == "none")
     return "no tolerance: the model states none and " + g.unit +
            " has no default; state its `tolerance`";
-  return "tolerance " + num(g.spec.tolerance) + " " + g.unit + ", " +
+  return "tolerance " + console_number(g.spec.tolerance) + " " + g.unit + ", " +
          (g.tolerance_source == "stated" ? "stated" : "the default for " + g.unit);
 }
 
@@ -375,11 +374,11 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
       line += "ticks " + std::to_string(*start) + " to ";
       if (!end) {
         ended_by = "running";
-        line += std::to_string(last_tick) + " (" + num(*start_time) + " s to " + num(r.simulated) +
-                " s), still running when the run ended";
+        line += std::to_string(last_tick) + " (" + console_number(*start_time) + " s to " +
+                console_number(r.simulated) + " s), still running when the run ended";
       } else {
-        line +=
-            std::to_string(*end) + " (" + num(*start_time) + " s to " + num(*end_time) + " s), ";
+        line += std::to_string(*end) + " (" + console_number(*start_time) + " s to " +
+                console_number(*end_time) + " s), ";
         if (code == kWhileViolated) {
           ended_by = "while-violated";
           which(m.whiles, false);
@@ -484,8 +483,9 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
         if (holds) {
           ++met;
         } else {
-          unmet.push_back(g.name + " = " + num(value) + " " + g.unit + " (wants " + wanted(g) +
-                          ", error " + num(error) + "; " + tolerance_text(g) + ")");
+          unmet.push_back(g.name + " = " + console_number(value) + " " + g.unit + " (wants " +
+                          wanted(g) + ", error " + console_number(error) + "; " +
+                          tolerance_text(g) + ")");
         }
         if (!g.is_while || h.during_ticks == 0) continue;
         const std::string who = g.name + (g.acted_on ? "" : " (no controller acts on it)");
@@ -560,14 +560,14 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     constraints.push_back(std::move(x));
     if (c.guard || c.goal) continue;
     if (!c.judged) {
-      tracked.push_back(c.name + " " + num(error));
+      tracked.push_back(c.name + " " + console_number(error));
       continue;
     }
     ++counted;
     if (holds) {
       ++met;
     } else {
-      unmet.push_back(c.name + (c.error >= 0 ? " (error " + num(error) + ")" : ""));
+      unmet.push_back(c.name + (c.error >= 0 ? " (error " + console_number(error) + ")" : ""));
     }
   }
   j["constraints"] = std::move(constraints);
@@ -592,8 +592,8 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     x["ratio"] = r.peak_torque_ratio[a];
     x["tick"] = r.peak_torque_tick[a];
     peak[arm_name(r, a)] = std::move(x);
-    details << (a ? ", " : " ") << arm_name(r, a) << " arm " << num(r.peak_torque_ratio[a])
-            << " (tick " << r.peak_torque_tick[a] << ")";
+    details << (a ? ", " : " ") << arm_name(r, a) << " arm "
+            << console_number(r.peak_torque_ratio[a]) << " (tick " << r.peak_torque_tick[a] << ")";
   }
   details << '\n';
   j["peak_torque_ratio"] = std::move(peak);
@@ -637,7 +637,7 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& r) {
     breach_lines.push_back("a joint beyond its limits from tick " +
                            std::to_string(r.joint_limit.first_tick) + " (" +
                            std::to_string(r.joint_limit.ticks) + " ticks; furthest " + name + ", " +
-                           num(r.joint_limit.max_excess) + " rad beyond)");
+                           console_number(r.joint_limit.max_excess) + " rad beyond)");
   }
   j["limit_breaches"] = std::move(breaches);
   details << "  limits:";

@@ -26,6 +26,9 @@
 
 namespace mospec::cli {
 
+// A number as the console shows it: 4 significant digits.
+std::string console_number(double x);
+
 // What the verdict reads, by controller log column (an index into
 // ir::Program::log, i.e. Controller::log_columns(); RunResult::columns is
 // shifted by one for "t").

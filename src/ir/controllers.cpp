@@ -1,5 +1,6 @@
 #include "ir/controllers.hpp"
 
+#include <concepts>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -53,6 +54,7 @@ struct ParameterDecl {
   std::string_view enum_type;
   std::vector<std::string_view> enumerators;
   bool new_line = false;
+  bool gain = false;
 };
 
 template <auto Member>
@@ -68,6 +70,7 @@ ControllerParameter parameter(std::string_view member, ParameterDecl d) {
   p.enum_type = d.enum_type;
   p.enumerators = std::move(d.enumerators);
   p.new_line = d.new_line;
+  p.gain = d.gain;
   p.set = &F::set;
   p.fallback = F::get(typename F::spec_type{});
   return p;
@@ -85,6 +88,11 @@ ParameterDecl literal(std::string_view property, std::string_view json,
   d.source = ParameterSource::Literal;
   d.required = true;
   d.only_with = only_with;
+  return d;
+}
+// A loop gain (the loop check wants its sign opposite to d(error)/d(output)).
+ParameterDecl gain(ParameterDecl d) {
+  d.gain = true;
   return d;
 }
 // A constant quantity the property names (its value, in its unit).
@@ -207,6 +215,18 @@ ControllerKind declare(const Declaration& d, Type<Model> model, Type<Spec> spec,
     for (size_t i = 0; i < values.size(); ++i) kind.parameters[i].set(&s, values[i]);
     return std::make_unique<I>(Model(s, name));
   };
+  if constexpr (requires(const Model& m) {
+                  { m.transfer(1.0) } -> std::same_as<runtime::Transfer>;
+                }) {
+    k.loop_poles = [](const ControllerKind& kind, const std::vector<double>& values, double period,
+                      const runtime::Transfer& plant) {
+      Spec s{};
+      for (size_t i = 0; i < values.size() && i < kind.parameters.size(); ++i)
+        kind.parameters[i].set(&s, values[i]);
+      return runtime::closed_loop_poles(plant,
+                                        Model(s, std::string(kind.name).c_str()).transfer(period));
+    };
+  }
   return k;
 }
 
@@ -235,9 +255,9 @@ std::vector<ControllerKind> declare_all() {
        .summary = "Eq. (4): f = Kp e + Ki (the integral of e, decaying at rate lambda) + Kd de/dt"},
       MOSPEC_TYPE(Pid), MOSPEC_TYPE(PidSpec), MOSPEC_TYPE(PidState),
       {
-          MOSPEC_FIELD(PidSpec, kp, literal("proportional-gain", "kp")),
-          MOSPEC_FIELD(PidSpec, ki, literal("integral-gain", "ki")),
-          MOSPEC_FIELD(PidSpec, kd, literal("derivative-gain", "kd")),
+          MOSPEC_FIELD(PidSpec, kp, gain(literal("proportional-gain", "kp"))),
+          MOSPEC_FIELD(PidSpec, ki, gain(literal("integral-gain", "ki"))),
+          MOSPEC_FIELD(PidSpec, kd, gain(literal("derivative-gain", "kd"))),
           MOSPEC_FIELD(PidSpec, decay_rate,
                        literal("decay-rate", "decay-rate", "DecayingIntegralTerm")),
           MOSPEC_FIELD(PidSpec, output_min, fixed(true)),
@@ -285,8 +305,8 @@ std::vector<ControllerKind> declare_all() {
        .summary = "f = K e + D de/dt: a spring and a damper on the error"},
       MOSPEC_TYPE(Impedance), MOSPEC_TYPE(ImpedanceSpec), MOSPEC_TYPE(ImpedanceState),
       {
-          MOSPEC_FIELD(ImpedanceSpec, stiffness, quantity("stiffness", false)),
-          MOSPEC_FIELD(ImpedanceSpec, damping, quantity("damping", false)),
+          MOSPEC_FIELD(ImpedanceSpec, stiffness, gain(quantity("stiffness", false))),
+          MOSPEC_FIELD(ImpedanceSpec, damping, gain(quantity("damping", false))),
       },
       MOSPEC_KERNEL(steps::impedance)));
   return k;

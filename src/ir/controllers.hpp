@@ -25,12 +25,15 @@
 // adding one ("Adding a controller").
 #pragma once
 
+#include <complex>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "runtime/transfer.hpp"
 
 namespace mospec::ir {
 
@@ -55,6 +58,10 @@ struct ControllerParameter {
   std::string_view enum_type;
   std::vector<std::string_view> enumerators;
   bool new_line = false;  // generated code breaks the line before it (layout only)
+  // A loop gain: the output grows with it times the error, its integral or
+  // its derivative, so the loop check before a run wants its sign opposite to
+  // that of d(error)/d(output), and scales these to find a stable loop.
+  bool gain = false;
   double fallback = 0.0;  // the Spec's default, for a parameter the model leaves out
   // (internal) writes / reads the field of a Spec.
   void (*set)(void* spec, double value) = nullptr;
@@ -101,6 +108,12 @@ struct ControllerKind {
   // (internal) builds the runtime model from a spec's values.
   std::unique_ptr<ControllerInstance> (*make)(const ControllerKind&, const std::vector<double>&,
                                               const char* name) = nullptr;
+  // (internal) the poles of the loop the kind closes around a plant (see
+  // closed_loop_poles below); null when the runtime model declares no linear
+  // law (`Transfer transfer(double period) const`): such loops are not judged.
+  std::vector<std::complex<double>> (*loop_poles)(const ControllerKind&,
+                                                  const std::vector<double>& values, double period,
+                                                  const runtime::Transfer& plant) = nullptr;
 
   bool has_state() const { return !state_type.empty(); }
   std::string class_iri() const { return std::string(vocabulary).append(type); }
@@ -116,7 +129,24 @@ struct ControllerKind {
   // the values (lowering reports it at the controller).
   std::unique_ptr<ControllerInstance> instantiate(const std::vector<double>& values,
                                                   const char* name) const;
+  // Whether the loop check can judge the kind's loops (its law is linear).
+  bool linear() const { return loop_poles != nullptr; }
+  // The closed-loop poles (in z, one sample per `period` [s]) of a controller
+  // of this kind with `values`, driving `plant` from its output to its first
+  // signal (runtime::closed_loop_poles). Empty when the kind is not linear().
+  std::vector<std::complex<double>> closed_loop_poles(const std::vector<double>& values,
+                                                      double period,
+                                                      const runtime::Transfer& plant) const {
+    return loop_poles ? loop_poles(*this, values, period, plant)
+                      : std::vector<std::complex<double>>{};
+  }
 };
+
+// The plant a loop drives, identified from the response of its error to a
+// held unit step of its output (runtime::identify_second_order).
+inline runtime::IdentifiedPlant identify_loop_plant(const std::vector<double>& step) {
+  return runtime::identify_second_order(step);
+}
 
 // Every controller kind, in a fixed order (Step::controller indexes it).
 std::span<const ControllerKind> controller_kinds();

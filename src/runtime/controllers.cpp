@@ -120,6 +120,23 @@ PidStatus Pid::step(PidState& s, double error, double dt, double feed_forward) c
   return PidStatus::Ok;
 }
 
+Transfer Pid::transfer(double period) const {
+  const PidSpec& p = spec_;
+  const double h = period;
+  const Polynomial z = {0.0, 1.0};
+  const Polynomial z_minus_1 = {-1.0, 1.0};
+  // Kp + Kd (z - 1) / (h z), over z.
+  Transfer c{.num = p.kp * z + (p.kd / h) * z_minus_1, .den = z};
+  if (p.ki == 0.0) return c;  // no integral: no pole at e^{-λh} to cancel
+  const double a = p.decay_rate * h;
+  const double decay = std::exp(-a);
+  const double phi1 = decay_phi1(a), phi2 = decay_phi2(a);
+  // I(z) = h ((φ1 - φ2) z + φ2) / (z - e^{-λh}) E(z): step()'s first-order hold.
+  const Polynomial integral = {p.ki * h * phi2, p.ki * h * (phi1 - phi2)};
+  const Polynomial pole = {-decay, 1.0};
+  return {.num = c.num * pole + integral * z, .den = z * pole};
+}
+
 Damping::Damping(const DampingSpec& spec, const char* name) : spec_(spec) {
   if (!(spec.maximum_velocity > 0.0) || !std::isfinite(spec.maximum_velocity) ||
       !(spec.maximum_force > 0.0) || !std::isfinite(spec.maximum_force)) {
@@ -148,6 +165,13 @@ Impedance::Impedance(const ImpedanceSpec& spec, const char* name) : spec_(spec) 
   if (spec.stiffness == 0.0 && spec.damping == 0.0) {
     reject(name, "an impedance controller with stiffness 0 and damping 0 commands nothing");
   }
+}
+
+Transfer Impedance::transfer(double period) const {
+  const double h = period;
+  // K + D (z - 1) / (h z) = (D / h (z - 1) + K z) / z
+  return {.num = Polynomial{-spec_.damping / h, spec_.stiffness + spec_.damping / h},
+          .den = Polynomial{0.0, 1.0}};
 }
 
 void Impedance::step(ImpedanceState& s, double error, double dt) const noexcept {

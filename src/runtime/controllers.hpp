@@ -65,6 +65,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "runtime/transfer.hpp"
+
 namespace mospec::runtime {
 
 enum class AntiWindup : uint8_t { None, ConditionalIntegration, BackCalculation };
@@ -119,6 +121,12 @@ class Pid {
   // One control step; the output is also in state.output.
   PidStatus step(PidState& state, double error, double dt,
                  double feed_forward = 0.0) const noexcept;
+
+  // The law from the error to the output at a fixed tick `period` [s], as
+  // step() computes it when nothing clamps (for the closed-loop check):
+  //   C(z) = Kp + Ki h ((φ1 - φ2) z + φ2) / (z - e^{-λh}) + Kd (z - 1) / (h z).
+  // Setup-time: allocates.
+  Transfer transfer(double period) const;
 
   // Back to the initial state (zero integral, no previous error, no fault).
   static void reset(PidState& state) noexcept { state = PidState{}; }
@@ -209,6 +217,9 @@ class Impedance {
   const ImpedanceSpec& spec() const { return spec_; }
   // One control step; the output is also in state.output.
   void step(ImpedanceState& state, double error, double dt) const noexcept;
+  // The law at a fixed tick `period` [s]: C(z) = K + D (z - 1) / (h z).
+  // Setup-time: allocates.
+  Transfer transfer(double period) const;
   static void reset(ImpedanceState& state) noexcept { state = ImpedanceState{}; }
 
  private:

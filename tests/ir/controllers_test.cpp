@@ -149,5 +149,35 @@ TEST(ControllerRegistry, TheRuntimeRefusalNamesTheController) {
   }
 }
 
+// The loop check judges a kind whose runtime model declares its linear law:
+// the PID and the impedance do, the saturated damper does not. A kind's poles
+// are its runtime transfer's, closed around the plant.
+TEST(ControllerRegistry, LinearKindsGiveTheirClosedLoopPoles) {
+  const auto kind = [](std::string_view name) -> const ControllerKind& {
+    return controller_kinds()[static_cast<size_t>(controller_index(name))];
+  };
+  EXPECT_TRUE(kind("pid").linear());
+  EXPECT_TRUE(kind("impedance").linear());
+  EXPECT_FALSE(kind("damping").linear());
+  EXPECT_TRUE(kind("damping").closed_loop_poles(kind("damping").defaults(), 1e-3, {}).empty());
+  // Their loop gains, whose signs the check judges and which it scales.
+  const auto gains = [](const ControllerKind& k) {
+    std::vector<std::string_view> g;
+    for (const ControllerParameter& p : k.parameters)
+      if (p.gain) g.push_back(p.member);
+    return g;
+  };
+  EXPECT_EQ(gains(kind("pid")), (std::vector<std::string_view>{"kp", "ki", "kd"}));
+  EXPECT_EQ(gains(kind("impedance")), (std::vector<std::string_view>{"stiffness", "damping"}));
+  EXPECT_TRUE(gains(kind("damping")).empty());
+  // u = kp e around e_{k+1} = e_k - 0.001 u_k: one pole at 1 - 0.001 kp.
+  const ControllerKind& pid = kind("pid");
+  std::vector<double> values = pid.defaults();
+  values[static_cast<size_t>(pid.parameter("kp"))] = 300.0;
+  const runtime::Transfer plant{.num = {-0.001}, .den = {-1.0, 1.0}};
+  const auto poles = pid.closed_loop_poles(values, 1e-3, plant);
+  EXPECT_NEAR(runtime::spectral_radius(poles), 0.7, 1e-12);
+}
+
 }  // namespace
 }  // namespace mospec::ir
