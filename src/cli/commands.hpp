@@ -1,7 +1,8 @@
 // mospec's subcommands. Each registers its options on the CLI11 app and returns
 // the action to run after parsing; the action returns the process exit code:
 // 0 all is well, 1 the models have findings (under --strict) or fail
-// verification, 2 bad input, usage or environment errors.
+// verification, 2 bad input, usage or environment errors, 3 an internal error
+// (a bug in mospec, whatever the input).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -16,8 +17,14 @@ namespace mospec::cli {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFindings = 1;
 inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitInternal = 3;
 
 using Action = std::function<int()>;
+
+// Runs a command's action and returns its exit code; what it throws becomes
+// one line on stderr and the exit code: mospec::Error (bad input) 2, out of
+// memory 2, anything else 3, an internal error.
+int run_guarded(const Action& action);
 
 // Options every command that loads models shares.
 struct LoadFlags {

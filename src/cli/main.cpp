@@ -211,16 +211,8 @@ int main(int argc, char** argv) {
     std::cerr << "mospec: " << e.what() << "\n(run 'mospec --help' for usage)\n";
     return kExitBadInput;
   }
-  try {
-    for (auto& [cmd, action] : commands) {
-      if (cmd->parsed()) return action();
-    }
-  } catch (const mospec::Error& e) {
-    std::cerr << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "mospec: internal error: " << e.what() << '\n';
-    return kExitBadInput;
+  for (auto& [cmd, action] : commands) {
+    if (cmd->parsed()) return run_guarded(action);
   }
   return kExitBadInput;
 }

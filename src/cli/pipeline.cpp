@@ -6,6 +6,7 @@
 #include "cli/commands.hpp"
 #include "shacl/report.hpp"
 #include "sim/config.hpp"
+#include "support/diagnostics.hpp"
 #include "validation/model_validation.hpp"
 
 namespace mospec::cli {
@@ -166,7 +167,7 @@ std::optional<ir::Program> load_validate_lower(const PipelineFlags& flags, int& 
     std::cerr << e.what() << '\n';
     std::cerr << "mospec: internal error: lowering made a program that does not verify (a bug in "
                  "mospec, not in the model; please report it with the model)\n";
-    exit_code = kExitBadInput;
+    exit_code = kExitInternal;
     return std::nullopt;
   }
 }
