@@ -6,13 +6,16 @@
 #include <string>
 #include <utility>
 
-#include "cli/verdict.hpp"
 #include "ir/controllers.hpp"
 #include "ir/interpreter.hpp"
 #include "sim/run.hpp"
 #include "sim/world.hpp"
+#include "verdict/verdict.hpp"
 
 namespace mospec::cli {
+
+using verdict::console_number;
+using verdict::degraded_solves;
 
 namespace {
 
@@ -202,7 +205,9 @@ std::vector<Diagnostic> check_loops(const ir::Program& program, const sim::World
     // The largest common scale of the gains at which the linearised loop is
     // stable (no pole beyond the plant's own), by bisection from a scale small
     // enough to be.
-    const double neutral = std::max(0.0, rate(0.0));
+    // (With a hair of slack: at a vanishing scale the loop's poles are the
+    // plant's, up to rounding.)
+    const double neutral = std::max(0.0, rate(0.0)) + 1e-3 / horizon;
     std::string advice;
     double stable = 1e-6, unstable = 1.0;
     if (rate(stable) <= neutral) {

@@ -14,7 +14,6 @@
 #include "cli/loop_check.hpp"
 #include "cli/numbers.hpp"
 #include "cli/pipeline.hpp"
-#include "cli/verdict.hpp"
 #include "cli/world_arms.hpp"
 #include "codegen/build.hpp"
 #include "codegen/codegen.hpp"
@@ -25,9 +24,17 @@
 #include "sim/run.hpp"
 #include "sim/world.hpp"
 #include "support/io.hpp"
+#include "verdict/verdict.hpp"
 #include "video/recorder.hpp"
 
 namespace mospec::cli {
+
+using verdict::degraded_solves;
+using verdict::judge;
+using verdict::plan_verdict;
+using verdict::Verdict;
+using verdict::VerdictPlan;
+using verdict::watch_for_verdict;
 
 namespace {
 
@@ -209,7 +216,7 @@ std::string summary_json(const std::string& app, const sim::RunResult& r, bool i
   // The log's units and the constraints' thresholds, for the figures and the
   // report page (plot/log_info.hpp).
   j["log"] = log_info_json(log);
-  // What happened, in short (cli/verdict.hpp).
+  // What happened, in short (verdict/verdict.hpp).
   j["verdict"] = verdict.json;
   return j.dump(2) + "\n";
 }
@@ -229,6 +236,7 @@ Action add_run_command(CLI::App& app) {
     int log_every = 10;
     std::string cache;
     std::vector<std::string> faults;
+    bool run_diverging = false;
     std::string video;
     std::string video_size = "640x480";
     std::string video_camera = "corner";
@@ -257,6 +265,9 @@ Action add_run_command(CLI::App& app) {
   cmd->add_option("--summary", flags->summary, "JSON summary file ('-' = standard output)")
       ->type_name("FILE.json");
   cmd->add_option("--fault", flags->faults, kFaultHelp)->type_name("SPEC");
+  cmd->add_flag("--run-diverging", flags->run_diverging,
+                "Run even if the loop check finds a loop that would diverge (its findings become "
+                "warnings): to watch it happen, or where the linearisation misjudges a loop");
   CLI::Option* video =
       cmd->add_option("--video", flags->video,
                       "Video of the run, rendered offscreen by MuJoCo at 30 frames per simulated "
@@ -314,13 +325,20 @@ Action add_run_command(CLI::App& app) {
     options.log_every = flags->log_every;
     options.idle.assign(config.arms.size(), true);
     for (const ir::ArmSolver& a : program->arms) options.idle[static_cast<size_t>(a.port)] = false;
-    // Before anything runs: no loop whose gain drives its error away.
-    if (const std::vector<Diagnostic> loops = check_loops(*program, config, arms, files);
+    // Before anything runs: no loop whose gain drives its error away or
+    // puts a pole outside the unit circle (unless the user asks to see it).
+    if (std::vector<Diagnostic> loops = check_loops(*program, config, arms, files);
         !loops.empty()) {
-      for (const Diagnostic& d : loops) std::cerr << format(d) << '\n';
-      std::cerr << "mospec: " << loops.size()
-                << " controller loop(s) that would diverge; nothing was run\n";
-      return kExitFindings;
+      for (Diagnostic& d : loops) {
+        if (flags->run_diverging) d.severity = Severity::Warning;
+        std::cerr << format(d) << '\n';
+      }
+      if (!flags->run_diverging) {
+        std::cerr << "mospec: " << loops.size()
+                  << " controller loop(s) that would diverge; nothing was run (--run-diverging "
+                     "runs it anyway)\n";
+        return kExitFindings;
+      }
     }
     const VerdictPlan plan = plan_verdict(*program);
     const plot::LogInfo log = log_info(*program);

@@ -4,7 +4,10 @@
 # distance gains are 1e9 asks the base for a platform force far beyond
 # traction. The robot interface clamps both, `mospec run` says which actuator,
 # from which tick, how much was asked and the limit, the summary records it
-# and the run exits 1. Usage: clamp_test.sh MOSPEC SOURCE_DIR
+# and the run exits 1. The loop check refuses such gains before a run
+# (tests/models/loop_sign_test.sh), so these runs pass --run-diverging, and the
+# first checks that the refusal became a warning.
+# Usage: clamp_test.sh MOSPEC SOURCE_DIR
 SRC="$2"
 source "$SRC/tests/support/cli_lib.sh"
 
@@ -21,10 +24,13 @@ check "the copy has the huge gain" grep -q '"proportional-gain": "1e300"' \
 
 expect "sc0a with a gain of 1e300: clamped, exit 1" 1 \
   "^mospec: warning: commands beyond the robot's limits were clamped at the robot interface" -- \
-  "$mospec" run models/sc0a --sim --interpret --duration 0.5 --summary "$work/sc0a.json" \
+  "$mospec" run models/sc0a --sim --interpret --run-diverging --duration 0.5 --summary "$work/sc0a.json" \
   --log "$work/sc0a.csv"
 check "the warning names a right-arm joint, its ticks, first tick, request and limit" \
   grep -Eq '^  right_arm\.tau\[[0-6]\]: clamped in [0-9]+ ticks? from tick [0-9]+, requested up to [0-9.]+e\+(29[0-9]|30[0-9]) N·m, limit (39|9) N·m$' \
+  "$work/stderr.txt"
+check "the loop check's refusal is a warning under --run-diverging" \
+  grep -Eq "^models/right-arm/05-constraint-handler.json:[0-9]+:[0-9]+: warning: the loop of the controller '[^']*ctrl-pos-rightarm-elbow-height' on '[^']*' is unstable at the start" \
   "$work/stderr.txt"
 check "the summary says the command was clamped" grep -q '"command_clamped": true' "$work/sc0a.json"
 check "the summary lists the actuator with its limit" \
@@ -65,7 +71,7 @@ check "the first row's right_q are the world's initial pose (not all 0)"   awk -
 # The generated controller's commands go through the same robot interface.
 expect "sc0a with a gain of 1e300, generated controller: clamped, exit 1" 1 \
   "^  right_arm\.tau\[[0-6]\]: clamped in [0-9]+ ticks? from tick [0-9]+" -- \
-  "$mospec" run models/sc0a --sim --duration 0.5 --cache "$work/cache" \
+  "$mospec" run models/sc0a --sim --run-diverging --duration 0.5 --cache "$work/cache" \
   --summary "$work/sc0a-generated.json" --log "$work/sc0a-generated.csv"
 check "generated: the same log, joint columns included, byte for byte" \
   cmp -s "$work/sc0a.csv" "$work/sc0a-generated.csv"
@@ -78,7 +84,7 @@ sed -i 's/"proportional-gain": "-600.0"/"proportional-gain": "-1e9"/' \
   models/sc1/05-distance-controller.json
 expect "sc1 with a base force beyond the limit: clamped, exit 1" 1 \
   "^  platform\.force: clamped in [0-9]+ ticks? from tick [0-9]+, requested up to [0-9.e+]+ N, limit [0-9.]+ N$" -- \
-  "$mospec" run models/sc1 --sim --interpret --duration 0.3 --summary "$work/sc1.json"
+  "$mospec" run models/sc1 --sim --interpret --run-diverging --duration 0.3 --summary "$work/sc1.json"
 check "sc1: the hub torques are clamped too" grep -Eq '^  wheel_tau\[[0-7]\]: clamped' "$work/stderr.txt"
 check "sc1: the verdict names the breach" \
   grep -Eq '^  limits: BREACHED: commands clamped from tick [0-9]+ \(.+\)$' "$work/stderr.txt"

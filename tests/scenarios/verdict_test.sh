@@ -8,7 +8,8 @@
 #     exit 0;
 #   - a copy whose angular-velocity gain is 1e4 (instead of 100): the arm is
 #     destabilised, its torques are clamped, it loses the table and a joint
-#     leaves its range: "FAILED: a limit was breached", exit 1;
+#     leaves its range: "FAILED: a limit was breached", exit 1 (run with
+#     --run-diverging, past the loop check that refuses the gain);
 #   - a copy whose elbow height reference is -1 m (below the floor,
 #     unreachable): the elbow is driven down until a joint leaves its range,
 #     exit 1; the reference's constraint is named as not met, against the
@@ -99,7 +100,7 @@ check "the copy has the high gain" grep -q '"proportional-gain": "1e4"' \
   models/right-arm/05-constraint-handler.json
 expect "a gain of 1e4 (interpreted): limits breached, exit 1" 1 \
   "^mospec: verdict: FAILED: .*a limit was breached: commands clamped from tick [0-9]+; a joint beyond its limits from tick [0-9]+$" -- \
-  "$mospec" run models/sc0a.json --sim --interpret --duration 3 --summary "$work/gain.json"
+  "$mospec" run models/sc0a.json --sim --interpret --run-diverging --duration 3 --summary "$work/gain.json"
 verdict_lines "$work/stderr.txt" > "$work/gain.txt"
 check "gain: the limits line names the clamped torques and the joint" \
   grep -Eq '^  limits: BREACHED: commands clamped from tick [0-9]+ \(right_arm\.tau\[[0-6]\], .*\); a joint beyond its limits from tick [0-9]+ \([0-9]+ ticks; furthest right_arm\.q\[[0-6]\], [0-9.e-]+ rad beyond\)$' "$work/gain.txt"
@@ -111,7 +112,7 @@ check "gain summary: failed, exit status 1, torques and a joint breached" \
   eq "$(field "$work/gain.json" 'v["status"], v["exit_status"], sorted(set(b["limit"].split("[")[0] for b in v["limit_breaches"])), v["peak_torque_ratio"]["right"]["ratio"] > 1, v["contact"]["right"]["losses"] > 0')" \
   "('failed', 1, ['joint position', 'right_arm.tau'], True, True)"
 expect "a gain of 1e4 (generated): limits breached, exit 1" 1 "^mospec: verdict: FAILED: .*a limit was breached" -- \
-  "$mospec" run models/sc0a.json --sim --duration 3 --summary "$work/gain-gen.json" --cache "$work/cache"
+  "$mospec" run models/sc0a.json --sim --run-diverging --duration 3 --summary "$work/gain-gen.json" --cache "$work/cache"
 check "gain: generated and interpreted print the same verdict" \
   cmp -s "$work/gain.txt" <(verdict_lines "$work/stderr.txt")
 check "gain: generated and interpreted summaries hold the same verdict" \

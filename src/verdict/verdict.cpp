@@ -1,4 +1,4 @@
-#include "cli/verdict.hpp"
+#include "verdict/verdict.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "robot/limits.hpp"
 
-namespace mospec::cli {
+namespace mospec::verdict {
 
 std::string console_number(double x) {
   char b[32];
@@ -775,4 +775,4 @@ std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::Ru
   return out;
 }
 
-}  // namespace mospec::cli
+}  // namespace mospec::verdict

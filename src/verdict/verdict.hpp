@@ -24,7 +24,7 @@
 #include "robot/interface.hpp"
 #include "sim/run.hpp"
 
-namespace mospec::cli {
+namespace mospec::verdict {
 
 // A number as the console shows it: 4 significant digits.
 std::string console_number(double x);
@@ -111,4 +111,4 @@ Verdict judge(const VerdictPlan& plan, const sim::RunResult& run);
 // directions (its `.degraded` log column).
 std::vector<std::pair<std::string, std::uint64_t>> degraded_solves(const sim::RunResult& r);
 
-}  // namespace mospec::cli
+}  // namespace mospec::verdict
