@@ -796,9 +796,9 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["acceleration-constraints"] = std::move(acc);
     Json frc = Json::array();
     for (const CartesianForce& c : a.cartesian_forces) {
-      Json e = {{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}};
-      if (c.at_tip) e["at-tip"] = true;
-      frc.push_back(std::move(e));
+      Json f = {{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}};
+      if (c.at_tip) f["at-tip"] = true;  // its wrench is at the tool's origin
+      frc.push_back(std::move(f));
     }
     e["cartesian-forces"] = std::move(frc);
     Json jf = Json::array();
