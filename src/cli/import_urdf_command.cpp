@@ -64,9 +64,8 @@ Action add_import_urdf_command(CLI::App& app) {
     write_output(flags->output, description::chain_to_jsonld(imported.chain, options));
     const runtime::Chain& chain = imported.chain;
     if (!imported.tip_joints.empty() && chain.size() > 0) {
-      // A tool link (tool0, a flange) fixed to the last moving link: its frame
-      // is written as the chain's tip frame, but mospec's arm solvers output
-      // and drive the last moving link's frame, so say how to reach the tool.
+      // A tool link (tool0, a flange) fixed to the last moving link: say
+      // which entities name it, so a task can make it the controlled frame.
       const std::string& last = chain.segment(chain.size() - 1).link;
       const std::string& tip = chain.tip();
       std::string joints;
@@ -74,18 +73,16 @@ Action add_import_urdf_command(CLI::App& app) {
       std::cerr << format(Diagnostic{
                        Severity::Note, "", 0, 0, "fixed-tip",
                        "the tip link '" + tip + "' is fixed to the last moving link '" + last +
-                           "' (fixed joint " + joints + "): the model states its frame <" +
-                           options.base + "frame-" + tip + "> as the chain's tip, posed by <" +
-                           options.base + "pose-" + tip + "> in <" + options.base + "frame-" +
-                           last + ">. An arm solver outputs and drives the frame of '" + last +
-                           "' (its motion drivers are attached to <" + options.base + "link-" +
-                           last + ">, at its origin), never a frame fixed to it: to constrain " +
-                           "the tool, output the pose of <" + options.base + "frame-" + last +
-                           "> and compose <" + options.base + "pose-" + tip +
-                           "> onto it (ComposePose, docs/runtime.md): the tool's pose w.r.t. "
-                           "the solver's root, for constraints and monitors; the motion "
-                           "drivers still act at the origin of '" +
-                           last + "'"})
+                           "' (fixed joint " + joints + "): the model states it as the link <" +
+                           options.base + "link-" + tip + "> with the frame <" + options.base +
+                           "frame-" + tip + ">, posed by <" + options.base + "pose-" + tip +
+                           "> in <" + options.base + "frame-" + last +
+                           ">. It can be an arm solver's controlled frame: attach its motion "
+                           "drivers to <" +
+                           options.base + "link-" + tip + "> (they act at <" + options.base +
+                           "point-" + tip +
+                           "-origin>), and output its pose or twist "
+                           "(docs/extending.md, \"A different arm\")"})
                 << '\n';
     }
     return kExitOk;

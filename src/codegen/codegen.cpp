@@ -481,9 +481,8 @@ class Builder {
       put(e, "has_mount", !s.mount_pose_iri.empty());
       put(e, "mount_iri", comment_text(s.mount_pose_iri));
       put(e, "tip_is_last_segment", s.tip_is_last_segment);
-      const runtime::Pose X_NT = s.tip_is_last_segment ? runtime::Pose{} : s.chain.X_NT();
-      put(e, "X_NT_R", mat3(X_NT.R));
-      put(e, "X_NT_p", vec3(X_NT.p));
+      put(e, "X_NT_R", mat3(s.chain.X_NT().R));
+      put(e, "X_NT_p", vec3(s.chain.X_NT().p));
       mustache::Data segments = list();
       runtime::Chain rebuilt(s.chain.root());
       for (int i = 0; i < s.chain.size(); ++i) {
@@ -534,9 +533,10 @@ class Builder {
       // command), the task model (the ACHD solve: no gravity when the solver
       // is GravityCompensated), the mount.
       const std::string gravity = "rt::Vec3(" + join_doubles(s.gravity.data(), 3) + ")";
-      inits.push_back(member + "(" + n.model_fn + "(" + gravity + "))");
+      inits.push_back(member + "(" + n.model_fn + "(" + gravity + ", true))");
       inits.push_back(n.task + "(" + n.model_fn + "(" +
-                      (s.gravity_compensated ? std::string("rt::Vec3::Zero()") : gravity) + "))");
+                      (s.gravity_compensated ? std::string("rt::Vec3::Zero()") : gravity) + ", " +
+                      (s.tip_is_last_segment ? "false" : "true") + "))");
       inits.push_back(n.X_BR + "(" + n.X_RB_fn + "().inverse())");
     }
     put(root, "arms", std::move(arms));
@@ -802,6 +802,20 @@ class Builder {
             call.append("estimated_wrench(m.").append(arm_names_[k].arm).append(", d.");
             call.append(arm_names_[k].arm).append(", d.").append(arm_names_[k].ws);
             call.append(", state.arm[").append(std::to_string(a.port)).append("].tau, ");
+          } else if (o.what == ir::ArmOutput::What::TipPose ||
+                     o.what == ir::ArmOutput::What::TipTwist ||
+                     o.what == ir::ArmOutput::What::TipPoseInChainRoot) {
+            // The tip frame's, read with the physical model (its X_NT is the tool).
+            const bool in_chain_root = o.what == ir::ArmOutput::What::TipPoseInChainRoot;
+            call.append(o.what == ir::ArmOutput::What::TipTwist ? "tip_twist"
+                        : in_chain_root                         ? "tip_pose_in_chain_root"
+                                                                : "tip_pose");
+            call.append("(m.").append(arm_names_[k].arm).append(", d.").append(arm_names_[k].arm);
+            if (in_chain_root) call.append(", m.").append(arm_names_[k].X_BR);
+            call.append(")");
+            put(e, "call", call);
+            append(outputs, std::move(e));
+            continue;
           } else {
             call.append("segment_twist(d.").append(arm_names_[k].arm).append(", ");
           }
@@ -944,7 +958,11 @@ class Builder {
           mustache::Data e;
           put(e, "workspace", arm_names_[k].ws);
           put(e, "segment", std::to_string(f.segment));
-          put(e, "source", ref(f.wrench));
+          // A force on the tool: its wrench at To moved to the segment's origin.
+          put(e, "source",
+              f.at_tip ? "rt::steps::tip_wrench_at_segment_origin(m." + arm_names_[k].arm + ", d." +
+                             arm_names_[k].arm + ", " + ref(f.wrench) + ")"
+                       : ref(f.wrench));
           put(e, "iri", comment_text(f.iri));
           append(forces, std::move(e));
         }

@@ -214,17 +214,13 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
     parent = s.link;
   }
   if (chain.tip() != parent) {
-    // The tip frame (after folded fixed joints) relative to the last link.
-    const std::string tip_frame = "frame-" + chain.tip();
-    Node t;
-    t.add("@id", quoted(tip_frame))
-        .add("@type", quoted("Frame"))
-        .add("origin", quoted("point-" + chain.tip() + "-origin"));
-    graph.push_back(t);
-    Node to;
-    to.add("@id", quoted("point-" + chain.tip() + "-origin")).add("@type", quoted("Point"));
-    graph.push_back(to);
-    graph.push_back(pose_node("pose-" + chain.tip(), tip_frame, "frame-" + parent, chain.X_NT()));
+    // The tip link (a tool0, a flange: after folded fixed joints), its frame
+    // posed relative to the last link's. Its mass is folded into that link,
+    // so it is a link of its own only to name the tool: a task attaches
+    // motion drivers to it and reads its pose and twist.
+    add_link(graph, chain.tip(), nullptr);
+    graph.push_back(
+        pose_node("pose-" + chain.tip(), "frame-" + chain.tip(), "frame-" + parent, chain.X_NT()));
   }
   Node c;
   c.add("@id", quoted("chain")).add("@type", quoted("KinematicChain")).add("joints", list(joints));

@@ -28,8 +28,11 @@ struct ChainJsonldOptions {
 // form), so generated files can be committed and compared.
 //
 // What it states (ids relative to the base):
-//   link-L, frame-L (origin point-L-origin)   every link on the chain and the
-//                                             root; frame-L is the URDF link frame
+//   link-L, frame-L (origin point-L-origin)   every link on the chain, the
+//                                             root and the tip (a tool fixed to
+//                                             the last link: its mass is folded
+//                                             into that link); frame-L is the
+//                                             URDF link frame
 //   joint-J: RevoluteJoint, or PrismaticJoint between-attachments
 //                                             {frame-J-attachment, frame-C}
 //                                             (C the child link), common-axis axis-J

@@ -150,6 +150,12 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
         } else if (o.what == ArmOutput::What::EstimatedWrench) {
           s_.wrenches[slot(o.data)] =
               steps::estimated_wrench(arm.model, arm.data, arm.ws, m.tau, o.segment);
+        } else if (o.what == ArmOutput::What::TipPose) {
+          s_.poses[slot(o.data)] = steps::tip_pose(arm.model, arm.data);
+        } else if (o.what == ArmOutput::What::TipPoseInChainRoot) {
+          s_.poses[slot(o.data)] = steps::tip_pose_in_chain_root(arm.model, arm.data, arm.X_BR);
+        } else if (o.what == ArmOutput::What::TipTwist) {
+          s_.twists[slot(o.data)] = steps::tip_twist(arm.model, arm.data);
         } else {
           s_.twists[slot(o.data)] = steps::segment_twist(arm.data, o.segment);
         }
@@ -247,7 +253,10 @@ void Interpreter::execute(const Step& st, size_t index, const robot::MeasuredSta
       }
       arm.ws.F_ext.fill(Vec6::Zero());
       for (const CartesianForce& f : solver.cartesian_forces) {
-        arm.ws.F_ext[static_cast<size_t>(f.segment)] += s_.wrenches[slot(f.wrench)];
+        arm.ws.F_ext[static_cast<size_t>(f.segment)] +=
+            f.at_tip ? steps::tip_wrench_at_segment_origin(arm.model, arm.data,
+                                                           s_.wrenches[slot(f.wrench)])
+                     : s_.wrenches[slot(f.wrench)];
       }
       arm.ws.tau_ff.setZero();
       for (const JointForce& f : solver.joint_forces)

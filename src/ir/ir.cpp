@@ -67,7 +67,7 @@ runtime::AchdModel achd_model(const ArmSolver& arm, bool physical) {
                               ? runtime::Vec3(arm.gravity[0], arm.gravity[1], arm.gravity[2])
                               : runtime::Vec3::Zero();
   runtime::AchdModel model(arm.chain, g);
-  if (arm.tip_is_last_segment) model.X_NT = runtime::Pose{};
+  if (!physical && arm.tip_is_last_segment) model.X_NT = runtime::Pose{};
   return model;
 }
 
@@ -613,10 +613,18 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
         f.add(a.where, "arm solver '" + a.name + "' outputs " + f.describe(o.data));
         continue;
       }
+      const bool tip = o.what == ArmOutput::What::TipPose || o.what == ArmOutput::What::TipTwist ||
+                       o.what == ArmOutput::What::TipPoseInChainRoot;
+      if (tip && o.segment != a.chain.size() - 1)
+        f.add(a.where, "arm solver '" + a.name + "': an output of the tip frame names segment " +
+                           std::to_string(o.segment) + ", not the last one");
       const DataType expected =
-          o.what == ArmOutput::What::SegmentTwist      ? DataType::Twist
+          o.what == ArmOutput::What::SegmentTwist || o.what == ArmOutput::What::TipTwist
+              ? DataType::Twist
           : o.what == ArmOutput::What::EstimatedWrench ? DataType::Wrench
-          : o.what == ArmOutput::What::SegmentPose || o.what == ArmOutput::What::ChainRootPose
+          : o.what == ArmOutput::What::SegmentPose || o.what == ArmOutput::What::ChainRootPose ||
+                  o.what == ArmOutput::What::TipPose ||
+                  o.what == ArmOutput::What::TipPoseInChainRoot
               ? DataType::Pose
               : DataType::Scalar;
       if (p.data[static_cast<size_t>(o.data)].type != expected)
@@ -768,7 +776,10 @@ std::string to_json(const Program& p, const SourceFiles* files) {
                          : o.what == ArmOutput::What::JointVelocity   ? "joint-velocity"
                          : o.what == ArmOutput::What::JointTorque     ? "measured-joint-torque"
                          : o.what == ArmOutput::What::EstimatedWrench ? "estimated-wrench"
-                                                                      : "segment-twist";
+                         : o.what == ArmOutput::What::TipPose         ? "tip-pose"
+                         : o.what == ArmOutput::What::TipPoseInChainRoot ? "tip-pose-in-chain-root"
+                         : o.what == ArmOutput::What::TipTwist           ? "tip-twist"
+                                                                         : "segment-twist";
       outs.push_back({{"what", what}, {"segment", o.segment}, {"data", o.data}});
     }
     e["outputs"] = std::move(outs);
@@ -785,8 +796,9 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["acceleration-constraints"] = std::move(acc);
     Json frc = Json::array();
     for (const CartesianForce& c : a.cartesian_forces) {
-      frc.push_back(
-          {{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}});
+      Json f = {{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}};
+      if (c.at_tip) f["at-tip"] = true;  // its wrench is at the tool's origin
+      frc.push_back(std::move(f));
     }
     e["cartesian-forces"] = std::move(frc);
     Json jf = Json::array();

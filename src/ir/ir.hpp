@@ -157,6 +157,9 @@ struct Step {
 // So_i as seen by the root.
 // With a mount (root_frame is not the chain's root), a pose may also be asked
 // w.r.t. the chain's own root: X_BS = X_RB^-1 X_RS (ChainRootPose).
+// The Tip* kinds are the same of the chain's tip frame T, a tool fixed to the
+// last segment (`segment` is the last one): its pose X_BN X_NT, and its twist
+// at To (runtime::steps::tip_pose, tip_twist).
 // Joint quantities (mospec/joints) are scalars of joint `segment` (segment i
 // is moved by joint i): its position q_i, its velocity qd_i (as read by the
 // kinematics step, a non-finite sample keeping the last finite value) and its
@@ -170,8 +173,11 @@ struct ArmOutput {
     JointPosition,
     JointVelocity,
     JointTorque,
-    EstimatedWrench  // the wrench on segment S_i at So_i seen by the root, from the measured
-                     // torques (runtime::steps::estimated_wrench)
+    EstimatedWrench,  // the wrench on segment S_i at So_i seen by the root, from the measured
+                      // torques (runtime::steps::estimated_wrench)
+    TipPose,
+    TipTwist,
+    TipPoseInChainRoot
   } what = What::SegmentPose;
   int segment = 0;
   int data = 0;
@@ -196,6 +202,10 @@ struct CartesianForce {
   int segment = 0;  // the segment the wrench acts on
   int wrench = -1;  // wrench data: at the segment origin, as seen by the root
   int level = 0;
+  // Attached to the chain's tip frame T (a tool fixed to the last segment,
+  // `segment`): the wrench is at To, as seen by the root, and is moved to the
+  // segment's origin each tick (runtime::steps::tip_wrench_at_segment_origin).
+  bool at_tip = false;
 };
 struct JointForce {
   std::string iri;
@@ -217,7 +227,10 @@ struct ArmSolver {
   // The chain as its robot description has it, rooted at its own root: what
   // the simulator builds (mounted at X_RB). Not part of the IR's JSON.
   runtime::Chain robot_chain{""};
-  bool tip_is_last_segment = true;  // constraints act on the last segment's origin
+  // Where the acceleration constraints act: at the last segment's origin
+  // (true), or at the chain's tip frame T, a tool fixed to that segment
+  // (false: the drivers are attached to the tool).
+  bool tip_is_last_segment = true;
   std::array<double, 3> gravity{};  // in the root frame [m/s^2]
   // mos-slv:GravityCompensated: the ACHD solve runs without gravity, so the
   // directions no driver controls keep their velocity; otherwise (the paper's
@@ -320,10 +333,11 @@ inline constexpr int kMaxGuards = 16;
 // Setup-time constants every back-end builds the same way:
 // the arm's ACHD model: the chain with the solver's gravity (`physical`), or
 // the task model of the ACHD solve (runtime::steps::arm_solve): the same,
-// without gravity when the solver is GravityCompensated; when the motion
-// drivers act on the last segment (tip_is_last_segment), its tip frame is that
-// segment's frame (X_NT = identity), so acceleration constraints act at its
-// origin.
+// without gravity when the solver is GravityCompensated. The physical model's
+// tip frame is the chain's (the tool, which the tip outputs and a force on the
+// tool read); the task model's is the tool only when the acceleration
+// constraints are attached to it, else the last segment's frame (X_NT =
+// identity, tip_is_last_segment), so the constraints act at that origin.
 runtime::AchdModel achd_model(const ArmSolver& arm, bool physical);
 // The time constant of the arm's idle behaviour (runtime::steps::arm_hold):
 // BrakeAndHold's, or kFloatTimeConstant for Float.

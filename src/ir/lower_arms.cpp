@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory_resource>
+#include <optional>
+#include <utility>
 
 #include "description/chain_rdf.hpp"
 #include "ir/controllers.hpp"
@@ -257,6 +259,26 @@ void lower_arm(State& st, TermId solver) {
   const auto origin_of = [&](int segment) {
     return frames.segments[static_cast<size_t>(segment)].origin;
   };
+  // The chain's tip frame T, a tool fixed to the last moving link (a URDF's
+  // tool0, a flange), is the controlled frame of whatever names it or the
+  // link the model says holds it (its `simplices`), when that is not the
+  // last moving link itself: outputs, drivers and forces are then computed
+  // at T, the constant pose composed onto the last segment.
+  const std::string last_frame = frames.segments.empty() ? "" : frames.segments.back().frame;
+  const std::string tool_body =
+      frames.segments.empty() || frames.tip.body == frames.segments.back().body ? ""
+                                                                                : frames.tip.body;
+  const auto is_tool = [&](const std::string& iri) {
+    return !iri.empty() && !frames.segments.empty() && !frames.tip.frame.empty() &&
+           (iri == frames.tip.frame || iri == tool_body);
+  };
+  // How messages name the tool, when the chain has one.
+  const std::string tool_named =
+      frames.tip.frame.empty() || frames.segments.empty()
+          ? std::string()
+          : "the tool frame '" + frames.tip.frame + "' (fixed to '" + last_frame + "' by '" +
+                frames.tip_pose + "'" +
+                (tool_body.empty() ? std::string() : "; its link '" + tool_body + "'") + ")";
   const std::string chain_root_frame = frames.root.frame;
   const std::string chain_root_link = frames.root.body;
   if (auto root = st.object(solver, vocab(slv, "root"))) {
@@ -406,28 +428,23 @@ void lower_arm(State& st, TermId solver) {
       const bool in_chain_root = arm.root_frame != chain_root_frame &&
                                  dd.with_respect_to == chain_root_frame &&
                                  dd.as_seen_by == chain_root_frame;
-      if (seg < 0 && !frames.tip.frame.empty() && dd.of == frames.tip.frame) {
-        // A tool frame fixed to the last link (tool0, a flange): the solver
-        // computes the segments' frames only, but the tool's pose is one
-        // constant pose away, which the models can compose themselves.
-        const std::string& last = frames.segments.back().frame;
-        st.error(o, "unsupported-output",
-                 "'" + dd.of + "' is the chain's tip frame, fixed to the frame '" + last +
-                     "' of its last moving link by '" + frames.tip_pose + "'; the solver '" +
-                     arm.iri + "' outputs the poses of the segments' frames only. To get '" +
-                     dd.iri + "': output the pose of '" + last + "' w.r.t. and seen by '" +
-                     arm.root_frame + "', and compose '" + frames.tip_pose +
-                     "' onto it (a ComposePose: in1 that output, in2 '" + frames.tip_pose +
-                     "', composite '" + dd.iri + "')");
+      if (seg < 0 && (in_root || in_chain_root) && is_tool(dd.of) && dd.of == frames.tip.frame) {
+        // The tool's pose: the last segment's composed with the tool's.
+        const int last = static_cast<int>(frames.segments.size()) - 1;
+        arm.outputs.push_back(
+            {in_chain_root ? ArmOutput::What::TipPoseInChainRoot : ArmOutput::What::TipPose, last,
+             d});
+        kin.out.push_back(d);
         continue;
       }
       if (seg < 0 || !(in_root || in_chain_root)) {
         st.error(o, "unsupported-output",
-                 "the solver '" + arm.iri +
-                     "' outputs poses of the chain's segment frames w.r.t. and seen by its root '" +
-                     arm.root_frame + "' (or the chain's root '" + chain_root_frame + "'); '" +
-                     dd.iri + "' is of '" + dd.of + "' w.r.t. '" + dd.with_respect_to +
-                     "' seen by '" + dd.as_seen_by + "'");
+                 "the solver '" + arm.iri + "' outputs poses of the chain's segment frames" +
+                     (tool_named.empty() ? std::string() : " and of " + tool_named) +
+                     ", w.r.t. and seen by its root '" + arm.root_frame +
+                     "' (or the chain's root '" + chain_root_frame + "'); '" + dd.iri +
+                     "' is of '" + dd.of + "' w.r.t. '" + dd.with_respect_to + "' seen by '" +
+                     dd.as_seen_by + "'");
         continue;
       }
       if (in_chain_root) {
@@ -442,20 +459,24 @@ void lower_arm(State& st, TermId solver) {
       const Data& dd = st.program.data[static_cast<size_t>(d)];
       int seg = segment_by(dd.of, link_of);
       if (seg < 0) seg = segment_by(dd.of, frame_of);
+      // The tool's twist at its origin: the last segment's, moved there.
+      const bool tool = seg < 0 && is_tool(dd.of);
+      if (tool) seg = static_cast<int>(frames.segments.size()) - 1;
+      const std::string origin = tool ? frames.tip.origin : seg < 0 ? "" : origin_of(seg);
       const bool wrt_root = (!chain_root_link.empty() && dd.with_respect_to == chain_root_link) ||
                             dd.with_respect_to == chain_root_frame ||
                             dd.with_respect_to == arm.root_frame;
       if (seg < 0 || !wrt_root || dd.as_seen_by != arm.root_frame || dd.reference_point.empty() ||
-          dd.reference_point != origin_of(seg)) {
-        st.error(
-            o, "unsupported-output",
-            "the solver '" + arm.iri +
-                "' outputs twists of a segment w.r.t. the root, at the segment's origin, seen by "
-                "the root '" +
-                arm.root_frame + "'; '" + dd.iri + "' does not fit");
+          dd.reference_point != origin) {
+        st.error(o, "unsupported-output",
+                 "the solver '" + arm.iri + "' outputs twists of a segment" +
+                     (tool_named.empty() ? std::string() : ", or of " + tool_named + ",") +
+                     " w.r.t. the root, at its origin, seen by the root '" + arm.root_frame +
+                     "'; '" + dd.iri + "' does not fit");
         continue;
       }
-      arm.outputs.push_back({ArmOutput::What::SegmentTwist, seg, d});
+      arm.outputs.push_back(
+          {tool ? ArmOutput::What::TipTwist : ArmOutput::What::SegmentTwist, seg, d});
       kin.out.push_back(d);
     } else {
       st.error(
@@ -496,6 +517,8 @@ void lower_arm(State& st, TermId solver) {
       return it->second;
     };
     std::map<int, TermId> constrained_by;  // tip component -> its acceleration constraint
+    // The first acceleration-constraint specification, and whether it acts at the tool.
+    std::optional<std::pair<TermId, bool>> acting_at;
     for (TermId spec : st.objects(*drivers, vocab(slv, "acceleration-constraint"))) {
       st.pending_iri = st.str(spec);
       const int lv = level_for(spec);
@@ -506,7 +529,11 @@ void lower_arm(State& st, TermId solver) {
                      st.str(spec) + "' is in level " + std::to_string(lv + 1));
       }
       auto link = st.object(spec, vocab(slv, "attached-to"));
-      if (last_link.empty() && !frames.segments.empty()) {
+      const std::string attached = link ? st.str(*link) : std::string("nothing");
+      if (link && is_tool(attached)) {
+        // At the tool: ACHD's tip frame T is the tool (achd_model).
+        if (!acting_at) acting_at = {spec, true};
+      } else if (last_link.empty() && !frames.segments.empty()) {
         st.error(
             spec, "unsupported-attachment",
             "ACHD constrains the chain's last segment, but no link of the robot model holds its "
@@ -514,27 +541,29 @@ void lower_arm(State& st, TermId solver) {
                 frames.segments.back().frame +
                 "' (state the link's `simplices`: its frame and origin point, as "
                 "robots/kinova-gen3.jsonld does); '" +
-                st.str(spec) + "' is attached to '" +
-                (link ? st.str(*link) : std::string("nothing")) + "'");
-      } else if (!link || st.str(*link) != last_link) {
-        // Attached to the tool fixed to the last link (its frame, or a link
-        // named after it): say how the tool is reached instead.
-        const std::string tip = frames.tip.frame;
-        const std::string tip_name = tip.empty() ? "" : local_name(tip);
-        const bool tool =
-            link && !tip.empty() &&
-            (st.str(*link) == tip || (tip_name.starts_with("frame-") &&
-                                      local_name(st.str(*link)) == "link-" + tip_name.substr(6)));
+                st.str(spec) + "' is attached to '" + attached + "'");
+      } else if (attached != last_link) {
         st.error(spec, "unsupported-attachment",
-                 "ACHD constrains the chain's last segment '" + last_link + "'; '" + st.str(spec) +
-                     "' is attached to '" + (link ? st.str(*link) : std::string("nothing")) + "'" +
-                     (tool ? ", the tool frame '" + tip + "' fixed to it by '" + frames.tip_pose +
-                                 "': attach the driver to '" + last_link +
-                                 "' (it acts at that link's origin) and state the constraints on "
-                                 "the tool's pose, the output pose of '" +
-                                 frames.segments.back().frame + "' composed with '" +
-                                 frames.tip_pose + "' (ComposePose)"
-                           : std::string()));
+                 "ACHD constrains the chain's last segment '" + last_link + "' at its origin" +
+                     (tool_named.empty() ? std::string()
+                                         : ", or " + tool_named + " at the tool's origin") +
+                     "; '" + st.str(spec) + "' is attached to '" + attached + "'");
+      } else if (!acting_at) {
+        acting_at = {spec, false};
+      }
+      // One ACHD solve constrains one frame: every acceleration constraint
+      // of the solver acts at the last link's origin, or every one at the tool's.
+      if (acting_at && link && (attached == last_link || is_tool(attached)) &&
+          acting_at->second != is_tool(attached)) {
+        st.error(spec, "unsupported-attachment",
+                 "'" + st.str(spec) + "' is attached to '" + attached + "', but '" +
+                     st.str(acting_at->first) + "' (" + st.place(acting_at->first) + ") to '" +
+                     st.str(*st.object(acting_at->first, vocab(slv, "attached-to"))) +
+                     "': one ACHD solve constrains one frame of the chain, the last segment '" +
+                     last_link + "' or " + tool_named +
+                     "; attach every acceleration constraint of '" + arm.iri +
+                     "' to the same one (a constraint at the last link's origin can be stated "
+                     "at the tool's: the tool moves with that link)");
       }
       for (TermId c : st.objects(spec, vocab(slv, "constraints"))) {
         AccelerationConstraint ac;
@@ -575,6 +604,7 @@ void lower_arm(State& st, TermId solver) {
         arm.acceleration_constraints.push_back(ac);
       }
     }
+    arm.tip_is_last_segment = !(acting_at && acting_at->second);
     // One constraint per tip direction (driven-twice) keeps them within
     // runtime::kMaxConstraints; the verifier checks it again.
     for (TermId spec : st.objects(*drivers, vocab(slv, "cartesian-force"))) {
@@ -600,22 +630,28 @@ void lower_arm(State& st, TermId solver) {
         continue;
       }
       cf.segment = segment_by(st.str(*link), link_of);
+      if (cf.segment < 0 && is_tool(st.str(*link))) {
+        // On the tool: applied at its origin, moved to the last segment's each tick.
+        cf.segment = static_cast<int>(frames.segments.size()) - 1;
+        cf.at_tip = true;
+      }
       if (cf.segment < 0) {
         st.error(spec, "unknown-link",
                  "'" + cf.iri + "' is attached to '" + st.str(*link) +
-                     "', which is no moving link of '" + arm.chain_iri + "'");
+                     "', which is no moving link of '" + arm.chain_iri + "'" +
+                     (tool_named.empty() ? std::string() : " nor " + tool_named));
         continue;
       }
       cf.wrench = st.datum(*force, DataType::Wrench, spec, "force");
       const Data& w = st.program.data[static_cast<size_t>(cf.wrench)];
-      const std::string origin = origin_of(cf.segment);
-      if (w.reference_point != origin || w.as_seen_by != arm.root_frame) {
+      const std::string origin = cf.at_tip ? frames.tip.origin : origin_of(cf.segment);
+      if (origin.empty() || w.reference_point != origin || w.as_seen_by != arm.root_frame) {
         st.error(
             *force, "frame-mismatch",
             "the wrench '" + w.iri + "' drives '" + st.str(*link) + "' through '" + cf.iri +
-                "', so ACHD needs it at that link's origin '" + origin +
-                "' and seen by the root '" + arm.root_frame + "'; it is at '" + w.reference_point +
-                "' seen by '" + w.as_seen_by +
+                "', so ACHD needs it at " + (cf.at_tip ? "the tool's" : "that link's") +
+                " origin '" + origin + "' and seen by the root '" + arm.root_frame +
+                "'; it is at '" + w.reference_point + "' seen by '" + w.as_seen_by +
                 "' (transform it with TransformWrenchToProximal/RotateWrenchToProximalWithPose)");
       }
       solve.in.push_back(cf.wrench);
@@ -813,7 +849,9 @@ void check_driver_directions(State& st) {
     }
     const int last = arm.chain.size() - 1;
     for (const CartesianForce& cf : arm.cartesian_forces) {
-      if (cf.segment != last || !arm.tip_is_last_segment) continue;
+      // Only a force at the point the constraints act at (both at the last
+      // link's origin, or both at the tool's).
+      if (cf.segment != last || cf.at_tip == arm.tip_is_last_segment) continue;
       const auto it = st.producer.find(cf.wrench);
       if (it == st.producer.end()) continue;
       const Step& writer = st.steps[static_cast<size_t>(it->second)];

@@ -71,6 +71,39 @@ inline Vec6 segment_twist(const AchdData& data, int segment) noexcept {
                                   data.V[static_cast<std::size_t>(segment)]);
 }
 
+// The chain's tip frame T (a tool fixed to the last segment N, at model.X_NT):
+// read from N's kinematics as arm_kinematics left them, with `model` the one
+// that carries the tool (the physical model: its X_NT is the chain's tip).
+// T's pose w.r.t. the root, as seen by the root: X_BN X_NT.
+inline Pose tip_pose(const AchdModel& model, const AchdData& data) noexcept {
+  return data.X_BS[static_cast<std::size_t>(model.nq - 1)] * model.X_NT;
+}
+// The same w.r.t. the chain's own root B (see segment_pose_in_chain_root).
+inline Pose tip_pose_in_chain_root(const AchdModel& model, const AchdData& data,
+                                   const Pose& X_BR) noexcept {
+  return X_BR * tip_pose(model, data);
+}
+// T's twist w.r.t. the root at To, as seen by the root. The tool moves with N,
+// so it is N's twist moved to To: the same angular velocity, and the linear
+// velocity of the point To, v_No + w x p_NoTo.
+inline Vec6 tip_twist(const AchdModel& model, const AchdData& data) noexcept {
+  const auto k = static_cast<std::size_t>(model.nq - 1);
+  const Vec6& V_N = data.V[k];  // in N, at No
+  Vec6 V_To_N;
+  V_To_N << V_N.head<3>(), V_N.tail<3>() + V_N.head<3>().cross(model.X_NT.p);
+  return rotate_twist_to_proximal(data.X_BS[k], V_To_N);
+}
+// A wrench acting at To (seen by the root) as the same wrench at the last
+// segment's origin No, where ACHD takes a segment's external wrench:
+// n_No = n_To + p_NoTo x f.
+inline Vec6 tip_wrench_at_segment_origin(const AchdModel& model, const AchdData& data,
+                                         const Vec6& F_To_B) noexcept {
+  const Vec3 p_NoTo_B = data.X_BS[static_cast<std::size_t>(model.nq - 1)].R * model.X_NT.p;
+  Vec6 F = F_To_B;
+  F.head<3>() += p_NoTo_B.cross(F_To_B.tail<3>());
+  return F;
+}
+
 // Joint i's position q_i [rad] and velocity qd_i [rad/s] as arm_kinematics
 // read them this tick (a non-finite sample keeps the last finite value).
 inline double joint_position(const ArmWorkspace& ws, int joint) noexcept {

@@ -105,11 +105,12 @@ grep -q '"https://ex.org/arm/"' arm.jsonld && grep -q 'RevoluteJoint' arm.jsonld
   { echo "FAIL urdf-ok: content"; failures=$((failures+1)); }
 # The default base is named after the robot (issue #33 item 7), the URDF's
 # <limit> is kept as model quantities, and a tip link fixed to the last moving
-# link (a tool0/flange) is written as the chain's tip, with a note that says how
-# a task reaches it.
+# link (a tool0/flange) is written as the chain's tip, a link of its own, with
+# a note that says how a task makes it the controlled frame.
 expect urdf-fixed-tool-note 0 \
-  "^mospec: note: the tip link 'tool' is fixed to the last moving link 'upper' \(fixed joint flange\): the model states its frame <https://mospec.example/robots/arm/frame-tool> as the chain's tip, posed by <https://mospec.example/robots/arm/pose-tool> in <https://mospec.example/robots/arm/frame-upper>\. An arm solver outputs and drives the frame of 'upper' .*compose <https://mospec.example/robots/arm/pose-tool> onto it \(ComposePose" -- \
+  "^mospec: note: the tip link 'tool' is fixed to the last moving link 'upper' \(fixed joint flange\): the model states it as the link <https://mospec.example/robots/arm/link-tool> with the frame <https://mospec.example/robots/arm/frame-tool>, posed by <https://mospec.example/robots/arm/pose-tool> in <https://mospec.example/robots/arm/frame-upper>\. It can be an arm solver's controlled frame: attach its motion drivers to <https://mospec.example/robots/arm/link-tool> \(they act at <https://mospec.example/robots/arm/point-tool-origin>\)" -- \
   "$mospec" import-urdf arm.urdf --tip tool -o arm-default.jsonld
+check urdf-tool-link grep -Fq '"simplices": [ "frame-tool", "point-tool-origin" ]' arm-default.jsonld
 check urdf-base-after-robot grep -q '"@base": "https://mospec.example/robots/arm/"' arm-default.jsonld
 check urdf-effort-limit grep -Fq '"@id": "effort-limit-shoulder"' arm-default.jsonld
 check urdf-position-limits grep -Fq '"@id": "position-limits-shoulder"' arm-default.jsonld

@@ -90,7 +90,8 @@ TEST(Codegen, TheArmIsRebuiltFromItsSegmentConstants) {
   SourceFiles files;
   const ir::Program p = testing::arm_program(files);
   const std::string cpp = file(render(p, &files), "controller.cpp");
-  EXPECT_NE(cpp.find("rt::AchdModel model_right_arm(const rt::Vec3& g_B) {"), std::string::npos);
+  EXPECT_NE(cpp.find("rt::AchdModel model_right_arm(const rt::Vec3& g_B, bool at_tip) {"),
+            std::string::npos);
   std::size_t segments = 0;
   for (std::size_t at = cpp.find("chain.add_segment("); at != std::string::npos;
        at = cpp.find("chain.add_segment(", at + 1)) {

@@ -6,6 +6,7 @@
 // AddressSanitizer, which owns malloc itself.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -111,6 +112,37 @@ TEST_F(NoAllocation, ArmSolveWithOneSidedRows) {
   });
   EXPECT_EQ(n, 0);
   EXPECT_GT(disengaged, 0);
+}
+
+// The tool frame's outputs and a force on the tool (the toy arm's tip is a
+// tool fixed to its last moving link): read and applied every tick.
+TEST_F(NoAllocation, ToolFrameOutputsAndForce) {
+  const Chain chain = chain_from_urdf(testing::kToyUrdf, "world", "tool");
+  const AchdModel model(chain, Vec3(0.0, 0.0, -9.81));
+  AchdData data(model);
+  steps::ArmWorkspace ws(model, 3);
+  ws.alpha_To_B(3, 0) = ws.alpha_To_B(4, 1) = ws.alpha_To_B(5, 2) = 1.0;
+  ws.beta << 0.5, -0.3, 0.2;
+  std::vector<double> q(static_cast<size_t>(model.nq), 0.3), qd(q.size(), 0.1), tau(q.size());
+  const Pose X_BR = Pose::identity();
+  Vec6 F_To;
+  F_To << 0.1, 0.2, 0.3, 1.0, 2.0, 3.0;
+  double sum = 0.0;
+  const long n = alloc_counter::during([&] {
+    for (int k = 0; k < 10000; ++k) {
+      q[static_cast<size_t>(k % model.nq)] += 1e-4;
+      steps::arm_kinematics(model, data, ws, q, qd);
+      sum += steps::tip_pose(model, data).p.x() +
+             steps::tip_pose_in_chain_root(model, data, X_BR).p.y() +
+             steps::tip_twist(model, data)[3];
+      ws.F_ext.fill(Vec6::Zero());
+      ws.F_ext[static_cast<size_t>(model.nq - 1)] +=
+          steps::tip_wrench_at_segment_origin(model, data, F_To);
+      steps::arm_solve(model, model, data, ws, tau);
+    }
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_TRUE(std::isfinite(sum));
 }
 
 TEST_F(NoAllocation, ToyArm) {

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "description/urdf_import.hpp"
+#include "runtime/crba.hpp"
+#include "runtime/kinematics.hpp"
 #include "runtime/rne.hpp"
 #include "runtime/steps.hpp"
 #include "test_robots.hpp"
@@ -249,6 +251,113 @@ TEST(ArmSteps, WithoutAnExternalWrenchTheEstimateIsZeroAndANaNTorqueKeepsTheLast
   EXPECT_TRUE(F.allFinite());
   EXPECT_LT(F.norm(), 1e-9);
   EXPECT_EQ(steps::joint_torque(ws, measured, 1), tau[1]);
+}
+
+// The toy arm's tool (link 'tool', fixed to the last moving link l5 by
+// f_tool: xyz 0.01 0 0.1, rpy 0 0 1), as the URDF states it: built here
+// independently of the chain's folding.
+Pose toy_tool_offset() {
+  return {Eigen::AngleAxisd(1.0, Vec3::UnitZ()).toRotationMatrix(), Vec3(0.01, 0.0, 0.1)};
+}
+
+// The same arm ending at its last moving link (no tool): its tip is l5's frame.
+Chain toy_without_tool() {
+  return description::chain_from_urdf(testing::kToyUrdf, "world", "l5");
+}
+
+TEST(ArmSteps, TheToolFramesPoseTwistAndWrenchAreTheLastLinksComposedWithItsFixedOffset) {
+  const Arm arm;
+  const Chain bare = toy_without_tool();
+  const AchdModel physical(arm.chain, kGravity), last(bare, kGravity);
+  ASSERT_EQ(last.nq, physical.nq);
+  AchdData data(physical), kin(physical), kin_last(last);
+  const Pose X_NT = toy_tool_offset();
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 20; ++trial) {
+    steps::ArmWorkspace ws = sampled(physical, data, rng);
+    // The pose: l5's frame (from the chain without the tool) composed with
+    // the URDF's fixed offset.
+    const Pose X_BT = steps::tip_pose(physical, data);
+    ASSERT_EQ(forward_kinematics(last, kin_last, ws.q), Status::Ok);
+    const Pose want = kin_last.X_BS[static_cast<size_t>(last.nq - 1)] * X_NT;
+    EXPECT_TRUE(testing::near(X_BT.R, want.R, 1e-12)) << "trial " << trial;
+    EXPECT_TRUE(testing::near(X_BT.p, want.p, 1e-12)) << "trial " << trial;
+    // Not the last link's own pose: the offset is there.
+    EXPECT_GT((X_BT.p - kin_last.X_BS[static_cast<size_t>(last.nq - 1)].p).norm(), 0.09);
+    // The twist at To, against the pose differentiated along q + qd t.
+    const auto pose_at = [&](double t) {
+      forward_kinematics(last, kin_last, ws.q + ws.qd * t);
+      return kin_last.X_BS[static_cast<size_t>(last.nq - 1)] * X_NT;
+    };
+    const double h = 1e-6;
+    const Pose ahead = pose_at(h), behind = pose_at(-h);
+    const Vec3 v = (ahead.p - behind.p) / (2 * h);
+    const Mat3 W = (ahead.R - behind.R) / (2 * h) * X_BT.R.transpose();  // [w]x
+    const Vec6 V = steps::tip_twist(physical, data);
+    EXPECT_TRUE(testing::near(Vec3(V.tail<3>()), v, 1e-7)) << "trial " << trial;
+    EXPECT_TRUE(testing::near(Vec3(V.head<3>()), Vec3(W(2, 1), W(0, 2), W(1, 0)), 1e-7))
+        << "trial " << trial;
+    // A wrench at To moved to No does the same virtual work on every joint:
+    // J_To^T F_To = J_No^T F_No.
+    Vec6 F_To;
+    F_To << 0.3, -0.2, 0.5, 4.0, -7.0, 2.5;
+    const Vec6 F_No = steps::tip_wrench_at_segment_origin(physical, data, F_To);
+    ASSERT_EQ(tip_jacobian(physical, kin, ws.q), Status::Ok);
+    ASSERT_EQ(tip_jacobian(last, kin_last, ws.q), Status::Ok);
+    EXPECT_TRUE(testing::near(JointVector(kin_last.J_To_B.transpose() * F_No),
+                              JointVector(kin.J_To_B.transpose() * F_To), 1e-12))
+        << "trial " << trial;
+  }
+}
+
+// The linear acceleration of a point of the last link, from outside the
+// solver: the twist J(q) qd at that point differentiated along q + qd t +
+// qdd t^2 / 2, less w x v (the spatial acceleration ACHD's beta is on).
+Vec3 point_acceleration(const AchdModel& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                        const Eigen::VectorXd& qdd) {
+  AchdData kin(model);
+  const auto twist_at = [&](double t) {
+    tip_jacobian(model, kin, q + qd * t + 0.5 * qdd * t * t);
+    return Vec6(kin.J_To_B * (qd + qdd * t));
+  };
+  const auto central = [&](double h) { return Vec6((twist_at(h) - twist_at(-h)) / (2.0 * h)); };
+  const double h = 1e-4;
+  const Vec6 V = twist_at(0.0);
+  const Vec6 dV = (4.0 * central(h / 2) - central(h)) / 3.0;
+  return dV.tail<3>() - V.head<3>().cross(V.tail<3>());
+}
+
+TEST(ArmSteps, AnAccelerationConstraintAtTheToolIsMetAtTheToolNotAtTheLastLinksOrigin) {
+  // The task model whose tip is the tool (the drivers attached to it): three
+  // linear acceleration constraints there. The command, applied to the arm
+  // (forward dynamics under real gravity), gives the tool's origin exactly
+  // that acceleration; the last link's origin gets another one.
+  const Arm arm;
+  const Chain bare = toy_without_tool();
+  const AchdModel physical(arm.chain, kGravity), task(arm.chain, Vec3::Zero());
+  const AchdModel last(bare, kGravity);
+  AchdData data(physical), fd(physical);
+  const Vec3 beta(0.5, -0.3, 0.2);
+  std::mt19937 rng(29);
+  for (int trial = 0; trial < 10; ++trial) {
+    steps::ArmWorkspace ws(physical, 3);
+    const testing::RandomState s = testing::random_state(rng, physical.nq);
+    std::vector<double> q(s.q.data(), s.q.data() + physical.nq);
+    std::vector<double> qd(s.qd.data(), s.qd.data() + physical.nq);
+    steps::arm_kinematics(physical, data, ws, q, qd);
+    for (int c = 0; c < 3; ++c) ws.alpha_To_B(3 + c, c) = 1.0;
+    ws.beta = beta;
+    std::vector<double> tau(static_cast<size_t>(physical.nq));
+    steps::arm_solve(task, physical, data, ws, tau);
+    ASSERT_EQ(ws.status, Status::Ok) << "trial " << trial;
+    const Eigen::VectorXd command = Eigen::Map<const Eigen::VectorXd>(tau.data(), physical.nq);
+    ASSERT_EQ(forward_dynamics(physical, fd, ws.q, ws.qd, command, {}), Status::Ok);
+    const Eigen::VectorXd qdd = fd.qdd, q_now = ws.q, qd_now = ws.qd;
+    EXPECT_TRUE(testing::near(point_acceleration(physical, q_now, qd_now, qdd), beta, 1e-6))
+        << "trial " << trial;
+    EXPECT_GT((point_acceleration(last, q_now, qd_now, qdd) - beta).norm(), 1e-2)
+        << "trial " << trial;
+  }
 }
 
 }  // namespace
