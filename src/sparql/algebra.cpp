@@ -81,8 +81,11 @@ class Builder {
       if (!pr.has_expr) var(pr.var.value);
     plan_.root = group(q.where, nullptr);
     const VarSet& scope = scope_[plan_.root];
+    if (q.form == QueryForm::Ask && !q.group_by.empty())
+      ast::fail(kUnsupported, q.group_pos, "GROUP BY in an ASK query is not supported");
     if (q.form == QueryForm::Select) {
-      project(q, scope, plan_.result_vars, plan_.result_names, plan_.projected_exprs);
+      project(q, scope, plan_.result_vars, plan_.result_names, plan_.projected_exprs,
+              plan_.grouping);
     }
     for (const ast::OrderKey& k : q.order) plan_.order.push_back({expr(k.expr), k.descending});
   }
@@ -450,11 +453,19 @@ class Builder {
 
   // A SELECT's columns, for the query and its sub-SELECTs alike: every
   // visible variable in scope for `*`, else the projection, whose
-  // `(expr AS ?v)` may not name a variable already in scope.
+  // `(expr AS ?v)` may not name a variable already in scope. A grouped
+  // SELECT (GROUP BY, or an aggregate) may project only its keys, its
+  // aggregates and expressions of those (18.2.4.1).
   void project(const ast::Query& q, const VarSet& scope, std::vector<Var>& result_vars,
                std::vector<std::string>& names,
-               std::vector<std::pair<Var, uint32_t>>& projected_exprs) {
+               std::vector<std::pair<Var, uint32_t>>& projected_exprs, Grouping& grouping) {
+    grouping.active = !q.group_by.empty();
+    for (const ast::Projection& pr : q.projection)
+      if (pr.has_expr && pr.expr.kind == ast::Expr::Kind::Aggregate) grouping.active = true;
     if (q.star) {
+      if (grouping.active)
+        ast::fail(kSyntax, q.group_pos,
+                  "SELECT * cannot be grouped: name the GROUP BY variables and aggregates");
       for (Var v = 0; v < plan_.var_names.size(); ++v) {
         if (!plan_.hidden[v] && scope.contains(v)) {
           result_vars.push_back(v);
@@ -464,20 +475,45 @@ class Builder {
       return;
     }
     VarSet projected = scope;
+    if (grouping.active) {
+      projected = VarSet();
+      for (const ast::Term& k : q.group_by) {
+        const Var v = var(k.value);
+        grouping.keys.push_back(v);
+        projected.insert(v);
+      }
+    }
     for (const ast::Projection& pr : q.projection) {
       const Var v = var(pr.var.value);
       if (pr.has_expr) {
-        if (projected.contains(v))
+        if (projected.contains(v) || scope.contains(v))
           ast::fail(
               kSyntax, pr.var.pos,
               "(... AS ?" + pr.var.value + "): variable ?" + pr.var.value + " is already in scope");
-        projected_exprs.emplace_back(v, expr(pr.expr));
+        if (pr.expr.kind == ast::Expr::Kind::Aggregate) {
+          grouping.aggregates.push_back(
+              Aggregate{v, expr(pr.expr.args[0]), pr.expr.distinct, pr.expr.separator});
+        } else {
+          const uint32_t x = expr(pr.expr);
+          if (grouping.active)
+            for (Var u : plan_.expr_vars[x])
+              if (!projected.contains(u)) ungrouped(pr.expr.pos, u);
+          projected_exprs.emplace_back(v, x);
+        }
         plan_.assigned.emplace_back(v, pr.var.pos);
         projected.insert(v);
+      } else if (grouping.active && !projected.contains(v)) {
+        ungrouped(pr.var.pos, v);
       }
       result_vars.push_back(v);
       names.push_back(pr.var.value);
     }
+  }
+  [[noreturn]] void ungrouped(ast::Pos pos, Var v) const {
+    ast::fail(kSyntax, pos,
+              "?" + plan_.var_names[v] +
+                  " is neither a GROUP BY variable nor an aggregate's result (a grouped SELECT "
+                  "projects only those)");
   }
 
   // A sub-SELECT, built with a variable scope of its own: its variables that
@@ -497,7 +533,7 @@ class Builder {
     sel.root = group(q.where, nullptr);
     const VarSet scope = scope_[sel.root];
     std::vector<std::string> names;
-    project(q, scope, sel.result_vars, names, sel.projected_exprs);
+    project(q, scope, sel.result_vars, names, sel.projected_exprs, sel.grouping);
     for (const ast::OrderKey& k : q.order) sel.order.push_back({expr(k.expr), k.descending});
     const VarSet certain = plan_.ops[sel.root].certain;
     for (const auto& [name, v] : vars_) plan_.hidden[v] = true;
@@ -595,6 +631,10 @@ class Builder {
         vs.insert_all(plan_.ops[e.value].mentioned);
         break;
       }
+      case ast::Expr::Kind::Aggregate:
+        ast::fail(kUnsupported, a.pos,
+                  a.name + " is supported only as a whole SELECT expression, (" + a.name +
+                      "(...) AS ?var)");
       case ast::Expr::Kind::Call:
         call(a, e);
         for (const ast::Expr& x : a.args) arg(x);
@@ -691,6 +731,14 @@ class Printer {
   template <class S>
   std::string modified(const S& q) const {
     std::string body = op(q.root);
+    if (q.grouping.active) {
+      std::string keys;
+      for (Var k : q.grouping.keys) keys += (keys.empty() ? "" : " ") + var(k);
+      body = "(group (" + keys + ") " + body + ")";
+      for (const Aggregate& a : q.grouping.aggregates)
+        body = "(extend " + var(a.var) + " (group_concat " + (a.distinct ? "distinct " : "") +
+               expr(a.expr) + " " + quoted(a.separator) + ") " + body + ")";
+    }
     for (const auto& [v, x] : q.projected_exprs)
       body = "(extend ?" + plan_.var_names[v] + " " + expr(x) + " " + body + ")";
     if (!q.order.empty()) {
@@ -708,6 +756,14 @@ class Printer {
   }
 
   std::string var(Var v) const { return "?" + plan_.var_names[v]; }
+  static std::string quoted(std::string_view text) {
+    std::string out = "\"";
+    for (char c : text) {
+      if (c == '"' || c == '\\') out += '\\';
+      out += c;
+    }
+    return out + "\"";
+  }
   std::string term(uint32_t id) const { return rdf::to_ntriples(plan_.terms, rdf::TermId{id}); }
   std::string slot(const Slot& s) const { return s.is_var ? var(s.value) : term(s.value); }
 

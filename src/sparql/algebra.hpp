@@ -168,6 +168,22 @@ struct OrderKey {
   bool descending;
 };
 
+// GROUP BY and aggregates (18.2.4.1, 18.5): the solutions are grouped by
+// the values of `keys` (all in one group when there are none); the group's one
+// solution binds the keys and each aggregate's variable. Only GROUP_CONCAT, as
+// a whole SELECT expression, is supported (evaluate.cpp says how it orders).
+struct Aggregate {
+  Var var = kNone;        // the (... AS ?var) it is bound to
+  uint32_t expr = kNone;  // its argument
+  bool distinct = false;
+  std::string separator;
+};
+struct Grouping {
+  bool active = false;  // GROUP BY or an aggregate
+  std::vector<Var> keys;
+  std::vector<Aggregate> aggregates;
+};
+
 // A nested SELECT (18.2.1: evaluated on its own, bottom-up; its solutions are
 // then joined with the enclosing group). Its variables are slots of their
 // own, hidden, except that pre-binding pins them by name like the outer ones.
@@ -176,6 +192,7 @@ struct Select {
   std::vector<Var> result_vars;                           // inner slots, by column
   std::vector<Var> outer_vars;                            // the enclosing query's, by column
   std::vector<std::pair<Var, uint32_t>> projected_exprs;  // (inner var, expr)
+  Grouping grouping;
   bool distinct = false;
   std::vector<OrderKey> order;
   int64_t limit = -1, offset = 0;
@@ -197,6 +214,7 @@ struct Plan {
   std::vector<std::string> result_names;
   std::vector<Var> result_vars;                           // by column
   std::vector<std::pair<Var, uint32_t>> projected_exprs;  // (var, expr) computed after WHERE
+  Grouping grouping;                                      // applied before projected_exprs
   bool distinct = false;
   std::vector<OrderKey> order;
   int64_t limit = -1, offset = 0;

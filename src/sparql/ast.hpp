@@ -83,6 +83,7 @@ struct Expr {
     Call,    // built-in function `name` (upper case) or function IRI (is_iri)
     Exists,  // pattern
     NotExists,
+    Aggregate,  // name (upper case) over args[0]; only GROUP_CONCAT is parsed
   };
   Kind kind = Kind::Term;
   Term term;
@@ -90,6 +91,8 @@ struct Expr {
   bool is_iri = false;
   std::vector<Expr> args;
   std::shared_ptr<Group> pattern;  // Exists / NotExists
+  bool distinct = false;           // Aggregate: over distinct values
+  std::string separator = " ";     // Aggregate GROUP_CONCAT (18.5.1.7: a space by default)
   Pos pos;
 };
 
@@ -128,6 +131,8 @@ struct Query {
   bool star = false;
   std::vector<Projection> projection;
   Group where;
+  std::vector<Term> group_by;  // GROUP BY variables
+  Pos group_pos;               // of GROUP, when there is one
   std::vector<OrderKey> order;
   int64_t limit = -1;
   int64_t offset = 0;

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <map>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
@@ -340,7 +341,11 @@ class Engine {
       }
       return ordered || rows < wanted;
     };
-    eval(plan.root, Cont(sink));
+    if (plan.grouping.active) {
+      eval_grouped(plan.grouping, plan.root, sink);
+    } else {
+      eval(plan.root, Cont(sink));
+    }
 
     if (ordered) {
       const size_t nk = plan.order.size();
@@ -386,6 +391,92 @@ class Engine {
       cells.erase(cells.begin(), cells.begin() + static_cast<ptrdiff_t>(first * width));
     }
     return last - first;
+  }
+
+  // GROUP BY (18.2.4.1): the solutions of `root` in groups of equal keys
+  // (unbound is a key value of its own), in the order of each group's first
+  // solution; without GROUP BY, one group, even of no solutions. Each group's
+  // one solution binds its keys and aggregates and is passed to `emit`.
+  template <class F>
+  void eval_grouped(const Grouping& g, uint32_t root, F& emit) {
+    const size_t nk = g.keys.size(), na = g.aggregates.size();
+    std::map<std::vector<TermId>, size_t> index;
+    std::vector<const std::vector<TermId>*> keys;  // by group
+    std::vector<std::vector<TermId>> values;       // by group * na + aggregate
+    std::vector<TermId> key(nk);
+    auto add = [&]() {
+      budget_->tick();
+      for (size_t i = 0; i < nk; ++i) key[i] = row_[g.keys[i]];
+      auto [it, fresh] = index.try_emplace(key, keys.size());
+      if (fresh) {
+        keys.push_back(&it->first);
+        values.resize(values.size() + na);
+      }
+      // An element that is an error (kUnbound) makes its aggregate one.
+      for (size_t a = 0; a < na; ++a)
+        values[it->second * na + a].push_back(eval_term(g.aggregates[a].expr));
+      return true;
+    };
+    eval(root, Cont(add));
+    if (keys.empty() && nk == 0) {
+      keys.push_back(&index.try_emplace(key, 0).first->first);
+      values.resize(na);
+    }
+    for (size_t grp = 0; grp < keys.size(); ++grp) {
+      const size_t mark = filled_.size(), arena = arena_used_;
+      auto bind = [&](Var v, TermId value) {
+        if (value == kUnbound || row_[v] != kUnbound) return;
+        row_[v] = value;
+        filled_.push_back(v);
+      };
+      for (size_t i = 0; i < nk; ++i) bind(g.keys[i], (*keys[grp])[i]);
+      for (size_t a = 0; a < na; ++a)
+        bind(g.aggregates[a].var, group_concat(g.aggregates[a], values[grp * na + a]));
+      const bool cont = emit();
+      while (filled_.size() > mark) {
+        row_[filled_.back()] = kUnbound;
+        filled_.pop_back();
+      }
+      arena_used_ = arena;
+      if (!cont) return;
+    }
+  }
+
+  // GROUP_CONCAT (18.5.1.7) with CONCAT's typing: every element a string (the
+  // language tag kept when all share it), else an error (kUnbound). SPARQL
+  // leaves the order open; the strings are sorted by code point (then
+  // language tag) so the result does not depend on the join order the
+  // evaluator picks. DISTINCT keeps one of equal terms.
+  TermId group_concat(const Aggregate& agg, std::vector<TermId>& elements) {
+    std::vector<Value> vs;
+    vs.reserve(elements.size());
+    for (TermId id : elements) {
+      Value v = value_of(id);
+      if (!stringish(v)) return kUnbound;
+      vs.push_back(v);
+    }
+    auto less = [](const Value& a, const Value& b) {
+      if (a.str != b.str) return a.str < b.str;
+      if (a.lang != b.lang) return a.lang < b.lang;
+      return a.id < b.id;
+    };
+    budget_->bulk(Budget::Bulk::Sort, vs.size() * 2, [&] {
+      std::sort(vs.begin(), vs.end(), less);
+      return true;
+    });
+    if (agg.distinct)
+      vs.erase(std::unique(vs.begin(), vs.end(),
+                           [](const Value& a, const Value& b) { return a.id == b.id; }),
+               vs.end());
+    std::string text;
+    std::string_view lang = vs.empty() ? std::string_view() : vs.front().lang;
+    for (size_t i = 0; i < vs.size(); ++i) {
+      if (i > 0) text += agg.separator;
+      text += vs[i].str;
+      budget_->bytes(vs[i].str.size() + agg.separator.size());
+      if (vs[i].lang != lang) lang = {};
+    }
+    return to_term(Value::string(store(std::move(text)), lang));
   }
 
   // ---- ops ----

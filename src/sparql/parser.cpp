@@ -1158,8 +1158,8 @@ class Parser {
       e.pattern = std::make_shared<Group>(parse_group());
       return e;
     }
-    static const char* const kAggregates[] = {"COUNT", "SUM",    "MIN",         "MAX",
-                                              "AVG",   "SAMPLE", "GROUP_CONCAT"};
+    if (name == "GROUP_CONCAT") return parse_group_concat(e);
+    static const char* const kAggregates[] = {"COUNT", "SUM", "MIN", "MAX", "AVG", "SAMPLE"};
     for (const char* a : kAggregates)
       if (name == a) unsupported(t, "aggregate " + name + " is");
     if (name == "TRUE" || name == "FALSE") expected(t, "an expression");  // unreachable
@@ -1177,6 +1177,29 @@ class Parser {
       return e;
     }
     e.args = parse_arg_list(name);
+    return e;
+  }
+
+  // GROUP_CONCAT '(' DISTINCT? Expression ( ';' SEPARATOR '=' String )? ')'
+  // (grammar [127]); where it may stand is the algebra builder's concern.
+  Expr parse_group_concat(Expr& e) {
+    e.kind = Expr::Kind::Aggregate;
+    e.name = "GROUP_CONCAT";
+    expect_punct("(", "after GROUP_CONCAT");
+    if (is_keyword(peek(), "DISTINCT")) {
+      next();
+      e.distinct = true;
+    }
+    e.args.push_back(parse_expression());
+    if (is_punct(peek(), ";")) {
+      next();
+      if (!is_keyword(peek(), "SEPARATOR")) expected(peek(), "SEPARATOR after ';' in GROUP_CONCAT");
+      next();
+      expect_punct("=", "after SEPARATOR");
+      if (peek().kind != Tok::String) expected(peek(), "a string after SEPARATOR =");
+      e.separator = next().text;
+    }
+    expect_punct(")", "to close GROUP_CONCAT");
     return e;
   }
 
@@ -1230,7 +1253,17 @@ class Parser {
   }
 
   void parse_modifiers(Query& q) {
-    if (is_keyword(peek(), "GROUP")) unsupported(peek(), "GROUP BY is");
+    if (is_keyword(peek(), "GROUP")) {
+      q.group_pos = pos(next());
+      if (!is_keyword(peek(), "BY")) expected(peek(), "BY after GROUP");
+      next();
+      while (peek().kind == Tok::Var) q.group_by.push_back(parse_var());
+      if (q.group_by.empty()) {
+        if (is_punct(peek(), "(") || peek().kind == Tok::Word || at_iri())
+          unsupported(peek(), "GROUP BY an expression is (group by variables)");
+        expected(peek(), "a variable after GROUP BY");
+      }
+    }
     if (is_keyword(peek(), "HAVING")) unsupported(peek(), "HAVING is");
     if (is_keyword(peek(), "ORDER")) {
       next();

@@ -22,9 +22,11 @@
 // UCASE LCASE (ASCII case mapping) CONCAT LANGMATCHES sameTerm and the XSD
 // casts xsd:string/integer/decimal/double/float/boolean; ORDER BY, LIMIT,
 // OFFSET; sub-SELECTs (with their own modifiers, evaluated bottom-up and
-// joined with the enclosing group).
-// Everything else (MINUS, VALUES, SERVICE, GRAPH, FROM, aggregates,
-// GROUP BY, HAVING, CONSTRUCT, DESCRIBE, updates, unknown functions) is rejected
+// joined with the enclosing group); GROUP BY variables and the aggregate
+// GROUP_CONCAT (DISTINCT, SEPARATOR) as a whole SELECT expression, its strings
+// sorted by code point (SPARQL leaves the order open).
+// Everything else (MINUS, VALUES, SERVICE, GRAPH, FROM, other aggregates,
+// GROUP BY expressions, HAVING, CONSTRUCT, DESCRIBE, updates, unknown functions) is rejected
 // with a QueryError of code "unsupported-sparql" naming the construct and its
 // position; syntax errors have code "sparql-syntax". Messages start with
 // "line L, column C: " (positions inside the query text; columns count bytes).

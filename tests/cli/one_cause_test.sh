@@ -31,4 +31,23 @@ expect "a misspelt quantity is refused" 1 "" -- "$mospec" validate models/sc0a.j
 check "one error for the misspelt quantity" test "$(grep -c ': error: ' "$work/stdout.txt")" = 1
 stdout_has "with the nearest quantity" "names <$m/pos-rightarm-ee-xz>, which no loaded file defines: .*; did you mean <$m/pos-rightarm-ee-x>\?"
 
+# A misspelt joint of a solver's chain (a joint quantity's, a joint force's):
+# one error each, at the node that names it, listing the chain's joints
+# (sorted); nothing else follows from it.
+r=https://mospec.example/robots/kinova-gen3
+sed -i '0,/joint-Actuator4"/s//joint-Actuatr4"/' models/examples/joint-limit/00-misc.json
+sed -i 's/"attached-to": "https:\/\/mospec.example\/robots\/kinova-gen3\/joint-Actuator4"/"attached-to": "https:\/\/mospec.example\/robots\/kinova-gen3\/joint-Actuator44"/' \
+  models/examples/joint-limit/06-solver-specification.json
+grep -q 'joint-Actuatr4' models/examples/joint-limit/00-misc.json &&
+  grep -q 'joint-Actuator44' models/examples/joint-limit/06-solver-specification.json ||
+  fail "the test's edits did not apply"
+expect "misspelt joints are refused by validation" 1 "" -- "$mospec" validate models/examples/joint-limit.json
+check "one error per misspelt joint" test "$(grep -c ': error: ' "$work/stdout.txt")" = 2
+joints="$r/joint-Actuator1, $r/joint-Actuator2, $r/joint-Actuator3, $r/joint-Actuator4, $r/joint-Actuator5, $r/joint-Actuator6, $r/joint-Actuator7"
+stdout_has "the joint quantity's, with the chain's joints" \
+  "^models/examples/joint-limit/00-misc.json:[0-9]+:[0-9]+: error: <https://mospec.example/models/examples/joint-limit/q-rightarm-j4>: no joint <$r/joint-Actuatr4> in the chain <$r/chain> \(the chain of the solver that outputs it\); its joints are $joints "
+stdout_has "the joint force's, with the chain's joints" \
+  "^models/examples/joint-limit/06-solver-specification.json:[0-9]+:[0-9]+: error: <[^>]*>: no joint <$r/joint-Actuator44> in the chain <$r/chain> \(the chain of the solver whose drivers list it\); its joints are $joints "
+stdout_has "no other finding" '^shacl: 2 violations, 0 warnings, 0 infos$'
+
 finish one_cause_test

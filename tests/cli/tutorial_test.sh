@@ -6,9 +6,11 @@
 #   line states with a trailing "# exits N"; a line continued with '\' is
 #   one command. `make` targets are not run (they build and test the whole
 #   tree; `make test` is this suite): the test says so.
-# - Every JSON key they name (`"key"`) is one mospec reads
-#   (tests/cli/docs_keys.py: a model term with its shape, a world file's or
-#   a run summary's key).
+# - Every JSON key they and the other docs/*.md name is one mospec reads
+#   where they name it (tests/cli/docs_keys.py; docs/testing.md, "Keys in
+#   the documents"): a model node's key a term of its contexts that the
+#   shapes allow on its class, a world file's key one the world file reader
+#   reads, a summary's or the IR's key one the documents' commands wrote.
 # Then the claims the tutorial makes about the results are checked.
 # Usage: tutorial_test.sh MOSPEC_BINARY SOURCE_DIR
 source "$(dirname "$0")/../support/cli_lib.sh"
@@ -53,10 +55,34 @@ run_commands() {
   done < "$work/$tag-commands.txt"
 }
 
-# The key check can fail: a tube's keys misnamed beside its class are found.
-printf -- '- a tube (`BilateralConstraint`, `"low"` and `"high"`)\n' > "$work/misnamed.md"
-expect "a misnamed model key is found" 1 "" -- python3 "$src/tests/cli/docs_keys.py" "$src" "$work/misnamed.md"
-check "it names the key and the line" grep -q 'misnamed.md:1: `"low"` (beside `BilateralConstraint`' "$work/stdout.txt"
+# The key check can fail, at the document's line, with the key it meant:
+# a joint limit's "lower" beside a tube, in prose, in a table of what is read
+# and in a JSON node; a key no context defines; a world file's key misspelt.
+cat > "$work/misnamed.md" <<'DOC'
+- a tube (`BilateralConstraint`, a `"lower"` and an `"upper-threshold"`)
+
+| class | property | outcome |
+|---|---|---|
+| EqualityConstraint | `reference-value` | honoured |
+| BilateralConstraint | `lower`, `upper-threshold` | honoured |
+
+```json
+{ "@id": "tube", "@type": ["Constraint", "BilateralConstraint"], "quantity": "q",
+  "lower-threshold": "lo", "uper-threshold": "hi" }
+```
+
+```json
+{ "control_period": 0.001, "substep": 2 }
+```
+DOC
+expect "misnamed keys are found" 1 "" -- python3 "$src/tests/cli/docs_keys.py" "$src" "$work/misnamed.md"
+stdout_has "in prose, beside its class, with the key it meant" \
+  '^.*misnamed.md:1: "lower" \(<https://comp-rob2b.github.io/metamodels/mospec/joints#lower>\) beside `BilateralConstraint`: no shape of metamodels/ allows it there; did you mean "lower-threshold"\?$'
+stdout_has "in a table row" '^.*misnamed.md:6: "lower" .* beside `BilateralConstraint`: .*did you mean "lower-threshold"\?$'
+stdout_has "in a JSON node: a key no context defines" \
+  '^.*misnamed.md:10: "uper-threshold" on a Constraint/BilateralConstraint is no term of the contexts it uses; did you mean "upper-threshold"\?$'
+stdout_has "in a world file" '^.*misnamed.md:14: "substep" is no key of a world file .*did you mean "substeps"\?$'
+check "four findings, the right keys passing" test "$(wc -l < "$work/stdout.txt")" = 4
 
 readme="$work/readme-tree"
 make_tree "$readme"
@@ -72,6 +98,13 @@ cd "$tree" || exit 1
 run_commands "$src/docs/tutorial.md" "$tree" tutorial
 expect "the tutorial's JSON keys are mospec's" 0 "" -- \
   python3 "$src/tests/cli/docs_keys.py" "$src" "$src/docs/tutorial.md" --json "$tree/run.json"
+sed 's/^/  /' "$work/stdout.txt"
+
+# The other documents' keys, with the IR's and the summaries' keys the
+# README's and the tutorial's commands wrote.
+expect "the other documents' JSON keys are mospec's" 0 "" -- \
+  python3 "$src/tests/cli/docs_keys.py" "$src" $(ls "$src"/docs/*.md | grep -v '/tutorial.md$') \
+  --json $summaries "$tree/run.json" "$tree/two-step.json"
 sed 's/^/  /' "$work/stdout.txt"
 
 # What the guide says about the results.

@@ -137,7 +137,16 @@ TEST(SparqlParser, UnsupportedConstructsAreRejectedWithTheirPosition) {
        "line 1, column 11: FROM (dataset clauses) is not supported"},
       {"SELECT (COUNT(?x) AS ?n) { ?x ?p ?o }",
        "line 1, column 9: aggregate COUNT is not supported"},
-      {"SELECT ?x { ?x ?p ?o } GROUP BY ?x", "line 1, column 24: GROUP BY is not supported"},
+      {"SELECT ?x { ?x ?p ?o } GROUP BY STR(?x)",
+       "line 1, column 33: GROUP BY an expression is (group by variables) not supported"},
+      {"ASK { ?x ?p ?o } GROUP BY ?x",
+       "line 1, column 18: GROUP BY in an ASK query is not supported"},
+      {"SELECT (CONCAT(GROUP_CONCAT(?x), \"!\") AS ?n) { ?x ?p ?o }",
+       "line 1, column 16: GROUP_CONCAT is supported only as a whole SELECT expression, "
+       "(GROUP_CONCAT(...) AS ?var)"},
+      {"SELECT ?x { ?x ?p ?o } ORDER BY GROUP_CONCAT(?x)",
+       "line 1, column 33: GROUP_CONCAT is supported only as a whole SELECT expression, "
+       "(GROUP_CONCAT(...) AS ?var)"},
       {"SELECT ?x { ?x ?p ?o } HAVING (?x)", "line 1, column 24: HAVING is not supported"},
       {"CONSTRUCT { ?x ?p ?o } WHERE { ?x ?p ?o }",
        "line 1, column 1: CONSTRUCT queries are not supported"},
@@ -154,6 +163,46 @@ TEST(SparqlParser, UnsupportedConstructsAreRejectedWithTheirPosition) {
   for (const Case& c : cases) {
     QueryError e = error_of(c.query);
     EXPECT_EQ(e.code(), "unsupported-sparql") << c.query;
+    EXPECT_EQ(e.diagnostic().message, c.message) << c.query;
+  }
+}
+
+TEST(SparqlParser, GroupConcatAndGroupBy) {
+  EXPECT_EQ(parse_query("SELECT ?s (GROUP_CONCAT(DISTINCT STR(?o); SEPARATOR=\", \") AS ?all) "
+                        "{ ?s ?p ?o } GROUP BY ?s")
+                .algebra(),
+            "(select (?s ?all) (extend ?all (group_concat distinct (str ?o) \", \") (group (?s) "
+            "(group (join (bgp (?s ?p ?o)))))))");
+  // Without GROUP BY the aggregate makes one group; the separator is a space.
+  EXPECT_EQ(parse_query("SELECT (group_concat(?o) AS ?all) { ?s ?p ?o }").algebra(),
+            "(select (?all) (extend ?all (group_concat ?o \" \") (group () (group (join (bgp (?s "
+            "?p ?o)))))))");
+  struct Case {
+    const char* query;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"SELECT ?p (GROUP_CONCAT(?o) AS ?all) { ?s ?p ?o } GROUP BY ?s",
+       "line 1, column 8: ?p is neither a GROUP BY variable nor an aggregate's result (a grouped "
+       "SELECT projects only those)"},
+      {"SELECT (STR(?o) AS ?t) { ?s ?p ?o } GROUP BY ?s",
+       "line 1, column 9: ?o is neither a GROUP BY variable nor an aggregate's result (a grouped "
+       "SELECT projects only those)"},
+      {"SELECT * { ?s ?p ?o } GROUP BY ?s",
+       "line 1, column 23: SELECT * cannot be grouped: name the GROUP BY variables and aggregates"},
+      {"SELECT (GROUP_CONCAT(?o) AS ?o) { ?s ?p ?o }",
+       "line 1, column 29: (... AS ?o): variable ?o is already in scope"},
+      {"SELECT (GROUP_CONCAT(?o; ?x) AS ?all) { ?s ?p ?o }",
+       "line 1, column 26: expected SEPARATOR after ';' in GROUP_CONCAT, found variable ?x"},
+      {"SELECT (GROUP_CONCAT(?o; SEPARATOR=1) AS ?all) { ?s ?p ?o }",
+       "line 1, column 36: expected a string after SEPARATOR =, found number 1"},
+      {"SELECT ?s { ?s ?p ?o } GROUP BY",
+       "line 1, column 32: expected a variable after GROUP BY, "
+       "found end of query"},
+  };
+  for (const Case& c : cases) {
+    QueryError e = error_of(c.query);
+    EXPECT_EQ(e.code(), "sparql-syntax") << c.query;
     EXPECT_EQ(e.diagnostic().message, c.message) << c.query;
   }
 }
