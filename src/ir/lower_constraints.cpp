@@ -25,7 +25,10 @@ const std::string kTolerance = mospec::vocab::term(mospec::vocab::cstr_ext::ns, 
 std::optional<TermId> equality_without_tolerance(const State& st, const Step& evaluate) {
   if (evaluate.constraint.kind != runtime::ConstraintKind::Equality) return std::nullopt;
   const auto c = st.object(st.term(evaluate.iri), vocab("task/constraint-handler", "constraint"));
-  if (!c || st.object(*c, kTolerance)) return std::nullopt;
+  // A retired mos-grd:tolerance is refused where it is stated
+  // (refuse_unread_properties): its absence here is that error's consequence.
+  if (!c || st.object(*c, kTolerance) || st.object(*c, vocab(kGuards, "tolerance")))
+    return std::nullopt;
   return c;
 }
 

@@ -190,7 +190,7 @@ bad joints mospec/joints.ttl 11 \
 # Joint limits: the published kc-ext:JointLimit (issue #33 item 7), and the
 # retired mospec classes pointing to it.
 good joint-limits mospec/joint-limits.ttl
-bad joint-limits mospec/joint-limits.ttl 12 \
+bad joint-limits "mospec/joint-limits.ttl mospec/retired-terms.ttl" 12 \
   '<https://ex.org/pos-swapped>: the lower bound \(2.41E0\) exceeds the upper bound \(-2.41E0\)' \
   '<https://ex.org/pos-swapped>: <https://ex.org/pos-j1-again> limits the same quantity of the same joint' \
   '<https://ex.org/pos-deg>: the unit <http://qudt.org/vocab/unit/DEG> does not fit the limit and its joint' \
@@ -216,7 +216,7 @@ bad estimated-wrench mospec/estimated-wrench.ttl 2 \
   '<https://ex.org/F-quantity>: an estimated wrench is the output of exactly one solver'
 
 good guards mospec/guards.ttl
-bad guards mospec/guards.ttl 13 \
+bad guards "mospec/guards.ttl mospec/retired-terms.ttl" 13 \
   '<https://ex.org/retired>: mos-grd:tolerance is retired: a constraint.s tolerance is the published cstr-ext:tolerance; list the context https://secorolab.github.io/metamodels/task/constraint-extension.json' \
   '<https://ex.org/motion-while>: <https://ex.org/exact> is a per-condition on a quantity no controller or assignment of the motion acts on' \
   '<https://ex.org/band>: only an equality, a less-than or a greater-than constraint has a tolerance' \
