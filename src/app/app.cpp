@@ -119,6 +119,10 @@ class Loader {
     }
     if (options.builtin_metamodels) {
       docs_.map_fallback(std::string(kMetamodelsIri), builtin_metamodels_dir());
+      // The secorolab extensions: mospec's own contexts of the ones it reads;
+      // any other of their URLs names a file that is not there, refused at
+      // the reference like an unknown comp-rob2b context.
+      docs_.map_fallback(std::string(kSecorolabIri), builtin_metamodels_dir() + "/secorolab");
     }
     // The model tree is a sandbox: references load only from the directories
     // above, --root, the app's iri-map and the inputs' own directories.

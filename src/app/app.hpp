@@ -30,7 +30,8 @@ struct LoadOptions {
   // current directory (what the authors' tool does).
   std::optional<std::string> root;
   // Resolve the metamodel base (vocab::kMetamodels) to mospec's own metamodels
-  // (builtin_metamodels_dir()) wherever no --map or iri-map entry covers it.
+  // (builtin_metamodels_dir()), and the secorolab base (vocab::kSecorolab) to
+  // its secorolab/ folder, wherever no --map or iri-map entry covers them.
   bool builtin_metamodels = true;
   // Threads that read, parse and expand an app's imports at once (the quads
   // are made on the calling thread, in order, so the model is the same for
@@ -98,6 +99,7 @@ class LoadedModel {
 };
 
 inline constexpr std::string_view kMetamodelsIri = vocab::kMetamodels;
+inline constexpr std::string_view kSecorolabIri = vocab::kSecorolab;
 
 // Where mospec's own metamodels are: $MOSPEC_METAMODELS_DIR if set, else the
 // metamodels/ folder of the source tree mospec was built from.

@@ -71,7 +71,7 @@ inline constexpr const char* kRunSummary =
 inline constexpr const char* kImportUrdfSummary =
     "Convert the serial chain of a URDF (root link to tip link; fixed joints folded into "
     "the previous segment) into a kinematic-chain JSON-LD model with units, keeping the "
-    "joints' position, velocity and effort limits";
+    "joints' position, velocity and effort limits (the published kc-ext:JointLimit)";
 inline constexpr const char* kBuildSummary =
     "Configure and build a project `mospec generate` wrote (in DIR/build, Release, with "
     "-Werror) against mospec's runtime package, and print the path of the built controller "

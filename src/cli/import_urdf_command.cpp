@@ -50,9 +50,9 @@ Action add_import_urdf_command(CLI::App& app) {
       ->type_name("IRI");
   cmd->add_flag_callback(
       "--no-limits", [flags] { flags->jsonld.limits = false; },
-      "Leave the joints' <limit>s out: the model then uses the published vocabulary alone (for "
-      "models read with metamodels that lack mospec's joint extension), and a world file "
-      "states the arm's actuation");
+      "Leave the joints' <limit>s (kc-ext:JointLimit, the secorolab extension) out: the model "
+      "then uses the comp-rob2b vocabulary alone (for models read with metamodels that lack "
+      "the secorolab extension), and a world file states the arm's actuation");
 
   return [flags]() {
     const description::UrdfChain imported =

@@ -145,9 +145,9 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
   add_link(graph, chain.root(), nullptr);
   std::vector<std::string> joints;
   std::string parent = chain.root();
-  // Needs mospec's joint extension (mospec/joints.json): a prismatic joint or
-  // joint limits.
-  bool extension = false;
+  // Needs mospec's joint extension (mospec/joints.json): a prismatic joint.
+  // Joint limits need the published secorolab extension and kc-stat.
+  bool extension = false, limited = false;
   for (int i = 0; i < chain.size(); ++i) {
     const Segment& s = chain.segment(i);
     const bool slides = s.type == JointType::Prismatic;
@@ -178,38 +178,38 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
         .add("common-axis", quoted("axis-" + s.joint));
     graph.push_back(j);
     joints.push_back(quoted("joint-" + s.joint));
-    // The joint's limits (the URDF's <limit>), each a node of its own with
-    // its unit: the world file's actuation defaults to them.
+    // The joint's limits (the URDF's <limit>): the published kc-ext:JointLimit,
+    // typed also by the kind of quantity it limits, its bounds quantities with
+    // kind and unit. The world file's actuation defaults to them. A URDF's
+    // velocity and effort limits are magnitudes: -limit..limit.
     const JointLimits& lim = options.limits ? s.limits : JointLimits{};
-    if (std::isfinite(lim.lower) && std::isfinite(lim.upper)) {
-      Node n;
-      n.add("@id", quoted("position-limits-" + s.joint))
-          .add("@type", quoted("JointPositionLimits"))
-          .add("of-joint", quoted("joint-" + s.joint))
-          .add("unit", quoted(slides ? "M" : "RAD"))
-          .add("lower", num(lim.lower))
-          .add("upper", num(lim.upper));
-      graph.push_back(n);
-      extension = true;
-    }
     const struct {
       const char* id;
       const char* type;
-      double value;
+      double lower, upper;
+      const char* kind;
       const char* unit;
-    } single[] = {{"velocity-limit-", "JointVelocityLimit", lim.velocity,
-                   slides ? "M-PER-SEC" : "RAD-PER-SEC"},
-                  {"effort-limit-", "JointEffortLimit", lim.effort, slides ? "N" : "N-M"}};
-    for (const auto& l : single) {
-      if (!std::isfinite(l.value)) continue;
+    } limits[] = {
+        {"position-limit-", "kc-stat:JointPosition", lim.lower, lim.upper,
+         slides ? "Length" : "Angle", slides ? "M" : "RAD"},
+        {"velocity-limit-", "kc-stat:JointVelocity", -lim.velocity, lim.velocity,
+         slides ? "LinearVelocity" : "AngularVelocity", slides ? "M-PER-SEC" : "RAD-PER-SEC"},
+        {"effort-limit-", "kc-stat:JointForce", -lim.effort, lim.effort,
+         slides ? "Force" : "Torque", slides ? "N" : "N-M"}};
+    for (const auto& l : limits) {
+      if (!std::isfinite(l.lower) || !std::isfinite(l.upper)) continue;
+      const auto quantity = [&](double v) {
+        return "{ \"@type\": \"Quantity\", \"quantity-kind\": " + quoted(l.kind) +
+               ", \"unit\": " + quoted(l.unit) + ", \"value\": " + num(v) + " }";
+      };
       Node n;
       n.add("@id", quoted(l.id + s.joint))
-          .add("@type", quoted(l.type))
+          .add("@type", list(types({"JointLimit", l.type})))
           .add("of-joint", quoted("joint-" + s.joint))
-          .add("unit", quoted(l.unit))
-          .add("limit", num(l.value));
+          .add("lower", quantity(l.lower))
+          .add("upper", quantity(l.upper));
       graph.push_back(n);
-      extension = true;
+      limited = true;
     }
     parent = s.link;
   }
@@ -235,6 +235,11 @@ std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& option
     out += "        " + quoted(mm + ctx) + ",\n";
   }
   if (extension) out += "        " + quoted(mm + "mospec/joints.json") + ",\n";
+  if (limited) {
+    out += "        " + quoted(mm + "kinematic-chain/state.json") + ",\n";
+    out += "        " +
+           quoted(options.secorolab + "kinematic-chain/structural-entities-extension.json") + ",\n";
+  }
   out += "        { \"@base\": " + quoted(options.base) + " }\n    ],\n";
   out += "    \"@id\": " + quoted(options.base) + ",\n";
   out += "    \"@graph\": [\n";

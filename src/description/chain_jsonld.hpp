@@ -17,7 +17,9 @@ struct ChainJsonldOptions {
   std::string base = std::string(vocab::robots::imported_base) + "robot/";
   // Where the published metamodel contexts live (IRI prefix).
   std::string metamodels = std::string(vocab::kMetamodels);
-  // Whether to state the joints' limits (mospec's extension). Off for a
+  // Where the published secorolab extension contexts live (IRI prefix).
+  std::string secorolab = std::string(vocab::kSecorolab);
+  // Whether to state the joints' limits (kc-ext:JointLimit). Off for a
   // description that must load against the published metamodels alone (the
   // Gen3's, read with the authors' metamodels; its limits are the world's
   // default actuation).
@@ -45,18 +47,20 @@ struct ChainJsonldOptions {
 //           point-L-com in frame-L [M], rotational inertia about point-L-com
 //           as seen by frame-L [KiloGM-M2] (folded links already merged)
 //   pose-T: the tip frame w.r.t. the last link frame, when they differ
-//   position-limits-J: mos-jnt:JointPositionLimits of-joint joint-J, `lower`
-//           and `upper` [RAD, or M on a prismatic joint], when both are finite
-//   velocity-limit-J, effort-limit-J: mos-jnt:JointVelocityLimit and
-//           JointEffortLimit of-joint joint-J, `limit` [RAD-PER-SEC or
-//           M-PER-SEC; N-M or N], when finite (a URDF's <limit>)
+//   position-limit-J, velocity-limit-J, effort-limit-J: kc-ext:JointLimit
+//           (the secorolab kinematic-chain extension) and kc-stat:JointPosition,
+//           JointVelocity or JointForce, of-joint joint-J, `lower` and `upper`
+//           qudt:Quantity nodes (kind and unit: Angle RAD, AngularVelocity
+//           RAD-PER-SEC, Torque N-M; Length M, LinearVelocity M-PER-SEC, Force N
+//           on a prismatic joint), when finite (a URDF's <limit>; velocity and
+//           effort as -limit..limit)
 //   chain: KinematicChain with its joints.
 // A prismatic joint is a mos-jnt:PrismaticJoint (mospec's joint extension,
 // metamodels/mospec/joints.json: the published vocabulary has no term for
-// one), translating along its common-axis; joint limits are the extension's
-// terms too (the published vocabulary has none). The document lists the
-// extension's context only when the chain has either, so an all-revolute
-// chain without limits uses the published vocabulary alone.
+// one), translating along its common-axis. The document lists the
+// extension's context only when the chain has one, and the secorolab and
+// kc-stat contexts only when it states limits, so an all-revolute chain
+// without limits uses the comp-rob2b vocabulary alone.
 std::string chain_to_jsonld(const Chain& chain, const ChainJsonldOptions& options = {});
 
 }  // namespace mospec::description

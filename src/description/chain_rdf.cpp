@@ -71,12 +71,18 @@ enum class V : uint8_t {
   KiloGM_M2,
   KiloGM,  // qudt units
   of_joint,
+  JointLimit,
+  lower,
+  upper,  // kc-ext
+  JointPosition,
+  JointVelocity,
+  JointAcceleration,
+  JointForce,  // kc-stat: what a JointLimit limits
+  value,       // qudt
+  old_of_joint,
   JointPositionLimits,
   JointVelocityLimit,
-  JointEffortLimit,
-  lower,
-  upper,
-  limit,  // mospec/joints
+  JointEffortLimit,  // mospec/joints: retired for kc-ext:JointLimit
   RAD,
   M_PER_SEC,
   RAD_PER_SEC,
@@ -131,13 +137,19 @@ constexpr std::array<Term, kVocabSize> kTerms{{
     {kUnit, "M"},
     {kUnit, "KiloGM-M2"},
     {kUnit, "KiloGM"},
+    {vocab::kc_ext::ns, "of-joint"},
+    {vocab::kc_ext::ns, "JointLimit"},
+    {vocab::kc_ext::ns, "lower"},
+    {vocab::kc_ext::ns, "upper"},
+    {vocab::kc_stat::ns, "JointPosition"},
+    {vocab::kc_stat::ns, "JointVelocity"},
+    {vocab::kc_stat::ns, "JointAcceleration"},
+    {vocab::kc_stat::ns, "JointForce"},
+    {vocab::qudt::ns, "value"},
     {vocab::mospec_joints::ns, "of-joint"},
     {vocab::mospec_joints::ns, "JointPositionLimits"},
     {vocab::mospec_joints::ns, "JointVelocityLimit"},
     {vocab::mospec_joints::ns, "JointEffortLimit"},
-    {vocab::mospec_joints::ns, "lower"},
-    {vocab::mospec_joints::ns, "upper"},
-    {vocab::mospec_joints::ns, "limit"},
     {kUnit, "RAD"},
     {kUnit, "M-PER-SEC"},
     {kUnit, "RAD-PER-SEC"},
@@ -497,45 +509,86 @@ ChainDescription describe_chain(const rdf::Dataset& dataset, std::span<const rdf
 
 namespace {
 
-// The joint's limits (mos-jnt:JointPositionLimits, JointVelocityLimit,
-// JointEffortLimit of it), in its type's units; none stated: unbounded.
+// The joint's limits (kc-ext:JointLimit of it, typed also by the kind of
+// quantity it limits: kc-stat:JointPosition, JointVelocity or JointForce),
+// in its type's units; none stated: unbounded. mospec's actuation bounds a
+// joint's velocity and effort by one magnitude, so those limits must be
+// symmetric; it enforces no acceleration limit: both refused, not ignored.
 void read_limits(const Reader& r, rdf::TermId joint, Segment& s) {
   const bool slides = s.type == JointType::Prismatic;
-  const auto finite = [&](rdf::TermId node, V p, bool non_negative) {
-    const double v = r.number(node, p);
-    if (!std::isfinite(v) || (non_negative && v < 0)) {
-      throw Error("invalid-robot-model", r.name(node) + ": <" + text(p) + "> must be finite" +
-                                             (non_negative ? " and >= 0" : ""));
+  for (rdf::TermId node : r.subjects(V::old_of_joint, joint)) {
+    for (V old : {V::JointPositionLimits, V::JointVelocityLimit, V::JointEffortLimit}) {
+      if (!r.has_type(node, old)) continue;
+      throw Error("invalid-robot-model",
+                  r.name(node) + ": " + std::string(term(old).local) +
+                      " (mos-jnt) is retired; a joint limit is the published kc-ext:JointLimit "
+                      "(context " +
+                      std::string(vocab::kSecorolab) +
+                      "kinematic-chain/structural-entities-extension.json), typed also "
+                      "kc-stat:JointPosition, JointVelocity or JointForce, with `of-joint` and "
+                      "`lower` and `upper` quantities (docs/models.md; `mospec import-urdf` "
+                      "writes them)");
+    }
+  }
+  // One bound (`lower` or `upper`): a quantity node with a finite value in `unit`.
+  const auto bound = [&](rdf::TermId node, V p, V unit) {
+    const rdf::TermId q = r.one(node, p);
+    r.require_units(q, {unit});
+    const double v = r.number(q, V::value);
+    if (!std::isfinite(v)) {
+      throw Error("invalid-robot-model",
+                  r.name(node) + ": the value of <" + text(p) + "> must be finite");
     }
     return v;
   };
-  const auto once = [&](rdf::TermId node, double& seen) {
-    if (!std::isnan(seen)) {
+  bool position = false, velocity = false, effort = false;
+  const auto once = [&](rdf::TermId node, bool& seen, const char* kind) {
+    if (seen) {
       throw Error("invalid-robot-model",
-                  r.name(node) + ": a second limit of the same kind for joint " + r.name(joint));
+                  r.name(node) + ": a second " + kind + " limit for joint " + r.name(joint));
     }
+    seen = true;
   };
-  double lower = std::nan(""), velocity = std::nan(""), effort = std::nan("");
   for (rdf::TermId node : r.subjects(V::of_joint, joint)) {
-    if (r.has_type(node, V::JointPositionLimits)) {
-      once(node, lower);
-      r.require_units(node, {slides ? V::M : V::RAD});
-      lower = finite(node, V::lower, false);
-      const double upper = finite(node, V::upper, false);
-      if (lower > upper) {
-        throw Error("invalid-robot-model", r.name(node) + ": lower limit > upper limit");
-      }
+    if (!r.has_type(node, V::JointLimit)) continue;
+    const bool is_position = r.has_type(node, V::JointPosition);
+    const bool is_velocity = r.has_type(node, V::JointVelocity);
+    const bool is_force = r.has_type(node, V::JointForce);
+    const bool is_acceleration = r.has_type(node, V::JointAcceleration);
+    if (is_position + is_velocity + is_force + is_acceleration != 1) {
+      throw Error("invalid-robot-model",
+                  r.name(node) +
+                      ": a JointLimit is typed also by exactly one kind of quantity it limits "
+                      "(kc-stat:JointPosition, JointVelocity or JointForce)");
+    }
+    if (is_acceleration) {
+      throw Error("invalid-robot-model",
+                  r.name(node) +
+                      ": mospec enforces no joint acceleration limit (its actuation bounds "
+                      "position, velocity and effort); remove it");
+    }
+    const V unit = is_position   ? (slides ? V::M : V::RAD)
+                   : is_velocity ? (slides ? V::M_PER_SEC : V::RAD_PER_SEC)
+                                 : (slides ? V::N : V::N_M);
+    const double lower = bound(node, V::lower, unit);
+    const double upper = bound(node, V::upper, unit);
+    if (lower > upper) {
+      throw Error("invalid-robot-model", r.name(node) + ": lower limit > upper limit");
+    }
+    if (is_position) {
+      once(node, position, "position");
       s.limits.lower = lower;
       s.limits.upper = upper;
-    } else if (r.has_type(node, V::JointVelocityLimit)) {
-      once(node, velocity);
-      r.require_units(node, {slides ? V::M_PER_SEC : V::RAD_PER_SEC});
-      velocity = s.limits.velocity = finite(node, V::limit, true);
-    } else if (r.has_type(node, V::JointEffortLimit)) {
-      once(node, effort);
-      r.require_units(node, {slides ? V::N : V::N_M});
-      effort = s.limits.effort = finite(node, V::limit, true);
+      continue;
     }
+    once(node, is_velocity ? velocity : effort, is_velocity ? "velocity" : "effort");
+    if (lower != -upper) {
+      throw Error("invalid-robot-model",
+                  r.name(node) + ": mospec bounds a joint's " +
+                      (is_velocity ? "velocity" : "effort") +
+                      " by one magnitude (|x| <= upper), so its lower limit must be -upper");
+    }
+    (is_velocity ? s.limits.velocity : s.limits.effort) = upper;
   }
 }
 

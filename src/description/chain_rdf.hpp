@@ -23,10 +23,11 @@ using runtime::Chain;
 // one parent frame that no joint moves. A Pose of a further frame relative to
 // the last link's frame is the tip. Link and joint names are the ids' last path
 // segment without the "frame-" / "joint-" prefix. Lengths must be in M,
-// masses in KiloGM, inertias in KiloGM-M2 (QUDT). Joint limits are not part of
-// the published vocabulary: mospec/joints' JointPositionLimits,
-// JointVelocityLimit and JointEffortLimit of a joint (chain_to_jsonld) give
-// them; without, they stay unbounded.
+// masses in KiloGM, inertias in KiloGM-M2 (QUDT). Joint limits are the
+// published secorolab kc-ext:JointLimit of a joint, typed also
+// kc-stat:JointPosition, JointVelocity or JointForce (chain_to_jsonld writes
+// them; velocity and force limits symmetric); without, they stay unbounded.
+// mospec/joints' retired limit classes are refused, naming kc-ext:JointLimit.
 // Throws mospec::Error naming the entity and what is missing or wrong.
 Chain chain_from_rdf(const rdf::Dataset& graph, std::string_view chain_iri);
 

@@ -15,6 +15,9 @@ namespace {
 
 // mospec's extension for guards and monitors (metamodels/mospec/guards.json).
 const std::string kGuards = "mospec/guards";
+// A constraint's tolerance: the published cstr-ext:tolerance (the secorolab
+// task/constraint-extension.json).
+const std::string kTolerance = mospec::vocab::term(mospec::vocab::cstr_ext::ns, "tolerance");
 
 // An Evaluate step of an equality constraint that states no tolerance: it
 // holds only at the instants its quantity equals the reference exactly, which
@@ -22,7 +25,10 @@ const std::string kGuards = "mospec/guards";
 std::optional<TermId> equality_without_tolerance(const State& st, const Step& evaluate) {
   if (evaluate.constraint.kind != runtime::ConstraintKind::Equality) return std::nullopt;
   const auto c = st.object(st.term(evaluate.iri), vocab("task/constraint-handler", "constraint"));
-  if (!c || st.object(*c, vocab(kGuards, "tolerance"))) return std::nullopt;
+  // A retired mos-grd:tolerance is refused where it is stated
+  // (refuse_unread_properties): its absence here is that error's consequence.
+  if (!c || st.object(*c, kTolerance) || st.object(*c, vocab(kGuards, "tolerance")))
+    return std::nullopt;
   return c;
 }
 
@@ -40,7 +46,7 @@ void lower_evaluators(State& st) {
                upper_p = st.term(vocab(cs, "upper-threshold")),
                threshold_p = st.term(vocab(cs, "threshold")),
                reference_p = st.term(vocab(cs, "reference-value")),
-               tolerance_p = st.term(vocab(kGuards, "tolerance")),
+               tolerance_p = st.term(kTolerance),
                bilateral = st.term(vocab(cs, "BilateralConstraint")),
                greater_than = st.term(vocab(cs, "GreaterThanConstraint")),
                less_than = st.term(vocab(cs, "LessThanConstraint")),
@@ -170,7 +176,7 @@ void lower_evaluators(State& st) {
       }
       spec.reference = *r;
       if (auto t = st.object(*c, reference_p)) reference_datum = st.data_of.at(t->index);
-      // The model's tolerance (mos-grd:tolerance): satisfied while |error| <= it.
+      // The model's tolerance (cstr-ext:tolerance): satisfied while |error| <= it.
       if (auto tol = st.object(*c, tolerance_p)) {
         if (assignment) {
           st.error(st.graph.where(*c, tolerance_p, *tol), "unsupported-property",
@@ -271,7 +277,7 @@ void lower_monitors(State& st) {
                        "while its quantity equals the reference exactly, so the monitor would "
                        "almost never " +
                        (edge ? "fire" : "raise its flag") +
-                       "; state the constraint's `tolerance` (mos-grd:tolerance, a quantity in "
+                       "; state the constraint's `tolerance` (cstr-ext:tolerance, a quantity in "
                        "its unit: satisfied while |error| <= it)");
           refused = true;
         }
@@ -326,7 +332,7 @@ void check_guard(State& st, TermId motion, const std::string& prop, TermId c,
                  "; an equality without a tolerance holds only while its quantity equals the "
                  "reference exactly, so the " +
                  (prop == "when" ? "motion would almost never start" : "motion would not end") +
-                 "; state the constraint's `tolerance` (mos-grd:tolerance, a quantity in its "
+                 "; state the constraint's `tolerance` (cstr-ext:tolerance, a quantity in its "
                  "unit: satisfied while |error| <= it), or guard with a BilateralConstraint or a "
                  "greater-/less-than constraint");
     return;
@@ -494,7 +500,7 @@ void lower_handlers(State& st) {
                            "quantity, so it is checked every tick, and an equality without a "
                            "tolerance holds only while its quantity equals the reference "
                            "exactly: the motion would be aborted at once; state the "
-                           "constraint's `tolerance` (mos-grd:tolerance, a quantity in its unit: "
+                           "constraint's `tolerance` (cstr-ext:tolerance, a quantity in its unit: "
                            "satisfied while |error| <= it)");
               continue;
             }

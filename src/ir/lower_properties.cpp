@@ -141,9 +141,9 @@ std::string advice(std::string_view type, std::string_view property) {
   if (type == "Float" && property == "time-constant")
     return "a Float does not brake; for braking, make it a BrakeAndHold";
   if (type == "EqualityConstraint" && property == "threshold")
-    return "an equality constraint's tolerance is `tolerance` (mos-grd:tolerance, "
-           "metamodels/mospec/guards.json); for a band, make it a BilateralConstraint "
-           "with a lower-threshold and an upper-threshold";
+    return "an equality constraint's tolerance is `tolerance` (cstr-ext:tolerance, the "
+           "secorolab task/constraint-extension.json); for a band, make it a "
+           "BilateralConstraint with a lower-threshold and an upper-threshold";
   if (type.ends_with("Constraint") &&
       (property == "threshold" || property == "lower-threshold" || property == "upper-threshold" ||
        property == "reference-value"))
@@ -152,14 +152,16 @@ std::string advice(std::string_view type, std::string_view property) {
   return "remove it";
 }
 
-// mospec's guard extension (metamodels/mospec/guards.json): lower_evaluators
-// reads `tolerance` on an equality, less-than or greater-than constraint,
-// lower_monitors `edge` on an
-// edge-triggered monitor. On any other constraint or monitor, or any other
-// term of the extension, it would be ignored: refused.
+// A constraint's tolerance (the published cstr-ext:tolerance): lower_evaluators
+// reads it on an equality, less-than or greater-than constraint. mospec's
+// guard extension (metamodels/mospec/guards.json): lower_monitors reads `edge`
+// on an edge-triggered monitor; its `tolerance` (mos-grd:tolerance) is retired
+// for the published term. On any other constraint or monitor, or any other
+// term of the extension, they would be ignored: refused.
 void refuse_misplaced_guard_terms(State& st) {
   namespace v = mospec::vocab;
   const std::string ns(v::mospec_guards::ns);
+  const std::string tolerance = v::term(v::cstr_ext::ns, "tolerance");
   const std::string cstr(v::cstr::ns), hdl(v::cstr_hdl::ns);
   std::set<uint32_t> seen;
   for (const std::string& type :
@@ -171,8 +173,20 @@ void refuse_misplaced_guard_terms(State& st) {
       std::set<std::string_view> reported;  // views of the term table's IRIs
       st.graph.each_statement(e, [&](const Graph::Statement& statement) {
         const std::string_view p = st.graph.str(statement.predicate);
-        if (!p.starts_with(ns) || !reported.insert(p).second) return;
-        const std::string local(p.substr(ns.size()));
+        const bool published = p == tolerance;
+        if ((!published && !p.starts_with(ns)) || !reported.insert(p).second) return;
+        const std::string local(published ? "tolerance" : p.substr(ns.size()));
+        const SourceLoc at = statement.where.known() ? statement.where : st.where(e);
+        if (!published && local == "tolerance") {
+          st.error(at, "unsupported-property",
+                   "'" + st.str(e) +
+                       "' states mos-grd:tolerance, which is retired: a constraint's tolerance "
+                       "is the published cstr-ext:tolerance; list the context " +
+                       std::string(v::kSecorolab) +
+                       "task/constraint-extension.json (after mospec/guards.json, if the file "
+                       "lists it) and keep the key `tolerance`");
+          return;
+        }
         const bool equality = st.has_type(e, cstr + "EqualityConstraint") ||
                               st.has_type(e, cstr + "LessThanConstraint") ||
                               st.has_type(e, cstr + "GreaterThanConstraint");
@@ -190,14 +204,14 @@ void refuse_misplaced_guard_terms(State& st) {
               "flag while its constraint holds)";
         else
           why =
-              "mospec's guard extension has `tolerance` (equality, less-than and greater-than "
-              "constraints) and `edge` (edge-triggered monitors)";
+              "mospec's guard extension has `edge` (edge-triggered monitors); a constraint's "
+              "tolerance is the published `tolerance` (cstr-ext:tolerance)";
         std::string message = "'";
-        message.append(st.str(e)).append("' states `").append(local).append("` (mos-grd:");
-        message.append(local).append("), which mospec does not read for it, so it would be ");
+        message.append(st.str(e)).append("' states `").append(local).append("` (");
+        message.append(published ? "cstr-ext:" : "mos-grd:").append(local);
+        message.append("), which mospec does not read for it, so it would be ");
         message.append("ignored; ").append(why).append("; remove it");
-        st.error(statement.where.known() ? statement.where : st.where(e), "unsupported-property",
-                 std::move(message));
+        st.error(at, "unsupported-property", std::move(message));
       });
     }
   }

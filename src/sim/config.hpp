@@ -65,9 +65,9 @@ struct PlatformParameters {
 // N·m and rad, prismatic in N and m). The default is the Gen3's: Kinova's
 // published limits, as in Kinova's GEN3_URDF_V12.urdf <limit> tags (effort
 // 39 N·m for actuators 1-4 and 9 N·m for 5-7; position limits on actuators 2,
-// 4, 6 only). The published kinematic-chain vocabulary has no limits, so a
-// robot description carries none: they live here (the world file's
-// `actuation`, or an arm's own).
+// 4, 6 only). The Gen3's description is read with the comp-rob2b vocabulary
+// alone, so it states no limits (kc-ext:JointLimit): they live here (the world
+// file's `actuation`, or an arm's own).
 struct ArmActuation {
   std::vector<double> effort_limit{39, 39, 39, 39, 9, 9, 9};               // [N·m]
   std::vector<double> lower{-1e9, -2.41, -1e9, -2.66, -1e9, -2.23, -1e9};  // [rad]; ±1e9: none
@@ -202,8 +202,9 @@ RobotModelSource arm_source(const WorldConfig& config, std::size_t arm);
 // The default of an arm's actuation is its robot description's: an arm
 // whose world file states no `actuation` (neither the arm's nor the world's)
 // takes the limits of its chain (`chains`, one per arm) when the description
-// states an effort limit for every joint (mos-jnt:JointEffortLimit, written by
-// `mospec import-urdf` from the URDF's <limit>): those efforts, and the
+// states an effort limit for every joint (a kc-ext:JointLimit that is a
+// kc-stat:JointForce, written by `mospec import-urdf` from the URDF's
+// <limit>): those efforts, and the
 // position limits where stated (elsewhere none). Otherwise the Gen3's.
 void actuation_from_chains(WorldConfig& config, std::span<const runtime::Chain> chains);
 // The robot interface's shape: the arms' names and joint counts (`joints`,

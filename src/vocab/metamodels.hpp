@@ -1,8 +1,9 @@
 // IRIs of the modelling vocabularies: the published comp-rob2b metamodels
 // (https://github.com/comp-rob2b/metamodels), mospec's own additions under the
-// same base, QUDT, and the IRIs of mospec's bundled robot descriptions. The one
-// place they are spelled (the ctest `vocab_home` fails when the metamodel base
-// appears elsewhere in src/).
+// same base, the paper's group's published extensions (secorolab/metamodels),
+// QUDT, and the IRIs of mospec's bundled robot descriptions. The one place they
+// are spelled (the ctest `vocab_home` fails when either metamodel base appears
+// elsewhere in src/).
 //
 // Each metamodel is a namespace whose `ns` is its namespace IRI ("...#"), named
 // as the models' own JSON-LD contexts abbreviate it (geom-rel -> geom_rel).
@@ -13,6 +14,7 @@
 #include <string_view>
 
 #define MOSPEC_VOCAB_MM "https://comp-rob2b.github.io/metamodels/"
+#define MOSPEC_VOCAB_SECOROLAB "https://secorolab.github.io/metamodels/"
 #define MOSPEC_VOCAB_QUDT "http://qudt.org/schema/qudt/"
 #define MOSPEC_VOCAB_QUDT_UNIT "http://qudt.org/vocab/unit/"
 
@@ -21,6 +23,11 @@ namespace mospec::vocab {
 // The base of every comp-rob2b metamodel IRI (and of their JSON-LD contexts,
 // which mospec resolves to its own copy under metamodels/).
 inline constexpr std::string_view kMetamodels = MOSPEC_VOCAB_MM;
+
+// The base of the secorolab extension metamodels (IRIs and JSON-LD contexts):
+// a context URL below it resolves to mospec's own context of the same path
+// under metamodels/secorolab/ (only the extensions mospec reads have one).
+inline constexpr std::string_view kSecorolab = MOSPEC_VOCAB_SECOROLAB;
 
 // The term `local` of the metamodel at `domain` (a path below kMetamodels such
 // as "geometry/spatial-relations"): kMetamodels + domain + "#" + local. For
@@ -48,6 +55,7 @@ MOSPEC_VOCAB_NS(geom_rel, "geometry/spatial-relations")
 MOSPEC_VOCAB_NS(geom_coord, "geometry/coordinates")
 MOSPEC_VOCAB_NS(geom_op, "geometry/spatial-operators")
 MOSPEC_VOCAB_NS(kc_ent, "kinematic-chain/structural-entities")
+MOSPEC_VOCAB_NS(kc_stat, "kinematic-chain/state")
 MOSPEC_VOCAB_NS(dyn_ent, "newtonian-rigid-body-dynamics/structural-entities")
 MOSPEC_VOCAB_NS(dyn_coord, "newtonian-rigid-body-dynamics/coordinates")
 MOSPEC_VOCAB_NS(dyn_op, "newtonian-rigid-body-dynamics/operators")
@@ -66,6 +74,20 @@ MOSPEC_VOCAB_NS(mospec_shapes, "mospec/shapes")
 MOSPEC_VOCAB_NS(mospec_app, "mospec/app")
 
 #undef MOSPEC_VOCAB_NS
+
+// The secorolab extensions mospec reads (metamodels/secorolab/<path>.json is
+// its context of https://secorolab.github.io/metamodels/<path>.json). The
+// namespace is the published one, which is not always the context's path:
+// task/constraint-extension.json defines cstr-ext as ".../task/constraint#".
+#define MOSPEC_VOCAB_SECOROLAB_NS(name, path)                             \
+  namespace name {                                                        \
+  inline constexpr std::string_view ns = MOSPEC_VOCAB_SECOROLAB path "#"; \
+  }
+// kinematic-chain/structural-entities-extension.json: JointLimit.
+MOSPEC_VOCAB_SECOROLAB_NS(kc_ext, "kinematic-chain/structural-entities-extension")
+// task/constraint-extension.json: tolerance.
+MOSPEC_VOCAB_SECOROLAB_NS(cstr_ext, "task/constraint")
+#undef MOSPEC_VOCAB_SECOROLAB_NS
 
 // The application model (app files): a "/"-namespace, unlike the others.
 namespace app {

@@ -113,7 +113,7 @@ expect urdf-fixed-tool-note 0 \
 check urdf-tool-link grep -Fq '"simplices": [ "frame-tool", "point-tool-origin" ]' arm-default.jsonld
 check urdf-base-after-robot grep -q '"@base": "https://mospec.example/robots/arm/"' arm-default.jsonld
 check urdf-effort-limit grep -Fq '"@id": "effort-limit-shoulder"' arm-default.jsonld
-check urdf-position-limits grep -Fq '"@id": "position-limits-shoulder"' arm-default.jsonld
+check urdf-position-limits grep -Fq '"@id": "position-limit-shoulder"' arm-default.jsonld
 check urdf-velocity-limit grep -Fq '"@id": "velocity-limit-shoulder"' arm-default.jsonld
 expect urdf-no-limits 0 '' -- "$mospec" import-urdf arm.urdf --tip tool --no-limits -o arm-plain.jsonld
 check urdf-no-limits-published-vocabulary-only bash -c "! grep -q 'limit\|mospec/joints' arm-plain.jsonld"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # vocab_home.sh SRC_DIR: vocabulary IRIs have one home, SRC_DIR/vocab/ (w3c.hpp,
 # metamodels.hpp). Fails (exit 1), printing file:line, when a namespace IRI of
-# the comp-rob2b metamodels (anywhere, comments included) or of RDF, RDFS, XSD,
+# the comp-rob2b or secorolab metamodels (anywhere, comments included) or of RDF, RDFS, XSD,
 # OWL, SHACL, i18n or QUDT (outside comments) is spelled in another file under
 # SRC_DIR; the fix is to name the constant from vocab/ instead.
 # `vocab_home.sh --selftest SRC_DIR` checks that a planted spelling is caught.
@@ -15,6 +15,7 @@ if [ "${1:-}" = "--selftest" ]; then
   status=0
   for plant in 'const char* k = "https://comp-rob2b.github.io/metamodels/geometry/coordinates#x";' \
                '// see https://comp-rob2b.github.io/metamodels/ for the terms' \
+               'auto k = "https://secorolab.github.io/metamodels/task/constraint#tolerance";' \
                'auto t = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";' \
                'auto u = "http://qudt.org/schema/qudt/unit";'; do
     printf '%s\n' "$plant" > "$tmp/src/support/planted.cpp"
@@ -42,6 +43,10 @@ files=$(find . -path ./vocab -prune -o -type f -print | sed 's|^\./||' | sort)
 # that spells it is how a copy starts).
 if hits=$(grep -nF 'https://comp-rob2b.github.io/metamodels/' $files); then
   printf '%s\n' "$hits" | sed 's/$/  <- the comp-rob2b metamodel base: use vocab::kMetamodels or a vocab::<metamodel>::ns (src\/vocab\/metamodels.hpp)/'
+  status=1
+fi
+if hits=$(grep -nF 'https://secorolab.github.io/metamodels/' $files); then
+  printf '%s\n' "$hits" | sed 's/$/  <- the secorolab metamodel base: use vocab::kSecorolab or a vocab::<metamodel>::ns (src\/vocab\/metamodels.hpp)/'
   status=1
 fi
 # Other vocabularies: outside comments.

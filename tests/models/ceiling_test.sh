@@ -59,7 +59,7 @@ python3 - "$tree/models/examples/ceiling" <<'PY'
 import json, sys
 d = sys.argv[1]
 c = json.load(open(d + "/03-constraints.json"))
-c["@context"].insert(1, "https://comp-rob2b.github.io/metamodels/mospec/guards.json")
+c["@context"].insert(1, "https://secorolab.github.io/metamodels/task/constraint-extension.json")
 next(e for e in c["@graph"] if e["@id"] == "cstr-pos-rightarm-ee-ceiling")["tolerance"] = "pos-rightarm-ee-ceiling-tolerance"
 json.dump(c, open(d + "/03-constraints.json", "w"), indent=4)
 m = json.load(open(d + "/00-misc.json"))

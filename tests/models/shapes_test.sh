@@ -187,13 +187,21 @@ bad joints mospec/joints.ttl 11 \
   '<https://ex.org/f-lift-nm>: the unit of a measured joint torque follows its joint.*unit/N-M>' \
   '<https://ex.org/q-j4-m>: the unit of a joint position follows its joint.*unit/M>'
 
-# Joint limits (issue #33 item 7: what import-urdf keeps of a URDF's <limit>).
+# Joint limits: the published kc-ext:JointLimit (issue #33 item 7), and the
+# retired mospec classes pointing to it.
 good joint-limits mospec/joint-limits.ttl
-bad joint-limits mospec/joint-limits.ttl 4 \
-  '<https://ex.org/pos-swapped>: the lower position limit exceeds the upper one' \
-  '<https://ex.org/pos-deg>: joint position limits have exactly one unit: RAD \(revolute joint\) or M' \
-  '<https://ex.org/vel-negative>: a joint velocity limit states exactly one limit, not negative' \
-  '<https://ex.org/eff-link>: a joint effort limit is of exactly one joint'
+bad joint-limits "mospec/joint-limits.ttl mospec/retired-terms.ttl" 12 \
+  '<https://ex.org/pos-swapped>: the lower bound \(2.41E0\) exceeds the upper bound \(-2.41E0\)' \
+  '<https://ex.org/pos-swapped>: <https://ex.org/pos-j1-again> limits the same quantity of the same joint' \
+  '<https://ex.org/pos-deg>: the unit <http://qudt.org/vocab/unit/DEG> does not fit the limit and its joint' \
+  '<https://ex.org/vel-lopsided>: mospec bounds a joint.s velocity and effort by one magnitude' \
+  '<https://ex.org/eff-link>: a joint limit is of exactly one joint \(of-joint, a kc-ent:Joint\).*value <https://ex.org/link>' \
+  '<https://ex.org/eff-no-joint>: a joint limit is of exactly one joint.*MinCount' \
+  '<https://ex.org/eff-kind>: the quantity kind <http://qudt.org/vocab/quantitykind/Angle> does not fit the limit' \
+  '<https://ex.org/acc-j1>: mospec enforces no joint acceleration limit' \
+  '<https://ex.org/untyped>: a joint limit is typed also by exactly one kind of quantity it limits' \
+  '<https://ex.org/no-upper>: a joint limit has exactly one upper bound' \
+  '<https://ex.org/old-effort>: mos-jnt:JointPositionLimits, JointVelocityLimit and JointEffortLimit are retired: a joint limit is the published kc-ext:JointLimit'
 good prismatic-joint mospec/prismatic-joint.ttl
 bad prismatic-joint mospec/prismatic-joint.ttl 5 \
   '<https://ex.org/lift-no-axis>: a prismatic joint translates along exactly one common-axis.*MinCount' \
@@ -208,7 +216,8 @@ bad estimated-wrench mospec/estimated-wrench.ttl 2 \
   '<https://ex.org/F-quantity>: an estimated wrench is the output of exactly one solver'
 
 good guards mospec/guards.ttl
-bad guards mospec/guards.ttl 12 \
+bad guards "mospec/guards.ttl mospec/retired-terms.ttl" 13 \
+  '<https://ex.org/retired>: mos-grd:tolerance is retired: a constraint.s tolerance is the published cstr-ext:tolerance; list the context https://secorolab.github.io/metamodels/task/constraint-extension.json' \
   '<https://ex.org/motion-while>: <https://ex.org/exact> is a per-condition on a quantity no controller or assignment of the motion acts on' \
   '<https://ex.org/band>: only an equality, a less-than or a greater-than constraint has a tolerance' \
   '<https://ex.org/negative>: a tolerance is a number >= 0' \

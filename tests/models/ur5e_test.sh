@@ -72,9 +72,9 @@ want(len(q) == 6, "six initial joint positions")
 # import-urdf kept (issue #33 item 7), one effort and position limit per joint.
 want("actuation" not in right, "the world file leaves the actuation to the description")
 robot = json.load(open("robots/ur5e.jsonld"))["@graph"]
-kinds = [n["@type"] for n in robot if n["@type"] in ("JointEffortLimit", "JointPositionLimits")]
-want(kinds.count("JointEffortLimit") == 6 and kinds.count("JointPositionLimits") == 6,
-     f"six effort and position limits in robots/ur5e.jsonld, got {kinds}")
+kinds = [n["@type"][1] for n in robot if isinstance(n["@type"], list) and n["@type"][0] == "JointLimit"]
+want(kinds.count("kc-stat:JointForce") == 6 and kinds.count("kc-stat:JointPosition") == 6,
+     f"six effort and position limits (kc-ext:JointLimit) in robots/ur5e.jsonld, got {kinds}")
 want(world["arms"]["left"] == {"present": False}, "no left arm")
 R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]; p = [0.0, 0.0, 0.0]
 for s, qi in zip(segs, q):

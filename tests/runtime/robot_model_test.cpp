@@ -281,8 +281,9 @@ TEST(RobotModelPrismatic, ToyArmReadsBackIntoTheSameChain) {
   expect_same_chain(loaded, toy, 1e-12);
 }
 
-// An all-revolute chain without joint limits uses the published vocabulary
-// alone; its limits (the published vocabulary has none) need the extension.
+// An all-revolute chain without joint limits uses the comp-rob2b vocabulary
+// alone; its limits are the published secorolab extension's kc-ext:JointLimit
+// (not mospec's joint extension), typed by kc-stat's quantity kinds.
 TEST(RobotModelPrismatic, RevoluteChainsNeedNoExtension) {
   Chain chain = chain_from_urdf(kLiftUrdf, "base", "tool");
   Chain revolute("base"), limited("base");
@@ -295,8 +296,95 @@ TEST(RobotModelPrismatic, RevoluteChainsNeedNoExtension) {
   }
   EXPECT_EQ(chain_to_jsonld(revolute).find("mospec/joints"), std::string::npos);
   EXPECT_EQ(chain_to_jsonld(revolute).find("PrismaticJoint"), std::string::npos);
-  EXPECT_NE(chain_to_jsonld(limited).find("mospec/joints.json"), std::string::npos);
-  EXPECT_NE(chain_to_jsonld(limited).find("JointEffortLimit"), std::string::npos);
+  const std::string text = chain_to_jsonld(limited);
+  EXPECT_EQ(text.find("mospec/joints.json"), std::string::npos);
+  EXPECT_NE(text.find("\"https://secorolab.github.io/metamodels/kinematic-chain/"
+                      "structural-entities-extension.json\""),
+            std::string::npos);
+  EXPECT_NE(text.find("kinematic-chain/state.json"), std::string::npos);
+  EXPECT_NE(text.find("\"@type\": [ \"JointLimit\", \"kc-stat:JointForce\" ]"), std::string::npos);
+  EXPECT_EQ(text.find("JointEffortLimit"), std::string::npos);
+}
+
+// The limits read back as written: position lower..upper, velocity and effort
+// as magnitudes (-limit..limit in the document).
+TEST(RobotModelPrismatic, LimitsReadBackAsJointLimits) {
+  const Chain urdf = chain_from_urdf(kLiftUrdf, "base", "tool");
+  std::string document;
+  const Chain loaded = round_trip(urdf, &document);
+  EXPECT_NE(document.find("\"lower\": { \"@type\": \"Quantity\", \"quantity-kind\": "
+                          "\"LinearVelocity\", \"unit\": \"M-PER-SEC\", \"value\": -0.3 }"),
+            std::string::npos)
+      << document;
+  for (int i = 0; i < urdf.size(); ++i) {
+    SCOPED_TRACE("segment " + urdf.segment(i).link);
+    const JointLimits &a = loaded.segment(i).limits, &b = urdf.segment(i).limits;
+    EXPECT_EQ(a.lower, b.lower);
+    EXPECT_EQ(a.upper, b.upper);
+    EXPECT_EQ(a.velocity, b.velocity);
+    EXPECT_EQ(a.effort, b.effort);
+  }
+  EXPECT_EQ(loaded.segment(0).limits.upper, 0.5);
+  EXPECT_EQ(loaded.segment(1).limits.effort, 20.0);
+}
+
+// Limits mospec would not honour as stated are refused, naming the limit.
+TEST(RobotModelPrismatic, ReadingRefusesLimitsItCannotHonour) {
+  ChainJsonldOptions options;
+  options.base = kLiftBase;
+  const std::string text = chain_to_jsonld(chain_from_urdf(kLiftUrdf, "base", "tool"), options);
+  const std::string effort_lower =
+      "\"lower\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Torque\", \"unit\": "
+      "\"N-M\", \"value\": -20 }";
+  const std::string velocity_type = "[ \"JointLimit\", \"kc-stat:JointVelocity\" ]";
+  const std::string position_type =
+      "\"@id\": \"position-limit-wrist\",\n            "
+      "\"@type\": [ \"JointLimit\", \"kc-stat:JointPosition\" ]";
+  struct Case {
+    std::string from, to, message;
+  } cases[] = {
+      {effort_lower,
+       "\"lower\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Torque\", "
+       "\"unit\": \"N-M\", \"value\": -5 }",
+       "effort-limit-wrist: mospec bounds a joint's effort by one magnitude (|x| <= upper), so "
+       "its lower limit must be -upper"},
+      {velocity_type, "[ \"JointLimit\", \"kc-stat:JointAcceleration\" ]",
+       "velocity-limit-lift: mospec enforces no joint acceleration limit"},
+      {velocity_type, "[ \"JointLimit\" ]",
+       "velocity-limit-lift: a JointLimit is typed also by exactly one kind of quantity"},
+      {effort_lower,
+       "\"lower\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Torque\", "
+       "\"unit\": \"N\", \"value\": -20 }",
+       "unit must be {http://qudt.org/vocab/unit/N-M}"},
+      {position_type,
+       "\"@id\": \"position-limit-wrist\",\n            \"@type\": [ "
+       "\"JointPositionLimits\" ]",
+       "position-limit-wrist: JointPositionLimits (mos-jnt) is retired; a joint limit is the "
+       "published kc-ext:JointLimit"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    std::string edited = text;
+    const size_t at = edited.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    edited.replace(at, c.from.size(), c.to);
+    // The retired class needs mospec's joint extension, which names it.
+    const std::string ctx = "\"https://comp-rob2b.github.io/metamodels/qudt.json\",";
+    edited.replace(edited.find(ctx), ctx.size(),
+                   ctx + "\"https://comp-rob2b.github.io/metamodels/mospec/joints.json\",");
+    const std::string path =
+        ::testing::TempDir() + "/mospec-lift-limit-" + std::to_string(::getpid()) + ".jsonld";
+    write_output(path, edited);
+    app::LoadOptions load;
+    load.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
+    const rdf::Dataset graph = app::load({path}, load).flattened();
+    try {
+      chain_from_rdf(graph, kLiftBase + "chain");
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
 }
 
 // A joint of the chain that is neither or both kinds is refused, by name.

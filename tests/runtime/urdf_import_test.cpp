@@ -428,15 +428,38 @@ TEST(UrdfImport, JointLimitsAreKeptAsModelQuantities) {
   options.base = "https://ex.org/r/";
   options.metamodels = "https://comp-rob2b.github.io/metamodels/";
   const std::string text = chain_to_jsonld(imported.chain, options);
+  // The published kc-ext:JointLimit, typed by the kind of quantity it limits,
+  // its bounds quantities with kind and unit (velocity and effort symmetric).
   for (const char* stated :
-       {"\"@id\": \"position-limits-j1\"", "\"lower\": -2.5", "\"upper\": 2",
-        "\"@id\": \"effort-limit-j1\"", "\"limit\": 39", "\"@id\": \"velocity-limit-j2\"",
-        "\"unit\": \"RAD-PER-SEC\"", "\"@id\": \"effort-limit-j3\"", "\"unit\": \"N\"",
-        "\"unit\": \"M-PER-SEC\"", "mospec/joints.json"}) {
+       {"\"https://secorolab.github.io/metamodels/kinematic-chain/"
+        "structural-entities-extension.json\"",
+        "\"https://comp-rob2b.github.io/metamodels/kinematic-chain/state.json\"",
+        "\"@id\": \"position-limit-j1\"", "[ \"JointLimit\", \"kc-stat:JointPosition\" ]",
+        "\"lower\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Angle\", \"unit\": "
+        "\"RAD\", \"value\": -2.5 }",
+        "\"upper\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Angle\", \"unit\": "
+        "\"RAD\", \"value\": 2 }",
+        "\"@id\": \"effort-limit-j1\"", "[ \"JointLimit\", \"kc-stat:JointForce\" ]",
+        "\"upper\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Torque\", \"unit\": "
+        "\"N-M\", \"value\": 39 }",
+        "\"@id\": \"velocity-limit-j2\"", "[ \"JointLimit\", \"kc-stat:JointVelocity\" ]",
+        "\"lower\": { \"@type\": \"Quantity\", \"quantity-kind\": \"AngularVelocity\", "
+        "\"unit\": \"RAD-PER-SEC\", \"value\": -2.5 }",
+        "\"@id\": \"effort-limit-j3\"",
+        "\"lower\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Force\", \"unit\": "
+        "\"N\", \"value\": -100 }",
+        "\"upper\": { \"@type\": \"Quantity\", \"quantity-kind\": \"LinearVelocity\", "
+        "\"unit\": \"M-PER-SEC\", \"value\": 0.1 }",
+        "\"upper\": { \"@type\": \"Quantity\", \"quantity-kind\": \"Length\", \"unit\": "
+        "\"M\", \"value\": 0.2 }",
+        "mospec/joints.json"}) {
     EXPECT_NE(text.find(stated), std::string::npos) << stated << " in\n" << text;
   }
-  // A continuous joint has no position limits to state.
-  EXPECT_EQ(text.find("position-limits-j2"), std::string::npos);
+  // A continuous joint has no position limits to state; mospec's retired
+  // limit classes are gone.
+  EXPECT_EQ(text.find("position-limit-j2"), std::string::npos);
+  for (const char* retired : {"JointPositionLimits", "JointVelocityLimit", "JointEffortLimit"})
+    EXPECT_EQ(text.find(retired), std::string::npos) << retired;
 
   const std::string file = ::testing::TempDir() + "limits.jsonld";
   write_output(file, text);

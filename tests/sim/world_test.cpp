@@ -6,9 +6,12 @@
 #include <filesystem>
 #include <limits>
 
+#include "description/chain_jsonld.hpp"
+#include "description/urdf_import.hpp"
 #include "sim/log.hpp"
 #include "sim_test_util.hpp"
 #include "support/diagnostics.hpp"
+#include "support/io.hpp"
 
 namespace mospec::sim {
 namespace {
@@ -502,6 +505,67 @@ TEST(World, AnyArmsRevoluteAndPrismatic) {
   // And its sensors have names.
   w.faults().inject_nan("lift_arm.q[1]", 0);
   EXPECT_THROW(w.faults().inject_nan("left_arm.q[0]", 0), Error);
+}
+
+// A robot description whose joint limits are the published kc-ext:JointLimit,
+// written by hand with the published context URL (which resolves to mospec's
+// own context), loads, and its limits become the arm's actuation when the
+// world file states none: efforts, and position limits where stated.
+TEST(World, ActuationDefaultsToPublishedJointLimits) {
+  const std::string urdf = R"(<robot name="duo">
+  <link name="base"/>
+  <link name="a"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <link name="b"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j2" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>
+    <origin xyz="0 0 0.2"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>)";
+  description::ChainJsonldOptions options;
+  options.base = "https://mospec.example/robots/duo/";
+  options.limits = false;  // the limits below are the hand-written ones
+  std::string text =
+      description::chain_to_jsonld(description::chain_from_urdf(urdf, "base", "b"), options);
+  const auto bound = [](const char* kind, const char* unit, double v) {
+    return "{ \"@type\": \"Quantity\", \"quantity-kind\": \"" + std::string(kind) +
+           "\", \"unit\": \"" + unit + "\", \"value\": " + std::to_string(v) + " }";
+  };
+  const auto limit = [&](const std::string& id, const char* type, const char* joint,
+                         const char* kind, const char* unit, double lo, double hi) {
+    return "{ \"@id\": \"" + id + "\", \"@type\": [\"JointLimit\", \"" + type +
+           "\"], \"of-joint\": \"" + joint + "\", \"lower\": " + bound(kind, unit, lo) +
+           ", \"upper\": " + bound(kind, unit, hi) + " },\n";
+  };
+  const std::string limits =
+      limit("eff-1", "kc-stat:JointForce", "joint-j1", "Torque", "N-M", -40, 40) +
+      limit("eff-2", "kc-stat:JointForce", "joint-j2", "Torque", "N-M", -12, 12) +
+      limit("pos-2", "kc-stat:JointPosition", "joint-j2", "Angle", "RAD", -0.5, 1.5) +
+      limit("vel-2", "kc-stat:JointVelocity", "joint-j2", "AngularVelocity", "RAD-PER-SEC", -2, 2);
+  const std::string graph = "\"@graph\": [\n";
+  text.insert(text.find(graph) + graph.size(), limits);
+  const std::string qudt = "\"https://comp-rob2b.github.io/metamodels/qudt.json\",\n";
+  text.insert(text.find(qudt) + qudt.size(),
+              "\"https://comp-rob2b.github.io/metamodels/kinematic-chain/state.json\",\n"
+              "\"https://secorolab.github.io/metamodels/kinematic-chain/"
+              "structural-entities-extension.json\",\n");
+  const std::string path =
+      ::testing::TempDir() + "/mospec-duo-" + std::to_string(::getpid()) + ".jsonld";
+  write_output(path, text);
+  const runtime::Chain chain = description::load_chain(path, options.base + "chain");
+  ASSERT_EQ(chain.size(), 2);
+  EXPECT_EQ(chain.segment(1).limits.velocity, 2.0);
+
+  WorldConfig c = default_world();
+  c.arms.resize(1);
+  actuation_from_chains(c, std::vector<runtime::Chain>{chain});
+  ASSERT_TRUE(c.arms[0].actuation.has_value());
+  const ArmActuation& a = *c.arms[0].actuation;
+  EXPECT_EQ(a.effort_limit, (std::vector<double>{40, 12}));
+  EXPECT_EQ(a.lower, (std::vector<double>{-1e9, -0.5}));  // j1 states no position limit
+  EXPECT_EQ(a.upper, (std::vector<double>{1e9, 1.5}));
+  std::filesystem::remove(path);
 }
 
 }  // namespace
