@@ -179,7 +179,8 @@ std::vector<Diagnostic> check_loops(const ir::Program& program, const sim::World
       if (!(k * sign > 0.0)) continue;
       const std::string_view property = kind.parameters[p].property;
       problems.push_back(located(
-          Severity::Error, c.where, files, "loop-sign",
+          Severity::Error, p < c.parameters_where.size() ? c.parameters_where[p] : c.where, files,
+          "loop-sign",
           "the controller '" + c.iri + "' drives the error of '" + quantity +
               "' away from 0: at the start, a larger output '" + output.iri + "' makes the error " +
               (sign > 0 ? "larger" : "smaller") + " (" + console_number(response[kSignTicks]) +
@@ -223,8 +224,16 @@ std::vector<Diagnostic> check_loops(const ir::Program& program, const sim::World
     for (const size_t p : gains_of(kind))
       gains += (gains.empty() ? "" : ", ") + std::string(kind.parameters[p].property) + " " +
                exact_number(c.parameters[p]);
+    // At the loop's first gain that is not 0 (the one the scale applies to first).
+    SourceLoc at = c.where;
+    for (const size_t p : gains_of(kind)) {
+      if (c.parameters[p] != 0.0 && p < c.parameters_where.size()) {
+        at = c.parameters_where[p];
+        break;
+      }
+    }
     problems.push_back(
-        located(Severity::Error, c.where, files, "unstable-loop",
+        located(Severity::Error, at, files, "unstable-loop",
                 "the loop of the controller '" + c.iri + "' on '" + quantity +
                     "' is unstable at the start: closed around the plant from its output '" +
                     output.iri + "' to its error as the probes identify it (the error moves " +

@@ -143,6 +143,10 @@ struct Step {
   runtime::Edges edges = runtime::Edges::Rising;  // EdgeMonitor: the edges it reports
   int controller = -1;                            // Controller: index into controller_kinds()
   std::vector<double> parameters;                 // Controller: one value per parameter of its kind
+  // Controller: where each parameter is stated (the literal, or the quantity
+  // the property names); the controller's place for the runtime's defaults.
+  // For diagnostics only: not in the IR's JSON.
+  std::vector<SourceLoc> parameters_where;
   int state = -1;  // stateful controllers, monitors, motions: their state slot
   // ArmSolve: in[0, n_drivers) are the drivers' data; in[n_drivers, ...) the
   // running flags of the motions whose controllers drive this arm. With such

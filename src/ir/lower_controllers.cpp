@@ -72,6 +72,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
   Step s = st.step_for(StepKind::Controller, c);
   s.controller = index;
   s.parameters = kind.defaults();
+  s.parameters_where.assign(kind.parameters.size(), s.where);
   // (Scratch maps and sets: from the lowering's arena.)
   std::pmr::map<std::string_view, int> port_datum{&st.arena};  // unit port -> datum
   for (size_t i = 0; i < kind.in.size(); ++i) {
@@ -116,6 +117,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
       const auto v = st.number(*term);
       if (v) {
         s.parameters[f] = *v;
+        s.parameters_where[f] = st.graph.where(c, property_term(p.property), *term);
       } else if (st.graph.terms()[*term].is_literal()) {
         st.error(st.graph.where(c, property_term(p.property), *term), "invalid-number",
                  ctrl + " has " + name + " " + st.literal_text(*term) +
@@ -147,6 +149,7 @@ void lower_controller(State& st, TermId c, const ControllerKind& kind, int index
       continue;
     }
     s.parameters[f] = q.value[0];
+    s.parameters_where[f] = st.graph.where(c, property_term(p.property), *term);
   }
 
   // Units: the first port's unit picks the kind's combination; every other

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The closed-loop check before a run (issue #33 item 6), at the controller,
+# The closed-loop check before a run (issue #33 item 6), at the statement of
+# the gain (the controller's node: the loader places a node's statements there),
 # before anything runs:
 # - a velocity PI whose proportional gain has the wrong sign (it would drive
 #   its error away, until torques clamp and joints hit their limits) is
@@ -24,7 +25,7 @@ expect "sc0a's own gains pass the check and run" 0 "verdict: ok" -- \
 sed -i '0,/"proportional-gain": "100.0"/s//"proportional-gain": "-100.0"/' models/right-arm/05-constraint-handler.json
 grep -q '"-100.0"' models/right-arm/05-constraint-handler.json || fail "the test's edit did not apply"
 expect "a wrong-sign gain is refused before the run" 1 \
-  "^models/right-arm/05-constraint-handler.json:[0-9]+:[0-9]+: error: the controller '$m/ctrl-angvel-rightarm-ee-x' drives the error of '$m/angvel-rightarm-ee-x' away from 0: at the start, a larger output '$m/eacc-rightarm-ee-ang-x' makes the error smaller \(-[0-9.e-]+ per unit after 5 ticks\), so its proportional-gain must be >= 0, and it is -100$" \
+  "^models/right-arm/05-constraint-handler.json:41:[0-9]+: error: the controller '$m/ctrl-angvel-rightarm-ee-x' drives the error of '$m/angvel-rightarm-ee-x' away from 0: at the start, a larger output '$m/eacc-rightarm-ee-ang-x' makes the error smaller \(-[0-9.e-]+ per unit after 5 ticks\), so its proportional-gain must be >= 0, and it is -100$" \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json --log "$work/run.csv"
 check "only that gain" test "$(grep -c ': error: ' "$work/stderr.txt")" = 1
 check "nothing was run" bash -c "grep -q 'nothing was run' '$work/stderr.txt' && [ ! -e '$work/run.csv' ]"
@@ -34,7 +35,7 @@ cp "$src/models/right-arm/05-constraint-handler.json" models/right-arm/
 sed -i '0,/"proportional-gain": "200.0"/s//"proportional-gain": "-200.0"/' models/right-arm/05-constraint-handler.json
 grep -q '"-200.0"' models/right-arm/05-constraint-handler.json || fail "the test's edit did not apply"
 expect "a slow loop's wrong-sign gain is refused too" 1 \
-  "^models/right-arm/05-constraint-handler.json:[0-9]+:[0-9]+: error: the controller '$m/ctrl-pos-rightarm-elbow-height' drives the error of '$m/pos-rightarm-elbow-height' away from 0: at the start, a larger output '$m/frc-rightarm-elbow-height' makes the error smaller \(-[0-9.]+e-0[89] per unit after 5 ticks\), so its proportional-gain must be >= 0, and it is -200$" \
+  "^models/right-arm/05-constraint-handler.json:20:[0-9]+: error: the controller '$m/ctrl-pos-rightarm-elbow-height' drives the error of '$m/pos-rightarm-elbow-height' away from 0: at the start, a larger output '$m/frc-rightarm-elbow-height' makes the error smaller \(-[0-9.]+e-0[89] per unit after 5 ticks\), so its proportional-gain must be >= 0, and it is -200$" \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json
 
 # Back, and the x angular-velocity PI's proportional-gain 100 -> 3000.
@@ -42,7 +43,7 @@ cp "$src/models/right-arm/05-constraint-handler.json" models/right-arm/
 sed -i '0,/"proportional-gain": "100.0"/s//"proportional-gain": "3000.0"/' models/right-arm/05-constraint-handler.json
 grep -q '"3000.0"' models/right-arm/05-constraint-handler.json || fail "the test's edit did not apply"
 expect "a gain too high for the tick is refused as an unstable loop" 1 \
-  "^models/right-arm/05-constraint-handler.json:[0-9]+:[0-9]+: error: the loop of the controller '$m/ctrl-angvel-rightarm-ee-x' on '$m/angvel-rightarm-ee-x' is unstable at the start: .*its gains \(proportional-gain 3000, integral-gain 2500, derivative-gain 0\) put a pole at \|z\| = 1\.[0-9]+, which grows the error e-fold every [0-9.]+ ms; with every gain scaled by 0\.[0-9]+ or less that pole is inside the unit circle" \
+  "^models/right-arm/05-constraint-handler.json:41:[0-9]+: error: the loop of the controller '$m/ctrl-angvel-rightarm-ee-x' on '$m/angvel-rightarm-ee-x' is unstable at the start: .*its gains \(proportional-gain 3000, integral-gain 2500, derivative-gain 0\) put a pole at \|z\| = 1\.[0-9]+, which grows the error e-fold every [0-9.]+ ms; with every gain scaled by 0\.[0-9]+ or less that pole is inside the unit circle" \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json
 check "one loop" test "$(grep -c ': error: ' "$work/stderr.txt")" = 1
 check "the summary line counts the loops" grep -qE "^mospec: 1 controller loop\(s\) that would diverge; nothing was run \(--run-diverging runs it anyway\)$" "$work/stderr.txt"
