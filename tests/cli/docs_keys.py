@@ -30,6 +30,9 @@ RDF = "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
 RDFS = "http://www.w3.org/2000/01/rdf-schema#"
 SH = "http://www.w3.org/ns/shacl#"
 PUBLISHED = "https://comp-rob2b.github.io/metamodels/"
+# The group's extension vocabulary, which mospec resolves to its own contexts
+# under metamodels/secorolab/ (src/app/app.cpp).
+EXTENSIONS = "https://secorolab.github.io/metamodels/"
 
 # ---- Turtle (enough of it for the shape files) ------------------------------
 
@@ -251,9 +254,10 @@ class Context:
             return
         if isinstance(ctx, str):
             seen = seen if seen is not None else set()
-            if ctx.startswith(PUBLISHED) and ctx not in seen:
+            base = next((b for b in (PUBLISHED, EXTENSIONS) if ctx.startswith(b)), None)
+            if base is not None and ctx not in seen:
                 seen.add(ctx)
-                f = src / "metamodels" / ctx[len(PUBLISHED):]
+                f = src / "metamodels" / ("" if base == PUBLISHED else "secorolab") / ctx[len(base):]
                 doc = load(f)
                 if isinstance(doc, dict) and "@context" in doc:
                     self.add(doc["@context"], src, seen)

@@ -56,15 +56,16 @@ run_commands() {
 }
 
 # The key check can fail, at the document's line, with the key it meant:
-# a joint limit's "lower" beside a tube, in prose, in a table of what is read
-# and in a JSON node; a key no context defines; a world file's key misspelt.
+# "lower" (a joint limit's, scoped to it) beside a tube, in prose; a term of
+# another class ("quantity-kind") in a table of what is read; a key no context
+# defines in a JSON node; a world file's key misspelt.
 cat > "$work/misnamed.md" <<'DOC'
 - a tube (`BilateralConstraint`, a `"lower"` and an `"upper-threshold"`)
 
 | class | property | outcome |
 |---|---|---|
 | EqualityConstraint | `reference-value` | honoured |
-| BilateralConstraint | `lower`, `upper-threshold` | honoured |
+| BilateralConstraint | `quantity-kind`, `upper-threshold` | honoured |
 
 ```json
 { "@id": "tube", "@type": ["Constraint", "BilateralConstraint"], "quantity": "q",
@@ -77,8 +78,8 @@ cat > "$work/misnamed.md" <<'DOC'
 DOC
 expect "misnamed keys are found" 1 "" -- python3 "$src/tests/cli/docs_keys.py" "$src" "$work/misnamed.md"
 stdout_has "in prose, beside its class, with the key it meant" \
-  '^.*misnamed.md:1: "lower" \(<https://comp-rob2b.github.io/metamodels/mospec/joints#lower>\) beside `BilateralConstraint`: no shape of metamodels/ allows it there; did you mean "lower-threshold"\?$'
-stdout_has "in a table row" '^.*misnamed.md:6: "lower" .* beside `BilateralConstraint`: .*did you mean "lower-threshold"\?$'
+  '^.*misnamed.md:1: "lower" beside `BilateralConstraint` is no term of the contexts it uses; did you mean "lower-threshold"\?$'
+stdout_has "in a table row, a term of another class" '^.*misnamed.md:6: "quantity-kind" \(<http://qudt.org/schema/qudt/hasQuantityKind>\) beside `BilateralConstraint`: no shape of metamodels/ allows it there; did you mean "quantity"\?$'
 stdout_has "in a JSON node: a key no context defines" \
   '^.*misnamed.md:10: "uper-threshold" on a Constraint/BilateralConstraint is no term of the contexts it uses; did you mean "upper-threshold"\?$'
 stdout_has "in a world file" '^.*misnamed.md:14: "substep" is no key of a world file .*did you mean "substeps"\?$'
