@@ -21,27 +21,31 @@ m=https://mospec.example/models
 expect "sc0a's own gains pass the check and run" 0 "verdict: ok" -- \
   "$mospec" run --sim --interpret --duration 0.05 models/sc0a.json
 
+# set_first_gain FROM TO: the shipped controllers, with the first
+# proportional-gain FROM set to TO.
+handlers=models/right-arm/05-constraint-handler.json
+set_first_gain() {
+  cp "$src/$handlers" "$handlers"
+  sed -i "0,/\"proportional-gain\": \"$1\"/s//\"proportional-gain\": \"$2\"/" "$handlers"
+  grep -q "\"$2\"" "$handlers" || fail "the test's edit to $2 did not apply"
+}
+
 # ctrl-angvel-rightarm-ee-x: proportional-gain 100 -> -100.
-sed -i '0,/"proportional-gain": "100.0"/s//"proportional-gain": "-100.0"/' models/right-arm/05-constraint-handler.json
-grep -q '"-100.0"' models/right-arm/05-constraint-handler.json || fail "the test's edit did not apply"
+set_first_gain 100.0 -100.0
 expect "a wrong-sign gain is refused before the run" 1 \
   "^models/right-arm/05-constraint-handler.json:41:[0-9]+: error: the controller '$m/ctrl-angvel-rightarm-ee-x' drives the error of '$m/angvel-rightarm-ee-x' away from 0: at the start, a larger output '$m/eacc-rightarm-ee-ang-x' makes the error smaller \(-[0-9.e-]+ per unit after 5 ticks\), so its proportional-gain must be >= 0, and it is -100$" \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json --log "$work/run.csv"
 check "only that gain" test "$(grep -c ': error: ' "$work/stderr.txt")" = 1
 check "nothing was run" bash -c "grep -q 'nothing was run' '$work/stderr.txt' && [ ! -e '$work/run.csv' ]"
 
-# Back, and the elbow-height PD's proportional-gain 200 -> -200.
-cp "$src/models/right-arm/05-constraint-handler.json" models/right-arm/
-sed -i '0,/"proportional-gain": "200.0"/s//"proportional-gain": "-200.0"/' models/right-arm/05-constraint-handler.json
-grep -q '"-200.0"' models/right-arm/05-constraint-handler.json || fail "the test's edit did not apply"
+# The elbow-height PD's proportional-gain 200 -> -200.
+set_first_gain 200.0 -200.0
 expect "a slow loop's wrong-sign gain is refused too" 1 \
   "^models/right-arm/05-constraint-handler.json:20:[0-9]+: error: the controller '$m/ctrl-pos-rightarm-elbow-height' drives the error of '$m/pos-rightarm-elbow-height' away from 0: at the start, a larger output '$m/frc-rightarm-elbow-height' makes the error smaller \(-[0-9.]+e-0[89] per unit after 5 ticks\), so its proportional-gain must be >= 0, and it is -200$" \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json
 
-# Back, and the x angular-velocity PI's proportional-gain 100 -> 3000.
-cp "$src/models/right-arm/05-constraint-handler.json" models/right-arm/
-sed -i '0,/"proportional-gain": "100.0"/s//"proportional-gain": "3000.0"/' models/right-arm/05-constraint-handler.json
-grep -q '"3000.0"' models/right-arm/05-constraint-handler.json || fail "the test's edit did not apply"
+# The x angular-velocity PI's proportional-gain 100 -> 3000.
+set_first_gain 100.0 3000.0
 expect "a gain too high for the tick is refused as an unstable loop" 1 \
   "^models/right-arm/05-constraint-handler.json:41:[0-9]+: error: the loop of the controller '$m/ctrl-angvel-rightarm-ee-x' on '$m/angvel-rightarm-ee-x' is unstable at the start: .*its gains \(proportional-gain 3000, integral-gain 2500, derivative-gain 0\) put a pole at \|z\| = 1\.[0-9]+, which grows the error e-fold every [0-9.]+ ms; with every gain scaled by 0\.[0-9]+ or less that pole is inside the unit circle" \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json
