@@ -71,6 +71,18 @@ app::LoadedModel load_gen3(const std::string& metamodels = kMetamodels) {
   return app::load({kModel}, options);
 }
 
+// `text` written to a scratch file named after `tag` and loaded against
+// `metamodels` (an edited robot description, for the reader's refusals).
+app::LoadedModel load_text(const std::string& text, const std::string& tag,
+                           const std::string& metamodels) {
+  const std::string path =
+      ::testing::TempDir() + "/mospec-" + tag + "-" + std::to_string(::getpid()) + ".jsonld";
+  write_output(path, text);
+  app::LoadOptions options;
+  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", metamodels);
+  return app::load({path}, options);
+}
+
 // Same links and joints, and the same kinematics (tip pose and Jacobian) and
 // dynamics (mass matrix, inverse dynamics) at random states.
 void expect_same_chain(const Chain& loaded, const Chain& expected, double tolerance) {
@@ -213,12 +225,7 @@ Chain round_trip(const Chain& chain, std::string* document = nullptr) {
   options.base = kLiftBase;
   const std::string text = chain_to_jsonld(chain, options);
   if (document != nullptr) *document = text;
-  const std::string path =
-      ::testing::TempDir() + "/mospec-prismatic-" + std::to_string(::getpid()) + ".jsonld";
-  write_output(path, text);
-  app::LoadOptions load;
-  load.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
-  const app::LoadedModel model = app::load({path}, load);
+  const app::LoadedModel model = load_text(text, "prismatic", kOwnMetamodels);
   for (const auto& d : model.diagnostics().diagnostics()) ADD_FAILURE() << format(d);
   return chain_from_rdf(model.flattened(), kLiftBase + "chain");
 }
@@ -372,12 +379,7 @@ TEST(RobotModelPrismatic, ReadingRefusesLimitsItCannotHonour) {
     const std::string ctx = "\"https://comp-rob2b.github.io/metamodels/qudt.json\",";
     edited.replace(edited.find(ctx), ctx.size(),
                    ctx + "\"https://comp-rob2b.github.io/metamodels/mospec/joints.json\",");
-    const std::string path =
-        ::testing::TempDir() + "/mospec-lift-limit-" + std::to_string(::getpid()) + ".jsonld";
-    write_output(path, edited);
-    app::LoadOptions load;
-    load.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
-    const rdf::Dataset graph = app::load({path}, load).flattened();
+    const rdf::Dataset graph = load_text(edited, "lift-limit", kOwnMetamodels).flattened();
     try {
       chain_from_rdf(graph, kLiftBase + "chain");
       ADD_FAILURE() << "no error";
@@ -400,12 +402,7 @@ TEST(RobotModelPrismatic, ReadingNamesAJointOfNeitherOrBothKinds) {
   for (const auto& [type, message] : cases) {
     std::string edited = text;
     edited.replace(edited.find(lift), lift.size(), type);
-    const std::string path =
-        ::testing::TempDir() + "/mospec-lift-bad-" + std::to_string(::getpid()) + ".jsonld";
-    write_output(path, edited);
-    app::LoadOptions load;
-    load.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kOwnMetamodels);
-    const rdf::Dataset graph = app::load({path}, load).flattened();
+    const rdf::Dataset graph = load_text(edited, "lift-bad", kOwnMetamodels).flattened();
     try {
       chain_from_rdf(graph, kLiftBase + "chain");
       ADD_FAILURE() << "no error for " << type;
@@ -434,12 +431,7 @@ TEST(RobotModel, WrongUnitsAreRejectedNotConverted) {
   std::string text = read_file(kModel);
   const std::string from = "\"unit\": \"KiloGM\"";
   text.replace(text.find(from), from.size(), "\"unit\": \"GM\"");
-  const std::string path =
-      ::testing::TempDir() + "/mospec-gen3-grams-" + std::to_string(::getpid()) + ".jsonld";
-  write_output(path, text);
-  app::LoadOptions options;
-  options.maps.emplace_back("https://comp-rob2b.github.io/metamodels/", kMetamodels);
-  const rdf::Dataset graph = app::load({path}, options).flattened();
+  const rdf::Dataset graph = load_text(text, "gen3-grams", kMetamodels).flattened();
   try {
     chain_from_rdf(graph, kBase + "chain");
     ADD_FAILURE() << "no error";
