@@ -11,16 +11,16 @@
 #include <string_view>
 
 #include "codegen/build.hpp"
-#include "codegen/mustache.hpp"
 #include "codegen/templates.hpp"
 #include "ir/controllers.hpp"
+#include "ir/emit.hpp"
 #include "ir/operators.hpp"
 #include "support/io.hpp"
+#include "support/mustache.hpp"
 
 namespace mospec::codegen {
 
 using ir::DataType;
-using ir::StepKind;
 
 std::string cpp_double(double value) {
   if (std::isnan(value)) return "std::numeric_limits<double>::quiet_NaN()";
@@ -261,27 +261,13 @@ bool same_bits(const M& a, const M& b) {
   return std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
-mustache::Data list() {
-  return mustache::Data::list();
-}
-void put(mustache::Data& object, std::string_view key, mustache::Data value) {
-  object.put(key, std::move(value));
-}
-void append(mustache::Data& list, mustache::Data value) {
-  list.append(std::move(value));
-}
+using ir::append;
+using ir::list;
+using ir::put;
 
 // Builds the template data for one Program. Every choice is made here.
-class Builder {
-  // The identifiers of one arm solver's members and functions.
-  struct ArmNames {
-    std::string arm;       // Model: its AchdModel (gravity); Data: its AchdData
-    std::string task;      // Model: the AchdModel of the ACHD solve (no gravity)
-    std::string X_BR;      // Model: the solver's root R in the chain's root B
-    std::string model_fn;  // function: builds the AchdModel for a gravity
-    std::string X_RB_fn;   // function: the mount pose
-    std::string ws;        // Data: the steps' workspace
-  };
+class Builder final : public ir::EmitContext {
+  using ArmNames = ir::ArmNames;
 
   // The identifiers one role of entities takes: an entity whose identifier is
   // already taken is an error naming both entities' IRIs and locations.
@@ -342,13 +328,20 @@ class Builder {
     }
     for (const ir::Step& st : p.steps) {
       std::string m;
-      if (st.kind == StepKind::Evaluate) m = evals.take("eval", st.name, st.iri, st.where);
-      if (st.kind == StepKind::Controller) {
-        const auto k = static_cast<std::size_t>(st.controller);
-        m = controllers[k].take(ir::controller_kinds()[k].name, st.name, st.iri, st.where);
-      }
-      if (st.kind == StepKind::LevelMonitor || st.kind == StepKind::EdgeMonitor) {
-        m = monitors.take("tolerance", st.name, st.iri, st.where);
+      switch (ir::info(st.kind).member) {
+        case ir::StepMember::None:
+          break;
+        case ir::StepMember::Evaluator:
+          m = evals.take("eval", st.name, st.iri, st.where);
+          break;
+        case ir::StepMember::Controller: {
+          const auto k = static_cast<std::size_t>(st.controller);
+          m = controllers[k].take(ir::controller_kinds()[k].name, st.name, st.iri, st.where);
+          break;
+        }
+        case ir::StepMember::MonitorTolerance:
+          m = monitors.take("tolerance", st.name, st.iri, st.where);
+          break;
       }
       step_members_.push_back(m);
     }
@@ -369,9 +362,22 @@ class Builder {
  private:
   // The program is verified (render() runs ir::verify): indices are in range,
   // types match each step's kind, guards, gates and state slots fit.
-  const ir::Data& datum(int index) const { return p_.data[static_cast<std::size_t>(index)]; }
-  // The expression that names a datum's slot, e.g. "d.scalar[slot::time]".
-  std::string ref(int index, std::string_view object = "d.") const {
+  // What the step kinds' emit hooks ask (ir/emit.hpp).
+  const ir::Program& program() const override { return p_; }
+  std::string ref(int index) const override { return ref(index, "d."); }
+  const std::string& member(std::size_t step) const override { return step_members_[step]; }
+  const ArmNames& arm(int solver) const override {
+    return arm_names_[static_cast<std::size_t>(solver)];
+  }
+  std::string number(double value) const override { return cpp_double(value); }
+  std::string comment(std::string_view text) const override { return comment_text(text); }
+  static bool owns(const ir::Step& st, ir::StepMember member) {
+    return ir::info(st.kind).member == member;
+  }
+
+  // The expression that names a datum's slot in `object`, e.g.
+  // "d.scalar[slot::time]".
+  std::string ref(int index, std::string_view object) const {
     const ir::Data& d = datum(index);
     std::string s(object);
     s.append(type_member(d.type))
@@ -380,15 +386,13 @@ class Builder {
         .append("]");
     return s;
   }
-  std::string in(const ir::Step& st, std::size_t k) const { return ref(st.in[k]); }
   // Whether a step of controller kind `k` is in the program.
   bool uses_controller(int k) const {
     for (const ir::Step& st : p_.steps) {
-      if (st.kind == StepKind::Controller && st.controller == k) return true;
+      if (owns(st, ir::StepMember::Controller) && st.controller == k) return true;
     }
     return false;
   }
-  std::string out(const ir::Step& st, std::size_t k) const { return ref(st.out[k]); }
   // The path of a location's file ("" when unknown).
   std::string file_of(const SourceLoc& loc) const {
     if (files_ != nullptr && loc.file != 0 && loc.file < files_->size())
@@ -415,9 +419,6 @@ class Builder {
     s.append(":").append(std::to_string(loc.line));
     if (loc.column != 0) s.append(":").append(std::to_string(loc.column));
     return comment_text(s);
-  }
-  const ir::ArmSolver& arm(const ir::Step& st) const {
-    return p_.arms[static_cast<std::size_t>(st.solver)];
   }
   void add_slots(mustache::Data& root) const {
     mustache::Data types = list();
@@ -570,7 +571,7 @@ class Builder {
     mustache::Data evaluators = list(), monitors = list();
     for (std::size_t i = 0; i < p_.steps.size(); ++i) {
       const ir::Step& st = p_.steps[i];
-      if (st.kind != StepKind::Evaluate) continue;
+      if (!owns(st, ir::StepMember::Evaluator)) continue;
       const runtime::ConstraintSpec& c = st.constraint;
       mustache::Data e;
       put(e, "member", step_members_[i]);
@@ -595,7 +596,7 @@ class Builder {
       mustache::Data members = list();
       for (std::size_t i = 0; i < p_.steps.size(); ++i) {
         const ir::Step& st = p_.steps[i];
-        if (st.kind != StepKind::Controller || st.controller != static_cast<int>(k)) continue;
+        if (!owns(st, ir::StepMember::Controller) || st.controller != static_cast<int>(k)) continue;
         mustache::Data e;
         put(e, "type", std::string(kind.model_type));
         put(e, "member", step_members_[i]);
@@ -626,7 +627,7 @@ class Builder {
     }
     for (std::size_t i = 0; i < p_.steps.size(); ++i) {
       const ir::Step& st = p_.steps[i];
-      if (st.kind != StepKind::LevelMonitor && st.kind != StepKind::EdgeMonitor) continue;
+      if (!owns(st, ir::StepMember::MonitorTolerance)) continue;
       mustache::Data e;
       put(e, "member", step_members_[i]);
       put(e, "iri", comment_text(st.iri));
@@ -768,247 +769,8 @@ class Builder {
         .append("\n  //     ");
     header.append(where(st.where));
     put(s, "header", header);
-    const auto gate = [&]() { return st.in.size() < 2 ? std::string("true") : in(st, 1); };
     put(s, ir::template_section(st.kind), true);
-    switch (st.kind) {
-      case StepKind::ReadClock:
-        put(s, "out0", out(st, 0));
-        break;
-      case StepKind::ArmKinematics: {
-        const ir::ArmSolver& a = arm(st);
-        const auto k = static_cast<std::size_t>(st.solver);
-        put(s, "arm", arm_names_[k].arm);
-        put(s, "task", arm_names_[k].task);
-        put(s, "workspace", arm_names_[k].ws);
-        put(s, "port", std::to_string(a.port));
-        mustache::Data outputs = list();
-        for (const ir::ArmOutput& o : a.outputs) {
-          mustache::Data e;
-          put(e, "target", ref(o.data));
-          std::string call = "rt::steps::";
-          if (o.what == ir::ArmOutput::What::SegmentPose) {
-            call.append("segment_pose(d.").append(arm_names_[k].arm).append(", ");
-          } else if (o.what == ir::ArmOutput::What::ChainRootPose) {
-            call.append("segment_pose_in_chain_root(d.").append(arm_names_[k].arm).append(", m.");
-            call.append(arm_names_[k].X_BR).append(", ");
-          } else if (o.what == ir::ArmOutput::What::JointPosition) {
-            call.append("joint_position(d.").append(arm_names_[k].ws).append(", ");
-          } else if (o.what == ir::ArmOutput::What::JointVelocity) {
-            call.append("joint_velocity(d.").append(arm_names_[k].ws).append(", ");
-          } else if (o.what == ir::ArmOutput::What::JointTorque) {
-            call.append("joint_torque(d.").append(arm_names_[k].ws).append(", state.arm[");
-            call.append(std::to_string(a.port)).append("].tau, ");
-          } else if (o.what == ir::ArmOutput::What::EstimatedWrench) {
-            call.append("estimated_wrench(m.").append(arm_names_[k].arm).append(", d.");
-            call.append(arm_names_[k].arm).append(", d.").append(arm_names_[k].ws);
-            call.append(", state.arm[").append(std::to_string(a.port)).append("].tau, ");
-          } else if (o.what == ir::ArmOutput::What::TipPose ||
-                     o.what == ir::ArmOutput::What::TipTwist ||
-                     o.what == ir::ArmOutput::What::TipPoseInChainRoot) {
-            // The tip frame's, read with the physical model (its X_NT is the tool).
-            const bool in_chain_root = o.what == ir::ArmOutput::What::TipPoseInChainRoot;
-            call.append(o.what == ir::ArmOutput::What::TipTwist ? "tip_twist"
-                        : in_chain_root                         ? "tip_pose_in_chain_root"
-                                                                : "tip_pose");
-            call.append("(m.").append(arm_names_[k].arm).append(", d.").append(arm_names_[k].arm);
-            if (in_chain_root) call.append(", m.").append(arm_names_[k].X_BR);
-            call.append(")");
-            put(e, "call", call);
-            append(outputs, std::move(e));
-            continue;
-          } else {
-            call.append("segment_twist(d.").append(arm_names_[k].arm).append(", ");
-          }
-          call.append(std::to_string(o.segment)).append(")");
-          put(e, "call", call);
-          append(outputs, std::move(e));
-        }
-        put(s, "outputs", std::move(outputs));
-        break;
-      }
-      case StepKind::ViewRead:
-        put(s, "function", datum(st.in.at(0)).type == DataType::Pose ? "view_pose" : "view_vec6");
-        put(s, "in0", in(st, 0));
-        put(s, "component", std::to_string(st.views[0]));
-        put(s, "out0", out(st, 0));
-        break;
-      case StepKind::ViewWrite: {
-        put(s, "out0", out(st, 0));
-        mustache::Data components = list();
-        for (std::size_t k = 0; k < st.in.size(); ++k) {
-          mustache::Data c;
-          put(c, "out0", out(st, 0));
-          put(c, "component", std::to_string(st.views[k]));
-          put(c, "source", in(st, k));
-          append(components, std::move(c));
-        }
-        put(s, "components", std::move(components));
-        break;
-      }
-      case StepKind::Operator: {
-        // The registry's kernel, called the way it declares: it returns the
-        // output, or writes it through its last parameter.
-        const ir::OperatorKind& k = ir::operator_kinds()[static_cast<std::size_t>(st.op)];
-        std::string args;
-        for (std::size_t i = 0; i < st.in.size(); ++i) {
-          if (i) args.append(", ");
-          args.append(in(st, i));
-        }
-        if (!k.kernel_returns) args.append(", ").append(out(st, 0));
-        put(s, "returns", k.kernel_returns);
-        put(s, "kernel", std::string(k.kernel));
-        put(s, "args", args);
-        put(s, "out0", out(st, 0));
-        break;
-      }
-      case StepKind::Evaluate:
-        put(s, "evaluator", step_members_[index]);
-        put(s, "in0", in(st, 0));
-        put(s, "active", gate());
-        put(s, "out0", out(st, 0));
-        put(s, "out1", out(st, 1));
-        break;
-      case StepKind::LevelMonitor:
-      case StepKind::EdgeMonitor:
-        put(s, "state_slot", std::to_string(st.state));
-        put(s, "in0", in(st, 0));
-        put(s, "tolerance", step_members_[index]);
-        put(s, "edges",
-            std::string(st.edges == runtime::Edges::Rising    ? "Rising"
-                        : st.edges == runtime::Edges::Falling ? "Falling"
-                                                              : "Both"));
-        put(s, "running", gate());
-        put(s, "out0", out(st, 0));
-        break;
-      case StepKind::GuardedMotion: {
-        const auto n_when = static_cast<std::size_t>(st.n_when);
-        const auto n_while = static_cast<std::size_t>(st.n_while);
-        std::string when, whiles, until;
-        for (std::size_t k = 0; k < st.in.size(); ++k) {
-          std::string& list_text = k < n_when ? when : k < n_when + n_while ? whiles : until;
-          if (!list_text.empty()) list_text.append(", ");
-          list_text.append(in(st, k));
-        }
-        put(s, "n_when", std::to_string(n_when));
-        put(s, "n_while", std::to_string(n_while));
-        put(s, "n_until", std::to_string(st.in.size() - n_when - n_while));
-        put(s, "when", when);
-        put(s, "whiles", whiles);
-        put(s, "until", until);
-        put(s, "state_slot", std::to_string(st.state));
-        put(s, "out0", out(st, 0));
-        put(s, "out1", out(st, 1));
-        break;
-      }
-      case StepKind::AnyOf: {
-        std::string any;
-        for (std::size_t k = 0; k < st.in.size(); ++k) {
-          if (k) any.append(" || ");
-          any.append(in(st, k));
-        }
-        put(s, "any", any);
-        put(s, "out0", out(st, 0));
-        break;
-      }
-      case StepKind::Controller: {
-        // The registry's kernel, called as it declares: (model, [state,]
-        // signals..., [dt,] active), active being the running flag after the
-        // signals, if any.
-        const ir::ControllerKind& k =
-            ir::controller_kinds()[static_cast<std::size_t>(st.controller)];
-        std::string call = "rt::";
-        call.append(k.kernel).append("(m.").append(step_members_[index]);
-        if (k.has_state()) {
-          call.append(", d.").append(k.name).append("[").append(std::to_string(st.state));
-          call.append("]");
-        }
-        for (std::size_t i = 0; i < k.in.size(); ++i) call.append(", ").append(in(st, i));
-        if (k.kernel_takes_dt) call.append(", state.clock.dt");
-        call.append(", ").append(st.in.size() > k.in.size() ? in(st, k.in.size()) : "true");
-        call.append(")");
-        put(s, "call", call);
-        put(s, "out0", out(st, 0));
-        break;
-      }
-      case StepKind::ArmSolve: {
-        const ir::ArmSolver& a = arm(st);
-        const auto k = static_cast<std::size_t>(st.solver);
-        put(s, "arm", arm_names_[k].arm);
-        put(s, "task", arm_names_[k].task);
-        put(s, "workspace", arm_names_[k].ws);
-        put(s, "port", std::to_string(a.port));
-        put(s, "degraded", out(st, 0));
-        // in[0, drivers) are the drivers' data; the rest gate the solve: the
-        // running flags of the motions that drive this arm (none running: hold).
-        const std::size_t drivers = st.drivers();
-        std::string gates;
-        for (std::size_t g = drivers; g < st.in.size(); ++g) {
-          if (!gates.empty()) gates.append(" || ");
-          gates.append(in(st, g));
-        }
-        put(s, "gated", !gates.empty());
-        put(s, "gates", gates);
-        put(s, "idle_time_constant",
-            a.idle == ir::ArmSolver::Idle::BrakeAndHold
-                ? cpp_double(a.idle_time_constant)
-                : std::string("rt::steps::kFloatTimeConstant"));
-        put(s, "indent", gates.empty() ? "  " : "    ");
-        mustache::Data forces = list(), joint_forces = list(), betas = list();
-        for (const ir::CartesianForce& f : a.cartesian_forces) {
-          mustache::Data e;
-          put(e, "workspace", arm_names_[k].ws);
-          put(e, "segment", std::to_string(f.segment));
-          // A force on the tool: its wrench at To moved to the segment's origin.
-          put(e, "source",
-              f.at_tip ? "rt::steps::tip_wrench_at_segment_origin(m." + arm_names_[k].arm + ", d." +
-                             arm_names_[k].arm + ", " + ref(f.wrench) + ")"
-                       : ref(f.wrench));
-          put(e, "iri", comment_text(f.iri));
-          append(forces, std::move(e));
-        }
-        for (const ir::JointForce& f : a.joint_forces) {
-          mustache::Data e;
-          put(e, "workspace", arm_names_[k].ws);
-          put(e, "joint", std::to_string(f.joint));
-          put(e, "source", ref(f.force));
-          put(e, "iri", comment_text(f.iri));
-          append(joint_forces, std::move(e));
-        }
-        for (std::size_t c = 0; c < a.acceleration_constraints.size(); ++c) {
-          mustache::Data e;
-          put(e, "workspace", arm_names_[k].ws);
-          put(e, "column", std::to_string(c));
-          put(e, "source", ref(a.acceleration_constraints[c].energy));
-          put(e, "iri", comment_text(a.acceleration_constraints[c].iri));
-          if (a.acceleration_constraints[c].engaged_by >= 0) {
-            put(e, "engaged_by", ref(a.acceleration_constraints[c].engaged_by));
-            put(e, "engaged_tolerance", cpp_double(a.acceleration_constraints[c].tolerance));
-          }
-          append(betas, std::move(e));
-        }
-        put(s, "forces", std::move(forces));
-        put(s, "joint_forces", std::move(joint_forces));
-        put(s, "betas", std::move(betas));
-        break;
-      }
-      case StepKind::BaseForceDistribution: {
-        put(s, "in0", in(st, 0));
-        // in[0] is the platform wrench; the rest are the running flags of the
-        // motions that drive the base (none running: it brakes and holds).
-        std::string gates;
-        for (std::size_t g = st.drivers(); g < st.in.size(); ++g) {
-          if (!gates.empty()) gates.append(" || ");
-          gates.append(in(st, g));
-        }
-        put(s, "gated", !gates.empty());
-        put(s, "gates", gates);
-        put(s, "indent", gates.empty() ? "  " : "    ");
-        break;
-      }
-      case StepKind::BaseVelocityComposition:
-        put(s, "out0", out(st, 0));
-        break;
-    }
+    ir::info(st.kind).emit(*this, st, index, s);
     return s;
   }
 

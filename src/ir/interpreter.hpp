@@ -12,6 +12,7 @@
 
 #include "ir/controllers.hpp"
 #include "ir/ir.hpp"
+#include "ir/machine.hpp"
 #include "ir/operators.hpp"
 #include "robot/controller.hpp"
 #include "runtime/monitors.hpp"
@@ -38,26 +39,12 @@ class Interpreter final : public robot::Controller {
   double value(int data) const noexcept;
 
  private:
-  struct Arm;
-  struct Base;
-  void execute(const Step& step, size_t index, const robot::MeasuredState& state,
-               robot::Command& command) noexcept;
   size_t slot(int data) const {
     return static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot);
   }
 
   Program program_;
-  Slots s_;
-  // Operator steps' input slots, flattened; a step's start by step index.
-  std::vector<int> operator_slots_;
-  std::vector<size_t> operator_slot_offset_;
-  // Controller steps' runtime models and states, by step index (null for other steps).
-  std::vector<std::unique_ptr<ControllerInstance>> controllers_;
-  std::vector<runtime::MonitorState> monitor_states_;
-  std::vector<runtime::steps::MotionState> motion_states_;
-  std::vector<std::unique_ptr<runtime::ConstraintEvaluator>> evaluators_;  // by step index
-  std::vector<std::unique_ptr<Arm>> arms_;
-  std::unique_ptr<Base> base_;
+  Machine m_;  // after program_: it reads it
   std::vector<std::string> column_names_, column_units_;
   std::vector<int> arm_joints_;
   std::vector<robot::LogColumnInfo> columns_;

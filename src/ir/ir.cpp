@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ir/controllers.hpp"
+#include "ir/kinds/kinds.hpp"
 #include "ir/operators.hpp"
 #include "runtime/steps.hpp"
 
@@ -251,65 +252,84 @@ struct KindEntry {
 
 // The step kinds, in StepKind's order.
 const KindEntry kStepKinds[] = {
-    {{StepKind::ReadClock, "read-clock", std::nullopt, "mospec/time Clock", "out: [time]"},
+    {{StepKind::ReadClock, "read-clock", std::nullopt, "mospec/time Clock", "out: [time]",
+      StepRole::Clock, StepMember::None, nullptr, &kinds::interpret_read_clock,
+      &kinds::emit_read_clock},
      [](const Step&, const Program&) -> Signature {
        return {{}, {T::Scalar}};
      }},
     {{StepKind::ArmKinematics, "arm-kinematics", std::nullopt,
       "slv:SolverWithInputAndOutput (its outputs)",
       "outs: the solver's outputs (poses, twists of segments w.r.t. the root; joint positions, "
-      "velocities, measured torques)"},
+      "velocities, measured torques)",
+      StepRole::Measurement, StepMember::None, nullptr, &kinds::interpret_arm_kinematics,
+      &kinds::emit_arm_kinematics},
      [](const Step&, const Program&) -> Signature {
        return {{}, {}, true};
      }},
     {{StepKind::ViewRead, "view-read", std::nullopt,
       "map:PoseCoordinateView, VelocityTwistCoordinateView, WrenchCoordinateView (read)",
-      "in: [pose|twist|wrench]; out: [scalar]"},
+      "in: [pose|twist|wrench]; out: [scalar]", StepRole::Computation, StepMember::None, nullptr,
+      &kinds::interpret_view_read, &kinds::emit_view_read},
      &view_read_signature},
     {{StepKind::ViewWrite, "view-write", std::nullopt,
       "map:VelocityTwistCoordinateView, WrenchCoordinateView (written)",
-      "ins: [scalar...]; out: [twist|wrench] (other components zero)"},
+      "ins: [scalar...]; out: [twist|wrench] (other components zero)", StepRole::Computation,
+      StepMember::None, nullptr, &kinds::interpret_view_write, &kinds::emit_view_write},
      &view_write_signature},
     {{StepKind::Operator, "operator", std::nullopt, "the operator registry (operators.hpp)",
-      "the operator kind's ports"},
+      "the operator kind's ports", StepRole::Computation, StepMember::None,
+      &kinds::prepare_operator, &kinds::interpret_operator, &kinds::emit_operator},
      &operator_signature},
     {{StepKind::Evaluate, "evaluate", std::nullopt, "cstr-hdl:ErrorEvaluator, AssignmentEvaluator",
-      "ins: [quantity, (active flag)]; outs: [satisfied flag, error|output]"},
+      "ins: [quantity, (active flag)]; outs: [satisfied flag, error|output]", StepRole::Constraint,
+      StepMember::Evaluator, &kinds::prepare_evaluate, &kinds::interpret_evaluate,
+      &kinds::emit_evaluate},
      [](const Step& st, const Program&) -> Signature {
        if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag, T::Scalar}};
        return {{T::Scalar}, {T::Flag, T::Scalar}};
      }},
     {{StepKind::LevelMonitor, "level-monitor", StateKind::Monitor, "cstr-hdl:LevelTriggeredMonitor",
-      "ins: [error, (running flag)]; out: [flag]"},
+      "ins: [error, (running flag)]; out: [flag]", StepRole::Monitor, StepMember::MonitorTolerance,
+      nullptr, &kinds::interpret_monitor, &kinds::emit_monitor},
      [](const Step& st, const Program&) -> Signature {
        if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag}};
        return {{T::Scalar}, {T::Flag}};
      }},
     {{StepKind::EdgeMonitor, "edge-monitor", StateKind::Monitor, "cstr-hdl:EdgeTriggeredMonitor",
-      "ins: [error, (running flag)]; out: [event: 1 rising, 2 falling, as its edges say]"},
+      "ins: [error, (running flag)]; out: [event: 1 rising, 2 falling, as its edges say]",
+      StepRole::Monitor, StepMember::MonitorTolerance, nullptr, &kinds::interpret_monitor,
+      &kinds::emit_monitor},
      [](const Step& st, const Program&) -> Signature {
        if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Event}};
        return {{T::Scalar}, {T::Event}};
      }},
     {{StepKind::GuardedMotion, "guarded-motion", StateKind::Motion, "mot:GuardedMotion",
       "ins: [when flags..., checked while flags..., until flags...]; outs: [running flag, "
-      "ended event: 1 an until held, 2 a while was violated]"},
+      "ended event: 1 an until held, 2 a while was violated]",
+      StepRole::Motion, StepMember::None, nullptr, &kinds::interpret_guarded_motion,
+      &kinds::emit_guarded_motion},
      [](const Step& st, const Program&) -> Signature {
        return {Types(st.in.size(), T::Flag), {T::Flag, T::Event}};
      }},
     {{StepKind::AnyOf, "any-of", std::nullopt,
       "cstr-hdl:ConstraintHandler (a controller or evaluator several motions' handlers list)",
-      "ins: [running flags...]; out: [flag]: true while any of them is"},
+      "ins: [running flags...]; out: [flag]: true while any of them is", StepRole::Computation,
+      StepMember::None, nullptr, &kinds::interpret_any_of, &kinds::emit_any_of},
      [](const Step& st, const Program&) -> Signature {
        return {Types(st.in.size(), T::Flag), {T::Flag}};
      }},
     {{StepKind::Controller, "controller", std::nullopt,
       "the controller registry (controllers.hpp); state slots per controller kind",
-      "ins: [signals..., (active flag)]; out: [control signal]"},
+      "ins: [signals..., (active flag)]; out: [control signal]", StepRole::Controller,
+      StepMember::Controller, &kinds::prepare_controller, &kinds::interpret_controller,
+      &kinds::emit_controller},
      &controller_signature},
     {{StepKind::ArmSolve, "arm-solve", std::nullopt, "slv:SolverWithInputAndOutput (its drivers)",
       "ins: the drivers' data, then the motion gates; out: [degraded flag]; writes the arm's "
-      "joint torques"},
+      "joint torques",
+      StepRole::Solver, StepMember::None, nullptr, &kinds::interpret_arm_solve,
+      &kinds::emit_arm_solve},
      [](const Step&, const Program&) -> Signature {
        Signature s{{}, {T::Flag}, true};
        s.variadic_out = false;
@@ -317,7 +337,9 @@ const KindEntry kStepKinds[] = {
      }},
     {{StepKind::BaseForceDistribution, "base-force-distribution", std::nullopt,
       "mospec platform force-distribution solver",
-      "ins: [platform wrench, motion gates...]; writes the hub torques"},
+      "ins: [platform wrench, motion gates...]; writes the hub torques", StepRole::Solver,
+      StepMember::None, nullptr, &kinds::interpret_base_force_distribution,
+      &kinds::emit_base_force_distribution},
      [](const Step& st, const Program&) -> Signature {
        Signature s{{T::Wrench}, {}};
        for (size_t k = 1; k < st.in.size(); ++k) s.in.push_back(T::Flag);
@@ -325,7 +347,9 @@ const KindEntry kStepKinds[] = {
      }},
     {{StepKind::BaseVelocityComposition, "base-velocity-composition", std::nullopt,
       "mospec platform velocity-composition solver",
-      "out: [platform twist] from the pivots' and wheels' rates"},
+      "out: [platform twist] from the pivots' and wheels' rates", StepRole::Measurement,
+      StepMember::None, nullptr, &kinds::interpret_base_velocity_composition,
+      &kinds::emit_base_velocity_composition},
      [](const Step&, const Program&) -> Signature {
        return {{}, {T::Twist}};
      }},

@@ -37,6 +37,10 @@
 #include "runtime/monitors.hpp"
 #include "support/diagnostics.hpp"
 
+namespace mospec::mustache {
+class Data;
+}
+
 namespace mospec::ir {
 
 // Inertia: a rigid body's inertia (runtime::RigidBodyInertia), always a model
@@ -87,20 +91,53 @@ std::string_view to_string(StepKind);
 // Per-step state the tick keeps across ticks (controllers, monitors, motions).
 enum class StateKind : uint8_t { Monitor, Motion };
 
+// What a step kind is to the code that reads a program without knowing its
+// kinds: lowering's later passes, the verdict, the report and the CLI's checks
+// (StepKindInfo::role). A new kind picks the role whose outputs it shares.
+enum class StepRole : uint8_t {
+  Clock,        // out[0]: the control clock's time
+  Measurement,  // reads the robot's sensors into its outputs (arm kinematics, base velocity)
+  Computation,  // a pure function of its inputs (views, operators, any-of)
+  Constraint,   // evaluates a constraint: out[0] its satisfied flag, out[1] its error or output
+  Monitor,      // watches an error: out[0] its flag or event
+  Motion,       // a guarded motion: out[0] its running flag, out[1] its ended event
+  Controller,   // a control law: out[0] its signal, from its input signals
+  Solver,       // writes the robot's command from its drivers (out[0], if any: degraded)
+};
+
+// The member a step owns in generated code, by which codegen names and
+// declares it.
+enum class StepMember : uint8_t { None, Evaluator, Controller, MonitorTolerance };
+
+struct Step;
+struct Machine;
+class EmitContext;
+using InterpretHook = void (*)(Machine&, const Step&, size_t index, const robot::MeasuredState&,
+                               robot::Command&) noexcept;
+using PrepareHook = void (*)(Machine&, const Step&, size_t index);
+using EmitHook = void (*)(const EmitContext&, const Step&, size_t index, mustache::Data& section);
+
 // Every step kind, declared once (kStepKinds in ir.cpp): its IR name (the
 // JSON's "kind", and codegen's template section `is_<name>` with '-' as '_'),
-// the state slot it owns, the vocabulary it lowers from, and what it reads and
-// writes. The verifier takes each kind's signature from the same entry; the
-// interpreter's and codegen's switches over StepKind have no default, so
-// -Wswitch fails the build when a kind lacks either; ir_step_kinds_test fails
-// when the controller template lacks its section. Operators are one kind
-// whose instances come from their own registry (operators.hpp).
+// the state slot it owns, the vocabulary it lowers from, what it reads and
+// writes, its role, and its hooks (kinds/*.cpp): what the interpreter
+// allocates for it (prepare, optional) and executes each tick (interpret),
+// and the template section codegen emits for it (emit). The verifier takes
+// each kind's signature from the same entry; ir_step_kinds_test fails when a
+// hook is missing or the controller template lacks its section. Operators
+// and controllers are one kind each, whose instances come from their own
+// registries (operators.hpp, controllers.hpp).
 struct StepKindInfo {
   StepKind kind;
   std::string_view name;
   std::optional<StateKind> state;  // the per-step state slot, if any
   std::string_view lowered_from;   // the vocabulary class(es), or how lowering derives it
   std::string_view summary;        // inputs and outputs
+  StepRole role = StepRole::Computation;
+  StepMember member = StepMember::None;
+  PrepareHook prepare = nullptr;
+  InterpretHook interpret = nullptr;
+  EmitHook emit = nullptr;
 };
 std::span<const StepKindInfo> step_kinds();
 const StepKindInfo& info(StepKind kind);

@@ -1,10 +1,10 @@
-#include "codegen/mustache.hpp"
+#include "support/mustache.hpp"
 
 #include <cctype>
 
 #include "support/diagnostics.hpp"
 
-namespace mospec::codegen::mustache {
+namespace mospec::mustache {
 
 void Data::put(std::string_view key, Data value) {
   for (Member& m : members_) {
@@ -226,4 +226,4 @@ std::string render(std::string_view text, const Data& data) {
   return Renderer(parse(text)).run(data);
 }
 
-}  // namespace mospec::codegen::mustache
+}  // namespace mospec::mustache

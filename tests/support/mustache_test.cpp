@@ -1,7 +1,7 @@
-// The code generator's Mustache subset (src/codegen/mustache.hpp): what it
+// The code generator's Mustache subset (src/support/mustache.hpp): what it
 // substitutes, when a section renders, kainjow's blank-line rule, and the
 // templates it refuses.
-#include "codegen/mustache.hpp"
+#include "support/mustache.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 
 namespace {
 
-using mospec::codegen::mustache::Data;
-using mospec::codegen::mustache::render;
+using mospec::mustache::Data;
+using mospec::mustache::render;
 
 TEST(Mustache, VariablesAreVerbatimAndMissingOnesEmpty) {
   Data d;

@@ -1,7 +1,9 @@
 // The logic-less templates of the code generator: the part of Mustache that
 // src/codegen/templates uses (variables {{x}} and {{{x}}}, sections {{#x}},
 // inverted sections {{^x}}, comments {{! }}), substituted verbatim (C++ and
-// CMake, not HTML), over a data tree built for one render.
+// CMake, not HTML), over a data tree built for one render. It lives in
+// support, not codegen, because every IR step kind builds its own template
+// section (ir/emit.hpp) and codegen renders them.
 //
 // It renders what kainjow's Mustache (the library codegen used before) renders
 // for these templates, blank-line rule included: a line that held a section
@@ -17,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace mospec::codegen::mustache {
+namespace mospec::mustache {
 
 // A value of the data tree: an object (named members, in insertion order), a
 // list, a string or a boolean. A section renders once for a string, an object
@@ -86,4 +88,4 @@ inline Data Data::list() {
 // the byte offset.
 std::string render(std::string_view text, const Data& data);
 
-}  // namespace mospec::codegen::mustache
+}  // namespace mospec::mustache

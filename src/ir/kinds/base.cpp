@@ -1,0 +1,52 @@
+// base-force-distribution and base-velocity-composition: the KELO base's
+// solvers (Eq. 2-3): the platform wrench distributed to the hub torques, and
+// the platform twist composed from the pivots and wheel rates.
+#include "ir/kinds/kinds.hpp"
+
+namespace mospec::ir {
+
+Machine::Base::Base(const BaseSolver& s) : model(kelo_config(s)), data(model) {}
+
+namespace kinds {
+
+// in[0] is the platform wrench; the rest are the running flags of the
+// motions that drive the base (none running: it brakes and holds).
+void interpret_base_force_distribution(Machine& m, const Step& st, size_t,
+                                       const robot::MeasuredState& state,
+                                       robot::Command& command) noexcept {
+  namespace steps = runtime::steps;
+  bool driven = st.in.size() == st.drivers();  // no gates: always
+  for (size_t k = st.drivers(); k < st.in.size(); ++k)
+    driven = driven || m.s.flags[m.slot(st.in[k])] != 0;
+  Machine::Base& base = *m.base;
+  if (!driven) {
+    steps::base_hold(base.model, base.data, state.pivot_q, state.wheel_qd, command.wheel_tau);
+  } else {
+    steps::base_force_distribution(base.model, base.data, state.pivot_q,
+                                   m.s.wrenches[m.slot(st.in[0])], command.wheel_tau);
+  }
+}
+
+void emit_base_force_distribution(const EmitContext& ctx, const Step& st, size_t,
+                                  mustache::Data& s) {
+  put(s, "in0", ctx.in(st, 0));
+  const std::string gates = join_inputs(ctx, st, st.drivers(), st.in.size(), " || ");
+  put(s, "gated", !gates.empty());
+  put(s, "gates", gates);
+  put(s, "indent", gates.empty() ? "  " : "    ");
+}
+
+void interpret_base_velocity_composition(Machine& m, const Step& st, size_t,
+                                         const robot::MeasuredState& state,
+                                         robot::Command&) noexcept {
+  runtime::steps::base_velocity(m.base->model, m.base->data, state.pivot_q, state.wheel_qd,
+                                m.s.twists[m.slot(st.out[0])]);
+}
+
+void emit_base_velocity_composition(const EmitContext& ctx, const Step& st, size_t,
+                                    mustache::Data& s) {
+  put(s, "out0", ctx.out(st, 0));
+}
+
+}  // namespace kinds
+}  // namespace mospec::ir

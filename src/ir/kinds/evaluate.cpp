@@ -1,0 +1,29 @@
+// evaluate: a constraint's satisfaction and error (or an assignment's output)
+// from its quantity, gated by the running flag after it, if any.
+#include "ir/kinds/kinds.hpp"
+
+namespace mospec::ir::kinds {
+
+void prepare_evaluate(Machine& m, const Step& st, size_t index) {
+  m.evaluators[index] =
+      std::make_unique<runtime::ConstraintEvaluator>(st.constraint, st.name.c_str());
+}
+
+void interpret_evaluate(Machine& m, const Step& st, size_t index, const robot::MeasuredState&,
+                        robot::Command&) noexcept {
+  bool satisfied = false;
+  const bool active = st.in.size() < 2 || m.s.flags[m.slot(st.in[1])] != 0;
+  runtime::steps::evaluate(*m.evaluators[index], m.s.scalars[m.slot(st.in[0])], active, satisfied,
+                           m.s.scalars[m.slot(st.out[1])]);
+  m.s.flags[m.slot(st.out[0])] = satisfied;
+}
+
+void emit_evaluate(const EmitContext& ctx, const Step& st, size_t index, mustache::Data& s) {
+  put(s, "evaluator", ctx.member(index));
+  put(s, "in0", ctx.in(st, 0));
+  put(s, "active", st.in.size() < 2 ? std::string("true") : ctx.in(st, 1));
+  put(s, "out0", ctx.out(st, 0));
+  put(s, "out1", ctx.out(st, 1));
+}
+
+}  // namespace mospec::ir::kinds
