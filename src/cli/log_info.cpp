@@ -14,13 +14,13 @@ plot::LogInfo log_info(const ir::Program& program) {
   // `while` are goals it holds).
   std::set<int> guards;
   for (const ir::Step& s : program.steps) {
-    if (s.kind != ir::StepKind::GuardedMotion) continue;
+    if (ir::role(s) != ir::StepRole::Motion) continue;
     const auto n_when = static_cast<size_t>(s.n_when), n_while = static_cast<size_t>(s.n_while);
     for (size_t k = 0; k < s.in.size(); ++k)
       if (k < n_when || k >= n_when + n_while) guards.insert(s.in[k]);
   }
   for (const ir::Step& s : program.steps) {
-    if (s.kind != ir::StepKind::Evaluate || s.out.empty()) continue;
+    if (ir::role(s) != ir::StepRole::Constraint || s.out.empty()) continue;
     const std::string& flag = program.data[static_cast<size_t>(s.out[0])].iri;
     const std::string name = ir::lowering::local_name(flag.substr(0, flag.find('#')));
     const runtime::ConstraintSpec& spec = s.constraint;

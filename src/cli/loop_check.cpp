@@ -81,7 +81,7 @@ Probe run_from_start(ir::Program program, int ticks, const sim::WorldConfig& con
   if (first_outputs) {
     first_outputs->assign(steps.size(), 0.0);
     for (size_t i = 0; i < steps.size(); ++i)
-      if (steps[i].kind == ir::StepKind::Controller && !steps[i].out.empty())
+      if (ir::role(steps[i]) == ir::StepRole::Controller && !steps[i].out.empty())
         (*first_outputs)[i] = controller.value(steps[i].out.front());
   }
   return p;
@@ -96,7 +96,7 @@ ir::Program held_open(const ir::Program& program, const std::vector<double>& hel
   open.steps.clear();
   for (size_t i = 0; i < program.steps.size(); ++i) {
     const ir::Step& s = program.steps[i];
-    if (s.kind != ir::StepKind::Controller || s.out.empty()) {
+    if (ir::role(s) != ir::StepRole::Controller || s.out.empty()) {
       open.steps.push_back(s);
       continue;
     }
@@ -132,7 +132,7 @@ std::string quantity_of(const ir::Program& program, const ir::Step& c) {
   // The quantity the error is of: the Evaluate step that writes it reads it.
   std::string quantity = program.data[static_cast<size_t>(c.in.front())].iri;
   for (const ir::Step& s : program.steps) {
-    if (s.kind == ir::StepKind::Evaluate && s.out.size() > 1 && s.out[1] == c.in.front())
+    if (ir::role(s) == ir::StepRole::Constraint && s.out.size() > 1 && s.out[1] == c.in.front())
       quantity = program.data[static_cast<size_t>(s.in.front())].iri;
   }
   return quantity;
@@ -147,7 +147,7 @@ std::vector<Diagnostic> check_loops(const ir::Program& program, const sim::World
   const auto kinds = ir::controller_kinds();
   const auto probed = [&](size_t i) {
     const ir::Step& c = program.steps[i];
-    return c.kind == ir::StepKind::Controller && !c.in.empty() && !c.out.empty() &&
+    return ir::role(c) == ir::StepRole::Controller && !c.in.empty() && !c.out.empty() &&
            !gains_of(kinds[static_cast<size_t>(c.controller)]).empty();
   };
   bool any = false;

@@ -87,6 +87,27 @@ std::vector<report::Run> runs_in(const std::string& input, bool video) {
   return runs;
 }
 
+// The model entities the report lists: a step's role names what it is, or
+// nullptr for a step that is no entity of the model (a view, the clock...).
+const char* report_entity(ir::StepRole role) {
+  switch (role) {
+    case ir::StepRole::Constraint:
+      return "constraint";
+    case ir::StepRole::Monitor:
+      return "monitor";
+    case ir::StepRole::Controller:
+      return "controller";
+    case ir::StepRole::Motion:
+      return "motion";
+    case ir::StepRole::Clock:
+    case ir::StepRole::Measurement:
+    case ir::StepRole::Computation:
+    case ir::StepRole::Solver:
+      break;
+  }
+  return nullptr;
+}
+
 // The model the run came from, validated and lowered again: the page lists its
 // constraints, monitors, controllers and motions where the files define them.
 // The summary names the app; it is loaded only from inside the tree `report`
@@ -127,27 +148,10 @@ void describe_model(const std::string& app, const ReportFlags& flags, report::In
   in.model_verdict = app + " validates and lowers today: " + std::to_string(program->steps.size()) +
                      " steps, " + std::to_string(program->arms.size()) + " arm solver(s).";
   for (const ir::Step& s : program->steps) {
-    const char* kind = nullptr;
-    switch (s.kind) {
-      case ir::StepKind::Evaluate:
-        kind = "constraint";
-        break;
-      case ir::StepKind::LevelMonitor:
-      case ir::StepKind::EdgeMonitor:
-        kind = "monitor";
-        break;
-      case ir::StepKind::Controller:
-        kind = "controller";
-        break;
-      case ir::StepKind::GuardedMotion:
-        kind = "motion";
-        break;
-      default:
-        break;
-    }
+    const char* kind = report_entity(ir::role(s));
     if (!kind) continue;
     std::string iri = s.iri;
-    if (s.kind == ir::StepKind::Evaluate && !s.out.empty()) {
+    if (ir::role(s) == ir::StepRole::Constraint && !s.out.empty()) {
       // The constraint it evaluates ("<constraint>#satisfied"), located at
       // the evaluator.
       const std::string& flag = program->data[static_cast<size_t>(s.out[0])].iri;

@@ -137,222 +137,198 @@ runtime::Pose constant_pose(const std::vector<double>& v) {
 
 namespace {
 
-// A list of data types, held inline up to 16 (every step kind's ports so far),
-// so that checking a step allocates nothing: the verifier runs after every pass.
-class Types {
- public:
-  Types() = default;
-  Types(std::initializer_list<DataType> types) {
-    if (types.size() <= inline_.size()) {
-      std::copy(types.begin(), types.end(), inline_.begin());
-      size_ = types.size();
-    } else {
-      for (DataType t : types) push_back(t);
-    }
-  }
-  Types(size_t n, DataType t) {
-    if (n <= inline_.size()) {
-      std::fill_n(inline_.begin(), n, t);
-      size_ = n;
-    } else {
-      for (size_t k = 0; k < n; ++k) push_back(t);
-    }
-  }
-  void push_back(DataType t) {
-    if (size_ < inline_.size()) {
-      inline_[size_] = t;
-    } else {
-      if (overflow_.empty()) overflow_.assign(inline_.begin(), inline_.end());
-      overflow_.push_back(t);
-    }
-    ++size_;
-  }
-  size_t size() const { return size_; }
-  DataType operator[](size_t k) const {
-    return size_ <= inline_.size() ? inline_[k] : overflow_[k];
-  }
-
- private:
-  std::array<DataType, 16> inline_{};
-  std::vector<DataType> overflow_;  // all of them, once there are more than 16
-  size_t size_ = 0;
-};
-
-// The data types each step kind takes and gives (expected), or why the step
-// has none (`problem`). Variadic kinds check their inputs themselves.
-struct Signature {
-  Signature(Types i, Types o, bool variadic = false, std::string why = {})
-      : in(std::move(i)),
-        out(std::move(o)),
-        variadic_in(variadic),
-        variadic_out(variadic),
-        problem(std::move(why)) {}
-  Types in, out;
-  bool variadic_in = false, variadic_out = false;  // any number, of any type (checked elsewhere)
-  std::string problem;
-};
-
-using T = DataType;
-
-Signature operator_signature(const Step& st, const Program&) {
-  const auto kinds = operator_kinds();
-  if (st.op < 0 || static_cast<size_t>(st.op) >= kinds.size())
-    return {
-        {}, {}, true, "names operator kind " + std::to_string(st.op) + ", which does not exist"};
-  const OperatorKind& k = kinds[static_cast<size_t>(st.op)];
-  Signature s{{}, {k.out.type}};
-  for (const OperatorPort& port : k.in) s.in.push_back(port.type);
-  return s;
-}
-
-Signature view_read_signature(const Step& st, const Program& p) {
-  const bool known =
-      !st.in.empty() && st.in[0] >= 0 && static_cast<size_t>(st.in[0]) < p.data.size();
-  const T super = known ? p.data[static_cast<size_t>(st.in[0])].type : T::Pose;
-  if (super != T::Pose && super != T::Twist && super != T::Wrench)
-    return {{},
-            {},
-            true,
-            "reads a view of a " + std::string(to_string(super)) +
-                "; a view reads a pose, twist or wrench"};
-  return {{super}, {T::Scalar}};
-}
-
-Signature view_write_signature(const Step& st, const Program& p) {
-  const bool known =
-      !st.out.empty() && st.out[0] >= 0 && static_cast<size_t>(st.out[0]) < p.data.size();
-  const T super = known ? p.data[static_cast<size_t>(st.out[0])].type : T::Wrench;
-  if (super != T::Twist && super != T::Wrench)
-    return {{},
-            {},
-            true,
-            "writes a view of a " + std::string(to_string(super)) +
-                "; a view writes a twist or wrench"};
-  return {Types(st.in.size(), T::Scalar), {super}};
-}
-
-Signature controller_signature(const Step& st, const Program&) {
-  const auto kinds = controller_kinds();
-  if (st.controller < 0 || static_cast<size_t>(st.controller) >= kinds.size())
-    return {{},
-            {},
-            true,
-            "names controller kind " + std::to_string(st.controller) + ", which does not exist"};
-  // The signals, then (when its motion gates it) the running flag.
-  const ControllerKind& k = kinds[static_cast<size_t>(st.controller)];
-  Signature s{Types(k.in.size(), T::Scalar), {T::Scalar}};
-  if (st.in.size() == k.in.size() + 1) s.in.push_back(T::Flag);
-  return s;
-}
-
-struct KindEntry {
-  StepKindInfo info;
-  Signature (*signature)(const Step&, const Program&);
-};
-
-// The step kinds, in StepKind's order.
-const KindEntry kStepKinds[] = {
-    {{StepKind::ReadClock, "read-clock", std::nullopt, "mospec/time Clock", "out: [time]",
-      StepRole::Clock, StepMember::None, nullptr, &kinds::interpret_read_clock,
-      &kinds::emit_read_clock},
-     [](const Step&, const Program&) -> Signature {
-       return {{}, {T::Scalar}};
-     }},
-    {{StepKind::ArmKinematics, "arm-kinematics", std::nullopt,
-      "slv:SolverWithInputAndOutput (its outputs)",
-      "outs: the solver's outputs (poses, twists of segments w.r.t. the root; joint positions, "
-      "velocities, measured torques)",
-      StepRole::Measurement, StepMember::None, nullptr, &kinds::interpret_arm_kinematics,
-      &kinds::emit_arm_kinematics},
-     [](const Step&, const Program&) -> Signature {
-       return {{}, {}, true};
-     }},
-    {{StepKind::ViewRead, "view-read", std::nullopt,
-      "map:PoseCoordinateView, VelocityTwistCoordinateView, WrenchCoordinateView (read)",
-      "in: [pose|twist|wrench]; out: [scalar]", StepRole::Computation, StepMember::None, nullptr,
-      &kinds::interpret_view_read, &kinds::emit_view_read},
-     &view_read_signature},
-    {{StepKind::ViewWrite, "view-write", std::nullopt,
-      "map:VelocityTwistCoordinateView, WrenchCoordinateView (written)",
-      "ins: [scalar...]; out: [twist|wrench] (other components zero)", StepRole::Computation,
-      StepMember::None, nullptr, &kinds::interpret_view_write, &kinds::emit_view_write},
-     &view_write_signature},
-    {{StepKind::Operator, "operator", std::nullopt, "the operator registry (operators.hpp)",
-      "the operator kind's ports", StepRole::Computation, StepMember::None,
-      &kinds::prepare_operator, &kinds::interpret_operator, &kinds::emit_operator},
-     &operator_signature},
-    {{StepKind::Evaluate, "evaluate", std::nullopt, "cstr-hdl:ErrorEvaluator, AssignmentEvaluator",
-      "ins: [quantity, (active flag)]; outs: [satisfied flag, error|output]", StepRole::Constraint,
-      StepMember::Evaluator, &kinds::prepare_evaluate, &kinds::interpret_evaluate,
-      &kinds::emit_evaluate},
-     [](const Step& st, const Program&) -> Signature {
-       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag, T::Scalar}};
-       return {{T::Scalar}, {T::Flag, T::Scalar}};
-     }},
-    {{StepKind::LevelMonitor, "level-monitor", StateKind::Monitor, "cstr-hdl:LevelTriggeredMonitor",
-      "ins: [error, (running flag)]; out: [flag]", StepRole::Monitor, StepMember::MonitorTolerance,
-      nullptr, &kinds::interpret_monitor, &kinds::emit_monitor},
-     [](const Step& st, const Program&) -> Signature {
-       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag}};
-       return {{T::Scalar}, {T::Flag}};
-     }},
-    {{StepKind::EdgeMonitor, "edge-monitor", StateKind::Monitor, "cstr-hdl:EdgeTriggeredMonitor",
-      "ins: [error, (running flag)]; out: [event: 1 rising, 2 falling, as its edges say]",
-      StepRole::Monitor, StepMember::MonitorTolerance, nullptr, &kinds::interpret_monitor,
-      &kinds::emit_monitor},
-     [](const Step& st, const Program&) -> Signature {
-       if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Event}};
-       return {{T::Scalar}, {T::Event}};
-     }},
-    {{StepKind::GuardedMotion, "guarded-motion", StateKind::Motion, "mot:GuardedMotion",
-      "ins: [when flags..., checked while flags..., until flags...]; outs: [running flag, "
-      "ended event: 1 an until held, 2 a while was violated]",
-      StepRole::Motion, StepMember::None, nullptr, &kinds::interpret_guarded_motion,
-      &kinds::emit_guarded_motion},
-     [](const Step& st, const Program&) -> Signature {
-       return {Types(st.in.size(), T::Flag), {T::Flag, T::Event}};
-     }},
-    {{StepKind::AnyOf, "any-of", std::nullopt,
-      "cstr-hdl:ConstraintHandler (a controller or evaluator several motions' handlers list)",
-      "ins: [running flags...]; out: [flag]: true while any of them is", StepRole::Computation,
-      StepMember::None, nullptr, &kinds::interpret_any_of, &kinds::emit_any_of},
-     [](const Step& st, const Program&) -> Signature {
-       return {Types(st.in.size(), T::Flag), {T::Flag}};
-     }},
-    {{StepKind::Controller, "controller", std::nullopt,
-      "the controller registry (controllers.hpp); state slots per controller kind",
-      "ins: [signals..., (active flag)]; out: [control signal]", StepRole::Controller,
-      StepMember::Controller, &kinds::prepare_controller, &kinds::interpret_controller,
-      &kinds::emit_controller},
-     &controller_signature},
-    {{StepKind::ArmSolve, "arm-solve", std::nullopt, "slv:SolverWithInputAndOutput (its drivers)",
-      "ins: the drivers' data, then the motion gates; out: [degraded flag]; writes the arm's "
-      "joint torques",
-      StepRole::Solver, StepMember::None, nullptr, &kinds::interpret_arm_solve,
-      &kinds::emit_arm_solve},
-     [](const Step&, const Program&) -> Signature {
-       Signature s{{}, {T::Flag}, true};
-       s.variadic_out = false;
-       return s;
-     }},
-    {{StepKind::BaseForceDistribution, "base-force-distribution", std::nullopt,
-      "mospec platform force-distribution solver",
-      "ins: [platform wrench, motion gates...]; writes the hub torques", StepRole::Solver,
-      StepMember::None, nullptr, &kinds::interpret_base_force_distribution,
-      &kinds::emit_base_force_distribution},
-     [](const Step& st, const Program&) -> Signature {
-       Signature s{{T::Wrench}, {}};
-       for (size_t k = 1; k < st.in.size(); ++k) s.in.push_back(T::Flag);
-       return s;
-     }},
-    {{StepKind::BaseVelocityComposition, "base-velocity-composition", std::nullopt,
-      "mospec platform velocity-composition solver",
-      "out: [platform twist] from the pivots' and wheels' rates", StepRole::Measurement,
-      StepMember::None, nullptr, &kinds::interpret_base_velocity_composition,
-      &kinds::emit_base_velocity_composition},
-     [](const Step&, const Program&) -> Signature {
-       return {{}, {T::Twist}};
-     }},
+// The step kinds, in StepKind's order; their hooks are in kinds/*.cpp.
+const StepKindInfo kStepKinds[] = {
+    {.kind = StepKind::ReadClock,
+     .name = "read-clock",
+     .state = std::nullopt,
+     .lowered_from = "mospec/time Clock",
+     .summary = "out: [time]",
+     .role = StepRole::Clock,
+     .member = StepMember::None,
+     .signature = &kinds::signature_read_clock,
+     .verify = nullptr,
+     .print = nullptr,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_read_clock,
+     .emit = &kinds::emit_read_clock},
+    {.kind = StepKind::ArmKinematics,
+     .name = "arm-kinematics",
+     .state = std::nullopt,
+     .lowered_from = "slv:SolverWithInputAndOutput (its outputs)",
+     .summary =
+         "outs: the solver's outputs (poses, twists of segments w.r.t. the root; joint positions, "
+         "velocities, measured torques)",
+     .role = StepRole::Measurement,
+     .member = StepMember::None,
+     .signature = &kinds::signature_arm_kinematics,
+     .verify = &kinds::verify_arm_solver,
+     .print = nullptr,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_arm_kinematics,
+     .emit = &kinds::emit_arm_kinematics},
+    {.kind = StepKind::ViewRead,
+     .name = "view-read",
+     .state = std::nullopt,
+     .lowered_from =
+         "map:PoseCoordinateView, VelocityTwistCoordinateView, WrenchCoordinateView (read)",
+     .summary = "in: [pose|twist|wrench]; out: [scalar]",
+     .role = StepRole::Computation,
+     .member = StepMember::None,
+     .signature = &kinds::signature_view_read,
+     .verify = &kinds::verify_view_read,
+     .print = &kinds::print_view,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_view_read,
+     .emit = &kinds::emit_view_read},
+    {.kind = StepKind::ViewWrite,
+     .name = "view-write",
+     .state = std::nullopt,
+     .lowered_from = "map:VelocityTwistCoordinateView, WrenchCoordinateView (written)",
+     .summary = "ins: [scalar...]; out: [twist|wrench] (other components zero)",
+     .role = StepRole::Computation,
+     .member = StepMember::None,
+     .signature = &kinds::signature_view_write,
+     .verify = &kinds::verify_view_write,
+     .print = &kinds::print_view,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_view_write,
+     .emit = &kinds::emit_view_write},
+    {.kind = StepKind::Operator,
+     .name = "operator",
+     .state = std::nullopt,
+     .lowered_from = "the operator registry (operators.hpp)",
+     .summary = "the operator kind's ports",
+     .role = StepRole::Computation,
+     .member = StepMember::None,
+     .signature = &kinds::signature_operator,
+     .verify = nullptr,
+     .print = nullptr,
+     .prepare = &kinds::prepare_operator,
+     .interpret = &kinds::interpret_operator,
+     .emit = &kinds::emit_operator},
+    {.kind = StepKind::Evaluate,
+     .name = "evaluate",
+     .state = std::nullopt,
+     .lowered_from = "cstr-hdl:ErrorEvaluator, AssignmentEvaluator",
+     .summary = "ins: [quantity, (active flag)]; outs: [satisfied flag, error|output]",
+     .role = StepRole::Constraint,
+     .member = StepMember::Evaluator,
+     .signature = &kinds::signature_evaluate,
+     .verify = nullptr,
+     .print = &kinds::print_evaluate,
+     .prepare = &kinds::prepare_evaluate,
+     .interpret = &kinds::interpret_evaluate,
+     .emit = &kinds::emit_evaluate},
+    {.kind = StepKind::LevelMonitor,
+     .name = "level-monitor",
+     .state = StateKind::Monitor,
+     .lowered_from = "cstr-hdl:LevelTriggeredMonitor",
+     .summary = "ins: [error, (running flag)]; out: [flag]",
+     .role = StepRole::Monitor,
+     .member = StepMember::MonitorTolerance,
+     .signature = &kinds::signature_monitor,
+     .verify = &kinds::verify_monitor,
+     .print = &kinds::print_monitor,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_monitor,
+     .emit = &kinds::emit_monitor},
+    {.kind = StepKind::EdgeMonitor,
+     .name = "edge-monitor",
+     .state = StateKind::Monitor,
+     .lowered_from = "cstr-hdl:EdgeTriggeredMonitor",
+     .summary = "ins: [error, (running flag)]; out: [event: 1 rising, 2 falling, as its edges say]",
+     .role = StepRole::Monitor,
+     .member = StepMember::MonitorTolerance,
+     .signature = &kinds::signature_monitor,
+     .verify = &kinds::verify_monitor,
+     .print = &kinds::print_monitor,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_monitor,
+     .emit = &kinds::emit_monitor},
+    {.kind = StepKind::GuardedMotion,
+     .name = "guarded-motion",
+     .state = StateKind::Motion,
+     .lowered_from = "mot:GuardedMotion",
+     .summary =
+         "ins: [when flags..., checked while flags..., until flags...]; outs: [running flag, "
+         "ended event: 1 an until held, 2 a while was violated]",
+     .role = StepRole::Motion,
+     .member = StepMember::None,
+     .signature = &kinds::signature_guarded_motion,
+     .verify = &kinds::verify_guarded_motion,
+     .print = &kinds::print_guarded_motion,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_guarded_motion,
+     .emit = &kinds::emit_guarded_motion},
+    {.kind = StepKind::AnyOf,
+     .name = "any-of",
+     .state = std::nullopt,
+     .lowered_from =
+         "cstr-hdl:ConstraintHandler (a controller or evaluator several motions' handlers list)",
+     .summary = "ins: [running flags...]; out: [flag]: true while any of them is",
+     .role = StepRole::Computation,
+     .member = StepMember::None,
+     .signature = &kinds::signature_any_of,
+     .verify = nullptr,
+     .print = nullptr,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_any_of,
+     .emit = &kinds::emit_any_of},
+    {.kind = StepKind::Controller,
+     .name = "controller",
+     .state = std::nullopt,
+     .lowered_from = "the controller registry (controllers.hpp); state slots per controller kind",
+     .summary = "ins: [signals..., (active flag)]; out: [control signal]",
+     .role = StepRole::Controller,
+     .member = StepMember::Controller,
+     .signature = &kinds::signature_controller,
+     .verify = &kinds::verify_controller,
+     .print = &kinds::print_controller,
+     .prepare = &kinds::prepare_controller,
+     .interpret = &kinds::interpret_controller,
+     .emit = &kinds::emit_controller},
+    {.kind = StepKind::ArmSolve,
+     .name = "arm-solve",
+     .state = std::nullopt,
+     .lowered_from = "slv:SolverWithInputAndOutput (its drivers)",
+     .summary =
+         "ins: the drivers' data, then the motion gates; out: [degraded flag]; writes the arm's "
+         "joint torques",
+     .role = StepRole::Solver,
+     .member = StepMember::None,
+     .signature = &kinds::signature_arm_solve,
+     .verify = &kinds::verify_arm_solve,
+     .print = &kinds::print_drivers,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_arm_solve,
+     .emit = &kinds::emit_arm_solve},
+    {.kind = StepKind::BaseForceDistribution,
+     .name = "base-force-distribution",
+     .state = std::nullopt,
+     .lowered_from = "mospec platform force-distribution solver",
+     .summary = "ins: [platform wrench, motion gates...]; writes the hub torques",
+     .role = StepRole::Solver,
+     .member = StepMember::None,
+     .signature = &kinds::signature_base_force_distribution,
+     .verify = &kinds::verify_base_force_distribution,
+     .print = &kinds::print_drivers,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_base_force_distribution,
+     .emit = &kinds::emit_base_force_distribution},
+    {.kind = StepKind::BaseVelocityComposition,
+     .name = "base-velocity-composition",
+     .state = std::nullopt,
+     .lowered_from = "mospec platform velocity-composition solver",
+     .summary = "out: [platform twist] from the pivots' and wheels' rates",
+     .role = StepRole::Measurement,
+     .member = StepMember::None,
+     .signature = &kinds::signature_base_velocity_composition,
+     .verify = &kinds::verify_base,
+     .print = nullptr,
+     .prepare = nullptr,
+     .interpret = &kinds::interpret_base_velocity_composition,
+     .emit = &kinds::emit_base_velocity_composition},
 };
 static_assert(std::size(kStepKinds) == kStepKindCount, "one kStepKinds entry per StepKind");
 
@@ -362,57 +338,12 @@ Signature signature(const Step& st, const Program& p) {
   return kStepKinds[k].signature(st, p);
 }
 
-// Collects the verifier's findings, each located at the model entity involved.
-class Findings {
- public:
-  Findings(const Program& p, const SourceFiles* files)
-      : p_(p), files_(files), n_data_(p.data.size()) {}
-
-  void step(const Step& st, const std::string& what) {
-    std::string msg = "IR step '";
-    msg.append(st.name)
-        .append("' (")
-        .append(kind_name(st))
-        .append(", from '")
-        .append(st.iri)
-        .append("'): ")
-        .append(what);
-    add(st.where, std::move(msg));
-  }
-  void add(const SourceLoc& where, std::string message) {
-    Diagnostic d;
-    d.code = "ir-invalid";
-    d.message = std::move(message);
-    if (files_ && where.known()) {
-      d.file = files_->path(where.file);
-      d.line = where.line;
-      d.column = where.column;
-    }
-    out_.push_back(std::move(d));
-  }
-  // (The count is kept: size() divides by sizeof(Data), and this runs for
-  // every input and output of every step after every pass.)
-  bool valid_datum(int d) const { return d >= 0 && static_cast<size_t>(d) < n_data_; }
-  std::string describe(int d) const {
-    if (!valid_datum(d)) return "datum " + std::to_string(d) + " (which does not exist)";
-    const Data& dd = p_.data[static_cast<size_t>(d)];
-    return "'" + dd.name + "' (a " + std::string(to_string(dd.type)) + ")";
-  }
-  std::vector<Diagnostic> take() { return std::move(out_); }
-
- private:
-  const Program& p_;
-  const SourceFiles* files_;
-  const size_t n_data_;
-  std::vector<Diagnostic> out_;
-};
-
 }  // namespace
 
 std::span<const StepKindInfo> step_kinds() {
   static const std::vector<StepKindInfo> infos = [] {
     std::vector<StepKindInfo> out;
-    for (const KindEntry& e : kStepKinds) out.push_back(e.info);
+    for (const StepKindInfo& e : kStepKinds) out.push_back(e);
     return out;
   }();
   return infos;
@@ -422,8 +353,29 @@ const StepKindInfo& info(StepKind kind) {
   static const StepKindInfo unknown{static_cast<StepKind>(kStepKindCount), "?", std::nullopt, "",
                                     ""};
   const auto k = static_cast<size_t>(kind);
-  return k < std::size(kStepKinds) ? kStepKinds[k].info : unknown;
+  return k < std::size(kStepKinds) ? kStepKinds[k] : unknown;
 }
+
+StepRole role(const Step& step) {
+  return info(step.kind).role;
+}
+
+namespace kinds {
+
+void verify_gates(const Step& st, const Program& p, Findings& f) {
+  if (st.drivers() > st.in.size()) {
+    f.step(st, "has " + std::to_string(st.drivers()) + " drivers but " +
+                   std::to_string(st.in.size()) + " inputs");
+    return;
+  }
+  for (size_t k = st.drivers(); k < st.in.size(); ++k) {
+    if (f.valid_datum(st.in[k]) && p.data[static_cast<size_t>(st.in[k])].type != DataType::Flag)
+      f.step(st, "motion gate " + std::to_string(k - st.drivers()) + " must be a flag; it is " +
+                     f.describe(st.in[k]));
+  }
+}
+
+}  // namespace kinds
 
 std::string template_section(StepKind kind) {
   std::string out = "is_";
@@ -522,39 +474,8 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
         }
       }
     }
-    if (st.kind == StepKind::ViewRead && st.views.size() != 1)
-      f.step(st, "has " + std::to_string(st.views.size()) + " view components; expected 1");
-    if (st.kind == StepKind::ViewWrite && st.views.size() != st.in.size())
-      f.step(st, "has " + std::to_string(st.views.size()) + " view components for " +
-                     std::to_string(st.in.size()) + " inputs; expected one per input");
-    for (int v : st.views) {
-      if (v < 0 || v > 5)
-        f.step(st, "view component " + std::to_string(v) + " is out of range; expected 0..5");
-    }
-    if (st.kind == StepKind::GuardedMotion) {
-      const int n_until = static_cast<int>(st.in.size()) - st.n_when - st.n_while;
-      if (st.n_when < 0 || st.n_while < 0 || n_until < 0)
-        f.step(st, std::to_string(st.n_when) + " when- and " + std::to_string(st.n_while) +
-                       " while-guards of " + std::to_string(st.in.size()) + " inputs");
-      if (st.n_when > kMaxGuards || st.n_while > kMaxGuards || n_until > kMaxGuards)
-        f.step(st, "has " + std::to_string(st.n_when) + " when-, " + std::to_string(st.n_while) +
-                       " while- and " + std::to_string(n_until) + " until-guards; at most " +
-                       std::to_string(kMaxGuards) + " each");
-    }
-    if (st.kind == StepKind::GuardedMotion) {
-      if (st.n_goal_whiles < 0 || static_cast<size_t>(st.n_goal_whiles) > st.goals.size())
-        f.step(st, std::to_string(st.n_goal_whiles) + " goal-whiles of " +
-                       std::to_string(st.goals.size()) + " goals");
-      for (int g : st.goals) {
-        if (!f.valid_datum(g) || p.data[static_cast<size_t>(g)].type != DataType::Flag)
-          f.step(st, "goal " + f.describe(g) + " must be a constraint's satisfied flag");
-      }
-    }
-    if (st.kind == StepKind::EdgeMonitor) {
-      const auto e = static_cast<int>(st.edges);
-      if (e < 1 || e > 3)
-        f.step(st,
-               "reports edges " + std::to_string(e) + "; expected 1 (rising), 2 (falling) or 3");
+    if (static_cast<size_t>(st.kind) < kStepKindCount) {
+      if (const VerifyHook verify = info(st.kind).verify) verify(st, p, f);
     }
     if (const auto sk =
             static_cast<size_t>(st.kind) < kStepKindCount ? info(st.kind).state : std::nullopt) {
@@ -562,44 +483,6 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
       if (st.state < 0 || st.state >= n)
         f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
                        std::to_string(n - 1));
-    }
-    if (st.kind == StepKind::Controller && st.controller >= 0 &&
-        static_cast<size_t>(st.controller) < controller_kinds().size()) {
-      const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
-      if (st.parameters.size() != k.parameters.size())
-        f.step(st, "has " + std::to_string(st.parameters.size()) + " parameters; a " +
-                       std::string(k.name) + " controller has " +
-                       std::to_string(k.parameters.size()));
-      const int n = p.controller_state_count(st.controller);
-      if (k.has_state() && (st.state < 0 || st.state >= n))
-        f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
-                       std::to_string(n - 1) + " (the program's " + std::string(k.name) +
-                       " states)");
-      if (!k.has_state() && st.state != -1)
-        f.step(st, "has state slot " + std::to_string(st.state) + "; a " + std::string(k.name) +
-                       " controller keeps no state (expected -1)");
-    }
-    if (st.kind == StepKind::ArmKinematics || st.kind == StepKind::ArmSolve) {
-      if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size())
-        f.step(st, "names arm solver " + std::to_string(st.solver) + "; the program has " +
-                       std::to_string(p.arms.size()));
-    }
-    if ((st.kind == StepKind::BaseForceDistribution ||
-         st.kind == StepKind::BaseVelocityComposition) &&
-        !p.base)
-      f.step(st, "uses the base solver, but the program has none");
-    if (st.kind == StepKind::ArmSolve || st.kind == StepKind::BaseForceDistribution) {
-      if (st.drivers() > st.in.size()) {
-        f.step(st, "has " + std::to_string(st.drivers()) + " drivers but " +
-                       std::to_string(st.in.size()) + " inputs");
-      } else {
-        for (size_t k = st.drivers(); k < st.in.size(); ++k) {
-          if (f.valid_datum(st.in[k]) &&
-              p.data[static_cast<size_t>(st.in[k])].type != DataType::Flag)
-            f.step(st, "motion gate " + std::to_string(k - st.drivers()) +
-                           " must be a flag; it is " + f.describe(st.in[k]));
-        }
-      }
     }
     for (int d : st.in) {
       if (!f.valid_datum(d)) continue;
@@ -871,44 +754,11 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     e["in"] = st.in;
     e["out"] = st.out;
     if (st.solver >= 0) e["solver"] = st.solver;
-    if (st.kind == StepKind::ArmSolve || st.kind == StepKind::BaseForceDistribution)
-      e["drivers"] = st.drivers();
-    if (!st.views.empty()) e["views"] = st.views;
-    if (st.kind == StepKind::Evaluate || st.kind == StepKind::LevelMonitor ||
-        st.kind == StepKind::EdgeMonitor) {
-      Json c;
-      c["relation"] = relation_name(st.constraint.kind);
-      c["reference"] = st.constraint.reference;
-      c["threshold"] = st.constraint.threshold;
-      c["lower"] = st.constraint.lower;
-      c["upper"] = st.constraint.upper;
-      c["tolerance"] = st.constraint.tolerance;
-      if (st.kind == StepKind::Evaluate) {
-        static constexpr const char* kSources[] = {"none", "stated", "default"};
-        c["tolerance-source"] = kSources[static_cast<int>(st.tolerance_source)];
+    if (static_cast<size_t>(st.kind) < kStepKindCount) {
+      if (const PrintHook print = info(st.kind).print) {
+        StepJson fields{e};
+        print(st, fields);
       }
-      e["constraint"] = std::move(c);
-    }
-    if (st.kind == StepKind::GuardedMotion) {
-      e["when"] = st.n_when;
-      e["while"] = st.n_while;
-      e["goals"] = st.goals;
-      e["goal-whiles"] = st.n_goal_whiles;
-    }
-    if (st.kind == StepKind::EdgeMonitor) {
-      static constexpr const char* kEdges[] = {"", "rising", "falling", "both"};
-      e["edges"] = kEdges[static_cast<int>(st.edges) & 3];
-    }
-    if (st.kind == StepKind::Controller && st.controller >= 0 &&
-        static_cast<size_t>(st.controller) < controller_kinds().size()) {
-      // The parameters the model states, by their JSON keys, under the kind's name.
-      const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
-      Json params = Json::object();
-      for (size_t i = 0; i < k.parameters.size() && i < st.parameters.size(); ++i) {
-        if (!k.parameters[i].json.empty())
-          params[std::string(k.parameters[i].json)] = st.parameters[i];
-      }
-      e[std::string(k.name)] = std::move(params);
     }
     if (st.state >= 0) e["state"] = st.state;
     e["where"] = location(st.where, files);

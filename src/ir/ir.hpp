@@ -110,8 +110,15 @@ enum class StepRole : uint8_t {
 enum class StepMember : uint8_t { None, Evaluator, Controller, MonitorTolerance };
 
 struct Step;
+struct Program;
 struct Machine;
 class EmitContext;
+struct Signature;
+class Findings;
+struct StepJson;
+using SignatureHook = Signature (*)(const Step&, const Program&);
+using VerifyHook = void (*)(const Step&, const Program&, Findings&);
+using PrintHook = void (*)(const Step&, StepJson&);
 using InterpretHook = void (*)(Machine&, const Step&, size_t index, const robot::MeasuredState&,
                                robot::Command&) noexcept;
 using PrepareHook = void (*)(Machine&, const Step&, size_t index);
@@ -120,11 +127,13 @@ using EmitHook = void (*)(const EmitContext&, const Step&, size_t index, mustach
 // Every step kind, declared once (kStepKinds in ir.cpp): its IR name (the
 // JSON's "kind", and codegen's template section `is_<name>` with '-' as '_'),
 // the state slot it owns, the vocabulary it lowers from, what it reads and
-// writes, its role, and its hooks (kinds/*.cpp): what the interpreter
-// allocates for it (prepare, optional) and executes each tick (interpret),
-// and the template section codegen emits for it (emit). The verifier takes
-// each kind's signature from the same entry; ir_step_kinds_test fails when a
-// hook is missing or the controller template lacks its section. Operators
+// writes, its role, and its hooks (kinds/*.cpp): the data types it takes and
+// gives (signature) and the rules of its own fields (verify, optional), which
+// the verifier applies; its own fields in the IR's JSON (print, optional);
+// what the interpreter allocates for it (prepare, optional) and executes each
+// tick (interpret); and the template section codegen emits for it (emit).
+// ir_step_kinds_test fails when a hook is missing or the controller template
+// lacks its section. Operators
 // and controllers are one kind each, whose instances come from their own
 // registries (operators.hpp, controllers.hpp).
 struct StepKindInfo {
@@ -135,6 +144,9 @@ struct StepKindInfo {
   std::string_view summary;        // inputs and outputs
   StepRole role = StepRole::Computation;
   StepMember member = StepMember::None;
+  SignatureHook signature = nullptr;
+  VerifyHook verify = nullptr;
+  PrintHook print = nullptr;
   PrepareHook prepare = nullptr;
   InterpretHook interpret = nullptr;
   EmitHook emit = nullptr;
@@ -192,6 +204,9 @@ struct Step {
   int n_drivers = -1;
   size_t drivers() const { return n_drivers < 0 ? in.size() : static_cast<size_t>(n_drivers); }
 };
+
+// What a step is to code that does not know its kind (info(kind).role).
+StepRole role(const Step& step);
 
 // What ArmKinematics writes into each output: the pose of segment frame S_i
 // w.r.t. the root (as seen by the root), or the twist of S_i w.r.t. the root at

@@ -60,7 +60,8 @@ std::string arm_name(const sim::RunResult& r, size_t a) {
 }  // namespace
 
 VerdictPlan plan_verdict(const ir::Program& program) {
-  using ir::StepKind;
+  using ir::role;
+  using ir::StepRole;
   VerdictPlan plan;
   // Log columns by datum (Value columns of a whole datum) and by name.
   std::map<int, size_t> column_of_data;
@@ -82,7 +83,8 @@ VerdictPlan plan_verdict(const ir::Program& program) {
   const auto guard = [&](int flag) -> std::optional<VerdictPlan::Guard> {
     const auto p = producer.find(flag);
     const auto c = column_of_data.find(flag);
-    if (p == producer.end() || p->second->kind != StepKind::Evaluate || c == column_of_data.end())
+    if (p == producer.end() || role(*p->second) != StepRole::Constraint ||
+        c == column_of_data.end())
       return std::nullopt;
     const ir::Step& evaluate = *p->second;
     VerdictPlan::Guard g;
@@ -91,7 +93,7 @@ VerdictPlan plan_verdict(const ir::Program& program) {
     g.satisfied = c->second;
     const auto q = producer.find(evaluate.in[0]);
     g.timeout = evaluate.constraint.kind == runtime::ConstraintKind::GreaterThan &&
-                q != producer.end() && q->second->kind == StepKind::ReadClock;
+                q != producer.end() && role(*q->second) == StepRole::Clock;
     return g;
   };
   // The data read by controllers whose outputs reach a solver (through any
@@ -103,17 +105,17 @@ VerdictPlan plan_verdict(const ir::Program& program) {
     std::vector<char> reaches(program.data.size(), 0);
     for (size_t k = program.steps.size(); k-- > 0;) {
       const ir::Step& s = program.steps[k];
-      bool live = s.kind == StepKind::ArmSolve || s.kind == StepKind::BaseForceDistribution;
+      bool live = role(s) == StepRole::Solver;
       for (int o : s.out) live = live || reaches[static_cast<size_t>(o)];
       if (!live) continue;
       for (int i : s.in) reaches[static_cast<size_t>(i)] = 1;
-      if (s.kind == StepKind::Controller) read_by_controllers.insert(s.in.begin(), s.in.end());
+      if (role(s) == StepRole::Controller) read_by_controllers.insert(s.in.begin(), s.in.end());
     }
   }
   std::set<int> guard_flags, goal_flags;
   for (const ir::Step& s : program.steps) {
-    switch (s.kind) {
-      case StepKind::GuardedMotion: {
+    switch (role(s)) {
+      case StepRole::Motion: {
         VerdictPlan::Motion m;
         m.iri = s.iri;
         m.name = local_name(s.iri);
@@ -132,7 +134,7 @@ VerdictPlan plan_verdict(const ir::Program& program) {
         }
         for (size_t k = 0; k < s.goals.size(); ++k) {
           const auto p = producer.find(s.goals[k]);
-          if (p == producer.end() || p->second->kind != StepKind::Evaluate) continue;
+          if (p == producer.end() || role(*p->second) != StepRole::Constraint) continue;
           const ir::Step& evaluate = *p->second;
           VerdictPlan::Goal g;
           g.constraint = owner_iri(program.data[static_cast<size_t>(s.goals[k])].iri);
@@ -156,7 +158,8 @@ VerdictPlan plan_verdict(const ir::Program& program) {
         plan.motions.push_back(std::move(m));
         break;
       }
-      case StepKind::ArmSolve: {
+      case StepRole::Solver: {
+        if (s.out.empty()) break;  // the base's: no degraded flag
         const std::string name = local_name(s.iri);
         if (const std::ptrdiff_t d = column(name + ".degraded"); d >= 0)
           plan.solvers.push_back({name, static_cast<size_t>(d)});
@@ -167,7 +170,7 @@ VerdictPlan plan_verdict(const ir::Program& program) {
     }
   }
   for (const ir::Step& s : program.steps) {
-    if (s.kind != StepKind::Evaluate) continue;
+    if (role(s) != StepRole::Constraint) continue;
     VerdictPlan::Constraint c;
     c.iri = owner_iri(program.data[static_cast<size_t>(s.out[0])].iri);
     c.name = local_name(c.iri);
@@ -207,8 +210,7 @@ VerdictPlan plan_verdict(const ir::Program& program) {
         }
         const auto p = producer.find(d);
         if (p == producer.end()) continue;
-        const StepKind k = p->second->kind;
-        if (k != StepKind::ViewWrite && k != StepKind::Operator) continue;
+        if (role(*p->second) != StepRole::Computation) continue;
         for (int in : p->second->in) todo.push_back(in);
       }
       (found.empty() ? arm.unobserved : arm.forces).push_back(f.iri);

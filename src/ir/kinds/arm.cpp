@@ -227,5 +227,30 @@ void emit_arm_solve(const EmitContext& ctx, const Step& st, size_t, mustache::Da
   put(s, "betas", betas(ctx, a, n));
 }
 
+Signature signature_arm_kinematics(const Step&, const Program&) {
+  return {{}, {}, true};
+}
+
+void verify_arm_solver(const Step& st, const Program& p, Findings& f) {
+  if (st.solver < 0 || static_cast<size_t>(st.solver) >= p.arms.size())
+    f.step(st, "names arm solver " + std::to_string(st.solver) + "; the program has " +
+                   std::to_string(p.arms.size()));
+}
+
+Signature signature_arm_solve(const Step&, const Program&) {
+  Signature s{{}, {DataType::Flag}, true};
+  s.variadic_out = false;
+  return s;
+}
+
+void verify_arm_solve(const Step& st, const Program& p, Findings& f) {
+  verify_arm_solver(st, p, f);
+  verify_gates(st, p, f);
+}
+
+void print_drivers(const Step& st, StepJson& j) {
+  j.e["drivers"] = st.drivers();
+}
+
 }  // namespace kinds
 }  // namespace mospec::ir

@@ -48,5 +48,24 @@ void emit_base_velocity_composition(const EmitContext& ctx, const Step& st, size
   put(s, "out0", ctx.out(st, 0));
 }
 
+Signature signature_base_force_distribution(const Step& st, const Program&) {
+  Signature s{{DataType::Wrench}, {}};
+  for (size_t k = 1; k < st.in.size(); ++k) s.in.push_back(DataType::Flag);
+  return s;
+}
+
+void verify_base_force_distribution(const Step& st, const Program& p, Findings& f) {
+  verify_base(st, p, f);
+  verify_gates(st, p, f);
+}
+
+void verify_base(const Step& st, const Program& p, Findings& f) {
+  if (!p.base) f.step(st, "uses the base solver, but the program has none");
+}
+
+Signature signature_base_velocity_composition(const Step&, const Program&) {
+  return {{}, {DataType::Twist}};
+}
+
 }  // namespace kinds
 }  // namespace mospec::ir

@@ -12,4 +12,8 @@ void emit_read_clock(const EmitContext& ctx, const Step& st, size_t, mustache::D
   put(s, "out0", ctx.out(st, 0));
 }
 
+Signature signature_read_clock(const Step&, const Program&) {
+  return {{}, {DataType::Scalar}};
+}
+
 }  // namespace mospec::ir::kinds

@@ -39,4 +39,45 @@ void emit_controller(const EmitContext& ctx, const Step& st, size_t index, musta
   put(s, "out0", ctx.out(st, 0));
 }
 
+Signature signature_controller(const Step& st, const Program&) {
+  const auto kinds = controller_kinds();
+  if (st.controller < 0 || static_cast<size_t>(st.controller) >= kinds.size())
+    return {{},
+            {},
+            true,
+            "names controller kind " + std::to_string(st.controller) + ", which does not exist"};
+  // The signals, then (when its motion gates it) the running flag.
+  const ControllerKind& k = kinds[static_cast<size_t>(st.controller)];
+  Signature s{Types(k.in.size(), DataType::Scalar), {DataType::Scalar}};
+  if (st.in.size() == k.in.size() + 1) s.in.push_back(DataType::Flag);
+  return s;
+}
+
+void verify_controller(const Step& st, const Program& p, Findings& f) {
+  if (st.controller < 0 || static_cast<size_t>(st.controller) >= controller_kinds().size())
+    return;  // the signature says so
+  const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
+  if (st.parameters.size() != k.parameters.size())
+    f.step(st, "has " + std::to_string(st.parameters.size()) + " parameters; a " +
+                   std::string(k.name) + " controller has " + std::to_string(k.parameters.size()));
+  const int n = p.controller_state_count(st.controller);
+  if (k.has_state() && (st.state < 0 || st.state >= n))
+    f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
+                   std::to_string(n - 1) + " (the program's " + std::string(k.name) + " states)");
+  if (!k.has_state() && st.state != -1)
+    f.step(st, "has state slot " + std::to_string(st.state) + "; a " + std::string(k.name) +
+                   " controller keeps no state (expected -1)");
+}
+
+// The parameters the model states, by their JSON keys, under the kind's name.
+void print_controller(const Step& st, StepJson& j) {
+  if (st.controller < 0 || static_cast<size_t>(st.controller) >= controller_kinds().size()) return;
+  const ControllerKind& k = controller_kinds()[static_cast<size_t>(st.controller)];
+  Json params = Json::object();
+  for (size_t i = 0; i < k.parameters.size() && i < st.parameters.size(); ++i) {
+    if (!k.parameters[i].json.empty()) params[std::string(k.parameters[i].json)] = st.parameters[i];
+  }
+  j.e[std::string(k.name)] = std::move(params);
+}
+
 }  // namespace mospec::ir::kinds

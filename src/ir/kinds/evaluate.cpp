@@ -26,4 +26,28 @@ void emit_evaluate(const EmitContext& ctx, const Step& st, size_t index, mustach
   put(s, "out1", ctx.out(st, 1));
 }
 
+Json constraint_json(const runtime::ConstraintSpec& spec) {
+  Json c;
+  c["relation"] = relation_name(spec.kind);
+  c["reference"] = spec.reference;
+  c["threshold"] = spec.threshold;
+  c["lower"] = spec.lower;
+  c["upper"] = spec.upper;
+  c["tolerance"] = spec.tolerance;
+  return c;
+}
+
+Signature signature_evaluate(const Step& st, const Program&) {
+  using T = DataType;
+  if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {T::Flag, T::Scalar}};
+  return {{T::Scalar}, {T::Flag, T::Scalar}};
+}
+
+void print_evaluate(const Step& st, StepJson& j) {
+  Json c = constraint_json(st.constraint);
+  static constexpr const char* kSources[] = {"none", "stated", "default"};
+  c["tolerance-source"] = kSources[static_cast<int>(st.tolerance_source)];
+  j.e["constraint"] = std::move(c);
+}
+
 }  // namespace mospec::ir::kinds

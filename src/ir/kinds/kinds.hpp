@@ -5,10 +5,21 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 
 #include "ir/emit.hpp"
 #include "ir/ir.hpp"
 #include "ir/machine.hpp"
+#include "ir/verify.hpp"
+
+namespace mospec::ir {
+
+// The JSON object of one step that a kind's print hook adds to.
+struct StepJson {
+  nlohmann::ordered_json& e;
+};
+
+}  // namespace mospec::ir
 
 namespace mospec::ir::kinds {
 
@@ -32,6 +43,46 @@ MOSPEC_STEP_KIND_HOOKS(base_force_distribution)
 MOSPEC_STEP_KIND_HOOKS(base_velocity_composition)
 
 #undef MOSPEC_STEP_KIND_HOOKS
+
+// The data types each kind takes and gives (the verifier's signature).
+Signature signature_read_clock(const Step&, const Program&);
+Signature signature_arm_kinematics(const Step&, const Program&);
+Signature signature_view_read(const Step&, const Program&);
+Signature signature_view_write(const Step&, const Program&);
+Signature signature_operator(const Step&, const Program&);
+Signature signature_evaluate(const Step&, const Program&);
+Signature signature_monitor(const Step&, const Program&);
+Signature signature_guarded_motion(const Step&, const Program&);
+Signature signature_any_of(const Step&, const Program&);
+Signature signature_controller(const Step&, const Program&);
+Signature signature_arm_solve(const Step&, const Program&);
+Signature signature_base_force_distribution(const Step&, const Program&);
+Signature signature_base_velocity_composition(const Step&, const Program&);
+
+// The rules of a kind's own fields, beyond its signature.
+void verify_view_read(const Step&, const Program&, Findings&);
+void verify_view_write(const Step&, const Program&, Findings&);
+void verify_monitor(const Step&, const Program&, Findings&);
+void verify_guarded_motion(const Step&, const Program&, Findings&);
+void verify_controller(const Step&, const Program&, Findings&);
+void verify_arm_solver(const Step&, const Program&, Findings&);  // arm-kinematics
+void verify_arm_solve(const Step&, const Program&, Findings&);
+void verify_base(const Step&, const Program&, Findings&);  // base-velocity-composition
+void verify_base_force_distribution(const Step&, const Program&, Findings&);
+// A solve's drivers and the motion gates after them (arm-solve,
+// base-force-distribution).
+void verify_gates(const Step&, const Program&, Findings&);
+
+// A kind's own fields in the IR's JSON (to_json), after the common ones.
+using Json = nlohmann::ordered_json;
+void print_view(const Step&, StepJson&);
+void print_evaluate(const Step&, StepJson&);
+void print_monitor(const Step&, StepJson&);
+void print_guarded_motion(const Step&, StepJson&);
+void print_controller(const Step&, StepJson&);
+void print_drivers(const Step&, StepJson&);  // arm-solve, base-force-distribution
+// A constraint's relation, bounds and tolerance (evaluate, the monitors).
+Json constraint_json(const runtime::ConstraintSpec& c);
 
 // What the interpreter allocates for a step before the first tick.
 void prepare_operator(Machine& m, const Step& st, size_t index);

@@ -31,4 +31,26 @@ void emit_monitor(const EmitContext& ctx, const Step& st, size_t index, mustache
   put(s, "out0", ctx.out(st, 0));
 }
 
+Signature signature_monitor(const Step& st, const Program&) {
+  using T = DataType;
+  const T out = st.kind == StepKind::LevelMonitor ? T::Flag : T::Event;
+  if (st.in.size() == 2) return {{T::Scalar, T::Flag}, {out}};
+  return {{T::Scalar}, {out}};
+}
+
+void verify_monitor(const Step& st, const Program&, Findings& f) {
+  if (st.kind != StepKind::EdgeMonitor) return;
+  const auto e = static_cast<int>(st.edges);
+  if (e < 1 || e > 3)
+    f.step(st, "reports edges " + std::to_string(e) + "; expected 1 (rising), 2 (falling) or 3");
+}
+
+void print_monitor(const Step& st, StepJson& j) {
+  j.e["constraint"] = constraint_json(st.constraint);
+  if (st.kind == StepKind::EdgeMonitor) {
+    static constexpr const char* kEdges[] = {"", "rising", "falling", "both"};
+    j.e["edges"] = kEdges[static_cast<int>(st.edges) & 3];
+  }
+}
+
 }  // namespace mospec::ir::kinds

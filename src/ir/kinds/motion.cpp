@@ -50,4 +50,37 @@ void emit_any_of(const EmitContext& ctx, const Step& st, size_t, mustache::Data&
   put(s, "out0", ctx.out(st, 0));
 }
 
+Signature signature_guarded_motion(const Step& st, const Program&) {
+  return {Types(st.in.size(), DataType::Flag), {DataType::Flag, DataType::Event}};
+}
+
+void verify_guarded_motion(const Step& st, const Program& p, Findings& f) {
+  const int n_until = static_cast<int>(st.in.size()) - st.n_when - st.n_while;
+  if (st.n_when < 0 || st.n_while < 0 || n_until < 0)
+    f.step(st, std::to_string(st.n_when) + " when- and " + std::to_string(st.n_while) +
+                   " while-guards of " + std::to_string(st.in.size()) + " inputs");
+  if (st.n_when > kMaxGuards || st.n_while > kMaxGuards || n_until > kMaxGuards)
+    f.step(st, "has " + std::to_string(st.n_when) + " when-, " + std::to_string(st.n_while) +
+                   " while- and " + std::to_string(n_until) + " until-guards; at most " +
+                   std::to_string(kMaxGuards) + " each");
+  if (st.n_goal_whiles < 0 || static_cast<size_t>(st.n_goal_whiles) > st.goals.size())
+    f.step(st, std::to_string(st.n_goal_whiles) + " goal-whiles of " +
+                   std::to_string(st.goals.size()) + " goals");
+  for (int g : st.goals) {
+    if (!f.valid_datum(g) || p.data[static_cast<size_t>(g)].type != DataType::Flag)
+      f.step(st, "goal " + f.describe(g) + " must be a constraint's satisfied flag");
+  }
+}
+
+void print_guarded_motion(const Step& st, StepJson& j) {
+  j.e["when"] = st.n_when;
+  j.e["while"] = st.n_while;
+  j.e["goals"] = st.goals;
+  j.e["goal-whiles"] = st.n_goal_whiles;
+}
+
+Signature signature_any_of(const Step& st, const Program&) {
+  return {Types(st.in.size(), DataType::Flag), {DataType::Flag}};
+}
+
 }  // namespace mospec::ir::kinds

@@ -31,4 +31,15 @@ void emit_operator(const EmitContext& ctx, const Step& st, size_t, mustache::Dat
   put(s, "out0", ctx.out(st, 0));
 }
 
+Signature signature_operator(const Step& st, const Program&) {
+  const auto kinds = operator_kinds();
+  if (st.op < 0 || static_cast<size_t>(st.op) >= kinds.size())
+    return {
+        {}, {}, true, "names operator kind " + std::to_string(st.op) + ", which does not exist"};
+  const OperatorKind& k = kinds[static_cast<size_t>(st.op)];
+  Signature s{{}, {k.out.type}};
+  for (const OperatorPort& port : k.in) s.in.push_back(port.type);
+  return s;
+}
+
 }  // namespace mospec::ir::kinds

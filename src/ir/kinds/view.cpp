@@ -4,6 +4,17 @@
 
 namespace mospec::ir::kinds {
 
+namespace {
+
+void verify_view_components(const Step& st, Findings& f) {
+  for (int v : st.views) {
+    if (v < 0 || v > 5)
+      f.step(st, "view component " + std::to_string(v) + " is out of range; expected 0..5");
+  }
+}
+
+}  // namespace
+
 void interpret_view_read(Machine& m, const Step& st, size_t, const robot::MeasuredState&,
                          robot::Command&) noexcept {
   namespace steps = runtime::steps;
@@ -46,6 +57,49 @@ void emit_view_write(const EmitContext& ctx, const Step& st, size_t, mustache::D
     append(components, std::move(c));
   }
   put(s, "components", std::move(components));
+}
+
+Signature signature_view_read(const Step& st, const Program& p) {
+  const bool known =
+      !st.in.empty() && st.in[0] >= 0 && static_cast<size_t>(st.in[0]) < p.data.size();
+  const DataType super = known ? p.data[static_cast<size_t>(st.in[0])].type : DataType::Pose;
+  if (super != DataType::Pose && super != DataType::Twist && super != DataType::Wrench)
+    return {{},
+            {},
+            true,
+            "reads a view of a " + std::string(to_string(super)) +
+                "; a view reads a pose, twist or wrench"};
+  return {{super}, {DataType::Scalar}};
+}
+
+void verify_view_read(const Step& st, const Program&, Findings& f) {
+  if (st.views.size() != 1)
+    f.step(st, "has " + std::to_string(st.views.size()) + " view components; expected 1");
+  verify_view_components(st, f);
+}
+
+Signature signature_view_write(const Step& st, const Program& p) {
+  const bool known =
+      !st.out.empty() && st.out[0] >= 0 && static_cast<size_t>(st.out[0]) < p.data.size();
+  const DataType super = known ? p.data[static_cast<size_t>(st.out[0])].type : DataType::Wrench;
+  if (super != DataType::Twist && super != DataType::Wrench)
+    return {{},
+            {},
+            true,
+            "writes a view of a " + std::string(to_string(super)) +
+                "; a view writes a twist or wrench"};
+  return {Types(st.in.size(), DataType::Scalar), {super}};
+}
+
+void verify_view_write(const Step& st, const Program&, Findings& f) {
+  if (st.views.size() != st.in.size())
+    f.step(st, "has " + std::to_string(st.views.size()) + " view components for " +
+                   std::to_string(st.in.size()) + " inputs; expected one per input");
+  verify_view_components(st, f);
+}
+
+void print_view(const Step& st, StepJson& j) {
+  if (!st.views.empty()) j.e["views"] = st.views;
 }
 
 }  // namespace mospec::ir::kinds
