@@ -149,6 +149,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_read_clock,
      .verify = nullptr,
      .print = nullptr,
+     .log = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_read_clock,
      .emit = &kinds::emit_read_clock},
@@ -164,6 +165,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_arm_kinematics,
      .verify = &kinds::verify_arm_solver,
      .print = nullptr,
+     .log = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_arm_kinematics,
      .emit = &kinds::emit_arm_kinematics},
@@ -178,6 +180,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_view_read,
      .verify = &kinds::verify_view_read,
      .print = &kinds::print_view,
+     .log = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_view_read,
      .emit = &kinds::emit_view_read},
@@ -191,6 +194,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_view_write,
      .verify = &kinds::verify_view_write,
      .print = &kinds::print_view,
+     .log = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_view_write,
      .emit = &kinds::emit_view_write},
@@ -204,6 +208,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_operator,
      .verify = nullptr,
      .print = nullptr,
+     .log = nullptr,
      .prepare = &kinds::prepare_operator,
      .interpret = &kinds::interpret_operator,
      .emit = &kinds::emit_operator},
@@ -215,8 +220,9 @@ const StepKindInfo kStepKinds[] = {
      .role = StepRole::Constraint,
      .member = StepMember::Evaluator,
      .signature = &kinds::signature_evaluate,
-     .verify = nullptr,
+     .verify = &kinds::verify_evaluate,
      .print = &kinds::print_evaluate,
+     .log = &kinds::log_evaluate,
      .prepare = &kinds::prepare_evaluate,
      .interpret = &kinds::interpret_evaluate,
      .emit = &kinds::emit_evaluate},
@@ -230,6 +236,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_monitor,
      .verify = &kinds::verify_monitor,
      .print = &kinds::print_monitor,
+     .log = &kinds::log_monitor,
      .prepare = nullptr,
      .interpret = &kinds::interpret_monitor,
      .emit = &kinds::emit_monitor},
@@ -243,6 +250,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_monitor,
      .verify = &kinds::verify_monitor,
      .print = &kinds::print_monitor,
+     .log = &kinds::log_monitor,
      .prepare = nullptr,
      .interpret = &kinds::interpret_monitor,
      .emit = &kinds::emit_monitor},
@@ -258,6 +266,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_guarded_motion,
      .verify = &kinds::verify_guarded_motion,
      .print = &kinds::print_guarded_motion,
+     .log = &kinds::log_guarded_motion,
      .prepare = nullptr,
      .interpret = &kinds::interpret_guarded_motion,
      .emit = &kinds::emit_guarded_motion},
@@ -272,6 +281,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_any_of,
      .verify = nullptr,
      .print = nullptr,
+     .log = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_any_of,
      .emit = &kinds::emit_any_of},
@@ -285,6 +295,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_controller,
      .verify = &kinds::verify_controller,
      .print = &kinds::print_controller,
+     .log = &kinds::log_controller,
      .prepare = &kinds::prepare_controller,
      .interpret = &kinds::interpret_controller,
      .emit = &kinds::emit_controller},
@@ -300,6 +311,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_arm_solve,
      .verify = &kinds::verify_arm_solve,
      .print = &kinds::print_drivers,
+     .log = &kinds::log_arm_solve,
      .prepare = nullptr,
      .interpret = &kinds::interpret_arm_solve,
      .emit = &kinds::emit_arm_solve},
@@ -313,6 +325,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_base_force_distribution,
      .verify = &kinds::verify_base_force_distribution,
      .print = &kinds::print_drivers,
+     .log = &kinds::log_base_force_distribution,
      .prepare = nullptr,
      .interpret = &kinds::interpret_base_force_distribution,
      .emit = &kinds::emit_base_force_distribution},
@@ -326,6 +339,7 @@ const StepKindInfo kStepKinds[] = {
      .signature = &kinds::signature_base_velocity_composition,
      .verify = &kinds::verify_base,
      .print = nullptr,
+     .log = &kinds::log_base_velocity_composition,
      .prepare = nullptr,
      .interpret = &kinds::interpret_base_velocity_composition,
      .emit = &kinds::emit_base_velocity_composition},
@@ -361,6 +375,13 @@ StepRole role(const Step& step) {
 }
 
 namespace kinds {
+
+LogColumn step_column(const Program& p, const Step& st, std::string_view suffix, int data,
+                      robot::LogColumnKind kind) {
+  std::string name = lowering::local_name(st.iri);
+  name.append(suffix);
+  return {std::move(name), p.data[static_cast<size_t>(data)].unit, data, -1, kind};
+}
 
 void verify_gates(const Step& st, const Program& p, Findings& f) {
   if (st.drivers() > st.in.size()) {

@@ -119,6 +119,8 @@ struct StepJson;
 using SignatureHook = Signature (*)(const Step&, const Program&);
 using VerifyHook = void (*)(const Step&, const Program&, Findings&);
 using PrintHook = void (*)(const Step&, StepJson&);
+struct LogColumn;
+using LogHook = void (*)(const Program&, const Step&, std::vector<LogColumn>&);
 using InterpretHook = void (*)(Machine&, const Step&, size_t index, const robot::MeasuredState&,
                                robot::Command&) noexcept;
 using PrepareHook = void (*)(Machine&, const Step&, size_t index);
@@ -130,6 +132,7 @@ using EmitHook = void (*)(const EmitContext&, const Step&, size_t index, mustach
 // writes, its role, and its hooks (kinds/*.cpp): the data types it takes and
 // gives (signature) and the rules of its own fields (verify, optional), which
 // the verifier applies; its own fields in the IR's JSON (print, optional);
+// the columns lowering logs for it, which the verdict reads (log, optional);
 // what the interpreter allocates for it (prepare, optional) and executes each
 // tick (interpret); and the template section codegen emits for it (emit).
 // ir_step_kinds_test fails when a hook is missing or the controller template
@@ -147,6 +150,7 @@ struct StepKindInfo {
   SignatureHook signature = nullptr;
   VerifyHook verify = nullptr;
   PrintHook print = nullptr;
+  LogHook log = nullptr;
   PrepareHook prepare = nullptr;
   InterpretHook interpret = nullptr;
   EmitHook emit = nullptr;
@@ -178,9 +182,12 @@ struct Step {
   // inside an inequality's bounds).
   enum class Tolerance : uint8_t { None, Stated, Default } tolerance_source = Tolerance::None;
   bool has_error_output = false;  // Evaluate: out[1] is the error (else none/output)
-  int n_when = 0;                 // GuardedMotion: ins[0, n_when) are `when`,
-  int n_while = 0;                // then n_while `while` (checked per-conditions),
-                                  // then the `until`
+  // Evaluate of a bilateral constraint: the data of its lower and upper
+  // bounds, logged beside its value (-1: none). Not in the IR's JSON.
+  int lower_bound = -1, upper_bound = -1;
+  int n_when = 0;   // GuardedMotion: ins[0, n_when) are `when`,
+  int n_while = 0;  // then n_while `while` (checked per-conditions),
+                    // then the `until`
   // GuardedMotion: the satisfied flags of the constraints the motion enforces
   // (its goals), which the step does not read: the verdict judges them when
   // the motion ends and watches them while it runs. goals[0, n_goal_whiles)

@@ -91,7 +91,7 @@ void warn_controllers_reaching_no_solver(const State& st, const Warnings& w) {
   const std::vector<char> effective = lowering::steps_reaching_a_solver(program);
   for (size_t s = 0; s < program.steps.size(); ++s) {
     const Step& step = program.steps[s];
-    if (step.kind != StepKind::Controller || effective[s] || step.out.empty()) continue;
+    if (role(step) != StepRole::Controller || effective[s] || step.out.empty()) continue;
     if (st.unlisted_controllers.count(st.term(step.iri).index)) continue;  // a note says so
     w.warn(step.where, "controller-reaches-no-solver",
            "the controller '" + step.iri + "' drives '" +

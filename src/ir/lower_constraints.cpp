@@ -215,8 +215,8 @@ void lower_evaluators(State& st) {
         st.synthetic(st.str(*c) + "#satisfied", local_name(st.str(*c)) + "_satisfied",
                      DataType::Flag, st.where(*c));
     if (spec.kind == runtime::ConstraintKind::Bilateral) {
-      st.bounds_of_satisfied[satisfied] = {st.data_of.at(st.object(*c, lower_p)->index),
-                                           st.data_of.at(st.object(*c, upper_p)->index)};
+      s.lower_bound = st.data_of.at(st.object(*c, lower_p)->index);
+      s.upper_bound = st.data_of.at(st.object(*c, upper_p)->index);
     }
     if (assignment) {
       // The quantity is what the evaluator writes: the reference value.

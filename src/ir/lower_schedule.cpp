@@ -80,69 +80,10 @@ void schedule(State& st) {
   for (size_t i : order) st.program.steps.push_back(std::move(st.steps[i]));
 }
 
+// Each step's columns, as its kind logs them (StepKindInfo::log).
 void build_log(State& st) {
   for (const Step& s : st.program.steps) {
-    const auto add = [&](const std::string& suffix, int d,
-                         robot::LogColumnKind kind = robot::LogColumnKind::Value) {
-      const Data& dd = st.program.data[static_cast<size_t>(d)];
-      std::string name = local_name(s.iri);
-      if (s.kind == StepKind::Evaluate) name = local_name(dd.iri.substr(0, dd.iri.find('#')));
-      st.program.log.push_back({name + suffix, dd.unit, d, -1, kind});
-    };
-    switch (s.kind) {
-      case StepKind::Evaluate: {
-        const bool assignment = s.constraint.kind == runtime::ConstraintKind::Assignment;
-        const Data& sat = st.program.data[static_cast<size_t>(s.out[0])];
-        const std::string cname = local_name(sat.iri.substr(0, sat.iri.find('#')));
-        const Data& value = st.program.data[static_cast<size_t>(assignment ? s.out[1] : s.in[0])];
-        st.program.log.push_back({cname + ".value", value.unit, assignment ? s.out[1] : s.in[0]});
-        if (!assignment)
-          st.program.log.push_back(
-              {cname + ".error", st.program.data[static_cast<size_t>(s.out[1])].unit, s.out[1]});
-        st.program.log.push_back({cname + ".satisfied", "", s.out[0]});
-        if (auto it = st.bounds_of_satisfied.find(s.out[0]); it != st.bounds_of_satisfied.end()) {
-          st.program.log.push_back({cname + ".lower", value.unit, it->second.first});
-          st.program.log.push_back({cname + ".upper", value.unit, it->second.second});
-        }
-        break;
-      }
-      case StepKind::BaseVelocityComposition: {
-        // The platform's measured planar twist [v_x, v_y, w_z].
-        const std::string base = local_name(s.iri);
-        st.program.log.push_back({base + ".vx", "M-PER-SEC", s.out[0], 3});
-        st.program.log.push_back({base + ".vy", "M-PER-SEC", s.out[0], 4});
-        st.program.log.push_back({base + ".wz", "RAD-PER-SEC", s.out[0], 2});
-        break;
-      }
-      case StepKind::BaseForceDistribution: {
-        // The platform wrench [f_x, f_y, m_z] the drives are to exert.
-        const std::string base = local_name(s.iri);
-        st.program.log.push_back({base + ".fx", "N", s.in[0], 3});
-        st.program.log.push_back({base + ".fy", "N", s.in[0], 4});
-        st.program.log.push_back({base + ".mz", "N-M", s.in[0], 2});
-        break;
-      }
-      // What monitors, motions and solves signal is latched: a log that keeps
-      // every N-th tick shows it in the next row it keeps.
-      case StepKind::ArmSolve:
-        add(".degraded", s.out[0], robot::LogColumnKind::Flag);
-        break;
-      case StepKind::LevelMonitor:
-        add(".flag", s.out[0], robot::LogColumnKind::Flag);
-        break;
-      case StepKind::EdgeMonitor:
-        add(".event", s.out[0], robot::LogColumnKind::Event);
-        break;
-      case StepKind::GuardedMotion:
-        add(".running", s.out[0]);
-        add(".ended", s.out[1], robot::LogColumnKind::Event);
-        break;
-      case StepKind::Controller:
-        add(".output", s.out[0]);
-        break;
-      default:
-        break;
-    }
+    if (const LogHook log = info(s.kind).log) log(st.program, s, st.program.log);
   }
 }
 
@@ -155,7 +96,7 @@ std::vector<char> steps_reaching_a_solver(const Program& program) {
   std::vector<char> effective(program.steps.size(), 0);
   for (size_t s = program.steps.size(); s-- > 0;) {
     const Step& step = program.steps[s];
-    bool live = step.kind == StepKind::ArmSolve || step.kind == StepKind::BaseForceDistribution;
+    bool live = role(step) == StepRole::Solver;
     for (int o : step.out) live = live || reaches[static_cast<size_t>(o)];
     if (!live) continue;
     effective[s] = 1;
@@ -175,7 +116,7 @@ void settle_unlisted_controllers(State& st) {
   int never = -1;
   for (size_t i = 0; i < st.program.steps.size(); ++i) {
     Step& s = st.program.steps[i];
-    if (s.kind != StepKind::Controller || s.out.empty()) continue;
+    if (role(s) != StepRole::Controller || s.out.empty()) continue;
     if (!st.unlisted_controllers.count(st.term(s.iri).index)) continue;
     const std::string drives = st.program.data[static_cast<size_t>(s.out.front())].iri;
     if (reaching[i]) {

@@ -293,9 +293,6 @@ struct State {
   // handlers -> unlisted-controllers: the controllers no handler lists, and
   // the handlers of the app (where the advice points).
   std::pmr::set<uint32_t> unlisted_controllers{&arena};
-  // evaluators -> log: a bilateral constraint's satisfied flag -> its lower
-  // and upper threshold data.
-  std::pmr::map<int, std::pair<int, int>> bounds_of_satisfied{&arena};
 };
 
 // --- the passes, in the order lower.cpp runs them ---------------------------

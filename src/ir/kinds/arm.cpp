@@ -252,5 +252,9 @@ void print_drivers(const Step& st, StepJson& j) {
   j.e["drivers"] = st.drivers();
 }
 
+void log_arm_solve(const Program& p, const Step& st, std::vector<LogColumn>& log) {
+  log.push_back(step_column(p, st, ".degraded", st.out[0], robot::LogColumnKind::Flag));
+}
+
 }  // namespace kinds
 }  // namespace mospec::ir

@@ -67,5 +67,21 @@ Signature signature_base_velocity_composition(const Step&, const Program&) {
   return {{}, {DataType::Twist}};
 }
 
+// The platform wrench [f_x, f_y, m_z] the drives are to exert.
+void log_base_force_distribution(const Program&, const Step& st, std::vector<LogColumn>& log) {
+  const std::string base = lowering::local_name(st.iri);
+  log.push_back({base + ".fx", "N", st.in[0], 3});
+  log.push_back({base + ".fy", "N", st.in[0], 4});
+  log.push_back({base + ".mz", "N-M", st.in[0], 2});
+}
+
+// The platform's measured planar twist [v_x, v_y, w_z].
+void log_base_velocity_composition(const Program&, const Step& st, std::vector<LogColumn>& log) {
+  const std::string base = lowering::local_name(st.iri);
+  log.push_back({base + ".vx", "M-PER-SEC", st.out[0], 3});
+  log.push_back({base + ".vy", "M-PER-SEC", st.out[0], 4});
+  log.push_back({base + ".wz", "RAD-PER-SEC", st.out[0], 2});
+}
+
 }  // namespace kinds
 }  // namespace mospec::ir

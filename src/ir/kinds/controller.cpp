@@ -80,4 +80,8 @@ void print_controller(const Step& st, StepJson& j) {
   j.e[std::string(k.name)] = std::move(params);
 }
 
+void log_controller(const Program& p, const Step& st, std::vector<LogColumn>& log) {
+  log.push_back(step_column(p, st, ".output", st.out[0], robot::LogColumnKind::Value));
+}
+
 }  // namespace mospec::ir::kinds

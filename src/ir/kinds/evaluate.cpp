@@ -50,4 +50,34 @@ void print_evaluate(const Step& st, StepJson& j) {
   j.e["constraint"] = std::move(c);
 }
 
+// The constraint's value, error and satisfaction (an assignment's output and
+// satisfaction), and a bilateral constraint's bounds, named after the
+// constraint, not the evaluator.
+void log_evaluate(const Program& p, const Step& st, std::vector<LogColumn>& log) {
+  const bool assignment = st.constraint.kind == runtime::ConstraintKind::Assignment;
+  const Data& sat = p.data[static_cast<size_t>(st.out[0])];
+  const std::string name = lowering::local_name(sat.iri.substr(0, sat.iri.find('#')));
+  const int value = assignment ? st.out[1] : st.in[0];
+  const std::string& unit = p.data[static_cast<size_t>(value)].unit;
+  log.push_back({name + ".value", unit, value});
+  if (!assignment)
+    log.push_back({name + ".error", p.data[static_cast<size_t>(st.out[1])].unit, st.out[1]});
+  log.push_back({name + ".satisfied", "", st.out[0]});
+  if (st.lower_bound >= 0 && st.upper_bound >= 0) {
+    log.push_back({name + ".lower", unit, st.lower_bound});
+    log.push_back({name + ".upper", unit, st.upper_bound});
+  }
+}
+
+void verify_evaluate(const Step& st, const Program& p, Findings& f) {
+  for (int bound : {st.lower_bound, st.upper_bound}) {
+    if (bound == -1) continue;
+    if (!f.valid_datum(bound) || p.data[static_cast<size_t>(bound)].type != DataType::Scalar)
+      f.step(st, "logs bound " + f.describe(bound) + ", which must be a scalar");
+  }
+  if ((st.lower_bound >= 0 || st.upper_bound >= 0) &&
+      st.constraint.kind != runtime::ConstraintKind::Bilateral)
+    f.step(st, "has bound data, but its constraint is not bilateral");
+}
+
 }  // namespace mospec::ir::kinds

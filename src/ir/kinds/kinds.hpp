@@ -9,6 +9,7 @@
 
 #include "ir/emit.hpp"
 #include "ir/ir.hpp"
+#include "ir/lowering.hpp"
 #include "ir/machine.hpp"
 #include "ir/verify.hpp"
 
@@ -83,6 +84,21 @@ void print_controller(const Step&, StepJson&);
 void print_drivers(const Step&, StepJson&);  // arm-solve, base-force-distribution
 // A constraint's relation, bounds and tolerance (evaluate, the monitors).
 Json constraint_json(const runtime::ConstraintSpec& c);
+
+void verify_evaluate(const Step&, const Program&, Findings&);
+
+// The log columns of a kind's outputs (lowering's log pass; the verdict reads
+// them by name).
+void log_evaluate(const Program&, const Step&, std::vector<LogColumn>&);
+void log_monitor(const Program&, const Step&, std::vector<LogColumn>&);
+void log_guarded_motion(const Program&, const Step&, std::vector<LogColumn>&);
+void log_controller(const Program&, const Step&, std::vector<LogColumn>&);
+void log_arm_solve(const Program&, const Step&, std::vector<LogColumn>&);
+void log_base_force_distribution(const Program&, const Step&, std::vector<LogColumn>&);
+void log_base_velocity_composition(const Program&, const Step&, std::vector<LogColumn>&);
+// The column "<step's local name><suffix>" of one of its outputs.
+LogColumn step_column(const Program& p, const Step& st, std::string_view suffix, int data,
+                      robot::LogColumnKind kind);
 
 // What the interpreter allocates for a step before the first tick.
 void prepare_operator(Machine& m, const Step& st, size_t index);

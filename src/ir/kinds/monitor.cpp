@@ -53,4 +53,12 @@ void print_monitor(const Step& st, StepJson& j) {
   }
 }
 
+// What a monitor signals is latched: a log that keeps every N-th tick shows it
+// in the next row it keeps.
+void log_monitor(const Program& p, const Step& st, std::vector<LogColumn>& log) {
+  const bool level = st.kind == StepKind::LevelMonitor;
+  log.push_back(step_column(p, st, level ? ".flag" : ".event", st.out[0],
+                            level ? robot::LogColumnKind::Flag : robot::LogColumnKind::Event));
+}
+
 }  // namespace mospec::ir::kinds

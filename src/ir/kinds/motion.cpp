@@ -83,4 +83,9 @@ Signature signature_any_of(const Step& st, const Program&) {
   return {Types(st.in.size(), DataType::Flag), {DataType::Flag}};
 }
 
+void log_guarded_motion(const Program& p, const Step& st, std::vector<LogColumn>& log) {
+  log.push_back(step_column(p, st, ".running", st.out[0], robot::LogColumnKind::Value));
+  log.push_back(step_column(p, st, ".ended", st.out[1], robot::LogColumnKind::Event));
+}
+
 }  // namespace mospec::ir::kinds
