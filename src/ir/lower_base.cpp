@@ -36,22 +36,22 @@ std::optional<TermId> find_configuration(State& st, const std::vector<TermId>& s
                                          TermId& configured_by) {
   std::optional<TermId> configuration;
   for (TermId solver : solvers) {
-    auto c = st.object(solver, vocab(kSlv, "configuration"));
-    if (!c) {
-      st.error(solver, "missing-property",
-               "the solver '" + st.str(solver) +
-                   "' names no configuration: name the base it drives (a CastorDriveBase, e.g. "
-                   "https://mospec.example/robots/kelo-base/base)");
-    } else if (!configuration) {
+    const auto c = st.object(solver, vocab(kSlv, "configuration"));
+    if (c && !configuration) {
       configuration = *c;
       configured_by = solver;
-    } else if (*c != *configuration) {
+    } else if (c && *c != *configuration) {
       st.error(st.where(solver, vocab(kSlv, "configuration"), *c), "base-configuration-mismatch",
                "the solver '" + st.str(solver) + "' names the configuration '" + st.str(*c) +
                    "', but '" + st.str(configured_by) + "' (" + st.place(configured_by) +
                    ") names '" + st.str(*configuration) +
                    "': mospec's robot has one base, so both platform solvers must name the same "
                    "configuration");
+    } else if (!c) {
+      st.error(solver, "missing-property",
+               "the solver '" + st.str(solver) +
+                   "' names no configuration: name the base it drives (a CastorDriveBase, e.g. "
+                   "https://mospec.example/robots/kelo-base/base)");
     }
   }
   return configuration;

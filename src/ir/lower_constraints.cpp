@@ -38,28 +38,31 @@ namespace {
 
 // The vocabulary terms the evaluators are read through, looked up once.
 struct EvaluatorTerms {
-  explicit EvaluatorTerms(const State& st)
-      : error_evaluator(st.term(vocab(kCh, "ErrorEvaluator"))),
-        assignment_evaluator(st.term(vocab(kCh, "AssignmentEvaluator"))),
-        constraint_p(st.term(vocab(kCh, "constraint"))),
-        error_p(st.term(vocab(kCh, "error"))),
-        quantity_p(st.term(vocab(kCs, "quantity"))),
-        lower_p(st.term(vocab(kCs, "lower-threshold"))),
-        upper_p(st.term(vocab(kCs, "upper-threshold"))),
-        threshold_p(st.term(vocab(kCs, "threshold"))),
-        reference_p(st.term(vocab(kCs, "reference-value"))),
-        tolerance_p(st.term(kTolerance)),
-        bilateral(st.term(vocab(kCs, "BilateralConstraint"))),
-        greater_than(st.term(vocab(kCs, "GreaterThanConstraint"))),
-        less_than(st.term(vocab(kCs, "LessThanConstraint"))),
-        equality(st.term(vocab(kCs, "EqualityConstraint"))),
-        qudt_value(st.term(kQudt + "value")) {}
-  static constexpr std::string_view kCh = "task/constraint-handler";
-  static constexpr std::string_view kCs = "task/constraint";
   TermId error_evaluator, assignment_evaluator, constraint_p, error_p, quantity_p, lower_p, upper_p,
       threshold_p, reference_p, tolerance_p, bilateral, greater_than, less_than, equality,
       qudt_value;
 };
+EvaluatorTerms evaluator_terms(const State& st) {
+  const auto ch = [&](std::string_view local) {
+    return st.term(vocab("task/constraint-handler", local));
+  };
+  const auto cs = [&](std::string_view local) { return st.term(vocab("task/constraint", local)); };
+  return {ch("ErrorEvaluator"),
+          ch("AssignmentEvaluator"),
+          ch("constraint"),
+          ch("error"),
+          cs("quantity"),
+          cs("lower-threshold"),
+          cs("upper-threshold"),
+          cs("threshold"),
+          cs("reference-value"),
+          st.term(kTolerance),
+          cs("BilateralConstraint"),
+          cs("GreaterThanConstraint"),
+          cs("LessThanConstraint"),
+          cs("EqualityConstraint"),
+          st.term(kQudt + "value")};
+}
 
 // One evaluator being lowered: its constraint `c` on the quantity `q`, and the
 // Evaluate step it becomes.
@@ -298,7 +301,7 @@ void lower_evaluator(State& st, const EvaluatorTerms& t, TermId e) {
 }  // namespace
 
 void lower_evaluators(State& st) {
-  const EvaluatorTerms t(st);
+  const EvaluatorTerms t = evaluator_terms(st);
   // An evaluator that is also an assignment is lowered once, as an assignment
   // (its `error` is refused by lower_properties.cpp).
   std::vector<TermId> evals;

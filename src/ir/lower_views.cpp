@@ -43,16 +43,18 @@ struct ViewInfo {
 
 // The vocabulary terms views are read through, looked up once.
 struct ViewTerms {
-  explicit ViewTerms(const State& st)
-      : superobject(st.term(vocab(kMap, "superobject"))),
-        subobject(st.term(vocab(kMap, "subobject"))),
-        subspace(st.term(vocab(kMap, "subspace"))),
-        axis(st.term(vocab(kMap, "axis"))),
-        pose_view(st.term(vocab(kMap, "PoseCoordinateView"))),
-        twist_view(st.term(vocab(kMap, "VelocityTwistCoordinateView"))),
-        wrench_view(st.term(vocab(kMap, "WrenchCoordinateView"))) {}
   TermId superobject, subobject, subspace, axis, pose_view, twist_view, wrench_view;
 };
+ViewTerms view_terms(const State& st) {
+  const auto term = [&](std::string_view local) { return st.term(vocab(kMap, local)); };
+  return {term("superobject"),
+          term("subobject"),
+          term("subspace"),
+          term("axis"),
+          term("PoseCoordinateView"),
+          term("VelocityTwistCoordinateView"),
+          term("WrenchCoordinateView")};
+}
 
 // The view v: its objects and the component it views; nullopt when it cannot
 // be read (reported).
@@ -184,7 +186,7 @@ bool lower_produced_views(State& st, const std::vector<ViewInfo>& views, std::ve
 }  // namespace
 
 void lower_views(State& st) {
-  const ViewTerms terms(st);
+  const ViewTerms terms = view_terms(st);
   std::vector<ViewInfo> views;
   for (TermId v : st.instances(vocab(kMap, "View"))) {
     if (auto info = read_view(st, terms, v)) views.push_back(*info);
