@@ -11,22 +11,32 @@ namespace {
 
 const std::string kSlv = "task/solver-specification";
 
-// The error code of a problem of the base's description.
-const char* base_problem_code(description::BaseProblemKind kind) {
+// A problem of the base's description, at `at`, with its code. The
+// configuration itself undefined: say who names it, and the nearest defined
+// entity.
+void report_base_problem(State& st, SourceLoc at, const description::BaseProblem& p,
+                         TermId configuration, TermId configured_by) {
   using Kind = description::BaseProblemKind;
-  switch (kind) {
+  switch (p.kind) {
     case Kind::Undefined:
-      return "undefined-configuration";
+      st.error(at, "undefined-configuration",
+               p.entity == configuration ? p.message + "; named by '" + st.str(configured_by) +
+                                               "'" + st.did_you_mean(configuration)
+                                         : p.message);
+      break;
     case Kind::MissingNumber:
-      return "missing-base-number";
+      st.error(at, "missing-base-number", p.message);
+      break;
     case Kind::Unit:
-      return "base-unit";
+      st.error(at, "base-unit", p.message);
+      break;
     case Kind::DriveCount:
-      return "unsupported-drive-count";
+      st.error(at, "unsupported-drive-count", p.message);
+      break;
     case Kind::Degenerate:
-      return "degenerate-base";
+      st.error(at, "degenerate-base", p.message);
+      break;
   }
-  return "";
 }
 
 // The base's numbers: the CastorDriveBase the solvers' `configuration` names
@@ -66,14 +76,7 @@ void read_configuration(State& st, BaseSolver& base, TermId configuration, TermI
   const SourceLoc named_at = st.where(configured_by, vocab(kSlv, "configuration"), configuration);
   for (const description::BaseProblem& p : reading.problems) {
     const SourceLoc at = !p.entity.is_any() && st.defined(p.entity) ? st.where(p.entity) : named_at;
-    // The configuration itself undefined: say who names it, and the nearest
-    // defined entity.
-    const bool itself =
-        p.kind == description::BaseProblemKind::Undefined && p.entity == configuration;
-    st.error(at, base_problem_code(p.kind),
-             itself ? p.message + "; named by '" + st.str(configured_by) + "'" +
-                          st.did_you_mean(configuration)
-                    : p.message);
+    report_base_problem(st, at, p, configuration, configured_by);
   }
   base.config = reading.config;
 }
