@@ -112,13 +112,17 @@ def strip_template(header):
     return " " * j + header[j:]
 
 
+NOT_PARAMETERS = re.compile(r"\b(decltype|alignas|__attribute__|noexcept)\s*$")
+
+
 def top_level(header):
     """header with everything inside (), [] and {} blanked, and the offset of
-    the first top-level `(` (or -1)."""
+    the first top-level `(` that opens a parameter list (not decltype(...)'s),
+    or -1."""
     out, depth, first = [], 0, -1
     for k, ch in enumerate(header):
         if ch in "([{":
-            if depth == 0 and ch == "(" and first < 0:
+            if depth == 0 and ch == "(" and first < 0 and not NOT_PARAMETERS.search(header[:k]):
                 first = k
             depth += 1
             out.append(ch if depth == 1 else " ")
@@ -272,6 +276,8 @@ def selftest():
     expect("a lambda in a constructor's initialiser is part of its header",
            "E::E(int d)\n    : B([&] {\n        return d;\n      }()),\n      d_(d) {}\n"
            "int g() {\n  return 1;\n}\n", [("E::E", 5), ("g", 3)])
+    expect("a deduced return type",
+           "template <class K>\ndecltype(auto) run(K&& k) {\n  return k();\n}\n", [("run", 3)])
     expect("lambdas and control blocks count towards their function",
            "void f() {\n  auto g = [&] {\n    if (x) {\n    }\n  };\n}\n", [("f", 6)])
 
