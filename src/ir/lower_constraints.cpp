@@ -34,213 +34,281 @@ std::optional<TermId> equality_without_tolerance(const State& st, const Step& ev
 
 }  // namespace
 
+namespace {
+
+// The vocabulary terms the evaluators are read through, looked up once.
+struct EvaluatorTerms {
+  TermId error_evaluator, assignment_evaluator, constraint_p, error_p, quantity_p, lower_p, upper_p,
+      threshold_p, reference_p, tolerance_p, bilateral, greater_than, less_than, equality,
+      qudt_value;
+};
+EvaluatorTerms evaluator_terms(const State& st) {
+  const auto ch = [&](std::string_view local) {
+    return st.term(vocab("task/constraint-handler", local));
+  };
+  const auto cs = [&](std::string_view local) { return st.term(vocab("task/constraint", local)); };
+  return {ch("ErrorEvaluator"),
+          ch("AssignmentEvaluator"),
+          ch("constraint"),
+          ch("error"),
+          cs("quantity"),
+          cs("lower-threshold"),
+          cs("upper-threshold"),
+          cs("threshold"),
+          cs("reference-value"),
+          st.term(kTolerance),
+          cs("BilateralConstraint"),
+          cs("GreaterThanConstraint"),
+          cs("LessThanConstraint"),
+          cs("EqualityConstraint"),
+          st.term(kQudt + "value")};
+}
+
+// One evaluator being lowered: its constraint `c` on the quantity `q`, and the
+// Evaluate step it becomes.
+struct Evaluation {
+  State& st;
+  const EvaluatorTerms& t;
+  TermId e, c, q;
+  bool assignment = false;
+  int quantity = -1;
+  std::string unit;  // the quantity's
+  Step s;
+  runtime::ConstraintSpec spec;
+  std::optional<int> reference_datum;
+
+  bool is(TermId type) const { return st.graph.has_type(c, type); }
+};
+
+// A threshold/reference of the constraint: a constant with the quantity's
+// unit; nullopt when absent or invalid (reported).
+std::optional<double> read_constant(Evaluation& ev, const std::string& prop, TermId property) {
+  State& st = ev.st;
+  auto t = st.object(ev.c, property);
+  if (!t) return std::nullopt;
+  const int d = st.datum(*t, DataType::Scalar, ev.c, prop);
+  const Data& dd = st.program.data[static_cast<size_t>(d)];
+  if (dd.value.empty()) {
+    const auto lit = st.object(*t, ev.t.qudt_value);
+    if (lit && st.graph.terms()[*lit].is_literal()) {
+      st.error(st.graph.where(*t, ev.t.qudt_value, *lit), "invalid-number",
+               "the " + prop + " '" + dd.iri + "' of '" + st.str(ev.c) + "' has the value " +
+                   st.literal_text(*lit) + ", which is not a finite number of its datatype");
+    } else if (st.defined(*t)) {  // else undefined-quantity said it
+      st.error(*t, "not-a-constant",
+               "the " + prop + " '" + dd.iri + "' of '" + st.str(ev.c) + "' has no value");
+    }
+    return std::nullopt;
+  }
+  if (dd.unit != ev.unit) {
+    st.error(
+        *t, "wrong-unit",
+        "the " + prop + " '" + dd.iri + "' is in '" + dd.unit + "' but the constrained quantity '" +
+            st.program.data[static_cast<size_t>(ev.quantity)].iri + "' is in '" + ev.unit + "'");
+  }
+  return dd.value[0];
+}
+
+// The model's tolerance `tol` of the constraint (cstr-ext:tolerance): a bound
+// on |error|. False when it is invalid (reported).
+bool read_tolerance(Evaluation& ev, TermId tol) {
+  const auto v = read_constant(ev, "tolerance", ev.t.tolerance_p);
+  if (!v) return false;
+  if (!(*v >= 0.0)) {
+    ev.st.error(tol, "invalid-constraint",
+                "the tolerance '" + ev.st.str(tol) + "' of '" + ev.st.str(ev.c) + "' is " +
+                    exact_number(*v) + "; a tolerance is a bound on |error|, >= 0");
+    return false;
+  }
+  ev.spec.tolerance = *v;
+  ev.s.tolerance_source = Step::Tolerance::Stated;
+  return true;
+}
+
+bool read_bilateral(Evaluation& ev) {
+  State& st = ev.st;
+  ev.spec.kind = runtime::ConstraintKind::Bilateral;
+  auto lo = read_constant(ev, "lower-threshold", ev.t.lower_p),
+       hi = read_constant(ev, "upper-threshold", ev.t.upper_p);
+  if (!lo || !hi) {
+    // An invalid threshold has been reported by read_constant(); only a
+    // missing one is reported here.
+    if (!st.object(ev.c, ev.t.lower_p) || !st.object(ev.c, ev.t.upper_p))
+      st.error(
+          ev.c, "missing-property",
+          "the bilateral constraint '" + st.str(ev.c) + "' needs a lower and an upper threshold");
+    return false;
+  }
+  ev.spec.lower = *lo;
+  ev.spec.upper = *hi;
+  if (!(ev.spec.lower < ev.spec.upper)) {
+    st.error(ev.c, "invalid-constraint",
+             "the bilateral constraint '" + st.str(ev.c) + "' needs lower < upper");
+    return false;
+  }
+  return true;
+}
+
+bool read_inequality(Evaluation& ev) {
+  State& st = ev.st;
+  ev.spec.kind = ev.is(ev.t.greater_than) ? runtime::ConstraintKind::GreaterThan
+                                          : runtime::ConstraintKind::LessThan;
+  auto t = read_constant(ev, "threshold", ev.t.threshold_p);
+  if (!t) {
+    if (!st.object(ev.c, ev.t.threshold_p))
+      st.error(ev.c, "missing-property", "the constraint '" + st.str(ev.c) + "' needs a threshold");
+    return false;
+  }
+  ev.spec.threshold = *t;
+  // The model's tolerance: satisfied while beyond the threshold by no
+  // more than it (a one-sided row releases within it: mark_one_sided).
+  if (auto tol = st.object(ev.c, ev.t.tolerance_p)) {
+    if (!read_tolerance(ev, *tol)) return false;
+  }
+  // A timeout: a threshold on a clock's time, which starts at 0 and only
+  // grows. A threshold <= 0 s is decided before the first tick (a
+  // greater-than constraint holds at once, a less-than never does).
+  if (!(ev.spec.threshold > 0.0) && st.is_clock_time(ev.q)) {
+    const TermId th = *st.object(ev.c, ev.t.threshold_p);
+    const auto lit = st.object(th, ev.t.qudt_value);
+    st.error(lit ? st.graph.where(th, ev.t.qudt_value, *lit) : st.where(th), "invalid-timeout",
+             "the timeout '" + st.str(th) + "' of '" + st.str(ev.c) + "' is " +
+                 exact_number(ev.spec.threshold) + " s; a threshold on the clock's time '" +
+                 st.str(ev.q) + "' must be > 0 s");
+    return false;
+  }
+  return true;
+}
+
+bool read_equality(Evaluation& ev) {
+  State& st = ev.st;
+  ev.spec.kind =
+      ev.assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
+  auto r = read_constant(ev, "reference-value", ev.t.reference_p);
+  if (!r) {
+    if (!st.object(ev.c, ev.t.reference_p))
+      st.error(ev.c, "missing-property",
+               "the equality constraint '" + st.str(ev.c) + "' needs a reference-value");
+    return false;
+  }
+  ev.spec.reference = *r;
+  if (auto t = st.object(ev.c, ev.t.reference_p)) ev.reference_datum = st.data_of.at(t->index);
+  // The model's tolerance (cstr-ext:tolerance): satisfied while |error| <= it.
+  auto tol = st.object(ev.c, ev.t.tolerance_p);
+  if (!tol) return true;
+  if (ev.assignment) {
+    st.error(st.graph.where(ev.c, ev.t.tolerance_p, *tol), "unsupported-property",
+             "the equality constraint '" + st.str(ev.c) +
+                 "' states `tolerance`, but the "
+                 "assignment evaluator '" +
+                 st.str(ev.e) +
+                 "' imposes its reference-value and "
+                 "never checks it, so the tolerance would be ignored; remove `tolerance`");
+    return false;
+  }
+  return read_tolerance(ev, *tol);
+}
+
+// The constraint's kind and bounds into ev.spec; false when refused (reported).
+bool read_constraint(Evaluation& ev) {
+  bool read = false;
+  if (ev.is(ev.t.bilateral)) {
+    read = read_bilateral(ev);
+  } else if (ev.is(ev.t.greater_than) || ev.is(ev.t.less_than)) {
+    read = read_inequality(ev);
+  } else if (ev.is(ev.t.equality)) {
+    read = read_equality(ev);
+  } else {
+    ev.st.error(ev.c, "unsupported-constraint",
+                "'" + ev.st.str(ev.c) +
+                    "' is not an equality, bilateral, greater-than or less-than constraint");
+    return false;
+  }
+  if (!read) return false;
+  if (ev.assignment && ev.spec.kind != runtime::ConstraintKind::Assignment) {
+    ev.st.error(ev.e, "invalid-evaluator",
+                "the assignment evaluator '" + ev.st.str(ev.e) + "' needs an equality constraint");
+    return false;
+  }
+  return true;
+}
+
+// The Evaluate step: the constraint's satisfied flag, and its error (or, for
+// an assignment, the quantity it writes).
+void add_evaluate_step(Evaluation& ev) {
+  State& st = ev.st;
+  Step& s = ev.s;
+  s.constraint = ev.spec;
+  const int satisfied =
+      st.synthetic(st.str(ev.c) + "#satisfied", local_name(st.str(ev.c)) + "_satisfied",
+                   DataType::Flag, st.where(ev.c));
+  if (ev.spec.kind == runtime::ConstraintKind::Bilateral) {
+    s.lower_bound = st.data_of.at(st.object(ev.c, ev.t.lower_p)->index);
+    s.upper_bound = st.data_of.at(st.object(ev.c, ev.t.upper_p)->index);
+  }
+  if (ev.assignment) {
+    // The quantity is what the evaluator writes: the reference value.
+    s.in = {*ev.reference_datum};
+    s.out = {satisfied, ev.quantity};
+  } else {
+    int err = -1;
+    if (auto eo = st.object(ev.e, ev.t.error_p)) {
+      err = st.datum(*eo, DataType::Scalar, ev.e, "error");
+      s.has_error_output = true;
+    } else {
+      err = st.synthetic(st.str(ev.e) + "#error", local_name(st.str(ev.e)) + "_error",
+                         DataType::Scalar, st.where(ev.e), ev.unit);
+    }
+    s.in = {ev.quantity};
+    s.out = {satisfied, err};
+  }
+  const int index = st.add_step(std::move(s));
+  if (st.evaluator_of_constraint.count(ev.c.index)) {
+    st.error(ev.e, "evaluated-twice", "the constraint '" + st.str(ev.c) + "' has two evaluators");
+  }
+  st.evaluator_of_constraint[ev.c.index] = index;
+  st.evaluate_step_of_evaluator[ev.e.index] = index;
+}
+
+void lower_evaluator(State& st, const EvaluatorTerms& t, TermId e) {
+  st.pending_iri = st.str(e);
+  auto c = st.object(e, t.constraint_p);
+  if (!c) {
+    st.error(e, "missing-property", "the evaluator '" + st.str(e) + "' names no constraint");
+    return;
+  }
+  if (!st.defined(*c)) {
+    st.error(st.graph.where(e, t.constraint_p, *c), "undefined-constraint",
+             "the evaluator '" + st.str(e) + "' evaluates '" + st.str(*c) +
+                 "', which no model file defines");
+    return;
+  }
+  auto q = st.object(*c, t.quantity_p);
+  if (!q) {
+    st.error(*c, "missing-property", "the constraint '" + st.str(*c) + "' names no quantity");
+    return;
+  }
+  const bool assignment = st.graph.has_type(e, t.assignment_evaluator);
+  Step s = st.step_for(StepKind::Evaluate, e);
+  const int quantity = st.datum(*q, DataType::Scalar, *c, "quantity");
+  Evaluation ev{
+      st,           t,          e,           *c,
+      *q,           assignment, quantity,    st.program.data[static_cast<size_t>(quantity)].unit,
+      std::move(s), {},         std::nullopt};
+  if (read_constraint(ev)) add_evaluate_step(ev);
+}
+
+}  // namespace
+
 void lower_evaluators(State& st) {
-  const std::string ch = "task/constraint-handler";
-  const std::string cs = "task/constraint";
-  // The vocabulary terms read below, looked up once.
-  const TermId error_evaluator = st.term(vocab(ch, "ErrorEvaluator")),
-               assignment_evaluator = st.term(vocab(ch, "AssignmentEvaluator")),
-               constraint_p = st.term(vocab(ch, "constraint")),
-               error_p = st.term(vocab(ch, "error")), quantity_p = st.term(vocab(cs, "quantity")),
-               lower_p = st.term(vocab(cs, "lower-threshold")),
-               upper_p = st.term(vocab(cs, "upper-threshold")),
-               threshold_p = st.term(vocab(cs, "threshold")),
-               reference_p = st.term(vocab(cs, "reference-value")),
-               tolerance_p = st.term(kTolerance),
-               bilateral = st.term(vocab(cs, "BilateralConstraint")),
-               greater_than = st.term(vocab(cs, "GreaterThanConstraint")),
-               less_than = st.term(vocab(cs, "LessThanConstraint")),
-               equality = st.term(vocab(cs, "EqualityConstraint")),
-               qudt_value = st.term(kQudt + "value");
-  const auto is = [&](TermId s, TermId type) { return st.graph.has_type(s, type); };
+  const EvaluatorTerms t = evaluator_terms(st);
   // An evaluator that is also an assignment is lowered once, as an assignment
   // (its `error` is refused by lower_properties.cpp).
   std::vector<TermId> evals;
-  for (TermId e : st.graph.instances(error_evaluator))
-    if (!is(e, assignment_evaluator)) evals.push_back(e);
-  for (TermId a : st.graph.instances(assignment_evaluator)) evals.push_back(a);
-  for (TermId e : evals) {
-    st.pending_iri = st.str(e);
-    const bool assignment = is(e, assignment_evaluator);
-    auto c = st.object(e, constraint_p);
-    if (!c) {
-      st.error(e, "missing-property", "the evaluator '" + st.str(e) + "' names no constraint");
-      continue;
-    }
-    if (!st.defined(*c)) {
-      st.error(st.graph.where(e, constraint_p, *c), "undefined-constraint",
-               "the evaluator '" + st.str(e) + "' evaluates '" + st.str(*c) +
-                   "', which no model file defines");
-      continue;
-    }
-    auto q = st.object(*c, quantity_p);
-    if (!q) {
-      st.error(*c, "missing-property", "the constraint '" + st.str(*c) + "' names no quantity");
-      continue;
-    }
-    Step s = st.step_for(StepKind::Evaluate, e);
-    const int quantity = st.datum(*q, DataType::Scalar, *c, "quantity");
-    const std::string unit = st.program.data[static_cast<size_t>(quantity)].unit;
-    // A threshold/reference: a constant with the quantity's unit.
-    const auto constant = [&](const std::string& prop, TermId property) -> std::optional<double> {
-      auto t = st.object(*c, property);
-      if (!t) return std::nullopt;
-      const int d = st.datum(*t, DataType::Scalar, *c, prop);
-      const Data& dd = st.program.data[static_cast<size_t>(d)];
-      if (dd.value.empty()) {
-        const auto lit = st.object(*t, qudt_value);
-        if (lit && st.graph.terms()[*lit].is_literal()) {
-          st.error(st.graph.where(*t, qudt_value, *lit), "invalid-number",
-                   "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has the value " +
-                       st.literal_text(*lit) + ", which is not a finite number of its datatype");
-        } else if (st.defined(*t)) {  // else undefined-quantity said it
-          st.error(*t, "not-a-constant",
-                   "the " + prop + " '" + dd.iri + "' of '" + st.str(*c) + "' has no value");
-        }
-        return std::nullopt;
-      }
-      if (dd.unit != unit) {
-        st.error(*t, "wrong-unit",
-                 "the " + prop + " '" + dd.iri + "' is in '" + dd.unit +
-                     "' but the constrained quantity '" +
-                     st.program.data[static_cast<size_t>(quantity)].iri + "' is in '" + unit + "'");
-      }
-      return dd.value[0];
-    };
-    runtime::ConstraintSpec spec;
-    std::optional<int> reference_datum;
-    if (is(*c, bilateral)) {
-      spec.kind = runtime::ConstraintKind::Bilateral;
-      auto lo = constant("lower-threshold", lower_p), hi = constant("upper-threshold", upper_p);
-      if (!lo || !hi) {
-        // An invalid threshold has been reported by constant(); only a
-        // missing one is reported here.
-        if (!st.object(*c, lower_p) || !st.object(*c, upper_p))
-          st.error(
-              *c, "missing-property",
-              "the bilateral constraint '" + st.str(*c) + "' needs a lower and an upper threshold");
-        continue;
-      }
-      spec.lower = *lo;
-      spec.upper = *hi;
-      if (!(spec.lower < spec.upper)) {
-        st.error(*c, "invalid-constraint",
-                 "the bilateral constraint '" + st.str(*c) + "' needs lower < upper");
-        continue;
-      }
-    } else if (is(*c, greater_than) || is(*c, less_than)) {
-      spec.kind = is(*c, greater_than) ? runtime::ConstraintKind::GreaterThan
-                                       : runtime::ConstraintKind::LessThan;
-      auto t = constant("threshold", threshold_p);
-      if (!t) {
-        if (!st.object(*c, threshold_p))
-          st.error(*c, "missing-property", "the constraint '" + st.str(*c) + "' needs a threshold");
-        continue;
-      }
-      spec.threshold = *t;
-      // The model's tolerance: satisfied while beyond the threshold by no
-      // more than it (a one-sided row releases within it: mark_one_sided).
-      if (auto tol = st.object(*c, tolerance_p)) {
-        const auto v = constant("tolerance", tolerance_p);
-        if (!v) continue;
-        if (!(*v >= 0.0)) {
-          st.error(*tol, "invalid-constraint",
-                   "the tolerance '" + st.str(*tol) + "' of '" + st.str(*c) + "' is " +
-                       exact_number(*v) + "; a tolerance is a bound on |error|, >= 0");
-          continue;
-        }
-        spec.tolerance = *v;
-        s.tolerance_source = Step::Tolerance::Stated;
-      }
-      // A timeout: a threshold on a clock's time, which starts at 0 and only
-      // grows. A threshold <= 0 s is decided before the first tick (a
-      // greater-than constraint holds at once, a less-than never does).
-      if (!(spec.threshold > 0.0) && st.is_clock_time(*q)) {
-        const TermId th = *st.object(*c, threshold_p);
-        const auto lit = st.object(th, qudt_value);
-        st.error(lit ? st.graph.where(th, qudt_value, *lit) : st.where(th), "invalid-timeout",
-                 "the timeout '" + st.str(th) + "' of '" + st.str(*c) + "' is " +
-                     exact_number(spec.threshold) + " s; a threshold on the clock's time '" +
-                     st.str(*q) + "' must be > 0 s");
-        continue;
-      }
-    } else if (is(*c, equality)) {
-      spec.kind =
-          assignment ? runtime::ConstraintKind::Assignment : runtime::ConstraintKind::Equality;
-      auto r = constant("reference-value", reference_p);
-      if (!r) {
-        if (!st.object(*c, reference_p))
-          st.error(*c, "missing-property",
-                   "the equality constraint '" + st.str(*c) + "' needs a reference-value");
-        continue;
-      }
-      spec.reference = *r;
-      if (auto t = st.object(*c, reference_p)) reference_datum = st.data_of.at(t->index);
-      // The model's tolerance (cstr-ext:tolerance): satisfied while |error| <= it.
-      if (auto tol = st.object(*c, tolerance_p)) {
-        if (assignment) {
-          st.error(st.graph.where(*c, tolerance_p, *tol), "unsupported-property",
-                   "the equality constraint '" + st.str(*c) +
-                       "' states `tolerance`, but the "
-                       "assignment evaluator '" +
-                       st.str(e) +
-                       "' imposes its reference-value and "
-                       "never checks it, so the tolerance would be ignored; remove `tolerance`");
-          continue;
-        }
-        const auto t = constant("tolerance", tolerance_p);
-        if (!t) continue;
-        if (!(*t >= 0.0)) {
-          st.error(*tol, "invalid-constraint",
-                   "the tolerance '" + st.str(*tol) + "' of '" + st.str(*c) + "' is " +
-                       exact_number(*t) + "; a tolerance is a bound on |error|, >= 0");
-          continue;
-        }
-        spec.tolerance = *t;
-        s.tolerance_source = Step::Tolerance::Stated;
-      }
-    } else {
-      st.error(*c, "unsupported-constraint",
-               "'" + st.str(*c) +
-                   "' is not an equality, bilateral, greater-than or less-than constraint");
-      continue;
-    }
-    if (assignment && spec.kind != runtime::ConstraintKind::Assignment) {
-      st.error(e, "invalid-evaluator",
-               "the assignment evaluator '" + st.str(e) + "' needs an equality constraint");
-      continue;
-    }
-    s.constraint = spec;
-    const int satisfied =
-        st.synthetic(st.str(*c) + "#satisfied", local_name(st.str(*c)) + "_satisfied",
-                     DataType::Flag, st.where(*c));
-    if (spec.kind == runtime::ConstraintKind::Bilateral) {
-      s.lower_bound = st.data_of.at(st.object(*c, lower_p)->index);
-      s.upper_bound = st.data_of.at(st.object(*c, upper_p)->index);
-    }
-    if (assignment) {
-      // The quantity is what the evaluator writes: the reference value.
-      s.in = {*reference_datum};
-      s.out = {satisfied, quantity};
-    } else {
-      int err = -1;
-      if (auto eo = st.object(e, error_p)) {
-        err = st.datum(*eo, DataType::Scalar, e, "error");
-        s.has_error_output = true;
-      } else {
-        err = st.synthetic(st.str(e) + "#error", local_name(st.str(e)) + "_error", DataType::Scalar,
-                           st.where(e), unit);
-      }
-      s.in = {quantity};
-      s.out = {satisfied, err};
-    }
-    const int index = st.add_step(std::move(s));
-    if (st.evaluator_of_constraint.count(c->index)) {
-      st.error(e, "evaluated-twice", "the constraint '" + st.str(*c) + "' has two evaluators");
-    }
-    st.evaluator_of_constraint[c->index] = index;
-    st.evaluate_step_of_evaluator[e.index] = index;
-  }
+  for (TermId e : st.graph.instances(t.error_evaluator))
+    if (!st.graph.has_type(e, t.assignment_evaluator)) evals.push_back(e);
+  for (TermId a : st.graph.instances(t.assignment_evaluator)) evals.push_back(a);
+  for (TermId e : evals) lower_evaluator(st, t, e);
 }
 
 void lower_monitors(State& st) {
@@ -434,22 +502,212 @@ std::string allowed(const runtime::ConstraintSpec& c, const std::string& unit) {
   return "";
 }
 
+const std::string kCh = "task/constraint-handler";
+const std::string kMot = "task/motion-specification";
+
+// A `while` constraint of a motion, on the quantity it constrains.
+struct PerCondition {
+  int quantity;
+  TermId constraint;
+  runtime::ConstraintSpec spec;
+};
+
+// The quantities each motion acts on (acted_on).
+using ActedOn = std::pmr::map<uint32_t, std::pmr::set<int>>;
+
+// A `while` constraint of the motion m: false when it is refused (reported).
+// One on a quantity the motion acts on is what the motion enforces (its goal:
+// sc1's tube, outside at the start); any other is an invariant, checked every
+// tick.
+bool check_per_condition(State& st, TermId m, TermId c, const Step& evaluate,
+                         const ActedOn& acted) {
+  const bool assignment = evaluate.constraint.kind == runtime::ConstraintKind::Assignment;
+  const int quantity = assignment ? evaluate.out[1] : evaluate.in[0];
+  if (const auto a = acted.find(m.index); a != acted.end() && a->second.count(quantity))
+    return false;
+  if (!equality_without_tolerance(st, evaluate)) return true;
+  st.error(st.where(m, vocab(kMot, "while"), c), "missing-tolerance",
+           "the motion '" + st.str(m) + "' lists '" + st.str(c) +
+               "' in `while`; no controller or assignment of the motion acts on its "
+               "quantity, so it is checked every tick, and an equality without a "
+               "tolerance holds only while its quantity equals the reference "
+               "exactly: the motion would be aborted at once; state the "
+               "constraint's `tolerance` (cstr-ext:tolerance, a quantity in its unit: "
+               "satisfied while |error| <= it)");
+  return false;
+}
+
+// The satisfied flags of the constraints the motion m lists in `prop` (when,
+// while, until); the `while` ones also into per_condition, as listed.
+std::vector<int> guard_flags(State& st, TermId m, const std::string& prop, const ActedOn& acted,
+                             std::vector<PerCondition>& per_condition) {
+  std::vector<int> flags;
+  for (TermId c : st.objects(m, vocab(kMot, prop))) {
+    auto it = st.evaluator_of_constraint.find(c.index);
+    if (it == st.evaluator_of_constraint.end()) {
+      // An evaluator that names it was refused: reported there already.
+      if (!st.graph.subjects(st.term(vocab(kCh, "constraint")), c).empty()) continue;
+      st.error(st.where(m, vocab(kMot, prop), c), "unevaluated-constraint",
+               "the motion '" + st.str(m) + "' lists '" + st.str(c) + "' in `" + prop +
+                   "`, but no evaluator evaluates it");
+      continue;
+    }
+    const Step& evaluate = st.steps[static_cast<size_t>(it->second)];
+    if (prop == "while") {
+      const bool assigned = evaluate.constraint.kind == runtime::ConstraintKind::Assignment;
+      per_condition.push_back(
+          {assigned ? evaluate.out[1] : evaluate.in[0], c, evaluate.constraint});
+      if (!check_per_condition(st, m, c, evaluate, acted)) continue;
+    } else {
+      check_guard(st, m, prop, c, evaluate);
+    }
+    flags.push_back(evaluate.out[0]);
+  }
+  return flags;
+}
+
+// What the motion requires while it runs, on one quantity: the
+// per-conditions' allowed values must overlap (pairwise suffices: if
+// every two intervals meet, all of them do), or no state satisfies the
+// motion and one of them is ignored whichever way the run goes.
+void check_feasible(State& st, TermId m, const std::vector<PerCondition>& per_condition) {
+  for (size_t i = 0; i < per_condition.size(); ++i) {
+    for (size_t j = i + 1; j < per_condition.size(); ++j) {
+      const PerCondition &a = per_condition[i], &b = per_condition[j];
+      if (a.quantity != b.quantity) continue;
+      const Feasible fa = feasible(a.spec), fb = feasible(b.spec);
+      if (std::max(fa.lo, fb.lo) <= std::min(fa.hi, fb.hi)) continue;
+      const Data& q = st.program.data[static_cast<size_t>(a.quantity)];
+      st.error(st.where(a.constraint), "infeasible-motion",
+               "the motion '" + st.str(m) + "' requires, while it runs, both '" +
+                   st.str(a.constraint) + "' ('" + q.iri + "' " + allowed(a.spec, q.unit) +
+                   ") and '" + st.str(b.constraint) + "' (" + allowed(b.spec, q.unit) + ", " +
+                   st.place(b.constraint) +
+                   "), which no value satisfies at once; change one of them, or make them "
+                   "guards of different motions");
+      st.errors.push_back(located(Severity::Note, st.where(b.constraint), st.model.files(),
+                                  "infeasible-motion",
+                                  "the other constraint of the motion '" + st.str(m) + "' on '" +
+                                      q.iri + "': '" + st.str(b.constraint) + "'"));
+    }
+  }
+}
+
+// The GuardedMotion step of the motion m; its running flag, or nullopt when
+// refused (reported).
+std::optional<int> lower_motion(State& st, TermId m, const ActedOn& acted) {
+  Step s = st.step_for(StepKind::GuardedMotion, m);
+  std::vector<PerCondition> per_condition;  // the motion's `while`, as listed
+  const std::vector<int> when = guard_flags(st, m, "when", acted, per_condition);
+  const std::vector<int> whiles = guard_flags(st, m, "while", acted, per_condition);
+  check_feasible(st, m, per_condition);
+  const std::vector<int> until = guard_flags(st, m, "until", acted, per_condition);
+  s.in = when;
+  s.in.insert(s.in.end(), whiles.begin(), whiles.end());
+  s.in.insert(s.in.end(), until.begin(), until.end());
+  s.n_when = static_cast<int>(when.size());
+  s.n_while = static_cast<int>(whiles.size());
+  if (when.size() > static_cast<size_t>(kMaxGuards) ||
+      whiles.size() > static_cast<size_t>(kMaxGuards) ||
+      until.size() > static_cast<size_t>(kMaxGuards)) {
+    st.error(m, "too-many-guards",
+             "the motion '" + st.str(m) + "' has more than 16 when, checked while or until guards");
+    return std::nullopt;
+  }
+  const int active = st.synthetic(st.str(m) + "#running", local_name(st.str(m)) + "_running",
+                                  DataType::Flag, st.where(m));
+  // How it ended, in the tick it ends (runtime::steps::MotionEnd).
+  const int ended = st.synthetic(st.str(m) + "#ended", local_name(st.str(m)) + "_ended",
+                                 DataType::Event, st.where(m));
+  s.out = {active, ended};
+  s.state = st.program.states[static_cast<int>(StateKind::Motion)]++;
+  st.add_step(std::move(s));
+  return active;
+}
+
+// The running flags of the motions whose handlers list each controller,
+// evaluator and monitor (in order of term, so the program is a function of
+// the model). (Scratch maps and sets: from the lowering's arena.)
+struct HandledBy {
+  explicit HandledBy(State& st)
+      : controller(&st.arena), evaluator(&st.arena), monitor(&st.arena), handled(&st.arena) {}
+  using Flags = std::pmr::map<TermId, std::pmr::set<int>>;
+  Flags controller, evaluator, monitor;
+  std::pmr::set<uint32_t> handled;  // motions some handler names
+};
+
+// Listed by the handlers of several motions: active while any of them runs.
+int any_of(State& st, TermId entity, const std::pmr::set<int>& flags) {
+  if (flags.size() == 1) return *flags.begin();
+  Step s = st.step_for(StepKind::AnyOf, entity);
+  s.name += "_active";
+  s.in.assign(flags.begin(), flags.end());
+  const int d = st.synthetic(st.str(entity) + "#active", local_name(st.str(entity)) + "_active",
+                             DataType::Flag, st.where(entity));
+  s.out = {d};
+  st.add_step(std::move(s));
+  return d;
+}
+
+// Assignments write, and monitors report, only while their motion runs (or
+// one of their motions); a monitor no handler lists watches the whole run.
+void gate_by_motions(State& st, const HandledBy& by) {
+  for (const auto& [c, flags] : by.controller)
+    st.active_of_controller[c.index] = any_of(st, c, flags);
+  for (const auto& [e, flags] : by.evaluator) {
+    const auto it = st.evaluate_step_of_evaluator.find(e.index);
+    if (it == st.evaluate_step_of_evaluator.end()) continue;
+    if (st.steps[static_cast<size_t>(it->second)].constraint.kind !=
+        runtime::ConstraintKind::Assignment)
+      continue;
+    const int active = any_of(st, e, flags);  // may grow st.steps
+    st.steps[static_cast<size_t>(it->second)].in.push_back(active);
+  }
+  for (const auto& [mon, flags] : by.monitor) {
+    const auto it = st.monitor_step_of_monitor.find(mon.index);
+    if (it == st.monitor_step_of_monitor.end()) continue;
+    const int active = any_of(st, mon, flags);  // may grow st.steps
+    st.steps[static_cast<size_t>(it->second)].in.push_back(active);
+  }
+}
+
+// A motion no handler handles: nothing evaluates its guards, and it never runs.
+void check_unhandled(State& st, const HandledBy& by) {
+  for (TermId m : st.instances(vocab(kMot, "GuardedMotion"))) {
+    if (by.handled.count(m.index)) continue;
+    st.error(m, "unhandled",
+             "no constraint handler handles the motion '" + st.str(m) +
+                 "', so nothing evaluates its guards and it would never run; add a "
+                 "ConstraintHandler whose `motion` is it, listing its evaluators and controllers");
+  }
+}
+
+// An assignment no handler lists would write whatever the task does:
+// refused, as the motion it serves is unknown. A controller no handler lists
+// is refused only if a solver reads what it drives
+// (settle_unlisted_controllers, once the schedule shows that): one a scenario
+// leaves out of its handlers, e.g. of a shared file, is not used.
+void check_unlisted(State& st, const HandledBy& by) {
+  for (TermId e : st.instances(vocab(kCh, "AssignmentEvaluator")))
+    if (!by.evaluator.count(e))
+      st.error(e, "unhandled",
+               "no constraint handler lists the assignment evaluator '" + st.str(e) +
+                   "', so no motion says when it acts; list it in the `evaluators` of the "
+                   "handler of each motion it serves");
+  for (const ControllerKind& kind : controller_kinds())
+    for (TermId c : st.instances(kind.class_iri()))
+      if (!by.controller.count(c)) st.unlisted_controllers.insert(c.index);
+}
+
 }  // namespace
 
 void lower_handlers(State& st) {
-  // The running flags of the motions whose handlers list each controller and
-  // evaluator (in order of term, so the program is a function of the model).
-  // (Scratch maps and sets: from the lowering's arena.)
-  std::pmr::map<TermId, std::pmr::set<int>> flags_of_controller{&st.arena},
-      flags_of_evaluator{&st.arena}, flags_of_monitor{&st.arena};
-  const std::string ch = "task/constraint-handler";
-  const std::string mot = "task/motion-specification";
+  HandledBy by(st);
   std::pmr::map<uint32_t, int> active_of_motion{&st.arena};
-  std::pmr::set<uint32_t> handled{&st.arena};  // motions some handler names
-  const std::pmr::map<uint32_t, std::pmr::set<int>> acted = acted_on(st);
-  for (TermId h : st.instances(vocab(ch, "ConstraintHandler"))) {
+  const ActedOn acted = acted_on(st);
+  for (TermId h : st.instances(vocab(kCh, "ConstraintHandler"))) {
     st.pending_iri = st.str(h);
-    auto m = st.object(h, vocab(ch, "motion"));
+    auto m = st.object(h, vocab(kCh, "motion"));
     if (!m) {
       st.error(h, "missing-property",
                "the constraint handler '" + st.str(h) +
@@ -457,171 +715,23 @@ void lower_handlers(State& st) {
                    "task does; name the motion they serve (`motion`)");
       continue;
     }
-    handled.insert(m->index);
+    by.handled.insert(m->index);
     int active = -1;
     if (auto it = active_of_motion.find(m->index); it != active_of_motion.end()) {
       active = it->second;
-    } else {
-      Step s = st.step_for(StepKind::GuardedMotion, *m);
-      struct PerCondition {
-        int quantity;
-        TermId constraint;
-        runtime::ConstraintSpec spec;
-      };
-      std::vector<PerCondition> per_condition;  // the motion's `while`, as listed
-      const auto guards = [&](const std::string& prop) {
-        std::vector<int> flags;
-        for (TermId c : st.objects(*m, vocab(mot, prop))) {
-          auto it = st.evaluator_of_constraint.find(c.index);
-          if (it == st.evaluator_of_constraint.end()) {
-            // An evaluator that names it was refused: reported there already.
-            if (!st.graph.subjects(st.term(vocab(ch, "constraint")), c).empty()) continue;
-            st.error(st.where(*m, vocab(mot, prop), c), "unevaluated-constraint",
-                     "the motion '" + st.str(*m) + "' lists '" + st.str(c) + "' in `" + prop +
-                         "`, but no evaluator evaluates it");
-            continue;
-          }
-          const Step& evaluate = st.steps[static_cast<size_t>(it->second)];
-          if (prop == "while") {
-            const bool assigned = evaluate.constraint.kind == runtime::ConstraintKind::Assignment;
-            per_condition.push_back(
-                {assigned ? evaluate.out[1] : evaluate.in[0], c, evaluate.constraint});
-            // A per-condition on a quantity the motion acts on is what the
-            // motion enforces (its goal: sc1's tube, outside at the start);
-            // any other is an invariant, checked every tick.
-            const bool assignment = evaluate.constraint.kind == runtime::ConstraintKind::Assignment;
-            const int quantity = assignment ? evaluate.out[1] : evaluate.in[0];
-            if (const auto a = acted.find(m->index); a != acted.end() && a->second.count(quantity))
-              continue;
-            if (equality_without_tolerance(st, evaluate)) {
-              st.error(st.where(*m, vocab(mot, prop), c), "missing-tolerance",
-                       "the motion '" + st.str(*m) + "' lists '" + st.str(c) +
-                           "' in `while`; no controller or assignment of the motion acts on its "
-                           "quantity, so it is checked every tick, and an equality without a "
-                           "tolerance holds only while its quantity equals the reference "
-                           "exactly: the motion would be aborted at once; state the "
-                           "constraint's `tolerance` (cstr-ext:tolerance, a quantity in its unit: "
-                           "satisfied while |error| <= it)");
-              continue;
-            }
-          } else {
-            check_guard(st, *m, prop, c, evaluate);
-          }
-          flags.push_back(evaluate.out[0]);
-        }
-        return flags;
-      };
-      const std::vector<int> when = guards("when");
-      const std::vector<int> whiles = guards("while");
-      // What the motion requires while it runs, on one quantity: the
-      // per-conditions' allowed values must overlap (pairwise suffices: if
-      // every two intervals meet, all of them do), or no state satisfies the
-      // motion and one of them is ignored whichever way the run goes.
-      for (size_t i = 0; i < per_condition.size(); ++i) {
-        for (size_t j = i + 1; j < per_condition.size(); ++j) {
-          const PerCondition &a = per_condition[i], &b = per_condition[j];
-          if (a.quantity != b.quantity) continue;
-          const Feasible fa = feasible(a.spec), fb = feasible(b.spec);
-          if (std::max(fa.lo, fb.lo) <= std::min(fa.hi, fb.hi)) continue;
-          const Data& q = st.program.data[static_cast<size_t>(a.quantity)];
-          st.error(st.where(a.constraint), "infeasible-motion",
-                   "the motion '" + st.str(*m) + "' requires, while it runs, both '" +
-                       st.str(a.constraint) + "' ('" + q.iri + "' " + allowed(a.spec, q.unit) +
-                       ") and '" + st.str(b.constraint) + "' (" + allowed(b.spec, q.unit) + ", " +
-                       st.place(b.constraint) +
-                       "), which no value satisfies at once; change one of them, or make them "
-                       "guards of different motions");
-          st.errors.push_back(located(Severity::Note, st.where(b.constraint), st.model.files(),
-                                      "infeasible-motion",
-                                      "the other constraint of the motion '" + st.str(*m) +
-                                          "' on '" + q.iri + "': '" + st.str(b.constraint) + "'"));
-        }
-      }
-      const std::vector<int> until = guards("until");
-      s.in = when;
-      s.in.insert(s.in.end(), whiles.begin(), whiles.end());
-      s.in.insert(s.in.end(), until.begin(), until.end());
-      s.n_when = static_cast<int>(when.size());
-      s.n_while = static_cast<int>(whiles.size());
-      if (when.size() > static_cast<size_t>(kMaxGuards) ||
-          whiles.size() > static_cast<size_t>(kMaxGuards) ||
-          until.size() > static_cast<size_t>(kMaxGuards)) {
-        st.error(
-            *m, "too-many-guards",
-            "the motion '" + st.str(*m) + "' has more than 16 when, checked while or until guards");
-        continue;
-      }
-      active = st.synthetic(st.str(*m) + "#running", local_name(st.str(*m)) + "_running",
-                            DataType::Flag, st.where(*m));
-      // How it ended, in the tick it ends (runtime::steps::MotionEnd).
-      const int ended = st.synthetic(st.str(*m) + "#ended", local_name(st.str(*m)) + "_ended",
-                                     DataType::Event, st.where(*m));
-      s.out = {active, ended};
-      s.state = st.program.states[static_cast<int>(StateKind::Motion)]++;
-      st.add_step(std::move(s));
+    } else if (const std::optional<int> running = lower_motion(st, *m, acted)) {
+      active = *running;
       active_of_motion[m->index] = active;
-    }
-    for (TermId c : st.objects(h, vocab(ch, "controllers"))) flags_of_controller[c].insert(active);
-    for (TermId e : st.objects(h, vocab(ch, "evaluators"))) flags_of_evaluator[e].insert(active);
-    for (TermId e : st.objects(h, vocab(ch, "monitors"))) flags_of_monitor[e].insert(active);
-  }
-  // A motion no handler handles: nothing evaluates its guards, and it never runs.
-  for (TermId m : st.instances(vocab(mot, "GuardedMotion"))) {
-    if (handled.count(m.index)) continue;
-    st.error(m, "unhandled",
-             "no constraint handler handles the motion '" + st.str(m) +
-                 "', so nothing evaluates its guards and it would never run; add a "
-                 "ConstraintHandler whose `motion` is it, listing its evaluators and controllers");
-  }
-  // Listed by the handlers of several motions: active while any of them runs.
-  const auto any_of = [&](TermId entity, const std::pmr::set<int>& flags) {
-    if (flags.size() == 1) return *flags.begin();
-    Step s = st.step_for(StepKind::AnyOf, entity);
-    s.name += "_active";
-    s.in.assign(flags.begin(), flags.end());
-    const int d = st.synthetic(st.str(entity) + "#active", local_name(st.str(entity)) + "_active",
-                               DataType::Flag, st.where(entity));
-    s.out = {d};
-    st.add_step(std::move(s));
-    return d;
-  };
-  for (const auto& [c, flags] : flags_of_controller)
-    st.active_of_controller[c.index] = any_of(c, flags);
-
-  // Assignments write only while their motion runs (or one of their motions).
-  for (const auto& [e, flags] : flags_of_evaluator) {
-    const auto it = st.evaluate_step_of_evaluator.find(e.index);
-    if (it == st.evaluate_step_of_evaluator.end()) continue;
-    if (st.steps[static_cast<size_t>(it->second)].constraint.kind !=
-        runtime::ConstraintKind::Assignment)
+    } else {
       continue;
-    const int active = any_of(e, flags);  // may grow st.steps
-    st.steps[static_cast<size_t>(it->second)].in.push_back(active);
+    }
+    for (TermId c : st.objects(h, vocab(kCh, "controllers"))) by.controller[c].insert(active);
+    for (TermId e : st.objects(h, vocab(kCh, "evaluators"))) by.evaluator[e].insert(active);
+    for (TermId e : st.objects(h, vocab(kCh, "monitors"))) by.monitor[e].insert(active);
   }
-
-  // Monitors report while their motion runs (or one of their motions); one no
-  // handler lists watches the whole run.
-  for (const auto& [mon, flags] : flags_of_monitor) {
-    const auto it = st.monitor_step_of_monitor.find(mon.index);
-    if (it == st.monitor_step_of_monitor.end()) continue;
-    const int active = any_of(mon, flags);  // may grow st.steps
-    st.steps[static_cast<size_t>(it->second)].in.push_back(active);
-  }
-
-  // An assignment no handler lists would write whatever the task does:
-  // refused, as the motion it serves is unknown.
-  for (TermId e : st.instances(vocab(ch, "AssignmentEvaluator")))
-    if (!flags_of_evaluator.count(e))
-      st.error(e, "unhandled",
-               "no constraint handler lists the assignment evaluator '" + st.str(e) +
-                   "', so no motion says when it acts; list it in the `evaluators` of the "
-                   "handler of each motion it serves");
-  // A controller no handler lists is refused only if a solver reads what it
-  // drives (settle_unlisted_controllers, once the schedule shows that): one a
-  // scenario leaves out of its handlers, e.g. of a shared file, is not used.
-  for (const ControllerKind& kind : controller_kinds())
-    for (TermId c : st.instances(kind.class_iri()))
-      if (!flags_of_controller.count(c)) st.unlisted_controllers.insert(c.index);
+  check_unhandled(st, by);
+  gate_by_motions(st, by);
+  check_unlisted(st, by);
 }
 
 // A motion's goals: the `while` constraints on the quantities it acts on

@@ -30,212 +30,266 @@ std::string accepted_units(const ControllerKind& k) {
   return out;
 }
 
-// One controller of kind `kind` (index `index`), lowered to a step; what it
-// cannot honour is reported.
-void lower_controller(State& st, TermId c, const ControllerKind& kind, int index) {
-  const std::string iri = st.str(c);
-  const std::string ctrl = "the controller '" + iri + "'";
-  st.pending_iri = iri;
-  bool ok = true;
+// One controller of kind `kind` (index `index`) being lowered to a step; what
+// it cannot honour is reported, and clears `ok`.
+class ControllerLowering {
+ public:
+  ControllerLowering(State& st, TermId c, const ControllerKind& kind, int index)
+      : st_(st),
+        c_(c),
+        kind_(kind),
+        index_(index),
+        iri_(st.str(c)),
+        ctrl_("the controller '" + iri_ + "'"),
+        port_datum_(&st.arena),
+        read_(&st.arena) {}
+
+  void lower() {
+    st_.pending_iri = iri_;
+    if (!read_signals()) return;
+    for (size_t f = 0; f < kind_.parameters.size(); ++f) read_parameter(f);
+    if (!kind_.units.empty()) check_units();
+    check_refused();
+    check_unknown();
+    add_step();
+  }
+
+ private:
   // A property of the kind's vocabulary, by its local name (the IRI built in
   // one allocation; absent when the model never states it).
-  const auto property_term = [&](std::string_view property) {
+  TermId property_term(std::string_view property) const {
     std::string iri;
-    iri.reserve(kind.vocabulary.size() + property.size());
-    iri.append(kind.vocabulary).append(property);
-    return st.term(iri);
-  };
+    iri.reserve(kind_.vocabulary.size() + property.size());
+    iri.append(kind_.vocabulary).append(property);
+    return st_.term(iri);
+  }
   // The one value of a property (several: refused by State::object; none: nullopt).
-  const auto value_of = [&](std::string_view property) {
-    return st.object(c, property_term(property));
-  };
-
-  // Signals: the scalar inputs, then the control signal.
-  std::vector<std::optional<TermId>> signals;
-  std::vector<std::string_view> signal_properties(kind.in.begin(), kind.in.end());
-  signal_properties.push_back(kind.out);
-  bool all_signals = true;
-  for (std::string_view p : signal_properties) {
-    signals.push_back(value_of(p));
-    all_signals = all_signals && signals.back().has_value();
+  std::optional<TermId> value_of(std::string_view property) const {
+    return st_.object(c_, property_term(property));
   }
-  if (!all_signals) {
-    std::string needs;
-    for (size_t i = 0; i < signal_properties.size(); ++i) {
-      needs.append(i == 0 ? "" : i + 1 == signal_properties.size() ? " and " : ", ");
-      needs.append(article(signal_properties[i])).append(signal_properties[i]);
+
+  // Signals: the scalar inputs, then the control signal; the step reading
+  // and writing them. False when one is missing (reported).
+  bool read_signals() {
+    std::vector<std::optional<TermId>> signals;
+    std::vector<std::string_view> properties(kind_.in.begin(), kind_.in.end());
+    properties.push_back(kind_.out);
+    bool all_signals = true;
+    for (std::string_view p : properties) {
+      signals.push_back(value_of(p));
+      all_signals = all_signals && signals.back().has_value();
     }
-    st.error(c, "missing-property", ctrl + " needs " + needs);
-    return;
-  }
-
-  Step s = st.step_for(StepKind::Controller, c);
-  s.controller = index;
-  s.parameters = kind.defaults();
-  s.parameters_where.assign(kind.parameters.size(), s.where);
-  // (Scratch maps and sets: from the lowering's arena.)
-  std::pmr::map<std::string_view, int> port_datum{&st.arena};  // unit port -> datum
-  for (size_t i = 0; i < kind.in.size(); ++i) {
-    s.in.push_back(st.datum(*signals[i], DataType::Scalar, c, std::string(kind.in[i])));
-    port_datum[kind.in[i]] = s.in.back();
-  }
-  s.out = {st.datum(*signals.back(), DataType::Scalar, c, std::string(kind.out))};
-  port_datum[kind.out] = s.out[0];
-
-  // Parameters.
-  std::pmr::set<std::string_view> read(signal_properties.begin(), signal_properties.end(),
-                                       &st.arena);
-  for (size_t f = 0; f < kind.parameters.size(); ++f) {
-    const ControllerParameter& p = kind.parameters[f];
-    if (p.source == ParameterSource::Fixed) continue;
-    const std::string name(p.property);
-    if (!p.only_with.empty() && !st.graph.has_type(c, property_term(p.only_with))) {
-      // Stated without the class that gives it meaning: not read, so refused.
-      const std::vector<TermId> stated = st.graph.objects(c, property_term(p.property));
-      if (!stated.empty()) {
-        st.error(st.graph.where(c, property_term(p.property), stated[0]), "unsupported-property",
-                 ctrl + " states `" + name + "`, which only " + article(p.only_with) +
-                     std::string(p.only_with) + " has; add that class or remove `" + name + "`");
-        ok = false;
+    if (!all_signals) {
+      std::string needs;
+      for (size_t i = 0; i < properties.size(); ++i) {
+        needs.append(i == 0 ? "" : i + 1 == properties.size() ? " and " : ", ");
+        needs.append(article(properties[i])).append(properties[i]);
       }
-      read.insert(p.property);
-      continue;
+      st_.error(c_, "missing-property", ctrl_ + " needs " + needs);
+      return false;
     }
-    read.insert(p.property);
+    s_ = st_.step_for(StepKind::Controller, c_);
+    s_.controller = index_;
+    s_.parameters = kind_.defaults();
+    s_.parameters_where.assign(kind_.parameters.size(), s_.where);
+    for (size_t i = 0; i < kind_.in.size(); ++i) {
+      s_.in.push_back(st_.datum(*signals[i], DataType::Scalar, c_, std::string(kind_.in[i])));
+      port_datum_[kind_.in[i]] = s_.in.back();
+    }
+    s_.out = {st_.datum(*signals.back(), DataType::Scalar, c_, std::string(kind_.out))};
+    port_datum_[kind_.out] = s_.out[0];
+    read_.insert(properties.begin(), properties.end());
+    return true;
+  }
+
+  // Parameter f, as the kind declares it: a literal, a constant quantity, or
+  // the runtime's default.
+  void read_parameter(size_t f) {
+    const ControllerParameter& p = kind_.parameters[f];
+    if (p.source == ParameterSource::Fixed) return;
+    const std::string name(p.property);
+    read_.insert(p.property);
+    if (!p.only_with.empty() && !st_.graph.has_type(c_, property_term(p.only_with))) {
+      // Stated without the class that gives it meaning: not read, so refused.
+      const std::vector<TermId> stated = st_.graph.objects(c_, property_term(p.property));
+      if (!stated.empty()) {
+        st_.error(st_.graph.where(c_, property_term(p.property), stated[0]), "unsupported-property",
+                  ctrl_ + " states `" + name + "`, which only " + article(p.only_with) +
+                      std::string(p.only_with) + " has; add that class or remove `" + name + "`");
+        ok_ = false;
+      }
+      return;
+    }
     const auto term = value_of(p.property);
     if (!term) {
-      if (p.required && ok) {
-        st.error(c, "missing-property",
-                 ctrl + " needs " +
-                     (p.source == ParameterSource::Literal ? "a numeric " + name
-                                                           : article(name) + name));
-        ok = false;
+      if (p.required && ok_) {
+        st_.error(c_, "missing-property",
+                  ctrl_ + " needs " +
+                      (p.source == ParameterSource::Literal ? "a numeric " + name
+                                                            : article(name) + name));
+        ok_ = false;
       }
-      continue;
+      return;
     }
     if (p.source == ParameterSource::Literal) {
-      const auto v = st.number(*term);
-      if (v) {
-        s.parameters[f] = *v;
-        s.parameters_where[f] = st.graph.where(c, property_term(p.property), *term);
-      } else if (st.graph.terms()[*term].is_literal()) {
-        st.error(st.graph.where(c, property_term(p.property), *term), "invalid-number",
-                 ctrl + " has " + name + " " + st.literal_text(*term) +
-                     ", which is not a finite number of its datatype (xsd:double: e.g. 100, "
-                     "+100.0, -1.5e2)");
-        ok = false;
-      } else {
-        st.error(c, "missing-property", ctrl + " needs a numeric " + name);
-        ok = false;
-      }
-      continue;
+      read_literal(f, name, *term);
+    } else {
+      read_constant(f, name, *term);
     }
-    // A constant quantity: its value, in its unit.
-    const int d = st.datum(*term, DataType::Scalar, c, name);
-    port_datum[p.property] = d;
-    const Data& q = st.program.data[static_cast<size_t>(d)];
-    if (q.value.empty()) {
-      const auto lit = st.object(*term, kQudt + "value");
-      if (lit && st.graph.terms()[*lit].is_literal()) {
-        st.error(st.where(*term, kQudt + "value", *lit), "invalid-number",
-                 "the " + name + " '" + q.iri + "' of " + ctrl + " has the value " +
-                     st.literal_text(*lit) + ", which is not a finite number of its datatype");
-      } else {
-        st.error(*term, "not-a-constant",
-                 "the " + name + " '" + q.iri + "' of " + ctrl +
-                     " has no value; a controller parameter is a constant");
-      }
-      ok = false;
-      continue;
+  }
+
+  void read_literal(size_t f, const std::string& name, TermId term) {
+    const TermId property = property_term(kind_.parameters[f].property);
+    if (const auto v = st_.number(term)) {
+      s_.parameters[f] = *v;
+      s_.parameters_where[f] = st_.graph.where(c_, property, term);
+    } else if (st_.graph.terms()[term].is_literal()) {
+      st_.error(st_.graph.where(c_, property, term), "invalid-number",
+                ctrl_ + " has " + name + " " + st_.literal_text(term) +
+                    ", which is not a finite number of its datatype (xsd:double: e.g. 100, "
+                    "+100.0, -1.5e2)");
+      ok_ = false;
+    } else {
+      st_.error(c_, "missing-property", ctrl_ + " needs a numeric " + name);
+      ok_ = false;
     }
-    s.parameters[f] = q.value[0];
-    s.parameters_where[f] = st.graph.where(c, property_term(p.property), *term);
+  }
+
+  // A constant quantity: its value, in its unit.
+  void read_constant(size_t f, const std::string& name, TermId term) {
+    const std::string_view property = kind_.parameters[f].property;
+    const int d = st_.datum(term, DataType::Scalar, c_, name);
+    port_datum_[property] = d;
+    const Data& q = st_.program.data[static_cast<size_t>(d)];
+    if (!q.value.empty()) {
+      s_.parameters[f] = q.value[0];
+      s_.parameters_where[f] = st_.graph.where(c_, property_term(property), term);
+      return;
+    }
+    const auto lit = st_.object(term, kQudt + "value");
+    if (lit && st_.graph.terms()[*lit].is_literal()) {
+      st_.error(st_.where(term, kQudt + "value", *lit), "invalid-number",
+                "the " + name + " '" + q.iri + "' of " + ctrl_ + " has the value " +
+                    st_.literal_text(*lit) + ", which is not a finite number of its datatype");
+    } else {
+      st_.error(term, "not-a-constant",
+                "the " + name + " '" + q.iri + "' of " + ctrl_ +
+                    " has no value; a controller parameter is a constant");
+    }
+    ok_ = false;
+  }
+
+  std::string unit_of(std::string_view port) const {
+    auto it = port_datum_.find(port);
+    return it == port_datum_.end() ? std::string()
+                                   : st_.program.data[static_cast<size_t>(it->second)].unit;
+  }
+  SourceLoc where_of(std::string_view port) const {
+    auto it = port_datum_.find(port);
+    return it == port_datum_.end() ? st_.where(c_)
+                                   : st_.program.data[static_cast<size_t>(it->second)].where;
   }
 
   // Units: the first port's unit picks the kind's combination; every other
   // port must have that combination's unit.
-  if (!kind.units.empty()) {
-    const auto unit_of = [&](std::string_view port) -> std::string {
-      auto it = port_datum.find(port);
-      return it == port_datum.end() ? std::string()
-                                    : st.program.data[static_cast<size_t>(it->second)].unit;
-    };
-    const auto where_of = [&](std::string_view port) {
-      auto it = port_datum.find(port);
-      return it == port_datum.end() ? st.where(c)
-                                    : st.program.data[static_cast<size_t>(it->second)].where;
-    };
-    const std::string_view key = kind.unit_ports[0];
+  void check_units() {
+    const std::string_view key = kind_.unit_ports[0];
     const std::string key_unit = unit_of(key);
     const std::vector<std::string_view>* row = nullptr;
-    for (const auto& r : kind.units) {
+    for (const auto& r : kind_.units) {
       if (r[0] == key_unit) row = &r;
     }
-    if (row == nullptr && port_datum.count(key)) {
-      st.error(where_of(key), "wrong-unit",
-               ctrl + ": its " + std::string(key) +
-                   (key_unit.empty() ? " has no unit" : " is in '" + key_unit + "'") +
-                   ", which mospec's " + std::string(kind.name) +
-                   " controller does not take (it takes " + accepted_units(kind) + ")");
-      ok = false;
+    if (row == nullptr && port_datum_.count(key)) {
+      st_.error(where_of(key), "wrong-unit",
+                ctrl_ + ": its " + std::string(key) +
+                    (key_unit.empty() ? " has no unit" : " is in '" + key_unit + "'") +
+                    ", which mospec's " + std::string(kind_.name) +
+                    " controller does not take (it takes " + accepted_units(kind_) + ")");
+      ok_ = false;
     }
-    for (size_t i = 1; row != nullptr && i < kind.unit_ports.size(); ++i) {
-      const std::string_view port = kind.unit_ports[i];
-      if (!port_datum.count(port)) continue;  // an optional parameter the model leaves out
+    for (size_t i = 1; row != nullptr && i < kind_.unit_ports.size(); ++i) {
+      const std::string_view port = kind_.unit_ports[i];
+      if (!port_datum_.count(port)) continue;  // an optional parameter the model leaves out
       const std::string unit = unit_of(port);
       if (unit == (*row)[i]) continue;
-      st.error(where_of(port), "wrong-unit",
-               ctrl + ": its " + std::string(port) +
-                   (unit.empty() ? " has no unit" : " is in '" + unit + "'") + ", but with its " +
-                   std::string(key) + " in '" + key_unit + "' it must be in '" +
-                   std::string((*row)[i]) + "' (mospec's " + std::string(kind.name) +
-                   " controller takes " + accepted_units(kind) + ")");
-      ok = false;
+      st_.error(where_of(port), "wrong-unit",
+                ctrl_ + ": its " + std::string(port) +
+                    (unit.empty() ? " has no unit" : " is in '" + unit + "'") + ", but with its " +
+                    std::string(key) + " in '" + key_unit + "' it must be in '" +
+                    std::string((*row)[i]) + "' (mospec's " + std::string(kind_.name) +
+                    " controller takes " + accepted_units(kind_) + ")");
+      ok_ = false;
     }
   }
 
-  // What the kind refuses, and what it does not know.
-  for (const RefusedProperty& r : kind.refused) {
-    read.insert(r.property);
-    for (TermId o : st.graph.objects(c, property_term(r.property))) {
-      st.error(st.graph.where(c, property_term(r.property), o), std::string(r.code),
-               ctrl + " states `" + std::string(r.property) + "` '" + st.str(o) +
-                   "'; mospec cannot honour it: " + std::string(r.why));
-      ok = false;
+  // What the kind refuses.
+  void check_refused() {
+    for (const RefusedProperty& r : kind_.refused) {
+      read_.insert(r.property);
+      for (TermId o : st_.graph.objects(c_, property_term(r.property))) {
+        st_.error(st_.graph.where(c_, property_term(r.property), o), std::string(r.code),
+                  ctrl_ + " states `" + std::string(r.property) + "` '" + st_.str(o) +
+                      "'; mospec cannot honour it: " + std::string(r.why));
+        ok_ = false;
+      }
     }
   }
-  std::pmr::set<std::string_view> seen{&st.arena};  // views of the term table's IRIs
-  st.graph.each_statement(c, [&](const Graph::Statement& statement) {
-    const std::string_view p = st.graph.str(statement.predicate);
-    if (!p.starts_with(kind.vocabulary)) return;
-    const std::string_view local = p.substr(kind.vocabulary.size());
-    if (read.count(local) || !seen.insert(p).second) return;
-    std::string known;
-    for (std::string_view r : read) known.append(known.empty() ? "" : ", ").append(r);
-    st.error(statement.where.known() ? statement.where : st.where(c), "unsupported-property",
-             ctrl + " states `" + std::string(local) + "`, which mospec's " +
-                 std::string(kind.name) + " controller does not implement (it reads " + known +
-                 "); remove it");
-    ok = false;
-  });
+
+  // What the kind does not know: a property of its vocabulary it never reads.
+  void check_unknown() {
+    std::pmr::set<std::string_view> seen{&st_.arena};  // views of the term table's IRIs
+    st_.graph.each_statement(c_, [&](const Graph::Statement& statement) {
+      const std::string_view p = st_.graph.str(statement.predicate);
+      if (!p.starts_with(kind_.vocabulary)) return;
+      const std::string_view local = p.substr(kind_.vocabulary.size());
+      if (read_.count(local) || !seen.insert(p).second) return;
+      std::string known;
+      for (std::string_view r : read_) known.append(known.empty() ? "" : ", ").append(r);
+      st_.error(statement.where.known() ? statement.where : st_.where(c_), "unsupported-property",
+                ctrl_ + " states `" + std::string(local) + "`, which mospec's " +
+                    std::string(kind_.name) + " controller does not implement (it reads " + known +
+                    "); remove it");
+      ok_ = false;
+    });
+  }
 
   // The runtime's own check of the values (reported in its words). The step is
   // added even when something was refused, so that its control signal has its
   // producer and later passes report nothing that follows from this.
-  if (ok) {
-    try {
-      kind.instantiate(s.parameters, iri.c_str());
-    } catch (const Error& e) {
-      st.error(c, "invalid-controller", e.diagnostic().message);
+  void add_step() {
+    if (ok_) {
+      try {
+        kind_.instantiate(s_.parameters, iri_.c_str());
+      } catch (const Error& e) {
+        st_.error(c_, "invalid-controller", e.diagnostic().message);
+      }
     }
+    if (auto it = st_.active_of_controller.find(c_.index); it != st_.active_of_controller.end())
+      s_.in.push_back(it->second);
+    if (kind_.has_state()) {
+      st_.program.controller_states.resize(controller_kinds().size());
+      s_.state = st_.program.controller_states[static_cast<size_t>(index_)]++;
+    }
+    st_.add_step(std::move(s_));
   }
-  if (auto it = st.active_of_controller.find(c.index); it != st.active_of_controller.end())
-    s.in.push_back(it->second);
-  if (kind.has_state()) {
-    st.program.controller_states.resize(controller_kinds().size());
-    s.state = st.program.controller_states[static_cast<size_t>(index)]++;
-  }
-  st.add_step(std::move(s));
+
+  State& st_;
+  TermId c_;
+  const ControllerKind& kind_;
+  int index_;
+  const std::string iri_;
+  const std::string ctrl_;  // "the controller '<iri>'", as messages name it
+  bool ok_ = true;
+  Step s_;
+  // (Scratch maps and sets: from the lowering's arena.)
+  std::pmr::map<std::string_view, int> port_datum_;  // unit port -> datum
+  std::pmr::set<std::string_view> read_;             // the properties read
+};
+
+// One controller of kind `kind` (index `index`), lowered to a step; what it
+// cannot honour is reported.
+void lower_controller(State& st, TermId c, const ControllerKind& kind, int index) {
+  ControllerLowering(st, c, kind, index).lower();
 }
 
 }  // namespace

@@ -301,32 +301,10 @@ void State::fill_inertia(Data& d, TermId e) {
   d.value = std::move(value);
 }
 
-int State::datum(TermId e, DataType expected, TermId referenced_by, const std::string& role) {
-  const auto type_mismatch = [&](const std::string& iri, DataType got) {
-    std::string msg = "'";
-    msg.append(str(referenced_by))
-        .append("' uses '")
-        .append(iri)
-        .append("' as its ")
-        .append(role)
-        .append(", which must be a ")
-        .append(to_string(expected))
-        .append(", but it is a ")
-        .append(to_string(got));
-    error(referenced_by, "type-mismatch", msg);
-  };
-  if (auto it = data_of.find(e.index); it != data_of.end()) {
-    const Data& d = program.data[static_cast<size_t>(it->second)];
-    if (d.type != expected) type_mismatch(d.iri, d.type);
-    return it->second;
-  }
-  Data d;
-  d.iri = str(e);
-  d.type = expected;
-  d.where = where(e);
-  // Everything below is read in one pass over e's statements; a property with
-  // several values is read (and reported) by State::object when it is used.
-  const DatumTerms& t = datum_terms();
+namespace {
+
+// The properties a datum is read through, in DatumProperty's order.
+std::array<TermId, kDatumProperties> datum_properties(const State::DatumTerms& t) {
   std::array<TermId, kDatumProperties> properties{};
   properties[kOf] = t.of;
   properties[kWithRespectTo] = t.with_respect_to;
@@ -343,20 +321,84 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
   properties[kY] = t.y;
   properties[kZ] = t.z;
   for (int c = 0; c < 3; ++c) properties[kDirectionCosine0 + c] = t.direction_cosine[c];
-  std::array<Graph::Value, kDatumProperties> values;
-  const Graph::Reading read = graph.read(e, properties, values, datum_types(t));
-  const auto value = [&](DatumProperty k) -> std::optional<TermId> {
-    if (values[k].several) return several_of(e, properties[k]);
+  return properties;
+}
+
+// The statements of a datum's entity e, read in one pass; a property with
+// several values is read (and reported) by State::object when it is used.
+struct DatumReading {
+  DatumReading(const State& state, TermId entity)
+      : st(state), e(entity), properties(datum_properties(state.datum_terms())) {
+    read = st.graph.read(e, properties, values, datum_types(st.datum_terms()));
+  }
+  std::optional<TermId> value(DatumProperty k) const {
+    if (values[k].several) return st.several_of(e, properties[k]);
     if (values[k].first.is_any()) return std::nullopt;
     return values[k].first;
-  };
+  }
   // All values of a property, sorted (Graph::objects).
-  const auto all = [&](DatumProperty k) -> std::vector<TermId> {
-    if (values[k].several) return graph.objects(e, properties[k]);
+  std::vector<TermId> all(DatumProperty k) const {
+    if (values[k].several) return st.graph.objects(e, properties[k]);
     if (values[k].first.is_any()) return {};
     return {values[k].first};
-  };
-  if (!read.defined) {
+  }
+  const State& st;
+  TermId e;
+  std::array<TermId, kDatumProperties> properties;
+  std::array<Graph::Value, kDatumProperties> values;
+  Graph::Reading read;
+};
+
+// "'R' uses 'X' as its ROLE, which must be a T, but it is a U", at R.
+void type_mismatch(const State& st, TermId referenced_by, const std::string& role,
+                   const std::string& iri, DataType expected, DataType got) {
+  std::string msg = "'";
+  msg.append(st.str(referenced_by))
+      .append("' uses '")
+      .append(iri)
+      .append("' as its ")
+      .append(role)
+      .append(", which must be a ")
+      .append(to_string(expected))
+      .append(", but it is a ")
+      .append(to_string(got));
+  st.error(referenced_by, "type-mismatch", msg);
+}
+
+// Where the datum is (of, w.r.t., at, seen by), its quantity kinds and units.
+void read_placement(const DatumReading& r, Data& d) {
+  const State& st = r.st;
+  if (auto o = r.value(kOf)) d.of = st.str(*o);
+  if (auto o = r.value(kWithRespectTo)) d.with_respect_to = st.str(*o);
+  if (auto o = r.value(kReferencePoint)) d.reference_point = st.str(*o);
+  if (auto o = r.value(kDynReferencePoint)) d.reference_point = st.str(*o);
+  if (d.type == DataType::Inertia) {
+    if (auto o = r.value(kOfBody)) d.of = st.str(*o);
+    if (auto o = r.value(kAbout)) d.reference_point = st.str(*o);
+  }
+  if (auto o = r.value(kAsSeenBy)) d.as_seen_by = st.str(*o);
+  if (auto o = r.value(kDynAsSeenBy)) d.as_seen_by = st.str(*o);
+  const std::vector<TermId> kinds = r.all(kQuantityKind), units = r.all(kUnit);
+  for (size_t i = 0; i < kinds.size(); ++i)
+    d.quantity_kind.append(i ? "," : "").append(local_view(st.graph.str(kinds[i])));
+  for (size_t i = 0; i < units.size(); ++i)
+    d.unit.append(i ? "," : "").append(local_view(st.graph.str(units[i])));
+}
+
+}  // namespace
+
+int State::datum(TermId e, DataType expected, TermId referenced_by, const std::string& role) {
+  if (auto it = data_of.find(e.index); it != data_of.end()) {
+    const Data& d = program.data[static_cast<size_t>(it->second)];
+    if (d.type != expected) type_mismatch(*this, referenced_by, role, d.iri, expected, d.type);
+    return it->second;
+  }
+  Data d;
+  d.iri = str(e);
+  d.type = expected;
+  d.where = where(e);
+  const DatumReading r(*this, e);
+  if (!r.read.defined) {
     std::string msg = "'";
     msg.append(str(referenced_by))
         .append("' names '")
@@ -366,26 +408,12 @@ int State::datum(TermId e, DataType expected, TermId referenced_by, const std::s
         .append(", but no model file defines it")
         .append(did_you_mean(e));
     error(where(referenced_by), "undefined-quantity", msg);
-  } else if (auto ty = type_from(read.types, !values[kQuantityKind].first.is_any());
+  } else if (auto ty = type_from(r.read.types, !r.values[kQuantityKind].first.is_any());
              ty && *ty != expected) {
-    type_mismatch(d.iri, *ty);
+    type_mismatch(*this, referenced_by, role, d.iri, expected, *ty);
   }
-  if (auto o = value(kOf)) d.of = str(*o);
-  if (auto o = value(kWithRespectTo)) d.with_respect_to = str(*o);
-  if (auto o = value(kReferencePoint)) d.reference_point = str(*o);
-  if (auto o = value(kDynReferencePoint)) d.reference_point = str(*o);
-  if (d.type == DataType::Inertia) {
-    if (auto o = value(kOfBody)) d.of = str(*o);
-    if (auto o = value(kAbout)) d.reference_point = str(*o);
-  }
-  if (auto o = value(kAsSeenBy)) d.as_seen_by = str(*o);
-  if (auto o = value(kDynAsSeenBy)) d.as_seen_by = str(*o);
-  const std::vector<TermId> kinds = all(kQuantityKind), units = all(kUnit);
-  for (size_t i = 0; i < kinds.size(); ++i)
-    d.quantity_kind.append(i ? "," : "").append(local_view(graph.str(kinds[i])));
-  for (size_t i = 0; i < units.size(); ++i)
-    d.unit.append(i ? "," : "").append(local_view(graph.str(units[i])));
-  fill_constant(*this, d, e, value);
+  read_placement(r, d);
+  fill_constant(*this, d, e, [&](DatumProperty k) { return r.value(k); });
   d.name = unique_name(local_name(d.iri), data_names);
   d.slot = program.slots[static_cast<size_t>(d.type)]++;
   const int index = static_cast<int>(program.data.size());

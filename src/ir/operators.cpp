@@ -144,8 +144,8 @@ OperatorKind declare(const Declaration& d, std::string_view kernel, Kernel) {
 constexpr std::string_view kGeomOp = vocab::geom_op::ns;
 constexpr std::string_view kDynOp = vocab::dyn_op::ns;
 
-std::vector<OperatorKind> declare_all() {
-  std::vector<OperatorKind> k;
+// The pose operators, and those of directions and angles.
+void declare_poses(std::vector<OperatorKind>& k) {
   // --- poses ----------------------------------------------------------------
   k.push_back(
       declare<t::Pose(t::Pose, t::Pose)>({"compose-pose",
@@ -207,6 +207,10 @@ std::vector<OperatorKind> declare_all() {
   k.push_back(declare<t::Scalar(t::Scalar)>(
       {"invert-angle", kGeomOp, "InvertAngle", {"in"}, "out", {}, "-angle"},
       MOSPEC_KERNEL(invert_angle)));
+}
+
+// The twist operators.
+void declare_twists(std::vector<OperatorKind>& k) {
   // --- twists -----------------------------------------------------------------
   k.push_back(declare<t::Twist(t::Pose, t::Twist)>(
       {"rotate-twist-to-proximal",
@@ -243,6 +247,10 @@ std::vector<OperatorKind> declare_all() {
         "composite.as-seen-by = in1.as-seen-by"},
        "V_CA = V_BA + V_CB, at one point, seen by one frame"},
       MOSPEC_KERNEL(add_velocity_twist)));
+}
+
+// The wrench operators moving a wrench between frames.
+void declare_wrench_transforms(std::vector<OperatorKind>& k) {
   // --- wrenches ---------------------------------------------------------------
   k.push_back(declare<t::Wrench(t::Pose, t::Wrench)>(
       {"rotate-wrench-to-proximal",
@@ -275,6 +283,10 @@ std::vector<OperatorKind> declare_all() {
         "to.reference-point = origin(pose.with-respect-to)"},
        "the same wrench, moved from about Bo seen by B to about Ao seen by A"},
       MOSPEC_KERNEL(transform_wrench_to_proximal)));
+}
+
+// The wrench operators building, adding, inverting and copying wrenches.
+void declare_wrench_arithmetic(std::vector<OperatorKind>& k) {
   k.push_back(declare<t::Wrench(t::Vector3, t::Vector3, t::Scalar)>(
       {"wrench-from-position-direction-and-magnitude",
        kDynOp,
@@ -325,6 +337,15 @@ std::vector<OperatorKind> declare_all() {
        "V x* (M V): the velocity-product (Coriolis, centripetal) wrench of a body of inertia M "
        "moving with twist V, about M's point, seen by M's frame"},
       MOSPEC_KERNEL(inertial_wrench)));
+}
+
+// The registry, in the order operator indices follow.
+std::vector<OperatorKind> declare_all() {
+  std::vector<OperatorKind> k;
+  declare_poses(k);
+  declare_twists(k);
+  declare_wrench_transforms(k);
+  declare_wrench_arithmetic(k);
   return k;
 }
 
