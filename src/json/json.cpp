@@ -9,6 +9,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <span>
 #include <system_error>
 #include <utility>
@@ -306,10 +307,33 @@ constexpr std::array<bool, 256> kEndsRun = [] {
   return t;
 }();
 
+}  // namespace
+
+// Members and elements are collected in per-depth scratch buffers and moved
+// into an exactly sized container, so that each object or array costs one
+// allocation. The buffers are reused across objects and, through the
+// caller's ParseScratch, across documents (a load parses dozens); ~Parser
+// empties them.
+struct ParseScratch::Buffers {
+  std::vector<std::vector<Object::Member>> members;
+  std::vector<std::vector<Value>> elements;
+  std::vector<KeyIndex> key_indexes;
+};
+
+ParseScratch::ParseScratch() : buffers_(std::make_unique<Buffers>()) {}
+ParseScratch::~ParseScratch() = default;
+
+namespace {
+
 class Parser {
  public:
-  Parser(std::string_view text, uint32_t file_id, std::string_view file_name, Resource* resource)
-      : text_(text), file_id_(file_id), file_name_(file_name), resource_(resource) {}
+  Parser(std::string_view text, uint32_t file_id, std::string_view file_name, Resource* resource,
+         ParseScratch::Buffers& scratch)
+      : text_(text),
+        file_id_(file_id),
+        file_name_(file_name),
+        resource_(resource),
+        scratch_(scratch) {}
 
   Value parse_document() {
     // RFC 8259 section 8.1: a parser may ignore a leading byte order mark.
@@ -431,25 +455,12 @@ class Parser {
     }
   }
 
-  // Members and elements are collected in per-depth scratch buffers and moved
-  // into an exactly sized container, so that each object or array costs one
-  // allocation. The buffers are reused across objects and, per thread, across
-  // documents (a load parses dozens); ~Parser empties them.
-  struct Scratch {
-    std::vector<std::vector<Object::Member>> members;
-    std::vector<std::vector<Value>> elements;
-    std::vector<KeyIndex> key_indexes;
-  };
-  static Scratch& thread_scratch() {
-    thread_local Scratch scratch;
-    return scratch;
-  }
-  Scratch& scratch_ = thread_scratch();
+  ParseScratch::Buffers& scratch_;
 
   // After an error the buffers still hold parsed values, whose blocks may be
   // in the caller's arena: they go now, while it exists. Buffers grown past
   // kKeptScratch entries by a huge object or array are given back, so a
-  // thread keeps only what an ordinary document needs.
+  // ParseScratch keeps only what an ordinary document needs.
   static constexpr size_t kKeptScratch = 1024;
   template <class T>
   static void empty(std::vector<std::vector<T>>& levels) {
@@ -777,9 +788,11 @@ class Parser {
 
 }  // namespace
 
-Value parse(std::string_view text, uint32_t file_id, std::string_view file_name,
-            Resource* resource) {
-  Parser p(text, file_id, file_name, resource);
+Value parse(std::string_view text, uint32_t file_id, std::string_view file_name, Resource* resource,
+            ParseScratch* scratch) {
+  std::optional<ParseScratch> own;
+  if (scratch == nullptr) scratch = &own.emplace();
+  Parser p(text, file_id, file_name, resource, scratch->buffers());
   return p.parse_document();
 }
 

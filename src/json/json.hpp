@@ -236,13 +236,32 @@ inline void Object::set_key_location(size_t i, SourceLoc l) {
   members_[i].key_loc = l;
 }
 
+// The parser's buffers (per nesting level, the members and elements being
+// collected): a caller parsing many documents (the loader) owns one per
+// thread and passes it to every parse(), so that a document costs one
+// allocation per object or array once the buffers have grown. Not thread-safe.
+class ParseScratch {
+ public:
+  ParseScratch();
+  ~ParseScratch();
+  ParseScratch(const ParseScratch&) = delete;
+  ParseScratch& operator=(const ParseScratch&) = delete;
+
+  struct Buffers;  // json.cpp
+  Buffers& buffers() { return *buffers_; }
+
+ private:
+  std::unique_ptr<Buffers> buffers_;
+};
+
 // Parses RFC 8259 JSON. Errors throw mospec::Error with code "invalid json"
 // (the JSON-LD "loading document failed" family is decided by the caller) and the
 // file name, line and column of the offending character. Duplicate keys: the last
 // wins (as in JavaScript). Records locations with `file_id`. The value's
 // strings, arrays and objects live in `resource` (the heap by default).
+// Buffers come from `scratch`; without one, the call makes its own.
 Value parse(std::string_view text, uint32_t file_id = 0, std::string_view file_name = "<input>",
-            Resource* resource = std::pmr::get_default_resource());
+            Resource* resource = std::pmr::get_default_resource(), ParseScratch* scratch = nullptr);
 
 // Serialises compactly (no whitespace) or with `indent` spaces per level.
 // Numbers are written as JavaScript does (shortest round-trip form; integers

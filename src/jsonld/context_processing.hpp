@@ -36,15 +36,18 @@ namespace detail {
 // A base IRI as active contexts, builders and cache entries hold it. Every
 // context made from another keeps its base IRI (and original base URL), so
 // they are copied far more often than written: a copy here shares the one
-// string instead of allocating another. Immutable once made.
+// string instead of allocating another. It is held prepared for resolving
+// references (rdf::IriBase), which expansion does for every relative "@id".
+// Immutable once made.
 class SharedString {
  public:
   SharedString() = default;
   explicit SharedString(std::string_view s)
-      : p_(s.empty() ? nullptr : std::make_shared<const std::string>(s)) {}
+      : p_(s.empty() ? nullptr : std::make_shared<const rdf::IriBase>(std::string(s))) {}
   SharedString& operator=(std::string_view s) { return *this = SharedString(s); }
-  const std::string& str() const { return p_ ? *p_ : empty_string(); }
+  const std::string& str() const { return iri_base().iri(); }
   operator const std::string&() const { return str(); }  // NOLINT: reads as the string
+  const rdf::IriBase& iri_base() const { return p_ ? *p_ : empty_base(); }
   bool empty() const { return p_ == nullptr; }
   void clear() { p_.reset(); }
   friend bool operator==(const SharedString& a, const SharedString& b) {
@@ -52,11 +55,11 @@ class SharedString {
   }
 
  private:
-  static const std::string& empty_string() {
-    static const std::string empty;
+  static const rdf::IriBase& empty_base() {
+    static const rdf::IriBase empty;
     return empty;
   }
-  std::shared_ptr<const std::string> p_;  // null: empty
+  std::shared_ptr<const rdf::IriBase> p_;  // null: empty
 };
 
 // A term with its hash computed once, for looking it up in every layer of a

@@ -129,7 +129,7 @@ bool expand_iri_into(std::string& out, const ActiveContext& active, std::string_
   }
   // IE 8
   if (document_relative) {
-    rdf::resolve_iri_into(out, active.base(), value);
+    active.impl().base.iri_base().resolve_into(out, value);
     return true;
   }
   out.assign(value);

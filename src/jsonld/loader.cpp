@@ -133,9 +133,13 @@ struct MappedDocumentLoader::Sync {
   // The texts of documents being parsed, each reused across documents: the
   // parsed values copy what they keep, and a buffer sized for the largest
   // file saves an allocation (and the allocator's consolidation of freed
-  // small blocks that a large request triggers) per document. One per thread
-  // parsing at once.
-  std::vector<std::string> read_buffers;
+  // small blocks that a large request triggers) per document. With each, the
+  // parser's scratch buffers, reused likewise. One per thread parsing at once.
+  struct Buffers {
+    std::string text;
+    std::unique_ptr<json::ParseScratch> scratch;
+  };
+  std::vector<Buffers> read_buffers;
 };
 
 MappedDocumentLoader::MappedDocumentLoader() : sync_(std::make_unique<Sync>()) {}
@@ -376,19 +380,23 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
   // each in a buffer of the pool (given back however this ends).
   struct BufferLease {
     Sync& sync;
-    std::string text;
+    Sync::Buffers buffers;
+    std::string& text = buffers.text;
     explicit BufferLease(Sync& s) : sync(s) {
-      std::lock_guard lock(sync.mutex);
-      if (!sync.read_buffers.empty()) {
-        text = std::move(sync.read_buffers.back());
-        sync.read_buffers.pop_back();
+      {
+        std::lock_guard lock(sync.mutex);
+        if (!sync.read_buffers.empty()) {
+          buffers = std::move(sync.read_buffers.back());
+          sync.read_buffers.pop_back();
+        }
       }
+      if (!buffers.scratch) buffers.scratch = std::make_unique<json::ParseScratch>();
     }
     ~BufferLease() {
       std::lock_guard lock(sync.mutex);
       try {
-        sync.read_buffers.push_back(std::move(text));
-      } catch (const std::bad_alloc&) {  // the buffer is dropped instead
+        sync.read_buffers.push_back(std::move(buffers));
+      } catch (const std::bad_alloc&) {  // the buffers are dropped instead
       }
     }
     BufferLease(const BufferLease&) = delete;
@@ -410,7 +418,8 @@ RemoteDocument MappedDocumentLoader::load_path(const std::string& path,
   auto parsed = std::make_shared<ParsedDocument>(text.size());
   json::Value* root =
       static_cast<json::Value*>(parsed->arena.allocate(sizeof(json::Value), alignof(json::Value)));
-  parsed->root = new (root) json::Value(json::parse(text, doc.file_id, path, &parsed->arena));
+  parsed->root = new (root) json::Value(
+      json::parse(text, doc.file_id, path, &parsed->arena, buffer.buffers.scratch.get()));
   assert(json::lives_in(*parsed->root, &parsed->arena));
   doc.document = std::shared_ptr<const json::Value>(parsed, parsed->root);
   doc.document_url = file_url(key);

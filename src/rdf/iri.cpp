@@ -156,33 +156,6 @@ bool is_plain_segment(std::string_view reference) {
   return true;
 }
 
-// The last few bases plain segments were resolved against, with their
-// prefixes: documents resolve thousands of "@id" values against a handful of
-// bases, so each base is split once rather than per reference. Per thread.
-struct PrefixMemo {
-  static constexpr size_t kEntries = 4;
-  struct Entry {
-    std::string base;
-    std::optional<std::string> prefix;
-    bool valid = false;
-  };
-  std::array<Entry, kEntries> entries;
-  size_t next = 0;  // the entry replaced on a miss (round robin)
-};
-
-const std::optional<std::string>& memoised_prefix(std::string_view base) {
-  thread_local PrefixMemo memo;
-  for (const PrefixMemo::Entry& e : memo.entries) {
-    if (e.valid && e.base == base) return e.prefix;
-  }
-  PrefixMemo::Entry& e = memo.entries[memo.next];
-  memo.next = (memo.next + 1) % PrefixMemo::kEntries;
-  e.base.assign(base);
-  e.prefix = plain_segment_prefix(base);
-  e.valid = true;
-  return e.prefix;
-}
-
 }  // namespace
 
 namespace {
@@ -256,26 +229,38 @@ std::string resolve_in_full(std::string_view base, std::string_view reference) {
 
 }  // namespace
 
-void resolve_iri_into(std::string& out, std::string_view base, std::string_view reference) {
-  if (base.empty()) {
-    out.assign(reference);
-    return;
-  }
+std::string resolve_iri(std::string_view base, std::string_view reference) {
+  if (base.empty()) return std::string(reference);
   // The common case: a plain segment against a base without dot segments;
   // the result is written directly (what 5.2.2 - 5.3 would give).
   if (is_plain_segment(reference)) {
-    if (const std::optional<std::string>& prefix = memoised_prefix(base)) {
-      out.reserve(prefix->size() + reference.size());
-      out.assign(*prefix).append(reference);
-      return;
+    if (std::optional<std::string> prefix = plain_segment_prefix(base)) {
+      return std::move(prefix->append(reference));
     }
   }
-  out = resolve_in_full(base, reference);
+  return resolve_in_full(base, reference);
 }
 
-std::string resolve_iri(std::string_view base, std::string_view reference) {
+IriBase::IriBase(std::string iri) : iri_(std::move(iri)) {
+  if (!iri_.empty()) plain_prefix_ = plain_segment_prefix(iri_);
+}
+
+void IriBase::resolve_into(std::string& out, std::string_view reference) const {
+  if (iri_.empty()) {
+    out.assign(reference);
+    return;
+  }
+  if (plain_prefix_ && is_plain_segment(reference)) {
+    out.reserve(plain_prefix_->size() + reference.size());
+    out.assign(*plain_prefix_).append(reference);
+    return;
+  }
+  out = resolve_in_full(iri_, reference);
+}
+
+std::string IriBase::resolve(std::string_view reference) const {
   std::string out;
-  resolve_iri_into(out, base, reference);
+  resolve_into(out, reference);
   return out;
 }
 

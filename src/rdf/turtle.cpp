@@ -49,7 +49,11 @@ class TurtleReader {
  public:
   TurtleReader(std::string_view text, std::string_view base, Dataset& into, uint32_t file_id,
                std::string_view file_name)
-      : text_(text), base_(base), data_(into), file_id_(file_id), file_name_(file_name) {}
+      : text_(text),
+        base_(std::string(base)),
+        data_(into),
+        file_id_(file_id),
+        file_name_(file_name) {}
 
   void run(SerdSyntax syntax) {
     std::unique_ptr<SerdReader, decltype(&serd_reader_free)> reader(
@@ -121,17 +125,17 @@ class TurtleReader {
 
   static SerdStatus on_base(void* handle, const SerdNode* uri) {
     auto* self = static_cast<TurtleReader*>(handle);
-    self->base_ =
-        self->base_.empty() ? std::string(view(uri)) : resolve_iri(self->base_, view(uri));
+    self->base_ = IriBase(self->base_.iri().empty() ? std::string(view(uri))
+                                                    : self->base_.resolve(view(uri)));
     return SERD_SUCCESS;
   }
 
   static SerdStatus on_prefix(void* handle, const SerdNode* name, const SerdNode* uri) {
     auto* self = static_cast<TurtleReader*>(handle);
     // Kept unresolved-if-impossible: a relative namespace is only an error if used.
-    self->prefixes_[std::string(view(name))] = is_absolute_iri(view(uri)) || self->base_.empty()
-                                                   ? std::string(view(uri))
-                                                   : resolve_iri(self->base_, view(uri));
+    self->prefixes_[std::string(view(name))] =
+        is_absolute_iri(view(uri)) || self->base_.iri().empty() ? std::string(view(uri))
+                                                                : self->base_.resolve(view(uri));
     return SERD_SUCCESS;
   }
 
@@ -152,7 +156,7 @@ class TurtleReader {
       iri.append(curie.substr(colon + 1));
     } else {
       const std::string_view ref = view(node);
-      iri = is_absolute_iri(ref) || base_.empty() ? std::string(ref) : resolve_iri(base_, ref);
+      iri = is_absolute_iri(ref) || base_.iri().empty() ? std::string(ref) : base_.resolve(ref);
     }
     if (!is_absolute_iri(iri)) {
       record("relative IRI <" + iri + "> and no base IRI to resolve it against", line_, column());
@@ -239,7 +243,7 @@ class TurtleReader {
   size_t offset_ = 0;  // bytes handed to serd so far
   uint32_t line_ = 1;
   size_t line_start_ = 0;
-  std::string base_;
+  IriBase base_;  // prepared: documents resolve many references against it
   std::unordered_map<std::string, std::string> prefixes_;
   Dataset& data_;
   uint32_t file_id_;

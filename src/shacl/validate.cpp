@@ -192,7 +192,7 @@ class Validator {
       return;
     }
     try {
-      sparql::evaluate_path(data_, *path, focus, out, TermId::any(), budget_);
+      sparql::evaluate_path(data_, *path, focus, out, TermId::any(), budget_, &path_workspace_);
     } catch (const Error& e) {
       if (e.code() != "sparql-limit") throw;
       limit_reached(shapes_[shape].where,
@@ -1029,6 +1029,8 @@ class Validator {
   std::vector<TermId> overlay_;                       // validation id - base_ -> id in extra_
   std::unordered_map<uint32_t, TermId> outside_ids_;  // id in extra_ -> validation id
   std::vector<sparql::PathPtr> paths_;
+  // Buffers every sh:path reuses (value_nodes() is const: they hold no result).
+  mutable sparql::PathWorkspace path_workspace_;
   std::vector<std::vector<std::vector<TermId>>> bound_;
   std::unordered_map<uint32_t, std::vector<TermId>> subclasses_;
   std::vector<uint8_t> well_formed_;

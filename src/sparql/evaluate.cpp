@@ -755,17 +755,17 @@ class Engine {
       (void)start_value;
     };
     if (s != kUnbound) {
-      evaluate_path(data_, path, s, buffer, TermId::any(), budget_);
+      evaluate_path(data_, path, s, buffer, TermId::any(), budget_, &path_workspace_);
       each_end(pe.o, s);
     } else if (o != kUnbound) {
-      evaluate_path_inverse(data_, path, o, buffer, TermId::any(), budget_);
+      evaluate_path_inverse(data_, path, o, buffer, TermId::any(), budget_, &path_workspace_);
       each_end(pe.s, o);
     } else {
       // Neither end known: every node of the graph is a start (zero-length
       // paths match every subject and object).
       for (TermId start : all_nodes()) {
         if (!cont) break;
-        evaluate_path(data_, path, start, buffer, TermId::any(), budget_);
+        evaluate_path(data_, path, start, buffer, TermId::any(), budget_, &path_workspace_);
         Var bound[3];
         int nbound = 0;
         if (bind(pe.s, start, bound, nbound)) each_end(pe.o, start);
@@ -1263,9 +1263,7 @@ class Engine {
     }
     // RE2 is linear in the text: its cost is the text's length, charged (and
     // checked against the time left) before the match starts.
-    return Value::boolean(budget_->bulk(Budget::Bulk::Regex,
-                                        1 + text.str.size() / Budget::kBytesPerStep,
-                                        [&] { return re->search(text.str); }));
+    return Value::boolean(budget_->regex(text.str.size(), [&] { return re->search(text.str); }));
   }
 
   bool exists(uint32_t op_index) {
@@ -1308,6 +1306,7 @@ class Engine {
   mutable std::vector<uint8_t> duplicate_;
   Limits limits_;
   Budget* shared_budget_ = nullptr;
+  PathWorkspace path_workspace_;  // buffers every property path reuses
 
   // Per evaluation.
   std::optional<Budget> own_budget_;

@@ -89,6 +89,19 @@ class Budget {
     return result;
   }
 
+  // Runs `search`, a REGEX over `bytes` bytes of text, as bulk(Bulk::Regex)
+  // charged by those bytes; counts them in regex_bytes() once it starts.
+  template <class F>
+  bool regex(size_t bytes, F&& search) {
+    return bulk(Bulk::Regex, 1 + bytes / kBytesPerStep, [&] {
+      regex_bytes_ += bytes;
+      return search();
+    });
+  }
+  // Bytes of text the REGEXes charged to this budget were given: the work
+  // done, whatever the steps charged for it estimate (tests model a clock on it).
+  uint64_t regex_bytes() const { return regex_bytes_; }
+
   // Called with the number of rows collected so far by one evaluation.
   void rows(size_t n) const {
     if (limits_.rows != 0 && n > limits_.rows) rows_exceeded(n);
@@ -124,6 +137,7 @@ class Budget {
   double start_ = 0;
   mutable uint64_t clock_reads_ = 0;
   uint64_t steps_ = 0;
+  uint64_t regex_bytes_ = 0;
   uint64_t next_check_ = kCheckEvery;
   double rate_[3] = {kRegexSecondsPerStep, kSortSecondsPerStep, kStringSecondsPerStep};
 };

@@ -4,8 +4,8 @@
 // nodes", in one direction or the other, so a sequence never revisits a node
 // twice at the same stage and arbitrary-length paths are a breadth-first
 // search with a visited set. Visited sets are stamp arrays indexed by term id
-// (reset in O(1) by bumping a generation) taken from a per-thread pool, so a
-// call allocates nothing once the pool has warmed up.
+// (reset in O(1) by bumping a generation) taken from the caller's
+// PathWorkspace, so a call allocates nothing once the workspace has warmed up.
 #include "sparql/path.hpp"
 
 #include <algorithm>
@@ -60,12 +60,23 @@ class MarkSet {
   std::vector<TermId> outside_;
 };
 
-struct Workspace {
+}  // namespace
+
+// Pools used as stacks: nested paths take the next set or list and give it
+// back on the way out.
+struct PathWorkspace::Buffers {
   std::vector<std::unique_ptr<MarkSet>> marks;
   size_t marks_used = 0;
   std::vector<std::unique_ptr<std::vector<TermId>>> lists;
   size_t lists_used = 0;
 };
+
+PathWorkspace::PathWorkspace() : buffers_(std::make_unique<Buffers>()) {}
+PathWorkspace::~PathWorkspace() = default;
+
+namespace {
+
+using Workspace = PathWorkspace::Buffers;
 
 class Walker {
  public:
@@ -215,15 +226,12 @@ class Walker {
   Budget& budget_;
 };
 
-Workspace& workspace() {
-  thread_local Workspace ws;
-  return ws;
-}
-
 void run(const rdf::Dataset& data, const Path& path, TermId node, bool inverse,
-         std::vector<TermId>& out, TermId graph, Budget* budget) {
+         std::vector<TermId>& out, TermId graph, Budget* budget, PathWorkspace* workspace) {
   out.clear();
-  Workspace& ws = workspace();
+  std::optional<PathWorkspace> own_workspace;
+  if (workspace == nullptr) workspace = &own_workspace.emplace();
+  Workspace& ws = workspace->buffers();
   std::optional<Budget> own;
   if (budget == nullptr) budget = &own.emplace();
   Walker walker(data, graph, ws, *budget);
@@ -234,13 +242,15 @@ void run(const rdf::Dataset& data, const Path& path, TermId node, bool inverse,
 }  // namespace
 
 void evaluate_path(const rdf::Dataset& data, const Path& path, rdf::TermId start,
-                   std::vector<rdf::TermId>& out, rdf::TermId graph, Budget* budget) {
-  run(data, path, start, false, out, graph, budget);
+                   std::vector<rdf::TermId>& out, rdf::TermId graph, Budget* budget,
+                   PathWorkspace* workspace) {
+  run(data, path, start, false, out, graph, budget, workspace);
 }
 
 void evaluate_path_inverse(const rdf::Dataset& data, const Path& path, rdf::TermId end,
-                           std::vector<rdf::TermId>& out, rdf::TermId graph, Budget* budget) {
-  run(data, path, end, true, out, graph, budget);
+                           std::vector<rdf::TermId>& out, rdf::TermId graph, Budget* budget,
+                           PathWorkspace* workspace) {
+  run(data, path, end, true, out, graph, budget, workspace);
 }
 
 }  // namespace mospec::sparql

@@ -157,16 +157,7 @@ Regex::Regex(std::string_view pattern, std::string_view flags)
   re_ = std::move(re);
 }
 
-namespace {
-thread_local uint64_t searched = 0;
-}  // namespace
-
-uint64_t Regex::bytes_searched() {
-  return searched;
-}
-
 bool Regex::search(std::string_view text) const {
-  searched += text.size();
   return RE2::PartialMatch(re2::StringPiece(text.data(), text.size()), *re_);
 }
 

@@ -53,11 +53,10 @@ class Regex {
   // Throws RegexError; its message names the pattern (or the flag).
   Regex(std::string_view pattern, std::string_view flags);
 
-  // True when the pattern matches somewhere in `text` (fn:matches).
+  // True when the pattern matches somewhere in `text` (fn:matches). Keeps
+  // no state: SPARQL's REGEX runs it through Budget::regex(), which charges
+  // and counts the work.
   bool search(std::string_view text) const;
-  // Bytes of text this thread's search() calls have been given: the work
-  // done, independent of what a Budget charged for it (tests model a clock on it).
-  static uint64_t bytes_searched();
   // The RE2 syntax the pattern was translated into (for tests and messages).
   const std::string& translated() const { return translated_; }
 

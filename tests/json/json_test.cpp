@@ -6,7 +6,9 @@
 #include <functional>
 #include <limits>
 #include <memory_resource>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "counting_resource.hpp"
 
@@ -389,17 +391,50 @@ TEST(JsonArena, ParsedValuesLiveInTheGivenResource) {
   EXPECT_EQ(counting.live_bytes, 0u);
 }
 
-// The parser's buffers outlive a parse (they are reused by the next one): a
-// parse that fails half-way must not leave values in them whose blocks are in
-// the caller's resource, which the caller may free next.
+// The parser's buffers outlive a parse when the caller passes a ParseScratch
+// (the next parse reuses them): a parse that fails half-way must not leave
+// values in them whose blocks are in the caller's resource, which the caller
+// may free next.
 TEST(JsonArena, AFailedParseLeavesNothingInTheResource) {
   CountingResource counting;
+  ParseScratch scratch;
   EXPECT_THROW(parse(R"({"a long key that is not a short string": {"another long key kept in the )"
                      R"(parser's buffers": ["a string past the small-string buffer", tru]}})",
-                     1, "doc.json", &counting),
+                     1, "doc.json", &counting, &scratch),
                Error);
   EXPECT_EQ(counting.live_bytes, 0u);
-  EXPECT_EQ(parse(kArenaDoc), parse(kArenaDoc, 1, "doc.json", &counting));
+  EXPECT_EQ(parse(kArenaDoc), parse(kArenaDoc, 1, "doc.json", &counting, &scratch));
+}
+
+// A ParseScratch carries nothing of one document into the next: whatever came
+// before (deeper, wider, duplicate keys, a failure), a document parses as it
+// does with buffers of its own.
+TEST(JsonArena, AReusedScratchParsesEachDocumentAsAFreshOneWould) {
+  const std::vector<std::string> docs = {
+      R"({"a": {"b": {"c": [1, 2, {"d": [3, 4, 5]}]}}, "e": [6, 7]})",
+      R"({"x": 1, "x": 2, "y": [1], "y": {"z": true}})",
+      R"([[[[["deep"]]]], {"k": "v"}, []])",
+      R"({"a": [1, {"b": tru}]})",  // fails inside two levels
+      R"({"only": "one"})",
+      R"([1])",
+      kArenaDoc.data(),
+  };
+  ParseScratch scratch;
+  for (int round = 0; round < 2; ++round) {
+    for (const std::string& doc : docs) {
+      SCOPED_TRACE(doc);
+      std::optional<Value> fresh;
+      try {
+        fresh = parse(doc);
+      } catch (const Error&) {
+      }
+      if (fresh) {
+        EXPECT_EQ(parse(doc, 0, "<input>", std::pmr::get_default_resource(), &scratch), *fresh);
+      } else {
+        EXPECT_THROW(parse(doc, 0, "<input>", std::pmr::get_default_resource(), &scratch), Error);
+      }
+    }
+  }
 }
 
 TEST(JsonArena, CopiesGoToTheHeapAndOutliveTheArena) {

@@ -12,9 +12,16 @@ namespace {
 
 using Cases = std::vector<std::pair<std::string, std::string>>;
 
+// Through resolve_iri() and through a prepared IriBase (writing over a buffer
+// that holds the previous result, as expansion reuses one).
 void expect_resolves(std::string_view base, const Cases& cases) {
-  for (const auto& [reference, expected] : cases)
+  const IriBase prepared{std::string(base)};
+  std::string buffer = "left over";
+  for (const auto& [reference, expected] : cases) {
     EXPECT_EQ(resolve_iri(base, reference), expected) << "reference \"" << reference << "\"";
+    prepared.resolve_into(buffer, reference);
+    EXPECT_EQ(buffer, expected) << "IriBase, reference \"" << reference << "\"";
+  }
 }
 
 // RFC 3986 section 5.4.1.
@@ -117,18 +124,21 @@ TEST(ResolveIri, OneSegmentReferenceAgainstEveryBaseShape) {
   expect_resolves("mailto:x", {{"g", "mailto:g"}});
 }
 
-// resolve_iri remembers the last base's prefix for one-segment references:
-// switching bases (and back) must never reuse another base's prefix.
+// Each IriBase holds its own prefix for one-segment references: resolving
+// against several in turn (and back) never uses another base's prefix.
 TEST(ResolveIri, AlternatingBasesResolveAgainstTheirOwn) {
+  const std::vector<std::pair<IriBase, std::string>> bases = {
+      {IriBase("http://a/b/c"), "http://a/b/g"},   {IriBase("http://a/b/c/"), "http://a/b/c/g"},
+      {IriBase("http://a/b/./c"), "http://a/b/g"}, {IriBase("urn:x"), "urn:g"},
+      {IriBase("http://x/"), "http://x/g"},        {IriBase("http://y/z/"), "http://y/z/g"},
+      {IriBase("http://x"), "http://x/g"},         {IriBase(), "g"}};
   for (int round = 0; round < 2; ++round) {
-    EXPECT_EQ(resolve_iri("http://a/b/c", "g"), "http://a/b/g");
-    EXPECT_EQ(resolve_iri("http://a/b/c/", "g"), "http://a/b/c/g");
-    EXPECT_EQ(resolve_iri("http://a/b/./c", "g"), "http://a/b/g");
-    EXPECT_EQ(resolve_iri("urn:x", "g"), "urn:g");
-    EXPECT_EQ(resolve_iri("http://a/b/c", "g/h"), "http://a/b/g/h");
-    EXPECT_EQ(resolve_iri("http://x/", "g"), "http://x/g");
-    EXPECT_EQ(resolve_iri("http://y/z/", "g"), "http://y/z/g");
+    for (const auto& [base, expected] : bases) {
+      EXPECT_EQ(base.resolve("g"), expected) << "base \"" << base.iri() << "\"";
+      EXPECT_EQ(resolve_iri(base.iri(), "g"), expected) << "base \"" << base.iri() << "\"";
+    }
   }
+  EXPECT_EQ(IriBase("http://a/b/c").resolve("g/h"), "http://a/b/g/h");
 }
 
 TEST(ResolveIri, EmptyBaseReturnsReference) {

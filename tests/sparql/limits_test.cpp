@@ -121,14 +121,19 @@ std::string long_literals(size_t n, size_t bytes) {
   return out;
 }
 
-// A clock that reads the work RE2 has done: 1 ns per byte of text searched on
-// this thread since the budget was made. Time then is exactly proportional to
-// the regex work, whatever the Budget charged for it, and no test depends on
-// the machine's speed.
+// A clock that reads the regex work charged to a budget: 1 ns per byte of
+// text its REGEXes were given (Budget::regex_bytes()), times `scale`. Time
+// then is exactly proportional to the regex work, whatever the Budget charged
+// for it, and no test depends on the machine's speed. `budget` is set once
+// the budget it clocks exists (the clock reads 0 until then).
 struct RegexWorkClock {
-  uint64_t origin = Regex::bytes_searched();
-  double seconds() const { return static_cast<double>(Regex::bytes_searched() - origin) * 1e-9; }
-  uint64_t bytes() const { return Regex::bytes_searched() - origin; }
+  const Budget* budget = nullptr;
+  double scale = 1;
+  double seconds() const { return static_cast<double>(bytes()) * 1e-9 * scale; }
+  uint64_t bytes() const { return budget != nullptr ? budget->regex_bytes() : 0; }
+  Budget::Clock clock() const {
+    return [this] { return seconds(); };
+  }
 };
 
 TEST(SparqlLimits, OneBudgetIsSharedByEveryEvaluationOfACommand) {
@@ -155,6 +160,15 @@ TEST(SparqlLimits, RegexIsChargedByTheBytesItReads) {
   d.eval().set_budget(&budget);
   EXPECT_EQ(d.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }").size(), 0u);
   EXPECT_GE(budget.steps(), (uint64_t{1} << 20) / Budget::kBytesPerStep);
+  EXPECT_EQ(budget.regex_bytes(), (uint64_t{1} << 20) + 1);
+  // The count belongs to the budget, not to the thread: another evaluation
+  // on this thread, with its own budget, neither sees nor adds to it.
+  Data other(long_literals(1, 1000));
+  Budget other_budget(Limits{0, 0, 0});
+  other.eval().set_budget(&other_budget);
+  EXPECT_EQ(other.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }").size(), 0u);
+  EXPECT_EQ(other_budget.regex_bytes(), 1001u);
+  EXPECT_EQ(budget.regex_bytes(), (uint64_t{1} << 20) + 1);
   // And so are string functions.
   const uint64_t before = budget.steps();
   EXPECT_EQ(d.run("SELECT ?s { ?s ex:text ?t FILTER(CONTAINS(?t, \"b\")) }").size(), 0u);
@@ -169,7 +183,8 @@ TEST(SparqlLimits, RegexesOverrunTheTimeBudgetByAtMostTenPercent) {
   Data d(long_literals(200, kBytes));
   RegexWorkClock work;
   const double budget_seconds = 100 * kBytes * 1e-9;
-  Budget budget(Limits{budget_seconds, 0, 0}, [&] { return work.seconds(); });
+  Budget budget(Limits{budget_seconds, 0, 0}, work.clock());
+  work.budget = &budget;
   d.eval().set_budget(&budget);
   const std::string message =
       limit_error([&] { d.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }"); });
@@ -183,7 +198,8 @@ TEST(SparqlLimits, ARegexThatWouldEndPastTheBudgetDoesNotStart) {
   // budget, so it must not start (afterwards would be 110 % over).
   Data d(long_literals(1, 4 << 20));
   RegexWorkClock work;
-  Budget budget(Limits{0.002, 0, 0}, [&] { return work.seconds(); });
+  Budget budget(Limits{0.002, 0, 0}, work.clock());
+  work.budget = &budget;
   d.eval().set_budget(&budget);
   const std::string message =
       limit_error([&] { d.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }"); });
@@ -194,9 +210,10 @@ TEST(SparqlLimits, ARegexThatWouldEndPastTheBudgetDoesNotStart) {
   // first, the fourth is known not to fit (at the default rate it would seem
   // to, and end 11 % over).
   Data e(long_literals(4, 4 << 20));
-  RegexWorkClock slow;
+  RegexWorkClock slow{nullptr, 8};
   const double per_text = 8e-9 * (4 << 20);
-  Budget learning(Limits{3.6 * per_text, 0, 0}, [&] { return 8 * slow.seconds(); });
+  Budget learning(Limits{3.6 * per_text, 0, 0}, slow.clock());
+  slow.budget = &learning;
   e.eval().set_budget(&learning);
   limit_error([&] { e.run("SELECT ?s { ?s ex:text ?t FILTER(REGEX(?t, \"b$\")) }"); });
   EXPECT_EQ(slow.bytes(), 3u * ((4u << 20) + 1));

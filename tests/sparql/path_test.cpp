@@ -81,6 +81,55 @@ TEST_F(Paths, NegatedPropertySets) {
   EXPECT_EQ(from(*only_inverse, "d"), Names{"d"});  // d -p-> d, followed backwards
 }
 
+// One PathWorkspace serves calls over different paths and datasets in turn
+// (its visited sets are sized and reset per call, nested paths take their own):
+// each call gives what a call with buffers of its own gives.
+TEST_F(Paths, AWorkspaceIsReusedAcrossPathsAndDatasets) {
+  std::string chain;
+  for (int i = 0; i < 50; ++i) {
+    chain += "ex:n" + std::to_string(i) + " ex:p ex:n" + std::to_string(i + 1) + " . ";
+    if (i % 7 == 0)
+      chain += "ex:n" + std::to_string(i) + " ex:q ex:n" + std::to_string(i / 2) + " . ";
+  }
+  Data big(chain);
+  PathWorkspace workspace;
+  size_t compared = 0;
+  auto compare = [&](Data& d, const char* start) {
+    const PathPtr p = Path::iri(d.iri("p")), q = Path::iri(d.iri("q"));
+    const PathPtr star = Path::make(Path::Kind::ZeroOrMore, {p});
+    const std::vector<PathPtr> paths = {
+        star,
+        Path::make(Path::Kind::Sequence,
+                   {star, Path::make(Path::Kind::Alternative,
+                                     {q, Path::make(Path::Kind::OneOrMore, {q})})}),
+        Path::make(Path::Kind::OneOrMore, {Path::make(Path::Kind::Sequence, {q, star})}),
+        Path::make(Path::Kind::Inverse, {star}),
+    };
+    for (const PathPtr& path : paths) {
+      for (bool inverse : {false, true}) {
+        std::vector<rdf::TermId> own, shared;
+        (inverse ? evaluate_path_inverse : evaluate_path)(d.data(), *path, d.iri(start), own,
+                                                          rdf::TermId::any(), nullptr, nullptr);
+        (inverse ? evaluate_path_inverse : evaluate_path)(d.data(), *path, d.iri(start), shared,
+                                                          rdf::TermId::any(), nullptr, &workspace);
+        EXPECT_EQ(shared, own) << start << (inverse ? " inverse" : "");
+        ++compared;
+      }
+    }
+  };
+  for (int round = 0; round < 2; ++round) {
+    compare(big, "n0");
+    compare(d_, "a");
+    compare(big, "n49");
+    compare(d_, "d");
+  }
+  EXPECT_EQ(compared, 64u);
+  std::vector<rdf::TermId> out;
+  evaluate_path(big.data(), *Path::make(Path::Kind::ZeroOrMore, {Path::iri(big.iri("p"))}),
+                big.iri("n0"), out, rdf::TermId::any(), nullptr, &workspace);
+  EXPECT_EQ(out.size(), 51u);
+}
+
 TEST_F(Paths, InQueries) {
   EXPECT_EQ(d_.sorted("SELECT ?x { ex:a ex:p* ?x }"),
             (Rows{"<http://example.org/a>", "<http://example.org/b>", "<http://example.org/c>"}));
