@@ -18,7 +18,8 @@ class MemoryLoader : public DocumentLoader {
     ++loads;
     auto it = docs_.find(std::string(iri));
     if (it == docs_.end()) {
-      throw Error(for_context ? "loading remote context failed" : "loading document failed",
+      throw Error(for_context ? DiagnosticCode("loading remote context failed")
+                              : DiagnosticCode("loading document failed"),
                   "no document at " + std::string(iri));
     }
     const uint32_t id = files_.add(it->first);
@@ -328,6 +329,28 @@ TEST_F(ContextTest, RepeatedRemoteContextsAreNotCycles) {
   EXPECT_EQ(last_error->diagnostic().message,
             "remote context http://ctx.org/A.jsonld includes itself (http://ctx.org/A.jsonld -> "
             "http://ctx.org/B.jsonld -> http://ctx.org/A.jsonld)");
+}
+
+// JSON-LD 1.0 names a context that includes itself by the 1.0 code.
+TEST_F(ContextTest, ARecursiveInclusionInJsonLd10Mode) {
+  options.processing_mode = ProcessingMode::JsonLd10;
+  loader.add("http://ctx.org/A.jsonld", R"({"@context": ["B.jsonld"]})");
+  loader.add("http://ctx.org/B.jsonld", R"({"@context": ["A.jsonld"]})");
+  EXPECT_EQ(error_of(R"(["http://ctx.org/A.jsonld"])"), "recursive context inclusion");
+}
+
+// A term spelled like a keyword ("@" and letters) is ignored, with a warning
+// at the term.
+TEST_F(ContextTest, AKeywordLikeTermIsIgnoredWithAWarning) {
+  ContextPtr c = process("{\n  \"@later\": \"http://e/later\"}");
+  EXPECT_EQ(c->find("@later"), nullptr);
+  ASSERT_EQ(sink.diagnostics().size(), 1u);
+  const Diagnostic& d = sink.diagnostics()[0];
+  EXPECT_EQ(d.code, "keyword-like-term");
+  EXPECT_EQ(d.severity, Severity::Warning);
+  EXPECT_EQ(d.line, 2u);
+  EXPECT_NE(d.message.find("has the form of a keyword and is ignored"), std::string::npos)
+      << d.message;
 }
 
 TEST_F(ContextTest, Import) {
