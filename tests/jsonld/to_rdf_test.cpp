@@ -14,6 +14,7 @@
 #include "json/json.hpp"
 #include "jsonld/loader.hpp"
 #include "rdf/nquads.hpp"
+#include "support/diagnostics.hpp"
 
 using mospec::jsonld::Options;
 using mospec::jsonld::RdfDirection;
@@ -68,6 +69,19 @@ std::string canonical_double(double v) {
 rdf::Dataset one_value(std::string_view value_object, const Options& options = {}) {
   return convert(R"([{"@id": "http://ex/s", "http://ex/p": [)" + std::string(value_object) + "]}]",
                  options);
+}
+
+// Node map generation: one node given two different @index values.
+TEST(ToRdf, ConflictingIndexesOfOneNodeAreAnError) {
+  try {
+    convert(R"([{"@id": "http://e/a", "@index": "x"}, {"@id": "http://e/a", "@index": "y"}])");
+    ADD_FAILURE() << "no error";
+  } catch (const mospec::Error& e) {
+    EXPECT_EQ(e.code(), "conflicting indexes") << e.what();
+    EXPECT_NE(std::string(e.what()).find("node <http://e/a> has conflicting @index values"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ToRdf, NativeNumbers) {
