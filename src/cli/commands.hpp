@@ -90,5 +90,6 @@ Action add_plot_command(CLI::App& app);
 Action add_trials_command(CLI::App& app);
 Action add_new_command(CLI::App& app);
 Action add_report_command(CLI::App& app);
+Action add_explain_command(CLI::App& app);
 
 }  // namespace mospec::cli

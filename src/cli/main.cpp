@@ -179,6 +179,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(app.get_subcommand("new"), new_task);
   Action report = add_report_command(app);
   commands.emplace_back(app.get_subcommand("report"), report);
+  Action explain = add_explain_command(app);
+  commands.emplace_back(app.get_subcommand("explain"), explain);
 
   try {
     app.parse(argc, argv);

@@ -74,9 +74,8 @@ const PassInfo kPasses[] = {
 struct Warnings {
   const app::LoadedModel& model;
   DiagnosticSink& sink;
-  void warn(SourceLoc loc, std::string code, std::string message) const {
-    sink.report(
-        located(Severity::Warning, loc, model.files(), std::move(code), std::move(message)));
+  void warn(SourceLoc loc, DiagnosticCode code, std::string message) const {
+    sink.report(located(Severity::Warning, loc, model.files(), code, std::move(message)));
   }
 };
 

@@ -144,9 +144,8 @@ struct State {
   }
 
   // --- diagnostics --------------------------------------------------------
-  void error(SourceLoc loc, std::string code, std::string message) const {
-    errors.push_back(
-        located(Severity::Error, loc, model.files(), std::move(code), std::move(message)));
+  void error(SourceLoc loc, DiagnosticCode code, std::string message) const {
+    errors.push_back(located(Severity::Error, loc, model.files(), code, std::move(message)));
   }
   // "file:line:col" of an entity, for a message that names a second place.
   std::string place(SourceLoc loc) const {
@@ -154,14 +153,13 @@ struct State {
     return format_place(model.files().path(loc.file), loc.line, loc.column);
   }
   std::string place(TermId e) const { return place(where(e)); }
-  void error(TermId at, std::string code, std::string message) const {
-    error(where(at), std::move(code), std::move(message));
+  void error(TermId at, DiagnosticCode code, std::string message) const {
+    error(where(at), code, std::move(message));
   }
   // What lowering left out of the program, and why: reported with the
   // warnings (LowerOptions::warnings), never counted as one.
-  void note(SourceLoc loc, std::string code, std::string message) const {
-    notes.push_back(
-        located(Severity::Note, loc, model.files(), std::move(code), std::move(message)));
+  void note(SourceLoc loc, DiagnosticCode code, std::string message) const {
+    notes.push_back(located(Severity::Note, loc, model.files(), code, std::move(message)));
   }
 
   // --- data ---------------------------------------------------------------

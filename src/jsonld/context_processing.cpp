@@ -249,7 +249,9 @@ void Processor::process_remote(Builder& result, const json::Value& context,
     }
     path += iri;
     const std::string message = "remote context " + iri + " includes itself (" + path + ")";
-    fail(json10_ ? "recursive context inclusion" : "context overflow", message, loc);
+    fail(json10_ ? DiagnosticCode("recursive context inclusion")
+                 : DiagnosticCode("context overflow"),
+         message, loc);
   }
   if (chain_.size() >= kMaxRemoteContexts) {
     fail("context overflow",

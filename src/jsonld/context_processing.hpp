@@ -843,7 +843,7 @@ class Processor {
                const std::string& base_url, std::vector<std::string>& remote_contexts,
                bool override_protected, bool propagate, bool validate, bool in_remote);
 
-  [[noreturn]] void fail(const std::string& code, const std::string& message, SourceLoc loc) const {
+  [[noreturn]] void fail(DiagnosticCode code, const std::string& message, SourceLoc loc) const {
     std::string file;
     if (opts_.loader != nullptr && loc.file != 0) file = opts_.loader->files().path(loc.file);
     throw Error(code, message, std::move(file), loc.line, loc.column);

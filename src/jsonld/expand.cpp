@@ -271,7 +271,7 @@ class Expander {
   // A finding reported after the node's @id is known.
   struct Pending {
     SourceLoc loc;
-    std::string code;
+    DiagnosticCode code;
     std::string message;  // "(node ...)" is appended when reported
   };
 
@@ -352,7 +352,7 @@ class Expander {
   std::unordered_map<ScopedKey, ScopedEntry, ScopedKeyHash> scoped_;
 
   std::string file_name(SourceLoc loc) const;
-  [[noreturn]] void fail(std::string code, std::string message, SourceLoc loc) const;
+  [[noreturn]] void fail(DiagnosticCode code, std::string message, SourceLoc loc) const;
   void flush(ObjectState& st, const Object& result, ActiveProperty ap) const;
 
   // Output helpers: values built in mem_.
@@ -397,8 +397,8 @@ std::string Expander::file_name(SourceLoc loc) const {
   return "<input>";
 }
 
-void Expander::fail(std::string code, std::string message, SourceLoc loc) const {
-  throw Error(std::move(code), std::move(message), file_name(loc), loc.line, loc.column);
+void Expander::fail(DiagnosticCode code, std::string message, SourceLoc loc) const {
+  throw Error(code, std::move(message), file_name(loc), loc.line, loc.column);
 }
 
 void Expander::note_dropped_key(const ActiveContext& active, std::string_view key, SourceLoc loc,

@@ -81,7 +81,9 @@ class TurtleReader {
   uint32_t column() const { return static_cast<uint32_t>(offset_ - line_start_); }
 
   void record(std::string message, uint32_t line, uint32_t col) {
-    if (!error_) error_.emplace("syntax", std::move(message), std::string(file_name_), line, col);
+    if (!error_)
+      error_.emplace(DiagnosticCode("syntax"), std::move(message), std::string(file_name_), line,
+                     col);
   }
 
   static size_t source(void* buf, size_t size, size_t nmemb, void* stream) {

@@ -321,7 +321,7 @@ class ShapesCompiler {
   }
 
   [[noreturn]] void fail(uint32_t shape, SourceLoc where, const std::string& message,
-                         const char* code = "shacl-ill-formed") {
+                         DiagnosticCode code = "shacl-ill-formed") {
     std::string file = out_.files_ != nullptr && where.known() ? out_.files_->path(where.file) : "";
     throw Error(code, "shape " + out_.describe(shape) + ": " + message, file, where.line,
                 where.column);
@@ -951,7 +951,8 @@ class ShapesCompiler {
       m += message;
       // What mospec does not implement is refused as such, never as a mistake of the shape.
       fail(self, at, where_query(m),
-           e.code() == "unsupported-sparql" ? "unsupported-shacl" : "shacl-ill-formed");
+           e.code() == "unsupported-sparql" ? DiagnosticCode("unsupported-shacl")
+                                            : DiagnosticCode("shacl-ill-formed"));
     }
   }
 
@@ -1038,7 +1039,7 @@ class ShapesCompiler {
   };
 
   [[noreturn]] void fail_at(SourceLoc where, const std::string& message,
-                            const char* code = "shacl-ill-formed") {
+                            DiagnosticCode code = "shacl-ill-formed") {
     std::string file = out_.files_ != nullptr && where.known() ? out_.files_->path(where.file) : "";
     throw Error(code, message, file, where.line, where.column);
   }

@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "support/diagnostic_codes.hpp"
+
 namespace mospec {
 
 // Files are named by a small integer so that every JSON value and every quad can
@@ -54,7 +56,6 @@ struct SourceLoc {
   friend bool operator==(const SourceLoc&, const SourceLoc&) = default;
 };
 
-enum class Severity : uint8_t { Note, Warning, Error };
 std::string_view to_string(Severity);
 
 struct Diagnostic {
@@ -62,7 +63,7 @@ struct Diagnostic {
   std::string file;  // empty: not located in a file
   uint32_t line = 0;
   uint32_t column = 0;
-  std::string code;  // stable machine-readable kind, e.g. "dropped-key"
+  DiagnosticCode code;  // stable machine-readable kind, e.g. "dropped-key"
   std::string message;
 };
 
@@ -81,7 +82,7 @@ struct Place {
 std::string format_place(std::string_view file, uint32_t line, uint32_t column);
 
 // A diagnostic at `loc` (file, line and column when known; unlocated otherwise).
-Diagnostic located(Severity severity, SourceLoc loc, const SourceFiles& files, std::string code,
+Diagnostic located(Severity severity, SourceLoc loc, const SourceFiles& files, DiagnosticCode code,
                    std::string message);
 
 // "file:line:col: warning: message", or "mospec: warning: message" for a
@@ -94,8 +95,8 @@ std::string format(const Diagnostic&);
 // The same two shapes for a severity that is not one of Severity's (a SHACL
 // report's "info", or a shape's own severity IRI): `file` empty or `line` 0
 // gives the "mospec:" shape.
-std::string format(std::string_view file, uint32_t line, uint32_t column,
-                   std::string_view severity, std::string_view message);
+std::string format(std::string_view file, uint32_t line, uint32_t column, std::string_view severity,
+                   std::string_view message);
 
 // A number as messages quote it: every digit needed to read the same double
 // back ("%.17g"), so a message never hides the value that was rejected.
@@ -118,7 +119,7 @@ class DiagnosticSink {
 // compare it.
 class Error : public std::runtime_error {
  public:
-  Error(std::string code, std::string message, std::string file = {}, uint32_t line = 0,
+  Error(DiagnosticCode code, std::string message, std::string file = {}, uint32_t line = 0,
         uint32_t column = 0);
   const std::string& code() const { return code_; }
   const Diagnostic& diagnostic() const { return diagnostic_; }

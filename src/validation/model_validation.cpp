@@ -477,8 +477,8 @@ std::vector<Diagnostic> strict_checks(app::LoadedModel& model, const Shapes& sha
                                       const std::vector<ShapeFile>& automatic) {
   std::vector<Diagnostic> out;
   const SourceFiles& files = model.files();
-  auto located = [&](SourceLoc loc, std::string code, std::string message) {
-    return mospec::located(Severity::Warning, loc, files, std::move(code), std::move(message));
+  auto located = [&](SourceLoc loc, DiagnosticCode code, std::string message) {
+    return mospec::located(Severity::Warning, loc, files, code, std::move(message));
   };
 
   // Shapes with targets that select nothing.

@@ -28,7 +28,7 @@ TEST(ExitCodes, ActionsReturnTheirOwnCode) {
 }
 
 TEST(ExitCodes, BadInputIsTwo) {
-  const auto [code, err] = guarded([]() -> int { throw Error("bad-thing", "the model is bad"); });
+  const auto [code, err] = guarded([]() -> int { throw Error("usage", "the model is bad"); });
   EXPECT_EQ(code, kExitBadInput);
   EXPECT_EQ(code, 2);
   EXPECT_NE(err.find("the model is bad"), std::string::npos) << err;
@@ -46,6 +46,21 @@ TEST(ExitCodes, AnythingElseIsAnInternalErrorThree) {
   EXPECT_EQ(code, kExitInternal);
   EXPECT_EQ(code, 3);
   EXPECT_EQ(err.rfind("mospec: internal error: an invariant broke (a bug in mospec", 0), 0u) << err;
+}
+
+// A diagnostic code known only at run time that the catalogue lacks is a bug
+// in mospec (src/support/diagnostic_codes.hpp), not bad input.
+TEST(ExitCodes, ACodeOutsideTheCatalogueIsAnInternalError) {
+  const auto [code, err] = guarded([]() -> int {
+    const std::string computed = "no-such-code";
+    throw Error(computed, "the model is bad");
+  });
+  EXPECT_EQ(code, kExitInternal);
+  EXPECT_EQ(err.rfind("mospec: internal error: the diagnostic code 'no-such-code' is not in the "
+                      "catalogue",
+                      0),
+            0u)
+      << err;
 }
 
 }  // namespace

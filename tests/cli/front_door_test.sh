@@ -4,6 +4,7 @@
 # import-urdf, build and --help-all to mospec-full beside it.
 # Usage: front_door_test.sh MOSPEC_BINARY
 source "$(dirname "$0")/../support/cli_lib.sh"
+catalogue_doc="$(cd "$(dirname "$0")/../../docs" && pwd)/diagnostics.md"
 cd "$work"
 
 # What the dynamic loader maps at start-up: nothing validation never calls.
@@ -19,9 +20,21 @@ fi
 
 # Every command is listed in --help, the forwarded ones included.
 expect help 0 '' -- "$mospec" --help
-for cmd in rdf validate stats sim import-urdf generate build ir run plot trials; do
+for cmd in rdf validate stats sim import-urdf generate build ir run plot trials explain; do
   stdout_has "help-lists-$cmd" "^  $cmd  "
 done
+
+# `mospec explain`: a code's catalogue entry (docs/diagnostics.md); a misspelt
+# code is refused with the nearest one; no code lists them all.
+expect explain 0 '' -- "$mospec" explain loop-sign
+stdout_has explain "^loop-sign: error \(run\): a controller's gain has the sign that makes its error grow$"
+expect explain-internal 0 '' -- "$mospec" explain invalid-base
+stdout_has explain-internal '^invalid-base: error, internal \(description\): '
+expect explain-misspelt 2 "^mospec: error: no diagnostic code 'loop_sign'; did you mean 'loop-sign'\?" -- \
+  "$mospec" explain loop_sign
+expect explain-all 0 '' -- "$mospec" explain
+check "explain lists every code of docs/diagnostics.md" \
+  test "$(wc -l < "$work/stdout.txt")" -eq "$(grep -c '^| `' "$catalogue_doc")"
 # Forwarded: their own help and their own usage errors, as mospec-full gives them.
 expect run-help 0 '' -- "$mospec" run --help
 stdout_has run-help '^Usage: mospec run \[OPTIONS\] app'

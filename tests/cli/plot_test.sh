@@ -102,6 +102,8 @@ check "failed trial warned" grep -q "leaving out .*trial-1.csv: its run did not 
 echo '{"trials": 3}' > "$work/trials/trials.json"
 expect "bad manifest" 2 "trials/trials.json:1:12: error: not a .mospec trials. manifest: \"trials\" is not an array" -- \
   "$mospec" plot "$work/trials" -o "$work/trials.svg"
+expect "... as [trials] (MOSPEC_DIAGNOSTIC_CODES=1)" 2 "trials/trials.json:1:12: error\[trials\]: not a .mospec trials. manifest" -- \
+  env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" plot "$work/trials" -o "$work/trials.svg"
 echo '{"trials": [{"exit_code": "0", "csv": "trial-0.csv"}]}' > "$work/trials/trials.json"
 expect "a manifest field of the wrong type" 2 "trials/trials.json:1:27: error: not a .mospec trials. manifest: a trial's \"exit_code\" is not a number or null" -- \
   "$mospec" plot "$work/trials" -o "$work/trials.svg"

@@ -185,6 +185,7 @@ echo '{}' > "$work/lonely.json"
 expect "a summary without its log" 2 "has no log beside it" -- "$mospec" report "$work/lonely.json" -o "$work/none.html"
 cp "$run_dir/sc0a.csv" "$work/lonely.csv"
 expect "a JSON that is not a run summary" 2 "lonely.json:1:1: error: not a run summary" -- "$mospec" report "$work/lonely.json" -o "$work/none.html"
+expect "... as [report] (MOSPEC_DIAGNOSTIC_CODES=1)" 2 "lonely.json:1:1: error\[report\]: not a run summary" -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" report "$work/lonely.json" -o "$work/none.html"
 check "nothing was written for them" test ! -e "$work/none.html"
 
 check "a hostile unit reaches an axis label as text" grep -q 'dygraph-ylabel[^>]*>\[&lt;/script&gt;' "$work/hostile-dom.html"

@@ -140,6 +140,7 @@ expect "an existing name" 2 "models/copy.json exists; choose another name" -- "$
 expect "a name that is not one" 2 "is not a task name" -- "$mospec" new ../escape --from sc0a
 check "nothing escaped" test ! -e ../escape.json
 expect "an unknown scenario" 2 "no scenario 'sc9'" -- "$mospec" new other --from sc9
+expect "... as [new] (MOSPEC_DIAGNOSTIC_CODES=1)" 2 "^mospec: error\[new\]: mospec new: no scenario 'sc9'" -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" new other --from sc9
 check "no half-made task" test ! -e models/other -a ! -e models/other.json
 # A world file is copied only from inside the model tree: a planted link out of
 # a shared bundle must not copy a file of the user's into the new task.

@@ -129,6 +129,8 @@ write_app '"https://m.example/ok.json"' '' . inside
       -- t "$mospec" rdf "$a.json"
     no_secret "$a"
   done
+  expect "map-abs as [invalid iri-map] (MOSPEC_DIAGNOSTIC_CODES=1)" 2 "^map-abs\.json:9:[0-9]+: error\[invalid iri-map\]: iri-map entry" \
+    -- t env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" rdf map-abs.json
   # Inside the tree everything still loads.
   expect inside 0 '' -- t "$mospec" rdf inside.json
   stdout_has inside '<https://ex.org/ok> <https://ex.org/p>'

@@ -192,6 +192,7 @@ expect warning-strict 1 'under --strict' -- "$mospec" validate --strict model.js
 expect empty-shapes 0 '' -- "$mospec" validate model.json --shapes shapes/empty.ttl
 expect unused-not-strict 0 '' -- "$mospec" validate good-model.json --shapes shapes/unused.ttl
 expect unused-strict 1 '^shapes/unused\.ttl:3:[0-9]+: warning: shape <http://example\.org/RobotShape> has targets but selects no focus node' -- "$mospec" validate --strict good-model.json --shapes shapes/unused.ttl
+expect unused-strict-code 1 '^shapes/unused\.ttl:3:[0-9]+: warning\[shape-unused\]: shape <' -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" validate --strict good-model.json --shapes shapes/unused.ttl
 expect undefined-type-strict 1 '^undefined-type\.json:2:[0-9]+: warning: type <http://example\.org/Robot> is defined by no loaded JSON-LD context or shape' -- "$mospec" validate --strict undefined-type.json --shapes shapes/person.ttl
 expect defined-by-shape-strict 0 '' -- "$mospec" validate --strict good-model.json --shapes shapes/person.ttl
 expect app 1 '' -- "$mospec" validate app.json

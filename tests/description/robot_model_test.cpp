@@ -625,6 +625,7 @@ TEST(RobotModelUr5e, RestatedPropertiesCountOnceAmongTheGraphsRead) {
       describe_chain(ds, kUr5eBase + "chain");
       ADD_FAILURE() << "no error";
     } catch (const Error& e) {
+      EXPECT_EQ(e.code(), "invalid-robot-model");
       const std::string what = e.what();
       if (c.via.empty()) {
         EXPECT_EQ(what, "mospec: error: " + kUr5eBase + c.unfiltered_error);

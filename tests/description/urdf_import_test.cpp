@@ -336,6 +336,16 @@ TEST(UrdfNumbers, JointAxesAndLimitsAreChecked) {
   EXPECT_NEAR(chain.segment(0).axis_J.y(), std::sqrt(0.5), 1e-15);
 }
 
+// What the importer refuses carries its own code.
+TEST(UrdfNumbers, RefusalsAreInvalidUrdf) {
+  try {
+    chain_from_urdf(folded_arm("1e308", "1e308"), "", "", "r.urdf");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "invalid-urdf") << e.what();
+  }
+}
+
 // Computed numbers: folding merged two finite masses into an infinite one and
 // import-urdf wrote "mass": inf with exit status 0.
 TEST(UrdfNumbers, FoldedMassesAreCheckedAgain) {

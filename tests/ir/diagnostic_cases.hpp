@@ -37,9 +37,9 @@ struct ExpectedDiagnostic {
   uint32_t line = 0;
   std::string code;
   Severity severity = Severity::Error;  // error[CODE], warning[CODE] or note[CODE]
-  std::string text;      // a substring of the message
-  std::string spelled;   // the line as written in expected.txt
-  int source_line = 0;   // its line number in expected.txt
+  std::string text;                     // a substring of the message
+  std::string spelled;                  // the line as written in expected.txt
+  int source_line = 0;                  // its line number in expected.txt
 };
 
 struct Expectations {
@@ -65,10 +65,5 @@ CaseResult check_case(const std::filesystem::path& source_dir,
 
 // The case directories under `cases_dir` (those holding an expected.txt), sorted.
 std::vector<std::filesystem::path> list_cases(const std::filesystem::path& cases_dir);
-
-// Every diagnostic code lowering can report: the string literal passed as the
-// second argument of each `error(...)` or `warn(...)` call in the C++ sources
-// under `dir`.
-std::set<std::string> lowering_codes(const std::filesystem::path& dir);
 
 }  // namespace mospec::test

@@ -18,7 +18,8 @@ class MemoryLoader : public DocumentLoader {
     ++loads;
     auto it = docs_.find(std::string(iri));
     if (it == docs_.end()) {
-      throw Error(for_context ? "loading remote context failed" : "loading document failed",
+      throw Error(for_context ? DiagnosticCode("loading remote context failed")
+                              : DiagnosticCode("loading document failed"),
                   "no document at " + std::string(iri));
     }
     const uint32_t id = files_.add(it->first);
@@ -260,6 +261,8 @@ TEST_F(ContextTest, KeywordLikeTermsAreIgnoredWithAWarning) {
   EXPECT_EQ(sink.diagnostics()[0].file, "ctx.jsonld");
   EXPECT_EQ(sink.diagnostics()[0].line, 1u);
   EXPECT_EQ(sink.diagnostics()[0].column, 2u);
+  EXPECT_EQ(sink.diagnostics()[0].code, "keyword-like-term");
+  EXPECT_EQ(sink.diagnostics()[1].code, "keyword-like-term");
 }
 
 TEST_F(ContextTest, VocabForms) {
@@ -328,6 +331,14 @@ TEST_F(ContextTest, RepeatedRemoteContextsAreNotCycles) {
   EXPECT_EQ(last_error->diagnostic().message,
             "remote context http://ctx.org/A.jsonld includes itself (http://ctx.org/A.jsonld -> "
             "http://ctx.org/B.jsonld -> http://ctx.org/A.jsonld)");
+}
+
+// JSON-LD 1.0 names a context that includes itself by the 1.0 code.
+TEST_F(ContextTest, ARecursiveInclusionInJsonLd10Mode) {
+  options.processing_mode = ProcessingMode::JsonLd10;
+  loader.add("http://ctx.org/A.jsonld", R"({"@context": ["B.jsonld"]})");
+  loader.add("http://ctx.org/B.jsonld", R"({"@context": ["A.jsonld"]})");
+  EXPECT_EQ(error_of(R"(["http://ctx.org/A.jsonld"])"), "recursive context inclusion");
 }
 
 TEST_F(ContextTest, Import) {

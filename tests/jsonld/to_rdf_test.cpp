@@ -14,6 +14,7 @@
 #include "json/json.hpp"
 #include "jsonld/loader.hpp"
 #include "rdf/nquads.hpp"
+#include "support/diagnostics.hpp"
 
 using mospec::jsonld::Options;
 using mospec::jsonld::RdfDirection;
@@ -301,9 +302,16 @@ TEST(LoadInto, QuadsRecordWhereTheNodeIdIsWritten) {
 }
 
 TEST(ToRdf, ConflictingIndexesAreAnError) {
-  EXPECT_THROW(convert(R"([{"@id": "http://ex/s", "@index": "a"},
-                           {"@id": "http://ex/s", "@index": "b"}])"),
-               mospec::Error);
+  try {
+    convert(R"([{"@id": "http://ex/s", "@index": "a"},
+                {"@id": "http://ex/s", "@index": "b"}])");
+    ADD_FAILURE() << "no error";
+  } catch (const mospec::Error& e) {
+    EXPECT_EQ(e.code(), "conflicting indexes") << e.what();
+    EXPECT_NE(std::string(e.what()).find("node <http://ex/s> has conflicting @index values"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // A @json literal holding a number JSON cannot write (1e400 overflows to

@@ -68,6 +68,9 @@ check "each drop is noted at the app's line" \
   test "$(grep -cE "^models/app.json:[0-9]+:[0-9]+: note: dropped" "$work/stderr.txt")" = 5
 
 expect "lowers" 0 "" -- "$mospec" ir models/app.json -o "$work/ir.json"
+# The codes (docs/diagnostics.md), as MOSPEC_DIAGNOSTIC_CODES=1 writes them.
+expect "a drop is noted as [dropped]" 0 "^models/app.json:[0-9]+:[0-9]+: note\[dropped\]: dropped '" \
+  -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" validate --strict models/app.json
 check "the dropped controller is not in the program" \
   bash -c "! grep -q 'ctrl-linvel-rightarm-ee-vertical\|acc-cstr-rightarm-ee-lin-z' '$work/ir.json'"
 check "the replacement controller is" grep -q 'mine/ctrl-elbow-soft' "$work/ir.json"
@@ -82,6 +85,9 @@ write_app models/typo.json "[\"$m/ctrl-linvel-rightarm-ee-verticle\"]"
 expect "a drop that names nothing is refused, with the nearest entity" 2 \
   "^models/typo.json:[0-9]+:[0-9]+: error: the app drops '$m/ctrl-linvel-rightarm-ee-verticle', which no loaded file mentions; did you mean '$m/ctrl-linvel-rightarm-ee-vertical'\?" \
   -- "$mospec" validate models/typo.json
+expect "a drop that names nothing is [invalid-drop]" 2 \
+  "^models/typo.json:[0-9]+:[0-9]+: error\[invalid-drop\]: the app drops '" \
+  -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" validate models/typo.json
 
 write_app models/list.json "[\"$m/prio-rightarm\"]"
 expect "a drop that would cut an item out of an ordered list is refused" 2 \

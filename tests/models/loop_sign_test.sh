@@ -37,6 +37,9 @@ expect "a wrong-sign gain is refused before the run" 1 \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json --log "$work/run.csv"
 check "only that gain" test "$(grep -c ': error: ' "$work/stderr.txt")" = 1
 check "nothing was run" bash -c "grep -q 'nothing was run' '$work/stderr.txt' && [ ! -e '$work/run.csv' ]"
+expect "... as [loop-sign] (MOSPEC_DIAGNOSTIC_CODES=1)" 1 \
+  "^models/right-arm/05-constraint-handler.json:41:[0-9]+: error\[loop-sign\]: the controller '$m/ctrl-angvel-rightarm-ee-x' drives" \
+  -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" run --sim --interpret --duration 1 models/sc0a.json
 
 # The elbow-height PD's proportional-gain 200 -> -200.
 set_first_gain 200.0 -200.0
@@ -50,6 +53,9 @@ expect "a gain too high for the tick is refused as an unstable loop" 1 \
   "^models/right-arm/05-constraint-handler.json:41:[0-9]+: error: the loop of the controller '$m/ctrl-angvel-rightarm-ee-x' on '$m/angvel-rightarm-ee-x' is unstable at the start: .*its gains \(proportional-gain 3000, integral-gain 2500, derivative-gain 0\) put a pole at \|z\| = 1\.[0-9]+, which grows the error e-fold every [0-9.]+ ms; with every gain scaled by 0\.[0-9]+ or less that pole is inside the unit circle" \
   -- "$mospec" run --sim --interpret --duration 1 models/sc0a.json
 check "one loop" test "$(grep -c ': error: ' "$work/stderr.txt")" = 1
+expect "... as [unstable-loop] (MOSPEC_DIAGNOSTIC_CODES=1)" 1 \
+  "^models/right-arm/05-constraint-handler.json:41:[0-9]+: error\[unstable-loop\]: the loop of the controller '$m/ctrl-angvel-rightarm-ee-x'" \
+  -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" run --sim --interpret --duration 1 models/sc0a.json
 check "the summary line counts the loops" grep -qE "^mospec: 1 controller loop\(s\) that would diverge; nothing was run \(--run-diverging runs it anyway\)$" "$work/stderr.txt"
 
 finish loop_sign_test

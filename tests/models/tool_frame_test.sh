@@ -27,6 +27,8 @@ cd "$tree"
 expect "imports the URDF, noting the tool link" 0 \
   "^mospec: note: the tip link 'tool0' is fixed to the last moving link 'hand' \(fixed joint hand-tool0\): the model states it as the link <https://mospec.example/robots/tool-arm/link-tool0> .*It can be an arm solver's controlled frame: attach its motion drivers to <https://mospec.example/robots/tool-arm/link-tool0>" \
   -- "$mospec" import-urdf tool-frame/tool-arm.urdf -o robots/tool-arm.jsonld
+expect "... as [fixed-tip] (MOSPEC_DIAGNOSTIC_CODES=1)" 0 "^mospec: note\[fixed-tip\]: the tip link 'tool0'" \
+  -- env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" import-urdf tool-frame/tool-arm.urdf -o "$work/tool-arm-again.jsonld"
 app=tool-frame/app.json
 expect "validates" 0 "" -- "$mospec" validate "$app"
 stdout_has "validates with no finding" '^shacl: 0 violations, 0 warnings, 0 infos'

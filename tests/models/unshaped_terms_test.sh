@@ -24,6 +24,9 @@ expect "Frame unlisted: --strict exit 1, located at the first node's @type" 1 \
   "^robots/kinova-gen3.jsonld:[0-9]+:[0-9]+: warning: type <${mm}geometry/structural-entities#Frame> of <https://mospec.example/robots/kinova-gen3/frame-base_link> is covered by no shape \([0-9]+ nodes typed so\): add a shape that targets it, or list it as structural in metamodels/mospec/unshaped-terms.txt" -- \
   "$mospec" validate --strict models/sc0a.json
 check "... once" test "$(grep -c unshaped-term "$work/stderr.txt")" -eq 1
+expect "... as [unshaped-term] (MOSPEC_DIAGNOSTIC_CODES=1)" 1 \
+  "^robots/kinova-gen3.jsonld:[0-9]+:[0-9]+: warning\[unshaped-term\]: type <" -- \
+  env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" validate --strict models/sc0a.json
 cp "$src/$list" "$list"
 
 # A property taken off the list: its first statement is the finding's place.
@@ -64,6 +67,9 @@ printf 'geom:Frame  # undeclared prefix\n' > "$list"
 expect "undeclared prefix in the list: located error" 2 \
   "unshaped-terms.txt:1:1: error: prefix 'geom' of 'geom:Frame' is not declared" -- \
   "$mospec" validate --strict models/sc0a.json
+expect "... as [unshaped-terms] (MOSPEC_DIAGNOSTIC_CODES=1)" 2 \
+  "unshaped-terms.txt:1:1: error\[unshaped-terms\]: prefix 'geom'" -- \
+  env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" validate --strict models/sc0a.json
 cp "$src/$list" "$list"
 
 # No stale entries: a model typing one node with each listed term (as a full

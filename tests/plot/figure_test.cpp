@@ -47,12 +47,23 @@ TEST(PlotCsv, ErrorsAreLocated) {
   EXPECT_EQ(error_of("t,x\n0,1\n\n1,2\n"), "run.csv:3:1: error: empty line between rows");
 }
 
+TEST(PlotCsv, AnEmptyLineBetweenRowsIsACsvError) {
+  try {
+    parse_csv("t,a\n0,1\n\n0.5,2\n", "run.csv");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "csv");
+    EXPECT_STREQ(e.what(), "run.csv:3:1: error: empty line between rows");
+  }
+}
+
 TEST(PlotCsv, MissingColumnListsTheAvailableOnes) {
   const Table t = parse_csv("t,a\n0,1\n", "run.csv");
   try {
     t.require("b", "--force");
     FAIL() << "no error";
   } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "missing-column");
     EXPECT_STREQ(e.what(), "run.csv:1:1: error: no column 'b' (--force); the columns are: t, a");
   }
 }

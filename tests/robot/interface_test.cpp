@@ -51,6 +51,7 @@ TEST(Sensors, AnyArmsAndJointCounts) {
     sensor(shape, "right_arm.q[0]");
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "unknown-sensor");
     EXPECT_STREQ(e.what(),
                  "mospec: error: no sensor named 'right_arm.q[0]'; sensors are "
                  "ur_arm.{q,qd,tau}[0..5], gantry_arm.{q,qd,tau}[0..2], left_arm.{q,qd,tau}[0..6], "

@@ -9,6 +9,7 @@
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainhdsolver_vereshchagin.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
+#include <limits>
 #include <memory>
 
 #include "description/urdf_import.hpp"
@@ -342,6 +343,7 @@ TEST(Achd, SizeMismatchIsAStatusAtTickTimeAndANamedErrorAtSetup) {
     check_achd_arguments(model, q, q_short, q, {}, alpha, Eigen::VectorXd::Zero(2));
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "size-mismatch");
     EXPECT_STREQ(e.what(), "mospec: error: achd: qd has 2 entries, expected 5 (model.nq)");
   }
   try {
@@ -350,6 +352,15 @@ TEST(Achd, SizeMismatchIsAStatusAtTickTimeAndANamedErrorAtSetup) {
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
                  "mospec: error: achd: beta has 3 entries, expected 2 (one per alpha column)");
+  }
+  try {
+    Eigen::VectorXd q_nan = q;
+    q_nan[1] = std::numeric_limits<double>::quiet_NaN();
+    check_achd_arguments(model, q_nan, q, q, {}, alpha, Eigen::VectorXd::Zero(2));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), "non-finite");
+    EXPECT_STREQ(e.what(), "mospec: error: achd: q has non-finite entries");
   }
   AchdData other(AchdModel(chain_from_urdf(testing::kToyUrdf, "world", "l3")));
   EXPECT_EQ(achd(model, other, q, q, q, {}, alpha, Eigen::VectorXd::Zero(2)), Status::SizeMismatch);

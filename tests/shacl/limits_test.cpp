@@ -24,7 +24,7 @@ Error validation_error(const std::string& body, const sparql::Limits& limits) {
   } catch (const Error& e) {
     return e;
   }
-  return Error("none", "");
+  return Error(DiagnosticCode(), "");  // no error: no code
 }
 
 std::string chain(size_t n) {

@@ -24,7 +24,7 @@ Error ill_formed(const std::string& body) {
     return e;
   }
   ADD_FAILURE() << "no error for:\n" << body;
-  return Error("none", "");
+  return Error(DiagnosticCode(), "");  // no error: no code
 }
 
 const Shape* find(const Shapes& shapes, const rdf::TermTable& t, std::string_view iri) {

@@ -64,7 +64,7 @@ inline Error refused(const std::string& body) {
     return e;
   }
   ADD_FAILURE() << "no error for\n" << body;
-  return Error("none", "");
+  return Error(DiagnosticCode(), "");  // no error: no code
 }
 
 // The report as `mospec validate` prints it, for failure messages.

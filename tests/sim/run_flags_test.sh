@@ -18,6 +18,9 @@ expect "run: 20000 s at 1 ms is beyond 10^7 ticks" 2 \
   "^mospec: error: --duration 20000 s at the world's control_period of 0.001 s is 20000000 control ticks; at most 10\^7" -- \
   run --duration 20000 --log "$work/never.csv"
 check "run: nothing written" test ! -e "$work/never.csv"
+expect "... as [invalid-duration] (MOSPEC_DIAGNOSTIC_CODES=1)" 2 \
+  "^mospec: error\[invalid-duration\]: --duration 20000 s" -- \
+  env MOSPEC_DIAGNOSTIC_CODES=1 "$mospec" run models/sc0a --sim --interpret --cache "$work/cache" --duration 20000
 expect "run: 10^7 ticks logged every tick is beyond 10^6 rows" 2 \
   "logging every 1 would keep 10000000 rows in memory, at most 10\^6 are kept \(raise --log-every\)" -- \
   run --duration 10000 --log-every 1

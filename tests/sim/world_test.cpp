@@ -391,7 +391,7 @@ TEST(WorldFile, RobotFilesStayInsideTheWorldFilesTree) {
     try {
       parse_world_config("{ \"robot\": " + robot + " }", world);
     } catch (const Error& e) {
-      return e.diagnostic().code + ": " + e.diagnostic().message;
+      return e.code() + ": " + e.diagnostic().message;
     }
     return "no error";
   };
@@ -406,6 +406,7 @@ TEST(WorldFile, RobotFilesStayInsideTheWorldFilesTree) {
            R"({ "map": { "https://ex.org/": "link-out" } })",
        }) {
     const std::string e = error(robot);
+    EXPECT_EQ(e.substr(0, e.find(':')), "invalid-world") << robot << " -> " << e;
     EXPECT_EQ(e.rfind("invalid-world: robot.", 0), 0u) << robot << " -> " << e;
     EXPECT_NE(e.find("lies outside the model tree"), std::string::npos) << e;
   }

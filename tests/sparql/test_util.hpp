@@ -78,7 +78,7 @@ inline QueryError error_of(std::string_view query) {
     return e;
   }
   ADD_FAILURE() << "no error for: " << query;
-  return QueryError("none", 0, 0, "no error");
+  return QueryError("", 0, 0, "no error");  // no code
 }
 
 }  // namespace mospec::sparql::test
