@@ -44,13 +44,24 @@ int spawn(const std::vector<std::string>& args, const std::string& out_file = "/
   return mospec::bench::spawn(args, kSource, out_file);
 }
 
+// The arms sc1's chains drive, as the CLI binds them: from its world file.
+mospec::ir::LowerOptions sc1_lower_options() {
+  const mospec::sim::WorldConfig world =
+      mospec::sim::load_world_config(kSource + "/models/sc1.world.json", /*check_files=*/false);
+  mospec::ir::LowerOptions options;
+  for (std::size_t k = 0; k < world.arms.size(); ++k)
+    options.ports[mospec::sim::arm_chain(world, k)] = static_cast<int>(k);
+  return options;
+}
+
 // `threads`: LoadOptions::threads (0: as many as the machine offers, up to 2).
 mospec::ir::Program lower_sc1(unsigned threads = 0) {
+  static const mospec::ir::LowerOptions lower_options = sc1_lower_options();
   mospec::app::LoadOptions options;
   options.root = kSource;
   options.threads = threads;
   mospec::app::LoadedModel model = mospec::app::load({kSource + "/models/sc1.json"}, options);
-  return mospec::ir::lower(model);
+  return mospec::ir::lower(model, lower_options);
 }
 
 void run_ticks(benchmark::State& state, Controller& controller) {
@@ -115,7 +126,8 @@ void BM_LowerStages(benchmark::State& state, int stage) {
     return;
   }
   const mospec::app::LoadedModel model = mospec::app::load({kSource + "/models/sc1.json"}, options);
-  for (auto _ : state) benchmark::DoNotOptimize(mospec::ir::lower(model));
+  const mospec::ir::LowerOptions lower_options = sc1_lower_options();
+  for (auto _ : state) benchmark::DoNotOptimize(mospec::ir::lower(model, lower_options));
 }
 BENCHMARK_CAPTURE(BM_LowerStages, sc1_load, 0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_LowerStages, sc1_load_one_thread, 2)

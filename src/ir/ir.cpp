@@ -150,6 +150,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = nullptr,
      .print = nullptr,
      .log = nullptr,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_read_clock,
      .emit = &kinds::emit_read_clock},
@@ -166,6 +167,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_arm_solver,
      .print = nullptr,
      .log = nullptr,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_arm_kinematics,
      .emit = &kinds::emit_arm_kinematics},
@@ -181,6 +183,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_view_read,
      .print = &kinds::print_view,
      .log = nullptr,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_view_read,
      .emit = &kinds::emit_view_read},
@@ -195,6 +198,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_view_write,
      .print = &kinds::print_view,
      .log = nullptr,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_view_write,
      .emit = &kinds::emit_view_write},
@@ -209,6 +213,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = nullptr,
      .print = nullptr,
      .log = nullptr,
+     .gate = nullptr,
      .prepare = &kinds::prepare_operator,
      .interpret = &kinds::interpret_operator,
      .emit = &kinds::emit_operator},
@@ -223,6 +228,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_evaluate,
      .print = &kinds::print_evaluate,
      .log = &kinds::log_evaluate,
+     .gate = &kinds::gate_evaluate,
      .prepare = &kinds::prepare_evaluate,
      .interpret = &kinds::interpret_evaluate,
      .emit = &kinds::emit_evaluate},
@@ -237,6 +243,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_monitor,
      .print = &kinds::print_monitor,
      .log = &kinds::log_monitor,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_monitor,
      .emit = &kinds::emit_monitor},
@@ -251,6 +258,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_monitor,
      .print = &kinds::print_monitor,
      .log = &kinds::log_monitor,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_monitor,
      .emit = &kinds::emit_monitor},
@@ -267,6 +275,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_guarded_motion,
      .print = &kinds::print_guarded_motion,
      .log = &kinds::log_guarded_motion,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_guarded_motion,
      .emit = &kinds::emit_guarded_motion},
@@ -282,6 +291,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = nullptr,
      .print = nullptr,
      .log = nullptr,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_any_of,
      .emit = &kinds::emit_any_of},
@@ -296,6 +306,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_controller,
      .print = &kinds::print_controller,
      .log = &kinds::log_controller,
+     .gate = &kinds::gate_controller,
      .prepare = &kinds::prepare_controller,
      .interpret = &kinds::interpret_controller,
      .emit = &kinds::emit_controller},
@@ -312,6 +323,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_arm_solve,
      .print = &kinds::print_drivers,
      .log = &kinds::log_arm_solve,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_arm_solve,
      .emit = &kinds::emit_arm_solve},
@@ -326,6 +338,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_base_force_distribution,
      .print = &kinds::print_drivers,
      .log = &kinds::log_base_force_distribution,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_base_force_distribution,
      .emit = &kinds::emit_base_force_distribution},
@@ -340,6 +353,7 @@ const StepKindInfo kStepKinds[] = {
      .verify = &kinds::verify_base,
      .print = nullptr,
      .log = &kinds::log_base_velocity_composition,
+     .gate = nullptr,
      .prepare = nullptr,
      .interpret = &kinds::interpret_base_velocity_composition,
      .emit = &kinds::emit_base_velocity_composition},
@@ -404,9 +418,10 @@ std::string template_section(StepKind kind) {
   return out;
 }
 
-std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage stage) {
-  Findings f(p, files);
-  // Slots: dense per type, each used once.
+namespace {
+
+// Slots: dense per type, each used once.
+void check_slots(const Program& p, Findings& f) {
   std::array<std::vector<char>, kDataTypes> used;
   for (int t = 0; t < kDataTypes; ++t)
     used[static_cast<size_t>(t)].assign(
@@ -426,6 +441,10 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
     }
     u[static_cast<size_t>(d.slot)] = 1;
   }
+}
+
+// A constant has as many values as its type.
+void check_constants(const Program& p, Findings& f) {
   for (const Data& d : p.data) {
     if (d.value.empty()) continue;
     const size_t need = d.type == DataType::Pose                                  ? 12
@@ -439,13 +458,17 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
                          " values; a " + std::string(to_string(d.type)) + " constant has " +
                          std::to_string(need));
   }
+}
+
+// Which step writes each datum (-2: a model constant; -1: none), each datum
+// written once. Producers first, so an unscheduled program's reads can be
+// checked for a producer regardless of order.
+std::vector<int> check_producers(const Program& p, Findings& f) {
   const size_t n_data = p.data.size();
   std::vector<int> producer(n_data, -1);  // step index; -2: a constant
   for (size_t i = 0; i < n_data; ++i) {
     if (!p.data[i].value.empty()) producer[i] = -2;
   }
-  // Producers first, so an unscheduled program's reads can be checked for a
-  // producer regardless of order.
   for (size_t i = 0; i < p.steps.size(); ++i) {
     const Step& st = p.steps[i];
     for (int d : st.out) {
@@ -461,113 +484,129 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
       }
     }
   }
-  for (size_t i = 0; i < p.steps.size(); ++i) {
-    const Step& st = p.steps[i];
-    const Signature sig = signature(st, p);
-    if (!sig.problem.empty()) f.step(st, sig.problem);
-    for (int d : st.in) {
-      if (!f.valid_datum(d)) f.step(st, "reads " + f.describe(d));
-    }
-    for (int d : st.out) {
-      if (!f.valid_datum(d)) f.step(st, "writes " + f.describe(d));
-    }
-    if (sig.problem.empty()) {
-      const bool ins_ok = sig.variadic_in || sig.in.size() == st.in.size();
-      const bool outs_ok = sig.variadic_out || sig.out.size() == st.out.size();
-      if (!ins_ok || !outs_ok) {
-        f.step(
-            st,
-            "has " + std::to_string(st.in.size()) + " inputs and " + std::to_string(st.out.size()) +
-                " outputs; expected " +
-                (sig.variadic_in ? std::string("any number of") : std::to_string(sig.in.size())) +
-                " and " +
-                (sig.variadic_out ? std::string("any number of") : std::to_string(sig.out.size())));
-      } else {
-        for (size_t k = 0; !sig.variadic_in && k < st.in.size(); ++k) {
-          if (f.valid_datum(st.in[k]) && p.data[static_cast<size_t>(st.in[k])].type != sig.in[k])
-            f.step(st, "input " + std::to_string(k) + " must be a " +
-                           std::string(to_string(sig.in[k])) + "; it is " + f.describe(st.in[k]));
-        }
-        for (size_t k = 0; !sig.variadic_out && k < st.out.size(); ++k) {
-          if (f.valid_datum(st.out[k]) && p.data[static_cast<size_t>(st.out[k])].type != sig.out[k])
-            f.step(st, "output " + std::to_string(k) + " must be a " +
-                           std::string(to_string(sig.out[k])) + "; it is " + f.describe(st.out[k]));
-        }
+  return producer;
+}
+
+// The step's inputs and outputs against its kind's signature.
+void check_signature(const Program& p, const Step& st, Findings& f) {
+  const Signature sig = signature(st, p);
+  if (!sig.problem.empty()) f.step(st, sig.problem);
+  for (int d : st.in) {
+    if (!f.valid_datum(d)) f.step(st, "reads " + f.describe(d));
+  }
+  for (int d : st.out) {
+    if (!f.valid_datum(d)) f.step(st, "writes " + f.describe(d));
+  }
+  if (sig.problem.empty()) {
+    const bool ins_ok = sig.variadic_in || sig.in.size() == st.in.size();
+    const bool outs_ok = sig.variadic_out || sig.out.size() == st.out.size();
+    if (!ins_ok || !outs_ok) {
+      f.step(
+          st,
+          "has " + std::to_string(st.in.size()) + " inputs and " + std::to_string(st.out.size()) +
+              " outputs; expected " +
+              (sig.variadic_in ? std::string("any number of") : std::to_string(sig.in.size())) +
+              " and " +
+              (sig.variadic_out ? std::string("any number of") : std::to_string(sig.out.size())));
+    } else {
+      for (size_t k = 0; !sig.variadic_in && k < st.in.size(); ++k) {
+        if (f.valid_datum(st.in[k]) && p.data[static_cast<size_t>(st.in[k])].type != sig.in[k])
+          f.step(st, "input " + std::to_string(k) + " must be a " +
+                         std::string(to_string(sig.in[k])) + "; it is " + f.describe(st.in[k]));
       }
-    }
-    if (static_cast<size_t>(st.kind) < kStepKindCount) {
-      if (const VerifyHook verify = info(st.kind).verify) verify(st, p, f);
-    }
-    if (const auto sk =
-            static_cast<size_t>(st.kind) < kStepKindCount ? info(st.kind).state : std::nullopt) {
-      const int n = p.states[static_cast<size_t>(*sk)];
-      if (st.state < 0 || st.state >= n)
-        f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
-                       std::to_string(n - 1));
-    }
-    for (int d : st.in) {
-      if (!f.valid_datum(d)) continue;
-      const int who = producer[static_cast<size_t>(d)];
-      if (stage == Stage::Unscheduled) continue;  // later passes may produce it
-      if (who == -1) {
-        f.step(st, "reads '" + p.data[static_cast<size_t>(d)].name +
-                       "', which no step produces and the model does not give");
-      } else if (stage == Stage::Scheduled && who >= static_cast<int>(i)) {
-        f.step(st, "reads '" + p.data[static_cast<size_t>(d)].name + "' before step '" +
-                       p.steps[static_cast<size_t>(who)].name + "' (at " + std::to_string(who) +
-                       " in the schedule) produces it");
+      for (size_t k = 0; !sig.variadic_out && k < st.out.size(); ++k) {
+        if (f.valid_datum(st.out[k]) && p.data[static_cast<size_t>(st.out[k])].type != sig.out[k])
+          f.step(st, "output " + std::to_string(k) + " must be a " +
+                         std::string(to_string(sig.out[k])) + "; it is " + f.describe(st.out[k]));
       }
     }
   }
-  for (const ArmSolver& a : p.arms) {
-    for (const AccelerationConstraint& c : a.acceleration_constraints) {
-      if (c.component < 0 || c.component > 5)
-        f.add(a.where, "arm solver '" + a.name + "': acceleration constraint '" + c.iri +
-                           "' has component " + std::to_string(c.component) + "; expected 0..5");
-      if (c.engaged_by >= 0 && !f.valid_datum(c.engaged_by))
-        f.add(a.where, "arm solver '" + a.name + "': acceleration constraint '" + c.iri +
-                           "' is engaged by " + f.describe(c.engaged_by));
-    }
-    if (a.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints))
-      f.add(a.where, "arm solver '" + a.name + "' has " +
-                         std::to_string(a.acceleration_constraints.size()) +
-                         " acceleration constraints; ACHD supports " +
-                         std::to_string(runtime::kMaxConstraints));
-    for (const ArmOutput& o : a.outputs) {
-      if (o.segment < 0 || o.segment >= a.chain.size())
-        f.add(a.where, "arm solver '" + a.name + "': an output names segment " +
-                           std::to_string(o.segment) + " of " + std::to_string(a.chain.size()));
-      if (!f.valid_datum(o.data)) {
-        f.add(a.where, "arm solver '" + a.name + "' outputs " + f.describe(o.data));
-        continue;
-      }
-      const bool tip = o.what == ArmOutput::What::TipPose || o.what == ArmOutput::What::TipTwist ||
-                       o.what == ArmOutput::What::TipPoseInChainRoot;
-      if (tip && o.segment != a.chain.size() - 1)
-        f.add(a.where, "arm solver '" + a.name + "': an output of the tip frame names segment " +
-                           std::to_string(o.segment) + ", not the last one");
-      const DataType expected =
-          o.what == ArmOutput::What::SegmentTwist || o.what == ArmOutput::What::TipTwist
-              ? DataType::Twist
-          : o.what == ArmOutput::What::EstimatedWrench ? DataType::Wrench
-          : o.what == ArmOutput::What::SegmentPose || o.what == ArmOutput::What::ChainRootPose ||
-                  o.what == ArmOutput::What::TipPose ||
-                  o.what == ArmOutput::What::TipPoseInChainRoot
-              ? DataType::Pose
-              : DataType::Scalar;
-      if (p.data[static_cast<size_t>(o.data)].type != expected)
-        f.add(a.where, "arm solver '" + a.name + "' writes an output of its kind into " +
-                           f.describe(o.data) + "; expected a " + std::string(to_string(expected)));
-    }
-    for (const JointForce& j : a.joint_forces) {
-      if (j.joint < 0 || j.joint >= a.chain.size())
-        f.add(a.where, "arm solver '" + a.name + "': joint force '" + j.iri + "' names joint " +
-                           std::to_string(j.joint) + " of " + std::to_string(a.chain.size()));
-      if (!f.valid_datum(j.force) || p.data[static_cast<size_t>(j.force)].type != DataType::Scalar)
-        f.add(a.where, "arm solver '" + a.name + "': joint force '" + j.iri + "' applies " +
-                           f.describe(j.force) + "; expected a scalar");
+}
+
+// The kind's own rules, its state slot, and that what it reads is produced
+// (before it, once scheduled).
+void check_step(const Program& p, size_t i, const std::vector<int>& producer, Stage stage,
+                Findings& f) {
+  const Step& st = p.steps[i];
+  if (static_cast<size_t>(st.kind) < kStepKindCount) {
+    if (const VerifyHook verify = info(st.kind).verify) verify(st, p, f);
+  }
+  if (const auto sk =
+          static_cast<size_t>(st.kind) < kStepKindCount ? info(st.kind).state : std::nullopt) {
+    const int n = p.states[static_cast<size_t>(*sk)];
+    if (st.state < 0 || st.state >= n)
+      f.step(st, "has state slot " + std::to_string(st.state) + "; expected 0.." +
+                     std::to_string(n - 1));
+  }
+  for (int d : st.in) {
+    if (!f.valid_datum(d)) continue;
+    const int who = producer[static_cast<size_t>(d)];
+    if (stage == Stage::Unscheduled) continue;  // later passes may produce it
+    if (who == -1) {
+      f.step(st, "reads '" + p.data[static_cast<size_t>(d)].name +
+                     "', which no step produces and the model does not give");
+    } else if (stage == Stage::Scheduled && who >= static_cast<int>(i)) {
+      f.step(st, "reads '" + p.data[static_cast<size_t>(d)].name + "' before step '" +
+                     p.steps[static_cast<size_t>(who)].name + "' (at " + std::to_string(who) +
+                     " in the schedule) produces it");
     }
   }
+}
+
+// An arm solver's own tables: its acceleration constraints, outputs and joint
+// forces.
+void check_arm(const Program& p, const ArmSolver& a, Findings& f) {
+  for (const AccelerationConstraint& c : a.acceleration_constraints) {
+    if (c.component < 0 || c.component > 5)
+      f.add(a.where, "arm solver '" + a.name + "': acceleration constraint '" + c.iri +
+                         "' has component " + std::to_string(c.component) + "; expected 0..5");
+    if (c.engaged_by >= 0 && !f.valid_datum(c.engaged_by))
+      f.add(a.where, "arm solver '" + a.name + "': acceleration constraint '" + c.iri +
+                         "' is engaged by " + f.describe(c.engaged_by));
+  }
+  if (a.acceleration_constraints.size() > static_cast<size_t>(runtime::kMaxConstraints))
+    f.add(a.where, "arm solver '" + a.name + "' has " +
+                       std::to_string(a.acceleration_constraints.size()) +
+                       " acceleration constraints; ACHD supports " +
+                       std::to_string(runtime::kMaxConstraints));
+  for (const ArmOutput& o : a.outputs) {
+    if (o.segment < 0 || o.segment >= a.chain.size())
+      f.add(a.where, "arm solver '" + a.name + "': an output names segment " +
+                         std::to_string(o.segment) + " of " + std::to_string(a.chain.size()));
+    if (!f.valid_datum(o.data)) {
+      f.add(a.where, "arm solver '" + a.name + "' outputs " + f.describe(o.data));
+      continue;
+    }
+    const bool tip = o.what == ArmOutput::What::TipPose || o.what == ArmOutput::What::TipTwist ||
+                     o.what == ArmOutput::What::TipPoseInChainRoot;
+    if (tip && o.segment != a.chain.size() - 1)
+      f.add(a.where, "arm solver '" + a.name + "': an output of the tip frame names segment " +
+                         std::to_string(o.segment) + ", not the last one");
+    const DataType expected =
+        o.what == ArmOutput::What::SegmentTwist || o.what == ArmOutput::What::TipTwist
+            ? DataType::Twist
+        : o.what == ArmOutput::What::EstimatedWrench ? DataType::Wrench
+        : o.what == ArmOutput::What::SegmentPose || o.what == ArmOutput::What::ChainRootPose ||
+                o.what == ArmOutput::What::TipPose || o.what == ArmOutput::What::TipPoseInChainRoot
+            ? DataType::Pose
+            : DataType::Scalar;
+    if (p.data[static_cast<size_t>(o.data)].type != expected)
+      f.add(a.where, "arm solver '" + a.name + "' writes an output of its kind into " +
+                         f.describe(o.data) + "; expected a " + std::string(to_string(expected)));
+  }
+  for (const JointForce& j : a.joint_forces) {
+    if (j.joint < 0 || j.joint >= a.chain.size())
+      f.add(a.where, "arm solver '" + a.name + "': joint force '" + j.iri + "' names joint " +
+                         std::to_string(j.joint) + " of " + std::to_string(a.chain.size()));
+    if (!f.valid_datum(j.force) || p.data[static_cast<size_t>(j.force)].type != DataType::Scalar)
+      f.add(a.where, "arm solver '" + a.name + "': joint force '" + j.iri + "' applies " +
+                         f.describe(j.force) + "; expected a scalar");
+  }
+}
+
+// Each log column reads a datum (a component of a twist or wrench), latched
+// as its type needs.
+void check_log(const Program& p, Findings& f) {
   for (const LogColumn& c : p.log) {
     if (!f.valid_datum(c.data)) {
       f.add({}, "log column '" + c.name + "' refers to " + f.describe(c.data));
@@ -588,6 +627,21 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
                                                         : "nothing") +
                 "; an event column is latched as an event, a flag column as a flag or not at all");
   }
+}
+
+}  // namespace
+
+std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage stage) {
+  Findings f(p, files);
+  check_slots(p, f);
+  check_constants(p, f);
+  const std::vector<int> producer = check_producers(p, f);
+  for (size_t i = 0; i < p.steps.size(); ++i) {
+    check_signature(p, p.steps[i], f);
+    check_step(p, i, producer, stage, f);
+  }
+  for (const ArmSolver& a : p.arms) check_arm(p, a, f);
+  check_log(p, f);
   return f.take();
 }
 
@@ -629,6 +683,155 @@ Json pose_json(const runtime::Pose& X) {
 
 }  // namespace
 
+namespace {
+
+Json datum_json(const Data& d, size_t i, const SourceFiles* files) {
+  Json e;
+  e["id"] = i;
+  e["name"] = d.name;
+  e["iri"] = d.iri;
+  e["type"] = to_string(d.type);
+  e["slot"] = d.slot;
+  if (!d.of.empty()) e["of"] = d.of;
+  if (!d.with_respect_to.empty()) e["with-respect-to"] = d.with_respect_to;
+  if (!d.reference_point.empty()) e["reference-point"] = d.reference_point;
+  if (!d.as_seen_by.empty()) e["as-seen-by"] = d.as_seen_by;
+  if (!d.quantity_kind.empty()) e["quantity-kind"] = d.quantity_kind;
+  if (!d.unit.empty()) e["unit"] = d.unit;
+  if (!d.value.empty()) e["value"] = d.value;
+  e["where"] = location(d.where, files);
+  return e;
+}
+
+Json arm_json(const ArmSolver& a, const SourceFiles* files) {
+  Json e;
+  e["name"] = a.name;
+  e["iri"] = a.iri;
+  e["chain"] = a.chain_iri;
+  e["root"] = a.root_frame;
+  if (!a.mount_pose_iri.empty()) {
+    e["mount"] = a.mount_pose_iri;
+    e["X_RB"] = pose_json(a.X_RB);
+  }
+  e["port"] = a.port;
+  e["gravity"] = a.gravity;
+  e["gravity-compensated"] = a.gravity_compensated;
+  if (a.idle != ArmSolver::Idle::Unstated) {
+    Json idle;
+    idle["kind"] = a.idle == ArmSolver::Idle::BrakeAndHold ? "brake-and-hold" : "float";
+    if (a.idle == ArmSolver::Idle::BrakeAndHold) idle["time-constant"] = a.idle_time_constant;
+    e["when-idle"] = std::move(idle);
+  }
+  e["tip-is-last-segment"] = a.tip_is_last_segment;
+  Json segs = Json::array();
+  for (int i = 0; i < a.chain.size(); ++i) {
+    const runtime::Segment& s = a.chain.segment(i);
+    Json sj;
+    sj["link"] = s.link;
+    sj["joint"] = s.joint;
+    sj["type"] = std::string(runtime::to_string(s.type));
+    sj["X_PJ"] = pose_json(s.X_PJ);
+    sj["axis"] = {s.axis_J.x(), s.axis_J.y(), s.axis_J.z()};
+    sj["mass"] = s.inertia.mass;
+    sj["com"] = {s.inertia.p_SoScm_S.x(), s.inertia.p_SoScm_S.y(), s.inertia.p_SoScm_S.z()};
+    const runtime::Mat3& I = s.inertia.I_Scm_S;
+    sj["inertia"] = {I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2)};
+    sj["armature"] = s.armature;
+    segs.push_back(std::move(sj));
+  }
+  e["segments"] = std::move(segs);
+  e["X_NT"] = pose_json(a.chain.X_NT());
+  Json outs = Json::array();
+  for (const ArmOutput& o : a.outputs) {
+    const char* what = o.what == ArmOutput::What::SegmentPose       ? "segment-pose"
+                       : o.what == ArmOutput::What::ChainRootPose   ? "segment-pose-in-chain-root"
+                       : o.what == ArmOutput::What::JointPosition   ? "joint-position"
+                       : o.what == ArmOutput::What::JointVelocity   ? "joint-velocity"
+                       : o.what == ArmOutput::What::JointTorque     ? "measured-joint-torque"
+                       : o.what == ArmOutput::What::EstimatedWrench ? "estimated-wrench"
+                       : o.what == ArmOutput::What::TipPose         ? "tip-pose"
+                       : o.what == ArmOutput::What::TipPoseInChainRoot ? "tip-pose-in-chain-root"
+                       : o.what == ArmOutput::What::TipTwist           ? "tip-twist"
+                                                                       : "segment-twist";
+    outs.push_back({{"what", what}, {"segment", o.segment}, {"data", o.data}});
+  }
+  e["outputs"] = std::move(outs);
+  Json acc = Json::array();
+  for (const AccelerationConstraint& c : a.acceleration_constraints) {
+    Json e = {{"iri", c.iri}, {"component", c.component}, {"energy", c.energy}, {"level", c.level}};
+    if (c.engaged_by >= 0) {
+      e["engaged-by"] = c.engaged_by;
+      e["engaged-tolerance"] = c.tolerance;
+    }
+    acc.push_back(std::move(e));
+  }
+  e["acceleration-constraints"] = std::move(acc);
+  Json frc = Json::array();
+  for (const CartesianForce& c : a.cartesian_forces) {
+    Json f = {{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}};
+    if (c.at_tip) f["at-tip"] = true;  // its wrench is at the tool's origin
+    frc.push_back(std::move(f));
+  }
+  e["cartesian-forces"] = std::move(frc);
+  Json jf = Json::array();
+  for (const JointForce& c : a.joint_forces) {
+    jf.push_back({{"iri", c.iri}, {"joint", c.joint}, {"force", c.force}, {"level", c.level}});
+  }
+  e["joint-forces"] = std::move(jf);
+  e["priority-levels"] = a.priority_levels;
+  e["where"] = location(a.where, files);
+  return e;
+}
+
+Json base_json(const BaseSolver& base, const SourceFiles* files) {
+  Json b;
+  b["name"] = base.name;
+  b["iri"] = base.iri;
+  b["configuration"] = base.configuration;
+  const runtime::KeloConfig& c = base.config;
+  Json drives = Json::array();
+  for (size_t i = 0; i < c.geometry.p_PoAi_P.size(); ++i) {
+    const auto& d = c.geometry.p_PoAi_P[i];
+    Json e;
+    e["pivot"] = {d.x(), d.y()};
+    e["drive-weight"] = c.drive_weight[i];
+    e["force-alignment-weight"] = c.align_force_weight[i];
+    e["moment-alignment-weight"] = c.align_moment_weight[i];
+    drives.push_back(std::move(e));
+  }
+  b["drives"] = std::move(drives);
+  b["wheel-radius"] = c.geometry.wheel_radius;
+  b["wheel-distance"] = c.geometry.wheel_distance;
+  b["castor-offset"] = c.geometry.castor_offset;
+  b["wrench"] = base.wrench;
+  b["twist"] = base.twist;
+  b["where"] = location(base.where, files);
+  return b;
+}
+
+// The common fields, then the kind's own (its print hook), then its state and
+// place.
+Json step_json(const Step& st, const SourceFiles* files) {
+  Json e;
+  e["kind"] = kind_name(st);
+  e["name"] = st.name;
+  e["iri"] = st.iri;
+  e["in"] = st.in;
+  e["out"] = st.out;
+  if (st.solver >= 0) e["solver"] = st.solver;
+  if (static_cast<size_t>(st.kind) < kStepKindCount) {
+    if (const PrintHook print = info(st.kind).print) {
+      StepJson fields{e};
+      print(st, fields);
+    }
+  }
+  if (st.state >= 0) e["state"] = st.state;
+  e["where"] = location(st.where, files);
+  return e;
+}
+
+}  // namespace
+
 std::string to_json(const Program& p, const SourceFiles* files) {
   Json j;
   j["mospec-ir"] = 1;
@@ -638,153 +841,14 @@ std::string to_json(const Program& p, const SourceFiles* files) {
     slots[std::string(to_string(static_cast<DataType>(t)))] = p.slots[static_cast<size_t>(t)];
   j["slots"] = slots;
   Json data = Json::array();
-  for (size_t i = 0; i < p.data.size(); ++i) {
-    const Data& d = p.data[i];
-    Json e;
-    e["id"] = i;
-    e["name"] = d.name;
-    e["iri"] = d.iri;
-    e["type"] = to_string(d.type);
-    e["slot"] = d.slot;
-    if (!d.of.empty()) e["of"] = d.of;
-    if (!d.with_respect_to.empty()) e["with-respect-to"] = d.with_respect_to;
-    if (!d.reference_point.empty()) e["reference-point"] = d.reference_point;
-    if (!d.as_seen_by.empty()) e["as-seen-by"] = d.as_seen_by;
-    if (!d.quantity_kind.empty()) e["quantity-kind"] = d.quantity_kind;
-    if (!d.unit.empty()) e["unit"] = d.unit;
-    if (!d.value.empty()) e["value"] = d.value;
-    e["where"] = location(d.where, files);
-    data.push_back(std::move(e));
-  }
+  for (size_t i = 0; i < p.data.size(); ++i) data.push_back(datum_json(p.data[i], i, files));
   j["data"] = std::move(data);
   Json arms = Json::array();
-  for (const ArmSolver& a : p.arms) {
-    Json e;
-    e["name"] = a.name;
-    e["iri"] = a.iri;
-    e["chain"] = a.chain_iri;
-    e["root"] = a.root_frame;
-    if (!a.mount_pose_iri.empty()) {
-      e["mount"] = a.mount_pose_iri;
-      e["X_RB"] = pose_json(a.X_RB);
-    }
-    e["port"] = a.port;
-    e["gravity"] = a.gravity;
-    e["gravity-compensated"] = a.gravity_compensated;
-    if (a.idle != ArmSolver::Idle::Unstated) {
-      Json idle;
-      idle["kind"] = a.idle == ArmSolver::Idle::BrakeAndHold ? "brake-and-hold" : "float";
-      if (a.idle == ArmSolver::Idle::BrakeAndHold) idle["time-constant"] = a.idle_time_constant;
-      e["when-idle"] = std::move(idle);
-    }
-    e["tip-is-last-segment"] = a.tip_is_last_segment;
-    Json segs = Json::array();
-    for (int i = 0; i < a.chain.size(); ++i) {
-      const runtime::Segment& s = a.chain.segment(i);
-      Json sj;
-      sj["link"] = s.link;
-      sj["joint"] = s.joint;
-      sj["type"] = std::string(runtime::to_string(s.type));
-      sj["X_PJ"] = pose_json(s.X_PJ);
-      sj["axis"] = {s.axis_J.x(), s.axis_J.y(), s.axis_J.z()};
-      sj["mass"] = s.inertia.mass;
-      sj["com"] = {s.inertia.p_SoScm_S.x(), s.inertia.p_SoScm_S.y(), s.inertia.p_SoScm_S.z()};
-      const runtime::Mat3& I = s.inertia.I_Scm_S;
-      sj["inertia"] = {I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2)};
-      sj["armature"] = s.armature;
-      segs.push_back(std::move(sj));
-    }
-    e["segments"] = std::move(segs);
-    e["X_NT"] = pose_json(a.chain.X_NT());
-    Json outs = Json::array();
-    for (const ArmOutput& o : a.outputs) {
-      const char* what = o.what == ArmOutput::What::SegmentPose       ? "segment-pose"
-                         : o.what == ArmOutput::What::ChainRootPose   ? "segment-pose-in-chain-root"
-                         : o.what == ArmOutput::What::JointPosition   ? "joint-position"
-                         : o.what == ArmOutput::What::JointVelocity   ? "joint-velocity"
-                         : o.what == ArmOutput::What::JointTorque     ? "measured-joint-torque"
-                         : o.what == ArmOutput::What::EstimatedWrench ? "estimated-wrench"
-                         : o.what == ArmOutput::What::TipPose         ? "tip-pose"
-                         : o.what == ArmOutput::What::TipPoseInChainRoot ? "tip-pose-in-chain-root"
-                         : o.what == ArmOutput::What::TipTwist           ? "tip-twist"
-                                                                         : "segment-twist";
-      outs.push_back({{"what", what}, {"segment", o.segment}, {"data", o.data}});
-    }
-    e["outputs"] = std::move(outs);
-    Json acc = Json::array();
-    for (const AccelerationConstraint& c : a.acceleration_constraints) {
-      Json e = {
-          {"iri", c.iri}, {"component", c.component}, {"energy", c.energy}, {"level", c.level}};
-      if (c.engaged_by >= 0) {
-        e["engaged-by"] = c.engaged_by;
-        e["engaged-tolerance"] = c.tolerance;
-      }
-      acc.push_back(std::move(e));
-    }
-    e["acceleration-constraints"] = std::move(acc);
-    Json frc = Json::array();
-    for (const CartesianForce& c : a.cartesian_forces) {
-      Json f = {{"iri", c.iri}, {"segment", c.segment}, {"wrench", c.wrench}, {"level", c.level}};
-      if (c.at_tip) f["at-tip"] = true;  // its wrench is at the tool's origin
-      frc.push_back(std::move(f));
-    }
-    e["cartesian-forces"] = std::move(frc);
-    Json jf = Json::array();
-    for (const JointForce& c : a.joint_forces) {
-      jf.push_back({{"iri", c.iri}, {"joint", c.joint}, {"force", c.force}, {"level", c.level}});
-    }
-    e["joint-forces"] = std::move(jf);
-    e["priority-levels"] = a.priority_levels;
-    e["where"] = location(a.where, files);
-    arms.push_back(std::move(e));
-  }
+  for (const ArmSolver& a : p.arms) arms.push_back(arm_json(a, files));
   j["arms"] = std::move(arms);
-  if (p.base) {
-    Json b;
-    b["name"] = p.base->name;
-    b["iri"] = p.base->iri;
-    b["configuration"] = p.base->configuration;
-    const runtime::KeloConfig& c = p.base->config;
-    Json drives = Json::array();
-    for (size_t i = 0; i < c.geometry.p_PoAi_P.size(); ++i) {
-      const auto& d = c.geometry.p_PoAi_P[i];
-      Json e;
-      e["pivot"] = {d.x(), d.y()};
-      e["drive-weight"] = c.drive_weight[i];
-      e["force-alignment-weight"] = c.align_force_weight[i];
-      e["moment-alignment-weight"] = c.align_moment_weight[i];
-      drives.push_back(std::move(e));
-    }
-    b["drives"] = std::move(drives);
-    b["wheel-radius"] = c.geometry.wheel_radius;
-    b["wheel-distance"] = c.geometry.wheel_distance;
-    b["castor-offset"] = c.geometry.castor_offset;
-    b["wrench"] = p.base->wrench;
-    b["twist"] = p.base->twist;
-    b["where"] = location(p.base->where, files);
-    j["base"] = std::move(b);
-  } else {
-    j["base"] = nullptr;
-  }
+  j["base"] = p.base ? base_json(*p.base, files) : Json(nullptr);
   Json steps = Json::array();
-  for (const Step& st : p.steps) {
-    Json e;
-    e["kind"] = kind_name(st);
-    e["name"] = st.name;
-    e["iri"] = st.iri;
-    e["in"] = st.in;
-    e["out"] = st.out;
-    if (st.solver >= 0) e["solver"] = st.solver;
-    if (static_cast<size_t>(st.kind) < kStepKindCount) {
-      if (const PrintHook print = info(st.kind).print) {
-        StepJson fields{e};
-        print(st, fields);
-      }
-    }
-    if (st.state >= 0) e["state"] = st.state;
-    e["where"] = location(st.where, files);
-    steps.push_back(std::move(e));
-  }
+  for (const Step& st : p.steps) steps.push_back(step_json(st, files));
   j["schedule"] = std::move(steps);
   Json log = Json::array();
   for (const LogColumn& c : p.log) {

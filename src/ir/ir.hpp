@@ -121,6 +121,7 @@ using VerifyHook = void (*)(const Step&, const Program&, Findings&);
 using PrintHook = void (*)(const Step&, StepJson&);
 struct LogColumn;
 using LogHook = void (*)(const Program&, const Step&, std::vector<LogColumn>&);
+using GateHook = int (*)(const Step&);
 using InterpretHook = void (*)(Machine&, const Step&, size_t index, const robot::MeasuredState&,
                                robot::Command&) noexcept;
 using PrepareHook = void (*)(Machine&, const Step&, size_t index);
@@ -151,6 +152,9 @@ struct StepKindInfo {
   VerifyHook verify = nullptr;
   PrintHook print = nullptr;
   LogHook log = nullptr;
+  // The input holding the running flag that gates the step's output, which
+  // lowering's gating pass gives the solves it reaches; -1 (or none): ungated.
+  GateHook gate = nullptr;
   PrepareHook prepare = nullptr;
   InterpretHook interpret = nullptr;
   EmitHook emit = nullptr;

@@ -921,7 +921,7 @@ void check_acceleration_energies(State& st, const ArmSolver& arm) {
     const auto it = st.producer.find(ac.energy);
     if (it == st.producer.end()) continue;
     const Step& controller = st.steps[static_cast<size_t>(it->second)];
-    if (controller.kind != StepKind::Controller || controller.in.empty()) continue;
+    if (role(controller) != StepRole::Controller || controller.in.empty()) continue;
     const Data& signal = st.program.data[static_cast<size_t>(controller.in[0])];
     const bool linear = signal.unit == "M" || signal.unit == "M-PER-SEC";
     const bool angular = signal.unit == "RAD" || signal.unit == "RAD-PER-SEC";
@@ -948,7 +948,7 @@ void check_acceleration_energies(State& st, const ArmSolver& arm) {
 // through anything else (an operator mixing it with other signals) has no
 // single error that says when the bound is reached: refused.
 bool evaluates_inequality(const Step& step) {
-  return step.kind == StepKind::Evaluate &&
+  return role(step) == StepRole::Constraint &&
          (step.constraint.kind == runtime::ConstraintKind::LessThan ||
           step.constraint.kind == runtime::ConstraintKind::GreaterThan);
 }
@@ -958,7 +958,7 @@ void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
     const auto from = st.producer.find(ac.energy);
     if (from == st.producer.end() || from->second < 0) continue;
     const Step& controller = st.steps[static_cast<size_t>(from->second)];
-    if (controller.kind == StepKind::Controller && !controller.in.empty()) {
+    if (role(controller) == StepRole::Controller && !controller.in.empty()) {
       const auto e = st.producer.find(controller.in[0]);
       if (e != st.producer.end() && e->second >= 0) {
         if (const Step& evaluate = st.steps[static_cast<size_t>(e->second)];
@@ -991,12 +991,13 @@ void mark_one_sided(State& st, ArmSolver& arm, Step& solve) {
                      "use an equality or bilateral constraint");
         break;
       }
-      // Signals flow through controllers (not their running flag) and operators.
-      if (p.kind == StepKind::Controller) {
+      // Signals flow through controllers (not their running flag) and
+      // computations (operators, views).
+      if (role(p) == StepRole::Controller) {
         const size_t signals = controller_kinds()[static_cast<size_t>(p.controller)].in.size();
         todo.insert(todo.end(), p.in.begin(),
                     p.in.begin() + static_cast<std::ptrdiff_t>(std::min(signals, p.in.size())));
-      } else if (p.kind == StepKind::Operator) {
+      } else if (role(p) == StepRole::Computation) {
         todo.insert(todo.end(), p.in.begin(), p.in.end());
       }
     }
@@ -1015,7 +1016,7 @@ void check_driver_directions(State& st) {
     ArmSolver& arm = st.program.arms[a];
     check_acceleration_energies(st, arm);
     for (Step& solve : st.steps) {
-      if (solve.kind == StepKind::ArmSolve && solve.solver == static_cast<int>(a))
+      if (role(solve) == StepRole::Solver && solve.solver == static_cast<int>(a))
         mark_one_sided(st, arm, solve);
     }
     // One wrench applied by two Cartesian forces would push twice.
@@ -1037,7 +1038,7 @@ void check_driver_directions(State& st) {
       const auto it = st.producer.find(cf.wrench);
       if (it == st.producer.end()) continue;
       const Step& writer = st.steps[static_cast<size_t>(it->second)];
-      if (writer.kind != StepKind::ViewWrite) continue;
+      if (writer.views.empty()) continue;  // not assembled by views
       for (int component : writer.views) {
         for (const AccelerationConstraint& ac : arm.acceleration_constraints) {
           // A one-sided row cancels the force only while its bound is hit:
@@ -1061,7 +1062,7 @@ void check_driver_directions(State& st) {
 // assignments whose outputs reach the arm's drivers, through any operators.
 void gate_arm_solves(State& st) {
   for (Step& solve : st.steps) {
-    if (solve.kind != StepKind::ArmSolve && solve.kind != StepKind::BaseForceDistribution) continue;
+    if (role(solve) != StepRole::Solver) continue;
     solve.n_drivers = static_cast<int>(solve.in.size());
     std::pmr::set<int> gates{&st.arena}, seen_data{&st.arena};  // scratch (the arena)
     std::vector<int> todo(solve.in.begin(), solve.in.end());
@@ -1072,28 +1073,23 @@ void gate_arm_solves(State& st) {
       auto it = st.producer.find(d);
       if (it == st.producer.end() || it->second < 0) continue;
       const Step& p = st.steps[static_cast<size_t>(it->second)];
-      // A gated step's running flag: a controller's after its signals, an
-      // assignment's after its value.
-      const size_t gate =
-          p.kind == StepKind::Controller
-              ? controller_kinds()[static_cast<size_t>(p.controller)].in.size()
-          : p.kind == StepKind::Evaluate && p.constraint.kind == runtime::ConstraintKind::Assignment
-              ? 1
-              : p.in.size();
-      const bool gated = gate + 1 == p.in.size();
-      if (gated) gates.insert(p.in[gate]);
-      if (p.kind == StepKind::GuardedMotion || p.kind == StepKind::ArmKinematics ||
-          p.kind == StepKind::BaseVelocityComposition)
-        continue;
+      // A gated step's running flag (a controller's after its signals, an
+      // assignment's after its value): its kind says which input it is.
+      const GateHook gate_of = info(p.kind).gate;
+      const int gate = gate_of ? gate_of(p) : -1;
+      const bool gated = gate >= 0;
+      if (gated) gates.insert(p.in[static_cast<size_t>(gate)]);
+      // Motions and measurements start the chain: nothing upstream drives.
+      if (role(p) == StepRole::Motion || role(p) == StepRole::Measurement) continue;
       for (size_t k = 0; k < p.in.size(); ++k) {
-        if (gated && k == gate) continue;
+        if (gated && k == static_cast<size_t>(gate)) continue;
         todo.push_back(p.in[k]);
       }
     }
     solve.in.insert(solve.in.end(), gates.begin(), gates.end());
     // An arm some motion gates is idle while none of them runs: the model
     // says what it does then.
-    if (solve.kind == StepKind::ArmSolve && !gates.empty()) {
+    if (solve.solver >= 0 && !gates.empty()) {  // an arm's
       const ArmSolver& arm = st.program.arms[static_cast<size_t>(solve.solver)];
       if (arm.idle == ArmSolver::Idle::Unstated && !arm.idle_where.known())  // else refused there
         st.error(arm.where, "unstated-idle",

@@ -112,7 +112,8 @@ void platform_step(State& st, TermId solver, const char* property, DataType type
                  d.reference_point + "' seen by '" + d.as_seen_by + "'");
   }
   Step s = st.step_for(kind, solver);
-  (kind == StepKind::BaseVelocityComposition ? s.out : s.in) = {field};
+  // The twist a measurement gives, the wrench a solver takes.
+  (role(s) == StepRole::Measurement ? s.out : s.in) = {field};
   steps.push_back(std::move(s));
 }
 

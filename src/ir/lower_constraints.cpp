@@ -757,7 +757,7 @@ void lower_goals(State& st) {
       handlers_of[m->index].push_back(h);
   std::pmr::set<int> defaulted{&st.arena};  // Evaluate steps given a default tolerance
   for (Step& motion : st.steps) {
-    if (motion.kind != StepKind::GuardedMotion) continue;
+    if (role(motion) != StepRole::Motion) continue;
     const TermId m = st.term(motion.iri);
     std::vector<int> goals;  // Evaluate steps
     const auto add = [&](int step) {
@@ -804,8 +804,7 @@ void lower_goals(State& st) {
   for (int g : defaulted) {
     const Step& ev = st.steps[static_cast<size_t>(g)];
     for (Step& monitor : st.steps) {
-      if ((monitor.kind == StepKind::LevelMonitor || monitor.kind == StepKind::EdgeMonitor) &&
-          !monitor.in.empty() && monitor.in[0] == ev.out[1])
+      if (role(monitor) == StepRole::Monitor && !monitor.in.empty() && monitor.in[0] == ev.out[1])
         monitor.constraint = ev.constraint;
     }
   }

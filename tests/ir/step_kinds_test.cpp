@@ -1,8 +1,8 @@
 // The step kinds (ir.hpp: step_kinds()): each StepKind is declared once, in
-// order, with a unique name, and the generated controller's template has the
-// section codegen selects for it. The interpreter's and codegen's switches over
-// StepKind have no default, so the build (-Wswitch -Werror) fails first when
-// either lacks a kind; this test covers what the compiler cannot see.
+// order, with a unique name and the hooks every kind needs, its roles say what
+// the code that reads them expects, and the generated controller's template
+// has the section codegen selects for it. Outside the registry nothing
+// dispatches on a kind (the ctest step_kind_dispatch).
 #include <gtest/gtest.h>
 
 #include <charconv>
@@ -30,6 +30,52 @@ TEST(StepKinds, EachDeclaredOnceInOrderWithAUniqueName) {
     EXPECT_FALSE(kinds[k].summary.empty()) << kinds[k].name << " has no summary";
   }
   EXPECT_EQ(to_string(static_cast<StepKind>(kStepKindCount)), "?");
+}
+
+// Every kind is verified, interpreted and emitted through its entry: a kind
+// without one of these hooks could not run (the interpreter and codegen call
+// them unconditionally).
+TEST(StepKinds, EachHasTheHooksEveryKindNeeds) {
+  for (const StepKindInfo& k : step_kinds()) {
+    EXPECT_NE(k.signature, nullptr) << k.name << " has no signature";
+    EXPECT_NE(k.interpret, nullptr) << k.name << " has no interpret hook";
+    EXPECT_NE(k.emit, nullptr) << k.name << " has no emit hook";
+  }
+}
+
+// What the roles promise the code that reads them: the verdict and the report
+// read a motion's running flag and ended event, a constraint's satisfied
+// flag, a monitor's and a controller's one output; the log names them.
+TEST(StepKinds, RolesKeepTheirPromises) {
+  for (const StepKindInfo& k : step_kinds()) {
+    switch (k.role) {
+      case StepRole::Motion:
+        EXPECT_EQ(k.state, StateKind::Motion) << k.name;
+        EXPECT_NE(k.log, nullptr) << k.name << ": a motion's running flag is logged";
+        break;
+      case StepRole::Constraint:
+        EXPECT_EQ(k.member, StepMember::Evaluator) << k.name;
+        EXPECT_NE(k.log, nullptr) << k.name << ": a constraint's satisfaction is logged";
+        break;
+      case StepRole::Monitor:
+        EXPECT_EQ(k.member, StepMember::MonitorTolerance) << k.name;
+        EXPECT_NE(k.log, nullptr) << k.name << ": a monitor's flag or event is logged";
+        break;
+      case StepRole::Controller:
+        EXPECT_EQ(k.member, StepMember::Controller) << k.name;
+        EXPECT_NE(k.gate, nullptr) << k.name << ": a controller may be gated by its motion";
+        break;
+      case StepRole::Clock:
+      case StepRole::Measurement:
+      case StepRole::Computation:
+      case StepRole::Solver:
+        EXPECT_EQ(k.member, StepMember::None) << k.name;
+        break;
+    }
+  }
+  EXPECT_EQ(info(StepKind::ArmSolve).role, StepRole::Solver);
+  EXPECT_EQ(info(StepKind::BaseForceDistribution).role, StepRole::Solver);
+  EXPECT_EQ(info(StepKind::ReadClock).role, StepRole::Clock);
 }
 
 TEST(StepKinds, TheControllerTemplateHasASectionForEachKind) {

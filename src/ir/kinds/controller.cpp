@@ -84,4 +84,10 @@ void log_controller(const Program& p, const Step& st, std::vector<LogColumn>& lo
   log.push_back(step_column(p, st, ".output", st.out[0], robot::LogColumnKind::Value));
 }
 
+// The running flag after the signals, when a handler gates it.
+int gate_controller(const Step& st) {
+  const size_t n = controller_kinds()[static_cast<size_t>(st.controller)].in.size();
+  return st.in.size() == n + 1 ? static_cast<int>(n) : -1;
+}
+
 }  // namespace mospec::ir::kinds

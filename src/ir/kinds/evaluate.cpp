@@ -80,4 +80,10 @@ void verify_evaluate(const Step& st, const Program& p, Findings& f) {
     f.step(st, "has bound data, but its constraint is not bilateral");
 }
 
+// An assignment's running flag after its value: what it writes drives a
+// solver only while its motion runs. An error evaluation drives nothing.
+int gate_evaluate(const Step& st) {
+  return st.constraint.kind == runtime::ConstraintKind::Assignment && st.in.size() == 2 ? 1 : -1;
+}
+
 }  // namespace mospec::ir::kinds

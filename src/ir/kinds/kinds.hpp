@@ -100,6 +100,10 @@ void log_base_velocity_composition(const Program&, const Step&, std::vector<LogC
 LogColumn step_column(const Program& p, const Step& st, std::string_view suffix, int data,
                       robot::LogColumnKind kind);
 
+// Which input gates a step's output (StepKindInfo::gate).
+int gate_controller(const Step&);
+int gate_evaluate(const Step&);
+
 // What the interpreter allocates for a step before the first tick.
 void prepare_operator(Machine& m, const Step& st, size_t index);
 void prepare_evaluate(Machine& m, const Step& st, size_t index);
