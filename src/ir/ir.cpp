@@ -210,7 +210,7 @@ const StepKindInfo kStepKinds[] = {
      .role = StepRole::Computation,
      .member = StepMember::None,
      .signature = &kinds::signature_operator,
-     .verify = nullptr,
+     .verify = &kinds::verify_operator,
      .print = nullptr,
      .log = nullptr,
      .gate = nullptr,
@@ -604,6 +604,47 @@ void check_arm(const Program& p, const ArmSolver& a, Findings& f) {
   }
 }
 
+// What an arm's drivers mean to ACHD, as lowering established it and every
+// later pass must keep it: an acceleration energy is in N m^2/s^2, a Cartesian
+// force's wrench is seen by the solver's root, a joint force is a torque on a
+// revolute joint and a force on a prismatic one. (A datum with no unit or
+// frame stated is a hand-built program's, judged by its type alone.) Judged
+// once the program is scheduled: lowering's driver-directions pass, before
+// the schedule, is where a model that breaks them is refused, with advice.
+void check_arm_drivers(const Program& p, const ArmSolver& a, Findings& f) {
+  const auto datum = [&](int d) -> const Data* {
+    return f.valid_datum(d) ? &p.data[static_cast<size_t>(d)] : nullptr;
+  };
+  const std::string arm = "arm solver '" + a.name + "': ";
+  for (const AccelerationConstraint& c : a.acceleration_constraints) {
+    const Data* e = datum(c.energy);
+    if (e && !e->unit.empty() && e->unit != "N-M2-PER-SEC2")
+      f.add(a.where, arm + "acceleration constraint '" + c.iri + "' takes its energy from '" +
+                         e->name + "' in '" + e->unit + "'; expected N-M2-PER-SEC2");
+  }
+  for (const CartesianForce& c : a.cartesian_forces) {
+    const Data* w = datum(c.wrench);
+    if (!w || w->type != DataType::Wrench) {
+      f.add(a.where, arm + "Cartesian force '" + c.iri + "' applies " + f.describe(c.wrench) +
+                         "; expected a wrench");
+    } else if (!w->as_seen_by.empty() && w->as_seen_by != a.root_frame) {
+      f.add(a.where, arm + "Cartesian force '" + c.iri + "' applies '" + w->name + "' seen by '" +
+                         w->as_seen_by + "'; ACHD needs it seen by the root '" + a.root_frame +
+                         "'");
+    }
+  }
+  for (const JointForce& j : a.joint_forces) {
+    const Data* d = datum(j.force);
+    if (!d || d->unit.empty() || j.joint < 0 || j.joint >= a.chain.size()) continue;
+    const bool prismatic = a.chain.segment(j.joint).type == runtime::JointType::Prismatic;
+    const char* expected = prismatic ? "N" : "N-M";
+    if (d->unit != expected)
+      f.add(a.where, arm + "joint force '" + j.iri + "' applies '" + d->name + "' in '" + d->unit +
+                         "' to " + (prismatic ? "prismatic" : "revolute") + " joint " +
+                         std::to_string(j.joint) + "; expected " + expected);
+  }
+}
+
 // Each log column reads a datum (a component of a twist or wrench), latched
 // as its type needs.
 void check_log(const Program& p, Findings& f) {
@@ -640,7 +681,10 @@ std::vector<Diagnostic> check(const Program& p, const SourceFiles* files, Stage 
     check_signature(p, p.steps[i], f);
     check_step(p, i, producer, stage, f);
   }
-  for (const ArmSolver& a : p.arms) check_arm(p, a, f);
+  for (const ArmSolver& a : p.arms) {
+    check_arm(p, a, f);
+    if (stage == Stage::Scheduled) check_arm_drivers(p, a, f);
+  }
   check_log(p, f);
   return f.take();
 }

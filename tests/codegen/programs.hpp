@@ -334,7 +334,7 @@ inline ir::Program arm_program(SourceFiles& files) {
   ir::Step& ev = b.step(K::Evaluate, "cstr_height", {height}, {ok, err});
   ev.constraint = {runtime::ConstraintKind::Bilateral, 0.0, 0.0, 0.55, 0.65, 0.001};
   ev.has_error_output = true;
-  const int acc = b.datum("acc_z", T::Scalar, {}, "M-PER-SEC2");
+  const int acc = b.datum("acc_z", T::Scalar, {}, "N-M2-PER-SEC2");
   b.controller("pid", "pid_height", {err}, {acc}, {{"kp", 40.0}, {"ki", 2.0}, {"kd", 0.0}});
   // A one-sided row (issue #15): a less-than bound on the height drives the
   // tip's linear x only while it is violated (the push below acts along x
@@ -344,7 +344,7 @@ inline ir::Program arm_program(SourceFiles& files) {
   ir::Step& lt = b.step(K::Evaluate, "cstr_low", {height}, {low_ok, low_err});
   lt.constraint = {runtime::ConstraintKind::LessThan, 0.0, 0.84, 0.0, 0.0, 0.0};
   lt.has_error_output = true;
-  const int acc_x = b.datum("acc_x", T::Scalar, {}, "M-PER-SEC2");
+  const int acc_x = b.datum("acc_x", T::Scalar, {}, "N-M2-PER-SEC2");
   b.controller("pid", "pid_low", {low_err}, {acc_x}, {{"kp", 10.0}, {"ki", 0.0}, {"kd", 1.0}});
   const int push = b.datum("push", T::Scalar, {}, "N");
   const int push_ok = b.datum("push_ok", T::Flag);
@@ -397,7 +397,7 @@ inline ir::Program hostile_program(SourceFiles& files) {
   ProgramBuilder b(files);
   b.p.app = "https://mospec.example/tests/codegen/app*/\n#error injected ?\?/\n\xE2\x80\xAE";
   const std::string rlo = "\xE2\x80\xAE";  // U+202E RIGHT-TO-LEFT OVERRIDE, alone
-  const int time = b.datum("?\?/", T::Scalar, {}, "SEC");
+  const int time = b.datum("?\?/", T::Scalar, {}, "SEC\\");  // its error's unit, hostile too
   b.step(K::ReadClock, "?\?/", {}, {time});
   const int ok = b.datum("assert", T::Flag);
   const int err = b.datum("errno", T::Scalar, {}, "SEC\\");

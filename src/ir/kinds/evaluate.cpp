@@ -75,6 +75,24 @@ void verify_evaluate(const Step& st, const Program& p, Findings& f) {
     if (!f.valid_datum(bound) || p.data[static_cast<size_t>(bound)].type != DataType::Scalar)
       f.step(st, "logs bound " + f.describe(bound) + ", which must be a scalar");
   }
+  // The error and the bounds are in the quantity's unit (an assignment's
+  // output is the quantity itself).
+  const auto unit_of = [&](int d) -> const std::string* {
+    return f.valid_datum(d) ? &p.data[static_cast<size_t>(d)].unit : nullptr;
+  };
+  const std::string* unit = st.in.empty() ? nullptr : unit_of(st.in[0]);
+  if (unit && !unit->empty()) {
+    const bool assignment = st.constraint.kind == runtime::ConstraintKind::Assignment;
+    const auto same_unit = [&](int d, const char* what) {
+      const std::string* u = unit_of(d);
+      if (u && !u->empty() && *u != *unit)
+        f.step(st, std::string(what) + " " + f.describe(d) + " is in '" + *u +
+                       "'; expected its quantity's unit '" + *unit + "'");
+    };
+    if (!assignment && st.out.size() > 1) same_unit(st.out[1], "error");
+    if (st.lower_bound >= 0) same_unit(st.lower_bound, "lower bound");
+    if (st.upper_bound >= 0) same_unit(st.upper_bound, "upper bound");
+  }
   if ((st.lower_bound >= 0 || st.upper_bound >= 0) &&
       st.constraint.kind != runtime::ConstraintKind::Bilateral)
     f.step(st, "has bound data, but its constraint is not bilateral");

@@ -86,6 +86,7 @@ void print_drivers(const Step&, StepJson&);  // arm-solve, base-force-distributi
 Json constraint_json(const runtime::ConstraintSpec& c);
 
 void verify_evaluate(const Step&, const Program&, Findings&);
+void verify_operator(const Step&, const Program&, Findings&);
 
 // The log columns of a kind's outputs (lowering's log pass; the verdict reads
 // them by name).

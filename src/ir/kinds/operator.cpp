@@ -42,4 +42,49 @@ Signature signature_operator(const Step& st, const Program&) {
   return s;
 }
 
+namespace {
+
+const std::string& frame_field(const Data& d, FrameField field) {
+  switch (field) {
+    case FrameField::Of:
+      return d.of;
+    case FrameField::WithRespectTo:
+      return d.with_respect_to;
+    case FrameField::ReferencePoint:
+      return d.reference_point;
+    case FrameField::AsSeenBy:
+      break;
+  }
+  return d.as_seen_by;
+}
+
+}  // namespace
+
+// The frame rules the kernel's arithmetic assumes, as lowering established
+// them, still hold between the data the step reads and writes. A rule on a
+// frame's origin needs the frames' origins, which only the model knows:
+// lowering checks those. A datum without the frame stated is a hand-built
+// program's, judged by its type alone.
+void verify_operator(const Step& st, const Program& p, Findings& f) {
+  if (st.op < 0 || static_cast<size_t>(st.op) >= operator_kinds().size()) return;
+  const OperatorKind& k = operator_kinds()[static_cast<size_t>(st.op)];
+  const auto port_datum = [&](int port) -> const Data* {
+    const auto i = static_cast<size_t>(port);
+    const int d = i < st.in.size() ? st.in[i] : st.out.empty() ? -1 : st.out[0];
+    return f.valid_datum(d) ? &p.data[static_cast<size_t>(d)] : nullptr;
+  };
+  for (const FrameRule& rule : k.frames) {
+    if (rule.rhs_origin) continue;
+    const Data* lhs = port_datum(rule.lhs_port);
+    const Data* rhs = port_datum(rule.rhs_port);
+    if (!lhs || !rhs) continue;
+    const std::string& got = frame_field(*lhs, rule.lhs_field);
+    const std::string& want = frame_field(*rhs, rule.rhs_field);
+    if (got.empty() || want.empty() || got == want) continue;
+    f.step(st, "breaks its frame rule '" + rule.text +
+                   "': " + std::string(to_string(rule.lhs_field)) + " of '" + lhs->name + "' is '" +
+                   got + "'; expected '" + want + "'");
+  }
+}
+
 }  // namespace mospec::ir::kinds
