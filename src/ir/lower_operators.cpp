@@ -113,24 +113,11 @@ void check_frames(State& st, TermId e, const OperatorKind& kind, const Step& s) 
     const int d = port < static_cast<int>(s.in.size()) ? s.in[static_cast<size_t>(port)] : s.out[0];
     return st.program.data[static_cast<size_t>(d)];
   };
-  const auto field = [](const Data& d, FrameField f) -> const std::string& {
-    switch (f) {
-      case FrameField::Of:
-        return d.of;
-      case FrameField::WithRespectTo:
-        return d.with_respect_to;
-      case FrameField::ReferencePoint:
-        return d.reference_point;
-      case FrameField::AsSeenBy:
-        break;
-    }
-    return d.as_seen_by;
-  };
   for (const FrameRule& rule : kind.frames) {
     const Data& lhs = quantity(rule.lhs_port);
     const Data& rhs = quantity(rule.rhs_port);
-    const std::string& got = field(lhs, rule.lhs_field);
-    std::string expected = field(rhs, rule.rhs_field);
+    const std::string& got = frame_field(lhs, rule.lhs_field);
+    std::string expected = frame_field(rhs, rule.rhs_field);
     if (rule.rhs_origin && !expected.empty()) expected = frame_origin(st, expected);
     if (got.empty() || expected.empty() || got == expected) continue;
     const std::string lhs_port(kind.port_at(rule.lhs_port).property);

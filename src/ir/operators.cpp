@@ -387,4 +387,18 @@ std::string_view to_string(FrameField f) {
   return "?";
 }
 
+const std::string& frame_field(const Data& d, FrameField field) {
+  switch (field) {
+    case FrameField::Of:
+      return d.of;
+    case FrameField::WithRespectTo:
+      return d.with_respect_to;
+    case FrameField::ReferencePoint:
+      return d.reference_point;
+    case FrameField::AsSeenBy:
+      break;
+  }
+  return d.as_seen_by;
+}
+
 }  // namespace mospec::ir

@@ -99,5 +99,8 @@ std::span<const OperatorKind> operator_kinds();
 int operator_index(std::string_view name);
 
 std::string_view to_string(FrameField);
+// The frame attribute `field` of a quantity (lowering's and the verifier's
+// frame rules read it).
+const std::string& frame_field(const Data& d, FrameField field);
 
 }  // namespace mospec::ir

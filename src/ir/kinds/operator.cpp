@@ -42,24 +42,6 @@ Signature signature_operator(const Step& st, const Program&) {
   return s;
 }
 
-namespace {
-
-const std::string& frame_field(const Data& d, FrameField field) {
-  switch (field) {
-    case FrameField::Of:
-      return d.of;
-    case FrameField::WithRespectTo:
-      return d.with_respect_to;
-    case FrameField::ReferencePoint:
-      return d.reference_point;
-    case FrameField::AsSeenBy:
-      break;
-  }
-  return d.as_seen_by;
-}
-
-}  // namespace
-
 // The frame rules the kernel's arithmetic assumes, as lowering established
 // them, still hold between the data the step reads and writes. A rule on a
 // frame's origin needs the frames' origins, which only the model knows:
