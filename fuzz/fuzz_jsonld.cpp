@@ -25,7 +25,8 @@ class NoFilesLoader : public mospec::jsonld::MappedDocumentLoader {
   mospec::jsonld::RemoteDocument load(std::string_view iri, mospec::SourceLoc referenced_from,
                                       bool for_context) override {
     if (!resolve(iri).empty()) {
-      throw mospec::Error(for_context ? "loading remote context failed" : "loading document failed",
+      throw mospec::Error(for_context ? mospec::DiagnosticCode("loading remote context failed")
+                                      : mospec::DiagnosticCode("loading document failed"),
                           "the fuzz target reads no files");
     }
     return MappedDocumentLoader::load(iri, referenced_from, for_context);
