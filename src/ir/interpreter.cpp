@@ -75,6 +75,7 @@ Interpreter::Interpreter(Program program) : program_(std::move(program)), m_(pro
     columns_.push_back({column_names_[i].c_str(), column_units_[i].c_str(), program_.log[i].kind});
   }
   arm_joints_ = ir::arm_joints(program_);
+  for (const Step& st : program_.steps) interpret_.push_back(info(st.kind).interpret);
 }
 
 Interpreter::~Interpreter() = default;
@@ -85,7 +86,7 @@ void Interpreter::tick(const robot::MeasuredState& state, robot::Command& comman
   std::fill(m_.s.events.begin(), m_.s.events.end(), 0);
   for (size_t i = 0; i < program_.steps.size(); ++i) {
     const Step& st = program_.steps[i];
-    info(st.kind).interpret(m_, st, i, state, command);
+    interpret_[i](m_, st, i, state, command);
   }
 }
 

@@ -47,6 +47,7 @@ class Interpreter final : public robot::Controller {
   Machine m_;  // after program_: it reads it
   std::vector<std::string> column_names_, column_units_;
   std::vector<int> arm_joints_;
+  std::vector<InterpretHook> interpret_;  // each step's, looked up once
   std::vector<robot::LogColumnInfo> columns_;
 };
 
