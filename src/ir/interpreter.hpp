@@ -39,10 +39,6 @@ class Interpreter final : public robot::Controller {
   double value(int data) const noexcept;
 
  private:
-  size_t slot(int data) const {
-    return static_cast<size_t>(program_.data[static_cast<size_t>(data)].slot);
-  }
-
   Program program_;
   Machine m_;  // after program_: it reads it
   std::vector<std::string> column_names_, column_units_;
